@@ -1,0 +1,53 @@
+#include "backend.h"
+
+namespace cavity::gpu {
+
+// Each implementation file defines its factory; nothing else of theirs leaks.
+Result<std::unique_ptr<Backend>> createGlBackend(const BackendOptions&);
+Result<std::unique_ptr<Backend>> createVkBackend(const BackendOptions&);
+
+const char* apiName(Api api) { return api == Api::OpenGL ? "gl" : "vk"; }
+
+int channelCount(Format f) {
+    switch (f) {
+    case Format::RG16F: return 2;
+    case Format::RGBA8:
+    case Format::RGBA16F:
+    case Format::RGBA32F: return 4;
+    default: return 1;
+    }
+}
+
+int bytesPerPixel(Format f) {
+    switch (f) {
+    case Format::R8: return 1;
+    case Format::R16F: return 2;
+    case Format::R32F: return 4;
+    case Format::RG16F: return 4;
+    case Format::RGBA8: return 4;
+    case Format::RGBA16F: return 8;
+    case Format::RGBA32F: return 16;
+    case Format::D32: return 4;
+    }
+    return 4;
+}
+
+const char* formatName(Format f) {
+    switch (f) {
+    case Format::R8: return "R8";
+    case Format::R16F: return "R16F";
+    case Format::R32F: return "R32F";
+    case Format::RG16F: return "RG16F";
+    case Format::RGBA8: return "RGBA8";
+    case Format::RGBA16F: return "RGBA16F";
+    case Format::RGBA32F: return "RGBA32F";
+    case Format::D32: return "D32";
+    }
+    return "?";
+}
+
+Result<std::unique_ptr<Backend>> createBackend(Api api, const BackendOptions& options) {
+    return api == Api::OpenGL ? createGlBackend(options) : createVkBackend(options);
+}
+
+}  // namespace cavity::gpu

@@ -1,0 +1,196 @@
+// The API-neutral GPU interface. Everything above backends/ talks to the GPU
+// through this header only: opaque handles, description structs whose zero
+// values mean "default", one function per operation (after Filament's
+// DriverAPI and sokol_gfx). No GL name or Vk* type crosses this line.
+//
+// Conventions every backend honours, so that one kernel source gives the
+// same pixels on every API:
+//  * Image row 0 is the first row in memory and the top of a written PNG.
+//    In compute and fragment kernels, ivec2(gl_FragCoord.xy) and
+//    gl_GlobalInvocationID.xy both address (column, row) of that layout.
+//  * Clip space: NDC y = -1 maps to row 0, depth range is [0, 1]
+//    (the GL backend sets glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE)).
+//  * Between passes the caller issues barrier(); a backend may make it a
+//    full memory barrier. Vulkan images live in VK_IMAGE_LAYOUT_GENERAL.
+#pragma once
+
+#include "result.h"
+
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace cavity::gpu {
+
+enum class Api { OpenGL, Vulkan };
+const char* apiName(Api api);   // "gl", "vk"
+
+enum class Format { R8, R16F, R32F, RG16F, RGBA8, RGBA16F, RGBA32F, D32 };
+int channelCount(Format f);     // 1, 1, 1, 2, 4, 4, 4, 1
+int bytesPerPixel(Format f);
+const char* formatName(Format f);  // "R8", "RGBA16F", ... as in error messages
+
+enum class Stage { Compute, Vertex, Fragment };
+
+struct Image    { uint32_t id = 0; explicit operator bool() const { return id != 0; } };
+struct Buffer   { uint32_t id = 0; explicit operator bool() const { return id != 0; } };
+struct Pipeline { uint32_t id = 0; explicit operator bool() const { return id != 0; } };
+
+struct ImageDesc {
+    int width = 0;
+    int height = 0;
+    Format format = Format::RGBA8;
+    int mipLevels = 1;          // 0 or 1: a single level
+    std::string label;          // shows up in error messages
+};
+
+enum class BufferUsage { Uniform, Storage };
+struct BufferDesc {
+    size_t size = 0;
+    BufferUsage usage = BufferUsage::Uniform;
+    std::string label;
+};
+
+enum class Filter { Nearest, Linear };
+enum class Address { ClampToEdge, Repeat };
+struct SamplerState {
+    Filter filter = Filter::Nearest;
+    Address address = Address::ClampToEdge;
+    bool mipmaps = false;       // trilinear between levels when true; level 0 otherwise
+};
+
+// One resource at one binding number. Binding numbers are unique across all
+// kinds within a pipeline (Vulkan puts them all in descriptor set 0; GL uses
+// the same number as the UBO / texture unit / image unit / SSBO index).
+enum class BindingKind { UniformBuffer, StorageBuffer, SampledImage, StorageImage };
+struct BindingSlot {
+    uint32_t binding = 0;
+    BindingKind kind = BindingKind::SampledImage;
+    Format format = Format::RGBA8;   // StorageImage only
+};
+struct Bind {
+    uint32_t binding = 0;
+    Image image;                // SampledImage, StorageImage
+    Buffer buffer;              // UniformBuffer, StorageBuffer
+    SamplerState sampler;       // SampledImage
+};
+
+// A shader handed to a backend: one fully expanded GLSL 4.50 translation
+// unit (no #include left) plus a name table for its #line source numbers,
+// so that a compile error names the kernel file and line. The backend
+// compiles it with glslang for its own API (kernels/compiler.h).
+struct ShaderSource {
+    std::string name;           // kernel id, e.g. "alchemy"
+    Stage stage = Stage::Compute;
+    std::string glsl;
+    std::vector<std::string> files;   // files[k] is "#line N k"'s source k
+};
+
+struct ComputePipelineDesc {
+    ShaderSource shader;
+    std::vector<BindingSlot> layout;
+    int localSizeX = 8, localSizeY = 8;   // must match the shader's
+    std::string label;
+};
+
+struct GraphicsPipelineDesc {
+    ShaderSource vertex;
+    ShaderSource fragment;
+    std::vector<BindingSlot> layout;      // shared by both stages
+    std::vector<Format> colorFormats;     // one per render target, location order
+    Format depthFormat = Format::D32;
+    bool depthTest = false;               // less, with depth writes; needs a depth target
+    std::string label;
+};
+
+// How a pipeline's shader reached the driver: the shared SPIR-V, or (GL only)
+// the GLSL text because the driver's SPIR-V path failed for this kernel.
+enum class ShaderPath { Spirv, GlslFallback };
+struct PipelineInfo {
+    ShaderPath path = ShaderPath::Spirv;
+    std::string fallbackReason;   // the driver's message when path is GlslFallback
+};
+
+struct RenderTargets {
+    std::vector<Image> colors;
+    Image depth;                  // optional
+    bool clear = true;
+    float clearColor[4] = {0, 0, 0, 0};
+    float clearDepth = 1.0f;
+};
+
+struct DeviceInfo {
+    std::string api;            // "gl" / "vk"
+    std::string deviceName;     // GL_RENDERER / VkPhysicalDeviceProperties::deviceName
+    std::string driver;         // GL_VERSION string / driverName + driverInfo
+    std::string apiVersion;     // "4.5" / "1.3.238"
+    std::string vendor;
+    bool softwareRenderer = false;   // llvmpipe, lavapipe, swiftshader
+};
+
+struct ScopeTime {
+    std::string name;
+    double gpuMs = 0;           // from the timestamp pair
+};
+
+struct BackendOptions {
+    int deviceIndex = 0;        // EGL device / physical device index
+    std::string deviceName;     // Vulkan: physical-device name substring; wins over index
+    bool validation = false;    // Vulkan: Khronos validation layer; GL: KHR_debug output
+};
+
+class Backend {
+public:
+    virtual ~Backend() = default;
+
+    virtual Api api() const = 0;
+    virtual const DeviceInfo& info() const = 0;
+
+    // Resources. Images are usable as sampled, storage, color/depth attachment,
+    // upload and readback target.
+    virtual Result<Image> createImage(const ImageDesc&) = 0;
+    virtual Result<Buffer> createBuffer(const BufferDesc&) = 0;
+    virtual void destroy(Image) = 0;
+    virtual void destroy(Buffer) = 0;
+    virtual void destroy(Pipeline) = 0;
+
+    // Data in and out. Pixel data is channelCount(format) floats per pixel,
+    // rows top to bottom; the backend converts to and from the image format
+    // (unorm for R8/RGBA8, half for *16F). These wait for the GPU.
+    virtual Status uploadImage(Image, int mipLevel, std::span<const float> pixels) = 0;
+    virtual Result<std::vector<float>> readImage(Image, int mipLevel = 0) = 0;
+    virtual Status updateBuffer(Buffer, std::span<const std::byte> data, size_t offset = 0) = 0;
+
+    virtual Result<Pipeline> createComputePipeline(const ComputePipelineDesc&) = 0;
+    virtual Result<Pipeline> createGraphicsPipeline(const GraphicsPipelineDesc&) = 0;
+    virtual PipelineInfo pipelineInfo(Pipeline) const = 0;
+
+    // Frame recording. Errors while recording are sticky and come back from
+    // endFrame (as a command buffer's would). endFrame submits and waits.
+    virtual void beginFrame() = 0;
+    virtual void dispatch(Pipeline, std::span<const Bind>, int groupsX, int groupsY) = 0;
+    // One render pass over the targets: a draw of vertexCount vertices with no
+    // vertex buffers (vertex shaders pull from gl_VertexIndex / storage buffers).
+    virtual void draw(Pipeline, std::span<const Bind>, const RenderTargets&, int vertexCount) = 0;
+    virtual void barrier() = 0;
+    // Named timestamp scopes; may nest. Scope names need not be unique.
+    virtual void beginScope(const std::string& name) = 0;
+    virtual void endScope() = 0;
+    virtual Status endFrame() = 0;
+    // The scopes of the last completed frame, in begin order.
+    virtual std::vector<ScopeTime> scopeTimes() const = 0;
+    // Drain the queue: every submitted command has completed on return.
+    virtual Status finish() = 0;
+
+    // Validation-layer (Vulkan) or KHR_debug error/warning (GL) messages
+    // since the last call. Tests fail on any; the harness prints them.
+    virtual std::vector<std::string> takeDebugMessages() = 0;
+};
+
+// Backends, by name ("gl", "vk"). Fails with ErrorCode::BackendUnavailable
+// naming the backend and what was tried.
+Result<std::unique_ptr<Backend>> createBackend(Api api, const BackendOptions& options);
+
+}  // namespace cavity::gpu

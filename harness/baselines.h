@@ -1,0 +1,76 @@
+// What the gate compares against, all under baselines/:
+//   matrices.json           named matrices of configurations (`cavity gate --matrix NAME`)
+//   manifest.json           per-pipeline tolerances for each image metric, with per-device overrides
+//   budgets.json            per-device-class timing budgets (median ms per pass) by configuration id
+//   images/<baseline key>/<image>.exr|png
+// A baseline key is a configuration id without its API and stage
+// ("corner/alchemy/n16/b4/full/160x90"): OpenGL and Vulkan, compute and
+// fragment, must all match the same images.
+#pragma once
+
+#include "config.h"
+
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace cavity::gate {
+
+std::string baselineKey(const RunConfig& c);
+
+// The images the gate checks for every configuration, with how they are stored.
+struct CheckedImage {
+    std::string name;        // pipeline image name: "ao", "ao_blur", "color"
+    std::string extension;   // ".exr" (half, zip) or ".png" (8-bit, exact)
+    bool perceptual;         // also scored with FLIP (LDR colour)
+};
+const std::vector<CheckedImage>& checkedImages();
+
+// ---- matrices.json ----
+struct MatrixGroup {
+    std::vector<std::string> scenes, kernels;   // kernels: names, or {"all"} for every AO kernel
+    std::vector<int> samples, blurs;
+    std::vector<bool> half;
+    std::vector<std::pair<int, int>> sizes;
+    std::vector<gpu::Api> apis;
+    std::vector<gpu::Stage> stages;
+};
+struct Matrix {
+    std::string name;
+    int frames = 3, warmup = 1;
+    std::vector<MatrixGroup> groups;
+    std::vector<RunConfig> expand() const;   // deduplicated by id, stable order
+};
+Result<Matrix> loadMatrix(const std::string& path, const std::string& name);
+
+// ---- manifest.json ----
+struct Tolerance {
+    double maxAbs = 0.02;
+    double meanAbs = 0.002;
+    double rmse = 0.005;
+    double psnrMin = 40;
+    double pixelThreshold = 0.01;       // per-pixel error counted by overThresholdShare
+    double overThresholdShare = 0.01;
+    double ssimMin = 0.98;
+    double flipMeanMax = 0.02;
+};
+struct Manifest {
+    std::map<std::string, Tolerance> pipelines;   // by AO kernel name; "*" is the default
+    struct DeviceOverride { std::string pattern; std::map<std::string, std::map<std::string, double>> pipelines; };
+    std::vector<DeviceOverride> devices;
+    std::map<std::string, std::map<std::string, double>> rawPipelines;   // as written, for overrides
+    Tolerance forPipeline(const std::string& kernel, const std::string& deviceName) const;
+};
+Result<Manifest> loadManifest(const std::string& path);
+
+// ---- budgets.json ----
+struct Budgets {
+    struct Device { std::string pattern; std::map<std::string, std::map<std::string, double>> configs; };
+    std::vector<Device> devices;
+    // The budget of one pass of one configuration on this device, if any.
+    std::optional<double> find(const std::string& deviceName, const std::string& id, const std::string& pass) const;
+};
+Result<Budgets> loadBudgets(const std::string& path);
+
+}  // namespace cavity::gate

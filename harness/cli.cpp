@@ -1,0 +1,35 @@
+#include "cli.h"
+
+#include <charconv>
+
+namespace cavity::cli {
+
+Result<std::string> Args::value(const std::string& flag) {
+    if (done() || (a_[i_].rfind("--", 0) == 0 && a_[i_].size() > 2))
+        return badInput(flag + ": missing value");
+    return next();
+}
+
+Result<int> parseInt(const std::string& flag, const std::string& text, int lo, int hi) {
+    int v = 0;
+    auto r = std::from_chars(text.data(), text.data() + text.size(), v);
+    if (r.ec != std::errc() || r.ptr != text.data() + text.size() || v < lo || v > hi)
+        return badInput(flag + " " + text + ": must be an integer in " + std::to_string(lo) + ".." + std::to_string(hi));
+    return v;
+}
+
+std::vector<std::string> splitList(const std::string& text) {
+    std::vector<std::string> out;
+    size_t start = 0;
+    while (true) {
+        const size_t comma = text.find(',', start);
+        out.push_back(text.substr(start, comma - start));
+        if (comma == std::string::npos) break;
+        start = comma + 1;
+    }
+    return out;
+}
+
+int exitCode(const Error& e) { return static_cast<int>(e.code); }
+
+}  // namespace cavity::cli

@@ -1,0 +1,100 @@
+#include "config.h"
+
+#include "pipeline.h"
+
+#include <charconv>
+#include <cmath>
+
+namespace cavity {
+
+namespace {
+
+const kernels::ParamDecl* findParam(const std::string& name) {
+    for (const auto& k : kernels::all())
+        for (const auto& p : k.params)
+            if (p.name == name) return &p;
+    return nullptr;
+}
+
+double paramOr(const RunConfig& c, const std::string& name) {
+    if (auto it = c.params.find(name); it != c.params.end()) return it->second;
+    const auto* p = findParam(name);
+    return p ? p->def : 0.0;
+}
+
+std::string aoKernelNames() {
+    std::string s;
+    for (const auto& k : kernels::all())
+        if (k.role == "ao") s += (s.empty() ? "" : ", ") + k.name;
+    return s;
+}
+
+}  // namespace
+
+std::string RunConfig::scene() const {
+    const auto* p = findParam("scene");
+    const int i = int(paramOr(*this, "scene"));
+    return p && i >= 0 && i < int(p->choices.size()) ? p->choices[size_t(i)] : "?";
+}
+int RunConfig::samples() const { return int(paramOr(*this, "samples")); }
+int RunConfig::blur() const { return int(paramOr(*this, "blur")); }
+
+std::string configId(const RunConfig& c) {
+    return c.scene() + (c.raster ? "+raster" : "") + "/" + c.kernel + "/n" + std::to_string(c.samples()) + "/b" + std::to_string(c.blur()) +
+           "/" + (c.half ? "half" : "full") + "/" + std::to_string(c.width) + "x" + std::to_string(c.height) +
+           "/" + gpu::apiName(c.api) + "/" + (c.stage == gpu::Stage::Compute ? "compute" : "fragment");
+}
+
+Result<std::pair<int, int>> parseResolution(const std::string& flag, const std::string& text) {
+    const std::string allowed = ": must be WIDTHxHEIGHT with each in 1.." + std::to_string(kMaxResolution);
+    const auto x = text.find('x');
+    if (x == std::string::npos) return badInput(flag + " " + text + allowed);
+    int w = 0, h = 0;
+    const char* b = text.data();
+    auto r1 = std::from_chars(b, b + x, w);
+    auto r2 = std::from_chars(b + x + 1, b + text.size(), h);
+    if (r1.ec != std::errc() || r1.ptr != b + x || r2.ec != std::errc() || r2.ptr != b + text.size() || w < 1 ||
+        h < 1 || w > kMaxResolution || h > kMaxResolution)
+        return badInput(flag + " " + text + allowed);
+    return std::pair{w, h};
+}
+
+bool isKernelParam(const std::string& name) { return findParam(name) != nullptr; }
+
+Status setParam(RunConfig& c, const std::string& name, const std::string& text) {
+    const auto* p = findParam(name);
+    if (!p) return badInput("--" + name + ": unknown flag");
+    if (p->type == kernels::ParamType::Enum) {
+        for (size_t i = 0; i < p->choices.size(); ++i)
+            if (p->choices[i] == text) {
+                c.params[name] = double(i);
+                return {};
+            }
+        std::string allowed;
+        for (const auto& ch : p->choices) allowed += (allowed.empty() ? "" : ", ") + ch;
+        return badInput("--" + name + " " + text + ": must be one of " + allowed);
+    }
+    double v = 0;
+    const char* b = text.data();
+    auto r = std::from_chars(b, b + text.size(), v);
+    if (r.ec != std::errc() || r.ptr != b + text.size() || !std::isfinite(v))
+        return badInput("--" + name + " " + text + ": not a number");
+    c.params[name] = v;
+    return {};
+}
+
+Status validate(const RunConfig& c) {
+    const auto* k = kernels::find(c.kernel);
+    if (!k || k->role != "ao") return badInput("--kernel " + c.kernel + ": unknown kernel (have: " + aoKernelNames() + ")");
+    if (c.width < 1 || c.height < 1 || c.width > kMaxResolution || c.height > kMaxResolution)
+        return badInput("--res " + std::to_string(c.width) + "x" + std::to_string(c.height) +
+                        ": must be WIDTHxHEIGHT with each in 1.." + std::to_string(kMaxResolution));
+    if (c.raster && c.scene() != "corner" && c.scene() != "slats")
+        return badInput("--gbuffer raster: scene " + c.scene() + " has no mesh (have: corner, slats)");
+    if (c.half && !supportsHalf(c.kernel))
+        return badInput("--resolution half: kernel " + c.kernel + " has no half-resolution pipeline (use full)");
+    for (const auto& decl : kernels::all()) CAVITY_TRY(kernels::validate(decl, c.params));
+    return {};
+}
+
+}  // namespace cavity

@@ -1,0 +1,48 @@
+// One run's configuration and its canonical id. The id is built here and
+// nowhere else; it names the configuration in results.json, the benchmark
+// name, the JUnit test name, the baseline path and the --filter syntax:
+//
+//     corner/alchemy/n16/b4/full/320x180/vk/compute
+//     scene / AO kernel / samples / blur radius / full|half / size / API / stage
+// A rasterised G-buffer appends "+raster" to the scene: corner+raster/...
+#pragma once
+
+#include "backend.h"
+#include "kernel.h"
+
+#include <string>
+#include <vector>
+
+namespace cavity {
+
+struct RunConfig {
+    std::string kernel = "alchemy";       // the AO kernel (role "ao")
+    kernels::ParamValues params;          // every kernel parameter given (samples, blur, scene, ...)
+    int width = 320, height = 180;
+    bool half = false;                    // AO at half resolution, bilateral upsample
+    gpu::Stage stage = gpu::Stage::Compute;
+    gpu::Api api = gpu::Api::Vulkan;
+    bool raster = false;                  // rasterised G-buffer (harness/meshes.cpp) instead of the ray march
+
+    std::string scene() const;            // the name of params["scene"]
+    int samples() const;
+    int blur() const;
+};
+
+std::string configId(const RunConfig& c);
+
+// Parses "320x180"; the message names the flag.
+Result<std::pair<int, int>> parseResolution(const std::string& flag, const std::string& text);
+constexpr int kMaxResolution = 16384;
+
+// Sets params[name] from a flag's text: numbers, or the name of an Enum choice.
+// Unknown names and out-of-range values fail with a one-line message.
+Status setParam(RunConfig& c, const std::string& name, const std::string& text);
+// True when some kernel declares a parameter of this name.
+bool isKernelParam(const std::string& name);
+
+// Validates the whole configuration (kernel known and of role "ao", every
+// parameter in range for every kernel of the pipeline, sizes).
+Status validate(const RunConfig& c);
+
+}  // namespace cavity

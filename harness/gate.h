@@ -1,0 +1,82 @@
+// The pull-request gate: a declared matrix of configurations, each output
+// image compared with its stored baseline and each pass's median time with
+// its budget. Verdicts go to gate.json (read by `gate merge` and
+// `baselines update`), junit.xml, summary.md and index.html (gate_report.h).
+#pragma once
+
+#include "baselines.h"
+#include "metrics.h"
+#include "pipeline.h"
+
+#include <nlohmann/json.hpp>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace cavity::gate {
+
+struct ImageCheck {
+    std::string image;                 // "ao", "ao_blur", "color"
+    std::string baseline;              // path of the baseline file (relative to the repo root or absolute)
+    std::string newPng, newExact;      // written new image: PNG to look at, and the exact file (.exr / .png)
+    std::string baselinePng, diffPng;  // for the report
+    std::optional<metrics::Report> metrics;
+    Tolerance tolerance;
+    std::vector<std::string> failures; // one line each: "rmse 0.0123 > 0.005"
+    bool passed() const { return failures.empty(); }
+};
+
+struct TimingCheck {
+    std::string pass;
+    double medianMs = 0;
+    std::optional<double> budgetMs;
+    std::string clock;
+    bool passed() const { return !budgetMs || medianMs <= *budgetMs; }
+};
+
+struct ConfigResult {
+    std::string id, key, device;
+    RunConfig config;
+    std::vector<ImageCheck> images;
+    std::vector<TimingCheck> timings;
+    bool deterministic = true;
+    std::string error;                 // the configuration could not run (its message)
+    int errorCode = 0;
+    bool imagesPassed() const;
+    bool timingPassed() const;
+    bool passed() const { return error.empty() && imagesPassed() && timingPassed(); }
+};
+
+struct GateOptions {
+    std::string matrix = "ci";
+    std::string baselines = "baselines";   // folder with matrices.json, manifest.json, budgets.json, images/
+    std::string out = "out/gate";
+    int shardIndex = 0, shardCount = 1;
+    int device = 0;
+    bool validation = false;
+    std::string filter;                    // regex on configuration ids; empty: all
+    SourceOverrides overrides;             // planted-bug tests
+};
+
+struct GateRun {
+    std::string matrix;
+    int shardIndex = 0, shardCount = 1;
+    std::vector<ConfigResult> results;
+    std::vector<std::string> backendErrors;   // backends that could not start
+    double seconds = 0;
+    // 0 all pass, 1 a regression, 2 bad input (a baseline missing or unreadable), 3 a backend could not start.
+    int exitCode() const;
+};
+
+// Shard I of N holds the matrix entries whose index i has i % N == I, as
+// GoogleTest's GTEST_TOTAL_SHARDS / GTEST_SHARD_INDEX split tests.
+bool inShard(size_t index, int shardIndex, int shardCount);
+
+// Validates every input file first (exit 2 before any GPU work), then runs.
+Result<GateRun> runGate(const GateOptions& o);
+
+nlohmann::json toJson(const GateRun& run);
+Result<GateRun> fromJson(const nlohmann::json& j, const std::string& path);
+
+}  // namespace cavity::gate

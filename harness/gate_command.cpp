@@ -1,0 +1,196 @@
+// `cavity gate`, `cavity gate merge` and `cavity baselines update`.
+#include "cli.h"
+#include "gate_report.h"
+#include "image_io.h"
+#include "results.h"
+#include "runner.h"
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <regex>
+#include <set>
+
+#include <unistd.h>
+
+namespace cavity::cli {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+int fail(const std::string& who, const Error& e) {
+    std::cerr << who << ": " << e.message << "\n";
+    return exitCode(e);
+}
+
+Result<std::pair<int, int>> parseShard(const std::string& text) {
+    const auto slash = text.find('/');
+    const std::string msg = "--shard " + text + ": must be I/N with 0 <= I < N";
+    if (slash == std::string::npos) return badInput(msg);
+    auto i = parseInt("--shard", text.substr(0, slash), 0, 1 << 20);
+    auto n = parseInt("--shard", text.substr(slash + 1), 1, 1 << 20);
+    if (!i || !n || *i >= *n) return badInput(msg);
+    return std::pair{*i, *n};
+}
+
+Result<gate::GateRun> loadGateJson(const std::string& dir) {
+    const std::string path = (fs::path(dir) / "gate.json").string();
+    std::ifstream f(path);
+    if (!f) return badInput(path + ": cannot be read (run `cavity gate --out " + dir + "` first)");
+    nlohmann::json j;
+    try {
+        j = nlohmann::json::parse(f);
+    } catch (const nlohmann::json::exception& e) {
+        return badInput(path + ": does not parse: " + e.what());
+    }
+    return gate::fromJson(j, path);
+}
+
+int merge(const std::vector<std::string>& argv) {
+    std::vector<std::string> dirs;
+    std::string out = "out/gate";
+    Args a(argv);
+    while (!a.done()) {
+        const std::string flag = a.next();
+        if (flag == "--out") {
+            auto v = a.value(flag);
+            if (!v) return fail("cavity gate merge", v.error());
+            out = *v;
+        } else if (flag.rfind("--", 0) == 0) {
+            return fail("cavity gate merge", badInput(flag + ": unknown flag"));
+        } else {
+            dirs.push_back(flag);
+        }
+    }
+    if (dirs.empty()) return fail("cavity gate merge", badInput("needs one or more shard output folders"));
+    gate::GateRun merged;
+    std::set<std::string> seen;
+    for (const auto& d : dirs) {
+        auto run = loadGateJson(d);
+        if (!run) return fail("cavity gate merge", run.error());
+        if (merged.matrix.empty()) merged.matrix = run->matrix;
+        else if (merged.matrix != run->matrix)
+            return fail("cavity gate merge", badInput(d + ": matrix " + run->matrix + " differs from " + merged.matrix));
+        merged.seconds = std::max(merged.seconds, run->seconds);
+        for (auto& e : run->backendErrors) merged.backendErrors.push_back(e);
+        for (auto& r : run->results)
+            if (seen.insert(r.id).second) merged.results.push_back(std::move(r));
+    }
+    if (auto st = checkWritableDir("--out", out); !st) return fail("cavity gate merge", st.error());
+    if (auto st = gate::writeReports(merged, out); !st) return fail("cavity gate merge", st.error());
+    std::cout << gate::summaryMarkdown(merged);
+    return merged.exitCode();
+}
+
+}  // namespace
+
+int gateCommand(const std::vector<std::string>& argv) {
+    if (!argv.empty() && argv[0] == "merge") return merge({argv.begin() + 1, argv.end()});
+    gate::GateOptions o;
+    bool shardGiven = false;
+    Args a(argv);
+    while (!a.done()) {
+        const std::string flag = a.next();
+        if (flag == "--validation") {
+            o.validation = true;
+            continue;
+        }
+        auto v = a.value(flag);
+        if (!v) return fail("cavity gate", v.error());
+        if (flag == "--matrix") o.matrix = *v;
+        else if (flag == "--out") o.out = *v;
+        else if (flag == "--baselines") o.baselines = *v;
+        else if (flag == "--filter") o.filter = *v;
+        else if (flag == "--device") {
+            auto d = parseInt(flag, *v, 0, 64);
+            if (!d) return fail("cavity gate", d.error());
+            o.device = *d;
+        } else if (flag == "--shard") {
+            auto s = parseShard(*v);
+            if (!s) return fail("cavity gate", s.error());
+            std::tie(o.shardIndex, o.shardCount) = *s;
+            shardGiven = true;
+        } else return fail("cavity gate", badInput(flag + ": unknown flag"));
+    }
+    // GoogleTest's sharding variables, as a CI job matrix sets them.
+    if (!shardGiven && std::getenv("GTEST_TOTAL_SHARDS") && std::getenv("GTEST_SHARD_INDEX")) {
+        auto s = parseShard(std::string(std::getenv("GTEST_SHARD_INDEX")) + "/" + std::getenv("GTEST_TOTAL_SHARDS"));
+        if (!s) return fail("cavity gate", badInput("GTEST_SHARD_INDEX/GTEST_TOTAL_SHARDS: " + s.error().message));
+        std::tie(o.shardIndex, o.shardCount) = *s;
+    }
+    auto run = gate::runGate(o);
+    if (!run) return fail("cavity gate", run.error());
+    if (auto st = gate::writeReports(*run, o.out); !st) return fail("cavity gate", st.error());
+    std::cout << gate::summaryMarkdown(*run);
+    std::cout << "\nreport: " << (fs::path(o.out) / "index.html").string() << "\n";
+    return run->exitCode();
+}
+
+int baselinesCommand(const std::vector<std::string>& argv) {
+    if (argv.empty() || argv[0] != "update")
+        return fail("cavity baselines", badInput("usage: cavity baselines update [--from DIR] [--filter REGEX] [--baselines DIR]"));
+    std::string from = "out/gate", filterText, root = "baselines";
+    Args a({argv.begin() + 1, argv.end()});
+    while (!a.done()) {
+        const std::string flag = a.next();
+        auto v = a.value(flag);
+        if (!v) return fail("cavity baselines update", v.error());
+        if (flag == "--from") from = *v;
+        else if (flag == "--filter") filterText = *v;
+        else if (flag == "--baselines") root = *v;
+        else return fail("cavity baselines update", badInput(flag + ": unknown flag"));
+    }
+    std::optional<std::regex> filter;
+    if (!filterText.empty()) {
+        try {
+            filter.emplace(filterText);
+        } catch (const std::regex_error& e) {
+            return fail("cavity baselines update", badInput("--filter " + filterText + ": not a regular expression"));
+        }
+    }
+    auto run = loadGateJson(from);
+    if (!run) return fail("cavity baselines update", run.error());
+    // Leftovers of an interrupted update: never a baseline, always safe to drop.
+    std::error_code scan;
+    for (auto it = fs::recursive_directory_iterator(fs::path(root) / "images", scan);
+         !scan && it != fs::recursive_directory_iterator(); ++it)
+        if (it->path().filename().string().rfind(".tmp-", 0) == 0) fs::remove(it->path(), scan);
+    // One baseline key is shared by every API and stage: take the first
+    // selected configuration of each key.
+    std::set<std::string> done;
+    int changed = 0;
+    for (const auto& r : run->results) {
+        const bool selected = filter ? std::regex_search(r.id, *filter) : !r.passed();
+        if (!selected || !r.error.empty() || done.count(r.key)) continue;
+        done.insert(r.key);
+        for (const auto& i : r.images) {
+            // A selected configuration rewrites the images that failed (all of
+            // them when chosen by --filter): passing ones keep their bytes.
+            if (!filter && i.passed()) continue;
+            const fs::path target = fs::path(root) / "images" / r.key / fs::path(i.baseline).filename();
+            std::error_code ec;
+            fs::create_directories(target.parent_path(), ec);
+            // Copy then rename: an interrupted update leaves the old file whole.
+            const fs::path tmp = target.parent_path() / (".tmp-" + std::to_string(::getpid()) + "-" + target.filename().string());
+            fs::copy_file(i.newExact, tmp, fs::copy_options::overwrite_existing, ec);
+            if (ec) return fail("cavity baselines update", internal("copy " + i.newExact + ": " + ec.message()));
+            if (std::getenv("CAVITY_TEST_INTERRUPT_UPDATE"))   // tests: stop as a kill between copy and rename would
+                return fail("cavity baselines update", internal("interrupted before renaming " + tmp.string()));
+            fs::rename(tmp, target, ec);
+            if (ec) return fail("cavity baselines update", internal("rename " + tmp.string() + ": " + ec.message()));
+            ++changed;
+            std::cout << "updated " << target.string() << "  (from " << r.id;
+            if (i.metrics)
+                std::cout << ": max abs " << i.metrics->maxAbs << ", RMSE " << i.metrics->rmse << ", SSIM " << i.metrics->ssim;
+            else
+                std::cout << ": new baseline";
+            std::cout << ")\n";
+        }
+    }
+    std::cout << changed << " baseline files updated\n";
+    return 0;
+}
+
+}  // namespace cavity::cli

@@ -1,0 +1,287 @@
+#include "gate_report.h"
+
+#include "results.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <unistd.h>
+
+namespace cavity::gate {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string esc(const std::string& s) {
+    std::string o;
+    for (char ch : s) {
+        switch (ch) {
+        case '&': o += "&amp;"; break;
+        case '<': o += "&lt;"; break;
+        case '>': o += "&gt;"; break;
+        case '"': o += "&quot;"; break;
+        default: o += ch;
+        }
+    }
+    return o;
+}
+
+std::string num(double x, int digits = 4) {
+    if (!std::isfinite(x) || x >= 1e299) return "inf";
+    char b[32];
+    std::snprintf(b, sizeof b, "%.*g", digits, x);
+    return b;
+}
+
+// Failing configurations first, then by id.
+std::vector<const ConfigResult*> ordered(const GateRun& run) {
+    std::vector<const ConfigResult*> v;
+    for (const auto& r : run.results) v.push_back(&r);
+    std::stable_sort(v.begin(), v.end(), [](auto* a, auto* b) {
+        if (a->passed() != b->passed()) return !a->passed();
+        return a->id < b->id;
+    });
+    return v;
+}
+
+std::string base64File(const std::string& path) {
+    std::ifstream f(path, std::ios::binary);
+    if (!f) return "";
+    const std::string data((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+    static const char* t = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    std::string o;
+    size_t i = 0;
+    for (; i + 2 < data.size(); i += 3) {
+        const unsigned v = (unsigned char)data[i] << 16 | (unsigned char)data[i + 1] << 8 | (unsigned char)data[i + 2];
+        o += t[v >> 18 & 63];
+        o += t[v >> 12 & 63];
+        o += t[v >> 6 & 63];
+        o += t[v & 63];
+    }
+    if (i < data.size()) {
+        unsigned v = (unsigned char)data[i] << 16;
+        if (i + 1 < data.size()) v |= (unsigned char)data[i + 1] << 8;
+        o += t[v >> 18 & 63];
+        o += t[v >> 12 & 63];
+        o += i + 1 < data.size() ? t[v >> 6 & 63] : '=';
+        o += '=';
+    }
+    return o;
+}
+
+std::string dataUri(const std::string& png) {
+    const std::string b = png.empty() ? "" : base64File(png);
+    return b.empty() ? "" : "data:image/png;base64," + b;
+}
+
+Status writeText(const fs::path& path, const std::string& text) {
+    const fs::path tmp = path.string() + ".tmp-" + std::to_string(::getpid());
+    {
+        std::ofstream f(tmp);
+        if (!f) return badInput(path.string() + ": cannot write");
+        f << text;
+        if (!f) return internal("write " + path.string() + " failed");
+    }
+    std::error_code ec;
+    fs::rename(tmp, path, ec);
+    if (ec) return internal("rename " + tmp.string() + ": " + ec.message());
+    return {};
+}
+
+}  // namespace
+
+std::string junitXml(const GateRun& run) {
+    int tests = 0, failures = 0, errors = 0;
+    std::ostringstream cases;
+    for (const auto* r : ordered(run)) {
+        auto testcase = [&](const std::string& name, const std::string& failure, bool isError) {
+            ++tests;
+            cases << "    <testcase classname=\"cavity.gate." << esc(run.matrix) << "\" name=\"" << esc(name) << "\">";
+            if (!failure.empty()) {
+                (isError ? errors : failures)++;
+                cases << "\n      <" << (isError ? "error" : "failure") << " message=\"" << esc(failure) << "\"/>\n    ";
+            }
+            cases << "</testcase>\n";
+        };
+        if (!r->error.empty()) {
+            testcase(r->id, r->error, true);
+            continue;
+        }
+        for (const auto& i : r->images) {
+            std::string f;
+            for (const auto& line : i.failures) f += (f.empty() ? "" : "; ") + line;
+            testcase(r->id + "/image/" + i.image, f, false);
+        }
+        for (const auto& t : r->timings) {
+            std::string f;
+            if (!t.passed())
+                f = "median " + num(t.medianMs) + " ms > budget " + num(*t.budgetMs) + " ms (+" +
+                    num(100 * (t.medianMs / *t.budgetMs - 1), 3) + "%)";
+            testcase(r->id + "/time/" + t.pass, f, false);
+        }
+        testcase(r->id + "/deterministic", r->deterministic ? "" : "a second frame was not bit-identical", false);
+    }
+    std::ostringstream x;
+    x << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
+      << "<testsuites tests=\"" << tests << "\" failures=\"" << failures << "\" errors=\"" << errors << "\" time=\""
+      << num(run.seconds, 6) << "\">\n"
+      << "  <testsuite name=\"cavity.gate." << esc(run.matrix) << "\" tests=\"" << tests << "\" failures=\"" << failures
+      << "\" errors=\"" << errors << "\">\n"
+      << cases.str() << "  </testsuite>\n</testsuites>\n";
+    return x.str();
+}
+
+std::string summaryMarkdown(const GateRun& run) {
+    int failed = 0, unbudgeted = 0, nondet = 0;
+    for (const auto& r : run.results) {
+        failed += !r.passed();
+        nondet += !r.deterministic;
+        for (const auto& t : r.timings) unbudgeted += !t.budgetMs;
+    }
+    std::ostringstream m;
+    m << "## Cavity gate `" << run.matrix << "`"
+      << (run.shardCount > 1 ? " (shard " + std::to_string(run.shardIndex) + "/" + std::to_string(run.shardCount) + ")" : "")
+      << ": " << (failed ? "**" + std::to_string(failed) + " of " + std::to_string(run.results.size()) + " configurations failed**"
+                         : "all " + std::to_string(run.results.size()) + " configurations passed")
+      << " (" << num(run.seconds, 3) << " s)\n\n";
+    for (const auto& e : run.backendErrors) m << "- backend could not start: " << e << "\n";
+    if (failed) {
+        m << "| configuration | check | result | tolerance |\n| --- | --- | --- | --- |\n";
+        int rows = 0;
+        for (const auto* r : ordered(run)) {
+            if (r->passed()) break;
+            if (++rows > 40) {
+                m << "| … | | more in index.html | |\n";
+                break;
+            }
+            if (!r->error.empty()) m << "| `" << r->id << "` | run | " << r->error << " | |\n";
+            for (const auto& i : r->images)
+                for (const auto& f : i.failures) m << "| `" << r->id << "` | " << i.image << " | " << f << " | |\n";
+            for (const auto& t : r->timings)
+                if (!t.passed())
+                    m << "| `" << r->id << "` | time " << t.pass << " | " << num(t.medianMs) << " ms (+"
+                      << num(100 * (t.medianMs / *t.budgetMs - 1), 3) << "%) | ≤ " << num(*t.budgetMs) << " ms |\n";
+        }
+        m << "\n";
+    }
+    if (nondet) m << "- " << nondet << " configurations were not bit-identical across two frames on the same device\n";
+    if (unbudgeted) m << "- " << unbudgeted << " pass timings had no budget for this device (reported, not failed)\n";
+    m << "\nAccept intended changes with `cavity baselines update --from <gate output>`; details in index.html.\n";
+    return m.str();
+}
+
+std::string reportHtml(const GateRun& run, const std::string& chartsDir) {
+    std::ostringstream h;
+    int failed = 0;
+    for (const auto& r : run.results) failed += !r.passed();
+    h << R"html(<!doctype html><html><head><meta charset="utf-8"><title>Cavity gate )" << esc(run.matrix) << R"(</title>
+<style>
+body{font:14px system-ui,sans-serif;margin:16px;background:#1b1d21;color:#e6e6e6}
+h1{font-size:20px} h2{font-size:15px;margin:0 0 6px 0;font-family:monospace}
+.cfg{border:1px solid #3a3d44;border-radius:6px;padding:10px;margin:10px 0;background:#23262b}
+.fail{border-color:#e05252} .badge{display:inline-block;padding:1px 8px;border-radius:10px;font-size:12px;margin-left:6px}
+.pass .badge{background:#2e7d32} .fail .badge{background:#c62828}
+.row{display:flex;gap:10px;flex-wrap:wrap;align-items:flex-start;margin:6px 0}
+figure{margin:0} figcaption{font-size:12px;color:#aaa}
+.zoomable img{image-rendering:pixelated;border:1px solid #444}
+.cmp{position:relative;display:inline-block} .cmp img{display:block}
+.cmp .top{position:absolute;top:0;left:0;overflow:hidden}
+table{border-collapse:collapse;font-size:12px} td,th{border:1px solid #3a3d44;padding:2px 6px;text-align:right}
+td.l,th.l{text-align:left} .bad{color:#ff6b6b;font-weight:bold}
+.controls{position:sticky;top:0;background:#1b1d21;padding:6px 0;z-index:2}
+</style></head><body>
+<div class="controls"><b>Cavity gate</b> matrix <code>)html"
+      << esc(run.matrix) << "</code> · " << run.results.size() << " configurations · <span class=\""
+      << (failed ? "bad" : "") << "\">" << failed << " failed</span> · " << num(run.seconds, 3)
+      << R"html( s · zoom <input id="zoom" type="range" min="1" max="8" value="2" oninput="setZoom(this.value)"> <span id="zv">2x</span></div>
+)html";
+    for (const auto& e : run.backendErrors) h << "<p class=bad>backend could not start: " << esc(e) << "</p>\n";
+    int n = 0;
+    for (const auto* r : ordered(run)) {
+        h << "<div class=\"cfg " << (r->passed() ? "pass" : "fail") << "\" data-id=\"" << esc(r->id) << "\"><h2>"
+          << esc(r->id) << "<span class=badge>" << (r->passed() ? "pass" : "FAIL") << "</span></h2>\n";
+        if (!r->error.empty()) h << "<p class=bad>" << esc(r->error) << "</p>\n";
+        if (!r->deterministic) h << "<p class=bad>not bit-identical across two frames on this device</p>\n";
+        for (const auto& i : r->images) {
+            ++n;
+            const std::string base = dataUri(i.baselinePng), now = dataUri(i.newPng), diff = dataUri(i.diffPng);
+            h << "<div class=row><figure class=zoomable><figcaption>" << esc(i.image) << " baseline</figcaption>"
+              << (base.empty() ? "<p class=bad>missing</p>" : "<img class=z src=\"" + base + "\">") << "</figure>"
+              << "<figure class=zoomable><figcaption>new</figcaption><img class=z src=\"" << now << "\"></figure>"
+              << "<figure class=zoomable><figcaption>diff (white ≥ " << num(2 * i.tolerance.pixelThreshold)
+              << ")</figcaption>" << (diff.empty() ? "" : "<img class=z src=\"" + diff + "\">") << "</figure>";
+            if (!base.empty())
+                h << "<figure class=zoomable><figcaption>baseline ◀ slider ▶ new</figcaption><div class=cmp><img class=z src=\""
+                  << now << "\"><div class=top id=t" << n << "><img class=z src=\"" << base
+                  << "\"></div></div><input type=range min=0 max=100 value=50 oninput=\"slide(" << n
+                  << ",this.value)\"></figure>";
+            h << "<table><tr><th class=l>metric</th><th>value</th><th>tolerance</th></tr>";
+            if (i.metrics) {
+                const auto& m = *i.metrics;
+                const auto& t = i.tolerance;
+                auto row = [&](const char* name, double v, double tol, bool upper, const char* unit = "") {
+                    const bool bad = upper ? v > tol : v < tol;
+                    h << "<tr><td class=l>" << name << "</td><td class=\"" << (bad ? "bad" : "") << "\">" << num(v) << unit
+                      << "</td><td>" << (upper ? "≤ " : "≥ ") << num(tol) << unit << "</td></tr>";
+                };
+                row("max abs", m.maxAbs, t.maxAbs, true);
+                row("mean abs", m.meanAbs, t.meanAbs, true);
+                row("RMSE", m.rmse, t.rmse, true);
+                row("PSNR", m.psnr, t.psnrMin, false, " dB");
+                row("pixels over threshold", m.overThresholdShare, t.overThresholdShare, true);
+                row("SSIM", m.ssim, t.ssimMin, false);
+                if (m.flipMean >= 0) row("FLIP mean", m.flipMean, t.flipMeanMax, true);
+                if (m.nonFinite) h << "<tr><td class=l>non-finite</td><td class=bad>" << m.nonFinite << "</td><td>0</td></tr>";
+            }
+            h << "</table></div>\n";
+            for (const auto& f : i.failures) h << "<div class=bad>" << esc(i.image) << ": " << esc(f) << "</div>\n";
+        }
+        if (!r->timings.empty()) {
+            h << "<table><tr><th class=l>pass</th><th>median ms</th><th>budget ms</th><th>clock</th></tr>";
+            for (const auto& t : r->timings)
+                h << "<tr><td class=l>" << esc(t.pass) << "</td><td class=\"" << (t.passed() ? "" : "bad") << "\">"
+                  << num(t.medianMs) << "</td><td>" << (t.budgetMs ? num(*t.budgetMs) : "none for this device")
+                  << "</td><td>" << esc(t.clock) << "</td></tr>";
+            h << "</table>\n";
+        }
+        h << "</div>\n";
+    }
+    // Charts from scripts/charts.py, when a benchmark run left them next to the report.
+    std::ifstream idx(fs::path(chartsDir) / "index.json");
+    if (idx) {
+        h << "<h1>Benchmark charts</h1><div class=row>";
+        for (const auto& entry : fs::directory_iterator(chartsDir))
+            if (entry.path().extension() == ".png")
+                h << "<figure><figcaption>" << esc(entry.path().stem().string()) << "</figcaption><img width=640 src=\""
+                  << dataUri(entry.path().string()) << "\"></figure>";
+        h << "</div>";
+    }
+    h << R"html(<script>
+function setZoom(z){document.getElementById('zv').textContent=z+'x';
+ document.querySelectorAll('img.z').forEach(function(i){ if(!i.dataset.w){i.dataset.w=i.naturalWidth;}
+  i.style.width=(i.dataset.w*z)+'px';});
+ document.querySelectorAll('.cmp .top').forEach(function(t){t.style.height='100%';});}
+function slide(n,v){var t=document.getElementById('t'+n);t.style.width=v+'%';}
+window.addEventListener('load',function(){setZoom(2);document.querySelectorAll('.cmp .top').forEach(function(t){t.style.width='50%';});});
+</script></body></html>
+)html";
+    return h.str();
+}
+
+Status writeReports(const GateRun& run, const std::string& outDir) {
+    const fs::path out(outDir);
+    std::error_code ec;
+    fs::create_directories(out, ec);
+    CAVITY_TRY(writeJson((out / "gate.json").string(), toJson(run)));
+    CAVITY_TRY(writeText(out / "junit.xml", junitXml(run)));
+    CAVITY_TRY(writeText(out / "summary.md", summaryMarkdown(run)));
+    CAVITY_TRY(writeText(out / "index.html", reportHtml(run, (out / "charts").string())));
+    return {};
+}
+
+}  // namespace cavity::gate

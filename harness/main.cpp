@@ -1,0 +1,35 @@
+// The cavity command. Exit codes (README.md, "Exit codes"): 0 success,
+// 1 a regression (gate), 2 bad usage or input, 3 a backend could not start,
+// 4 an internal GPU error.
+#include "cli.h"
+
+#include <iostream>
+
+namespace {
+
+constexpr const char* kUsage =
+    "usage: cavity <command> [flags]\n"
+    "commands:\n"
+    "  run        run kernel configurations, write images, results.json and a timing table\n"
+    "  gate       run a matrix against baselines and budgets; junit.xml, summary.md, index.html\n"
+    "  gate merge join shard outputs into one verdict\n"
+    "  baselines update   accept new images as baselines\n"
+    "  compare    compare two results.json files pass by pass (Mann-Whitney U)\n";
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    std::vector<std::string> args(argv + 1, argv + argc);
+    if (args.empty() || args[0] == "--help" || args[0] == "-h") {
+        std::cout << kUsage;
+        return args.empty() ? 2 : 0;
+    }
+    const std::string command = args[0];
+    args.erase(args.begin());
+    if (command == "run") return cavity::cli::runCommand(args);
+    if (command == "gate") return cavity::cli::gateCommand(args);
+    if (command == "baselines") return cavity::cli::baselinesCommand(args);
+    if (command == "compare") return cavity::cli::compareCommand(args);
+    std::cerr << "cavity: unknown command '" << command << "'\n" << kUsage;
+    return 2;
+}

@@ -1,0 +1,199 @@
+#include "camera.h"
+#include "meshes.h"
+#include "pipeline.h"
+
+namespace cavity {
+
+struct PassChain::Pass {
+    const kernels::KernelDecl* kernel = nullptr;
+    gpu::Stage stage = gpu::Stage::Compute;
+    gpu::Pipeline pipeline;
+    gpu::Buffer frameUbo, paramsUbo;
+    std::vector<gpu::Bind> binds;
+    gpu::RenderTargets targets;          // fragment stage, raster
+    gpu::Buffer mesh;                    // raster
+    gpu::Image depth;                    // raster
+    int vertexCount = 3;
+    int width = 0, height = 0;
+};
+
+// The rasterised G-buffer: a graphics pass over the scene mesh with a depth
+// target, writing the images gbuffer_sdf would (kernels/gbuffer_raster.glsl).
+Status PassChain::createRaster(const PassSpec& spec, const RunConfig& c) {
+    auto pass = std::make_unique<Pass>();
+    pass->stage = gpu::Stage::Fragment;
+    pass->width = c.width;
+    pass->height = c.height;
+    const auto mesh = sceneMesh(int(c.params.count("scene") ? c.params.at("scene") : 0),
+                                int(c.params.count("view") ? c.params.at("view") : 0));
+    if (mesh.empty()) return badInput("--gbuffer raster: scene " + c.scene() + " has no mesh");
+    pass->vertexCount = int(mesh.size());
+    CAVITY_ASSIGN(pass->mesh, gpu_.createBuffer({mesh.size() * sizeof(MeshVertex), gpu::BufferUsage::Storage, "mesh"}));
+    CAVITY_TRY(gpu_.updateBuffer(pass->mesh, std::as_bytes(std::span(mesh))));
+    const auto frame = frameUniforms(c.width, c.height, c.width, c.height);
+    CAVITY_ASSIGN(pass->frameUbo, gpu_.createBuffer({sizeof(frame), gpu::BufferUsage::Uniform, "gbuffer.frame"}));
+    CAVITY_TRY(gpu_.updateBuffer(pass->frameUbo, std::as_bytes(std::span(&frame, 1))));
+    const gpu::Format formats[3] = {gpu::Format::RGBA32F, gpu::Format::RGBA16F, gpu::Format::RGBA8};
+    gpu::GraphicsPipelineDesc d;
+    const std::string* text = kernels::sourceFile("gbuffer_raster.glsl");
+    if (!text) return internal("kernels/gbuffer_raster.glsl is not embedded");
+    d.vertex = {"gbuffer_raster", gpu::Stage::Vertex, "#version 450\n#define CAVITY_STAGE_VERTEX 1\n#line 1 1\n" + *text,
+                {"<raster preamble>", "kernels/gbuffer_raster.glsl"}};
+    d.fragment = {"gbuffer_raster", gpu::Stage::Fragment,
+                  "#version 450\n#define CAVITY_STAGE_FRAGMENT 1\n#line 1 1\n" + *text,
+                  {"<raster preamble>", "kernels/gbuffer_raster.glsl"}};
+    d.layout = {{0, gpu::BindingKind::UniformBuffer, {}}, {1, gpu::BindingKind::StorageBuffer, {}}};
+    d.colorFormats = {formats[0], formats[1], formats[2]};
+    d.depthFormat = gpu::Format::D32;
+    d.depthTest = true;
+    d.label = spec.name;
+    CAVITY_ASSIGN(pass->pipeline, gpu_.createGraphicsPipeline(d));
+    CAVITY_ASSIGN(pass->depth, gpu_.createImage({c.width, c.height, gpu::Format::D32, 1, "hardware depth"}));
+    for (size_t o = 0; o < 3; ++o) {
+        CAVITY_ASSIGN(gpu::Image img, gpu_.createImage({c.width, c.height, formats[o], 1, spec.outputs[o]}));
+        images_[spec.outputs[o]] = {img, c.width, c.height, formats[o]};
+        pass->targets.colors.push_back(img);
+    }
+    pass->targets.depth = pass->depth;
+    pass->binds = {{0, {}, pass->frameUbo, {}}, {1, {}, pass->mesh, {}}};
+    passes_.push_back(std::move(pass));
+    return {};
+}
+
+Result<std::unique_ptr<PassChain>> PassChain::create(gpu::Backend& gpu, const RunConfig& c,
+                                                     const SourceOverrides& overrides) {
+    std::unique_ptr<PassChain> chain(new PassChain(gpu));
+    chain->specs_ = buildPasses(c);
+    const int halfW = (c.width + 1) / 2, halfH = (c.height + 1) / 2;
+    for (const auto& spec : chain->specs_) {
+        if (spec.kernel == "gbuffer_raster") {
+            CAVITY_TRY(chain->createRaster(spec, c));
+            continue;
+        }
+        auto pass = std::make_unique<Pass>();
+        pass->kernel = kernels::find(spec.kernel);
+        if (!pass->kernel) return internal("pipeline names an unknown kernel '" + spec.kernel + "'");
+        const auto& k = *pass->kernel;
+        if (k.inputs.size() != spec.inputs.size() || k.outputs.size() != spec.outputs.size())
+            return internal("pass '" + spec.name + "' wires the wrong number of images for kernel " + k.name);
+        pass->stage = c.stage;
+        pass->width = spec.half ? halfW : c.width;
+        pass->height = spec.half ? halfH : c.height;
+
+        // Outputs are created by the pass that writes them.
+        for (size_t o = 0; o < spec.outputs.size(); ++o) {
+            gpu::ImageDesc d{pass->width, pass->height, k.outputs[o].format, 1, spec.outputs[o]};
+            CAVITY_ASSIGN(gpu::Image img, gpu.createImage(d));
+            chain->images_[spec.outputs[o]] = {img, d.width, d.height, d.format};
+        }
+
+        const auto frame = frameUniforms(pass->width, pass->height, c.width, c.height);
+        CAVITY_ASSIGN(pass->frameUbo, gpu.createBuffer({sizeof(frame), gpu::BufferUsage::Uniform, spec.name + ".frame"}));
+        CAVITY_TRY(gpu.updateBuffer(pass->frameUbo, std::as_bytes(std::span(&frame, 1))));
+        const auto params = kernels::packParams(k, c.params);
+        CAVITY_ASSIGN(pass->paramsUbo, gpu.createBuffer({params.size(), gpu::BufferUsage::Uniform, spec.name + ".params"}));
+        CAVITY_TRY(gpu.updateBuffer(pass->paramsUbo, params));
+
+        pass->binds.push_back({kernels::kFrameBinding, {}, pass->frameUbo, {}});
+        pass->binds.push_back({kernels::kParamsBinding, {}, pass->paramsUbo, {}});
+        uint32_t b = kernels::kFirstImageBinding;
+        for (size_t i = 0; i < spec.inputs.size(); ++i) {
+            if (spec.inputs[i].rfind("const:", 0) == 0 && !chain->images_.count(spec.inputs[i]))
+                CAVITY_TRY(chain->createConstant(spec.inputs[i], c.params));
+            auto it = chain->images_.find(spec.inputs[i]);
+            if (it == chain->images_.end())
+                return internal("pass '" + spec.name + "' reads image '" + spec.inputs[i] + "' before any pass writes it");
+            pass->binds.push_back({b++, it->second.image, {}, k.inputs[i].sampler});
+        }
+        CAVITY_ASSIGN(auto body, kernels::assemble(k, c.stage, overrides));
+        const auto layout = kernels::bindingLayout(k, c.stage);
+        if (c.stage == gpu::Stage::Compute) {
+            for (const auto& out : spec.outputs) pass->binds.push_back({b++, chain->images_[out].image, {}, {}});
+            gpu::ComputePipelineDesc d{std::move(body), layout, 8, 8, spec.name};
+            CAVITY_ASSIGN(pass->pipeline, gpu.createComputePipeline(d));
+        } else {
+            gpu::GraphicsPipelineDesc d;
+            d.vertex = kernels::fullscreenVertex();
+            d.fragment = std::move(body);
+            d.layout = layout;
+            for (size_t o = 0; o < spec.outputs.size(); ++o) {
+                d.colorFormats.push_back(k.outputs[o].format);
+                pass->targets.colors.push_back(chain->images_[spec.outputs[o]].image);
+            }
+            d.label = spec.name;
+            CAVITY_ASSIGN(pass->pipeline, gpu.createGraphicsPipeline(d));
+        }
+        chain->passes_.push_back(std::move(pass));
+    }
+    return chain;
+}
+
+PassChain::PassChain(gpu::Backend& gpu) : gpu_(gpu) {}
+
+Status PassChain::createConstant(const std::string& input, const kernels::ParamValues& params) {
+    const auto* decl = kernels::findConstant(input.substr(6));
+    if (!decl) return internal("no constant image '" + input + "' (kernels/registry.cpp)");
+    const auto levels = decl->make(params);
+    if (levels.empty()) return internal("constant image '" + input + "' has no levels");
+    gpu::ImageDesc d{levels[0].width, levels[0].height, decl->format, int(levels.size()), input};
+    CAVITY_ASSIGN(gpu::Image img, gpu_.createImage(d));
+    images_[input] = {img, d.width, d.height, d.format};
+    for (size_t l = 0; l < levels.size(); ++l) CAVITY_TRY(gpu_.uploadImage(img, int(l), levels[l].pixels));
+    return {};
+}
+
+PassChain::~PassChain() {
+    for (auto& p : passes_) {
+        if (p->pipeline) gpu_.destroy(p->pipeline);
+        if (p->frameUbo) gpu_.destroy(p->frameUbo);
+        if (p->paramsUbo) gpu_.destroy(p->paramsUbo);
+        if (p->mesh) gpu_.destroy(p->mesh);
+        if (p->depth) gpu_.destroy(p->depth);
+    }
+    for (auto& [name, t] : images_) gpu_.destroy(t.image);
+}
+
+void PassChain::recordPass(size_t i) {
+    auto& p = *passes_[i];
+    gpu_.beginScope(specs_[i].name);
+    if (p.stage == gpu::Stage::Compute)
+        gpu_.dispatch(p.pipeline, p.binds, (p.width + 7) / 8, (p.height + 7) / 8);
+    else
+        gpu_.draw(p.pipeline, p.binds, p.targets, p.vertexCount);
+    gpu_.endScope();
+}
+
+void PassChain::record() {
+    for (size_t i = 0; i < passes_.size(); ++i) {
+        // The barrier sits between scopes, so each pass's begin timestamp
+        // follows the completion of the pass before it.
+        if (i) gpu_.barrier();
+        recordPass(i);
+    }
+}
+
+Result<HostImage> PassChain::read(const std::string& image) const {
+    auto it = images_.find(image);
+    if (it == images_.end()) return internal("no image '" + image + "' in this pipeline");
+    const auto& t = it->second;
+    CAVITY_ASSIGN(auto px, gpu_.readImage(t.image));
+    HostImage img(t.width, t.height, gpu::channelCount(t.format));
+    if (px.size() != img.pixels.size()) return internal("readback of '" + image + "' returned the wrong size");
+    img.pixels = std::move(px);
+    return img;
+}
+
+std::map<std::string, std::string> PassChain::shaderPaths() const {
+    std::map<std::string, std::string> m;
+    for (size_t i = 0; i < passes_.size(); ++i) {
+        const auto info = gpu_.pipelineInfo(passes_[i]->pipeline);
+        m[specs_[i].name] = info.path == gpu::ShaderPath::Spirv ? "spirv" : "glsl-fallback";
+    }
+    return m;
+}
+
+long long PassChain::passPixels(size_t i) const {
+    return (long long)passes_[i]->width * passes_[i]->height;
+}
+
+}  // namespace cavity

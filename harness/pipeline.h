@@ -1,0 +1,71 @@
+// A kernel pipeline: the passes one configuration runs, in order, wired by
+// image name. pipelines.cpp builds the list for a RunConfig; PassChain
+// creates the GPU resources and records the passes on any backend.
+#pragma once
+
+#include "backend.h"
+#include "config.h"
+#include "image.h"
+
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace cavity {
+
+struct PassSpec {
+    std::string name;                  // timestamp scope and results key: "gbuffer", "ao", ...
+    std::string kernel;                // a kernels::all() name
+    std::vector<std::string> inputs;   // image names, in the kernel's input order
+    std::vector<std::string> outputs;  // image names, in the kernel's output order
+    bool half = false;                 // runs at half the configuration's resolution
+};
+
+std::vector<PassSpec> buildPasses(const RunConfig& c);
+// Whether a kernel has a half-resolution pipeline (SSDO does not: its
+// radiance would need an upsample of its own).
+bool supportsHalf(const std::string& kernel);
+
+// The images a user looks at, in the order they are written: name and what it is.
+struct OutputSpec { std::string image; std::string description; };
+std::vector<OutputSpec> userOutputs(const RunConfig& c);
+
+// Replacement kernel sources by file name (planted-bug tests).
+using SourceOverrides = std::map<std::string, std::string>;
+
+class PassChain {
+public:
+    static Result<std::unique_ptr<PassChain>> create(gpu::Backend& gpu, const RunConfig& c,
+                                                     const SourceOverrides& overrides = {});
+    ~PassChain();
+    PassChain(const PassChain&) = delete;
+    PassChain& operator=(const PassChain&) = delete;
+
+    // Records every pass, each in a timestamp scope named after it, with a
+    // barrier between passes. The caller owns beginFrame/endFrame.
+    void record();
+    // Records pass i alone (the wall-clock fallback times passes one by one).
+    void recordPass(size_t i);
+    size_t passCount() const { return passes_.size(); }
+    const std::vector<PassSpec>& passes() const { return specs_; }
+
+    Result<HostImage> read(const std::string& image) const;
+    // How each pass's shader reached the driver ("spirv" or "glsl-fallback").
+    std::map<std::string, std::string> shaderPaths() const;
+    // Pixels each pass writes (for throughput counters).
+    long long passPixels(size_t i) const;
+
+private:
+    explicit PassChain(gpu::Backend& gpu);
+    Status createConstant(const std::string& input, const kernels::ParamValues& params);
+    Status createRaster(const PassSpec& spec, const RunConfig& c);
+    struct Pass;
+    struct Target { gpu::Image image; int width, height; gpu::Format format; };
+    gpu::Backend& gpu_;
+    std::vector<PassSpec> specs_;
+    std::vector<std::unique_ptr<Pass>> passes_;
+    std::map<std::string, Target> images_;
+};
+
+}  // namespace cavity

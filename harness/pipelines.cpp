@@ -1,0 +1,85 @@
+// Which passes each configuration runs, wired by image name. Any kernel of
+// role "ao" slots in: its inputs are matched by name to the G-buffer images
+// ("position", "normal", "depth" — which adds a depth pass — and CPU-made
+// constants such as "noise4x4" or "sky"); a kernel with "visibility" and
+// "radiance" outputs runs the SSDO chain (003_9aa4a2c3c5c6ee23.txt).
+#include "pipeline.h"
+
+namespace cavity {
+
+namespace {
+
+bool isConstant(const std::string& name) { return kernels::findConstant(name) != nullptr; }
+
+bool isSsdo(const kernels::KernelDecl& k) {
+    return k.outputs.size() == 2 && k.outputs[0].name == "visibility" && k.outputs[1].name == "radiance";
+}
+
+}  // namespace
+
+bool supportsHalf(const std::string& kernel) {
+    const auto* k = kernels::find(kernel);
+    return k && !isSsdo(*k);
+}
+
+std::vector<PassSpec> buildPasses(const RunConfig& c) {
+    const auto* k = kernels::find(c.kernel);
+    std::vector<PassSpec> p;
+    p.push_back({"gbuffer", c.raster ? "gbuffer_raster" : "gbuffer_sdf", {}, {"position", "normal", "albedo"}, false});
+    if (!k) return p;
+
+    if (isSsdo(*k)) {
+        std::vector<std::string> in;
+        for (const auto& i : k->inputs) in.push_back(isConstant(i.name) ? "const:" + i.name : i.name);
+        // Visibility plays the part of AO in the outputs a user and the gate see.
+        p.push_back({"ao", k->name, in, {"ao", "radiance"}, false});
+        p.push_back({"blur", "blur_bilateral_ssdo", {"ao", "radiance", "position", "normal"}, {"ao_blur", "radiance_blur"}, false});
+        p.push_back({"indirect", "ssdo_indirect", {"position", "normal", "albedo", "radiance_blur"}, {"indirect"}, false});
+        p.push_back({"composite", "composite_ssdo", {"ao_blur", "radiance_blur", "indirect", "normal", "albedo"}, {"color"}, false});
+        return p;
+    }
+
+    // Half resolution: a depth-aware 2x2 downsample of the G-buffer, AO and
+    // blur at half size, then a joint bilateral upsample guided by the full
+    // G-buffer so no AO crosses a silhouette (000_79d41de70034b569.txt).
+    const bool half = c.half && supportsHalf(c.kernel);
+    const std::string suffix = half ? "_half" : "";
+    const std::string position = "position" + suffix, normal = "normal" + suffix;
+    if (half) p.push_back({"downsample", "downsample_depth", {"position", "normal"}, {position, normal}, true});
+    std::vector<std::string> in;
+    for (const auto& i : k->inputs) {
+        if (i.name == "position") in.push_back(position);
+        else if (i.name == "normal") in.push_back(normal);
+        else if (i.name == "depth") in.push_back("depth" + suffix);
+        else if (isConstant(i.name)) in.push_back("const:" + i.name);
+        else in.push_back(i.name);
+    }
+    for (const auto& i : k->inputs)
+        if (i.name == "depth") p.push_back({"depth", "depth_from_position", {position}, {"depth" + suffix}, half});
+    p.push_back({"ao", k->name, in, {"ao"}, half});
+    std::string raw = "ao";
+    // The hemisphere kernel's 4x4 rotation tile is cancelled by a box blur of
+    // exactly one tile period (004_94976db8e6612027.txt) before the bilateral.
+    for (const auto& i : k->inputs)
+        if (i.name == "noise4x4") {
+            p.push_back({"box", "blur_box", {"ao"}, {"ao_box"}, half});
+            raw = "ao_box";
+        }
+    if (half) {
+        p.push_back({"blur", "blur_bilateral", {raw, position, normal}, {"ao_half_blur"}, true});
+        p.push_back({"upsample", "upsample_bilateral", {"ao_half_blur", position, "position", "normal", normal}, {"ao_blur"}, false});
+    } else {
+        p.push_back({"blur", "blur_bilateral", {raw, position, normal}, {"ao_blur"}, false});
+    }
+    p.push_back({"composite", "composite", {"ao_blur", "normal", "albedo"}, {"color"}, false});
+    return p;
+}
+
+std::vector<OutputSpec> userOutputs(const RunConfig& c) {
+    return {{"ao", c.half && supportsHalf(c.kernel) ? "raw ambient occlusion (half resolution)" : "raw ambient occlusion"},
+            {"ao_blur", "blurred ambient occlusion"},
+            {"color", "composited image"},
+            {"normal", "G-buffer view-space normal"}};
+}
+
+}  // namespace cavity

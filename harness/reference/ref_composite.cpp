@@ -1,0 +1,48 @@
+// Reference of kernels/composite.glsl. Returns the float the GPU stores
+// (dither included, clamped to [0, 1]); the 8-bit rounding of the target
+// happens in the test's quantize().
+#include "noise.h"
+#include "refs.h"
+#include "vec.h"
+
+namespace cavity::reference {
+
+namespace {
+
+const Vec3 kSky{0.85f, 0.92f, 1.0f};
+const Vec3 kGround{0.55f, 0.50f, 0.45f};
+
+}  // namespace
+
+Result<std::vector<HostImage>> composite(const Context& ctx) {
+    CAVITY_TRY(requireInputs(ctx, {1, 3, 4}));
+    const HostImage& aoIn = *ctx.inputs[0];
+    const HostImage& normal = *ctx.inputs[1];
+    const HostImage& albedo = *ctx.inputs[2];
+    const auto& f = ctx.frame;
+    const bool dither = intParam(ctx, "dither") != 0;
+
+    auto out = makeOutputs(ctx);
+    HostImage& color = out[0];
+    for (int y = 0; y < f.size[1]; ++y) {
+        for (int x = 0; x < f.size[0]; ++x) {
+            Vec3 c = kSky;
+            if (albedo.at(x, y, 3) >= 0.5f) {
+                const Vec3 a{albedo.at(x, y, 0), albedo.at(x, y, 1), albedo.at(x, y, 2)};
+                const float ambientMix = 0.5f + 0.5f * normal.at(x, y, 1);
+                c = a * mix(kGround, kSky, ambientMix) * aoIn.at(x, y);
+            }
+            if (dither) {
+                const float offset = (ign(float(x) + 0.5f, float(y) + 0.5f) - 0.5f) * 0.003921569f;
+                c = c + Vec3{offset, offset, offset};
+            }
+            color.at(x, y, 0) = clamp(c.x, 0.0f, 1.0f);
+            color.at(x, y, 1) = clamp(c.y, 0.0f, 1.0f);
+            color.at(x, y, 2) = clamp(c.z, 0.0f, 1.0f);
+            color.at(x, y, 3) = 1.0f;
+        }
+    }
+    return out;
+}
+
+}  // namespace cavity::reference

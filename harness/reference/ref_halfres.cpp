@@ -1,0 +1,121 @@
+// References of kernels/downsample_depth.glsl and upsample_bilateral.glsl.
+// The downsample only compares and copies, so it is exact. The upsample's
+// weights are continuous (exp), except where every weight vanishes and it
+// falls back to the half texel nearest in depth, a threshold the GPU and
+// the CPU could straddle only within rounding of 1e-5.
+//
+// Sizes: the downsample's frame is the half frame (frame.size = half,
+// srcSize = full), and its inputs are full size; the upsample's frame is
+// the full one, and its half-size inputs are whatever size they are.
+#include "portable_math.h"
+#include "refs.h"
+#include "vec.h"
+
+#include <cmath>
+
+namespace cavity::reference {
+
+namespace screen {   // refs_screen_space.cpp
+Vec3 texel3(const HostImage& img, int x, int y);
+Status requireInput(const Context& ctx, size_t i, int width, int height, int minChannels);
+}  // namespace screen
+
+namespace {
+
+float blockDepth(float w) { return isBackground(w) ? 3.0e38f : w; }
+
+}  // namespace
+
+Result<std::vector<HostImage>> downsampleDepth(const Context& ctx) {
+    const auto& f = ctx.frame;
+    const HostImage& position = *ctx.inputs[0];
+    const HostImage& normal = *ctx.inputs[1];
+    if ((position.width + 1) / 2 != f.size[0] || (position.height + 1) / 2 != f.size[1])
+        return internal("reference downsample_depth: a " + std::to_string(position.width) + "x" +
+                        std::to_string(position.height) + " G-buffer does not halve to the frame's " +
+                        std::to_string(f.size[0]) + "x" + std::to_string(f.size[1]) + " (give it the half-size frame)");
+    CAVITY_TRY(screen::requireInput(ctx, 0, position.width, position.height, 4));
+    CAVITY_TRY(screen::requireInput(ctx, 1, position.width, position.height, 3));
+    const int fw = position.width, fh = position.height;
+
+    auto out = makeOutputs(ctx);
+    for (int y = 0; y < f.size[1]; ++y)
+        for (int x = 0; x < f.size[0]; ++x) {
+            const bool nearest = ((x + y) & 1) == 0;
+            int bx = std::min(2 * x, fw - 1), by = std::min(2 * y, fh - 1);
+            float best = blockDepth(position.at(bx, by, 3));
+            for (int k = 1; k < 4; ++k) {
+                const int tx = std::min(2 * x + (k & 1), fw - 1), ty = std::min(2 * y + (k >> 1), fh - 1);
+                const float d = blockDepth(position.at(tx, ty, 3));
+                if (nearest ? d < best : d > best) {
+                    bx = tx, by = ty;
+                    best = d;
+                }
+            }
+            for (int c = 0; c < 4; ++c) {
+                out[0].at(x, y, c) = position.at(bx, by, c);
+                out[1].at(x, y, c) = c < normal.channels ? normal.at(bx, by, c) : 0.0f;
+            }
+        }
+    return out;
+}
+
+Result<std::vector<HostImage>> upsampleBilateral(const Context& ctx) {
+    const auto& f = ctx.frame;
+    const HostImage& aoHalf = *ctx.inputs[0];
+    const HostImage& positionHalf = *ctx.inputs[1];
+    const HostImage& position = *ctx.inputs[2];
+    const HostImage& normal = *ctx.inputs[3];
+    const HostImage& normalHalf = *ctx.inputs[4];
+    const int hw = aoHalf.width, hh = aoHalf.height;
+    CAVITY_TRY(screen::requireInput(ctx, 0, hw, hh, 1));
+    CAVITY_TRY(screen::requireInput(ctx, 1, hw, hh, 4));
+    CAVITY_TRY(screen::requireInput(ctx, 2, f.size[0], f.size[1], 4));
+    CAVITY_TRY(screen::requireInput(ctx, 3, f.size[0], f.size[1], 3));
+    CAVITY_TRY(screen::requireInput(ctx, 4, hw, hh, 3));
+    const float tolerance = floatParam(ctx, "upsample_depth_tolerance");
+
+    auto out = makeOutputs(ctx);
+    for (int y = 0; y < f.size[1]; ++y)
+        for (int x = 0; x < f.size[0]; ++x) {
+            const Vec3 p = screen::texel3(position, x, y);
+            const float pw = position.at(x, y, 3);
+            const Vec3 nrm = screen::texel3(normal, x, y);
+            if (isBackground(pw) || lengthSquared(nrm) == 0.0f) {
+                out[0].at(x, y) = 1.0f;
+                continue;
+            }
+            const float cx = float(x) * 0.5f - 0.25f, cy = float(y) * 0.5f - 0.25f;
+            const int baseX = int(std::floor(cx)), baseY = int(std::floor(cy));
+            const float fx = cx - float(baseX), fy = cy - float(baseY);
+            const float tol = tolerance * pw;
+            float sum = 0.0f, weightSum = 0.0f, fallback = 1.0f, fallbackDist = 3.0e38f;
+            for (int k = 0; k < 4; ++k) {
+                const int ox = k & 1, oy = k >> 1;
+                const int tx = std::clamp(baseX + ox, 0, hw - 1), ty = std::clamp(baseY + oy, 0, hh - 1);
+                const float ao = aoHalf.at(tx, ty);
+                const float qw = positionHalf.at(tx, ty, 3);
+                if (isBackground(qw)) continue;
+                const Vec3 q = screen::texel3(positionHalf, tx, ty);
+                const Vec3 m = screen::texel3(normalHalf, tx, ty);
+                const float bilinear = (ox == 1 ? fx : 1.0f - fx) * (oy == 1 ? fy : 1.0f - fy);
+                const float planeDist = std::fabs(dot(nrm, q - p)) / tol;
+                const float depthWeight = std::exp(-0.5f * planeDist * planeDist);
+                float cn = std::max(dot(nrm, m), 0.0f);
+                cn *= cn;
+                cn *= cn;
+                const float w = bilinear * depthWeight * (cn * cn);
+                sum += w * ao;
+                weightSum += w;
+                const float dz = std::fabs(qw - pw);
+                if (dz < fallbackDist) {
+                    fallbackDist = dz;
+                    fallback = ao;
+                }
+            }
+            out[0].at(x, y) = weightSum > 1e-5f ? sum / weightSum : fallback;
+        }
+    return out;
+}
+
+}  // namespace cavity::reference

@@ -1,0 +1,125 @@
+// References of kernels/depth_from_position.glsl, ssao_hemisphere.glsl and
+// blur_box.glsl (004_94976db8e6612027.txt). Every value that picks a texel
+// or decides a depth test is computed with the kernels' exact operations,
+// so the verdicts agree sample for sample; what differs is only smoothstep,
+// pow and the division by n (continuous, far under the 1e-3 tolerance).
+#include "noise.h"
+#include "portable_math.h"
+#include "refs.h"
+#include "vec.h"
+
+#include <array>
+
+namespace cavity::reference {
+
+namespace screen {   // refs_screen_space.cpp
+Vec3 normalizeExact(Vec3 v);
+std::array<float, 4> mulPoint(const float* m, Vec3 v, float w);
+Vec3 viewFromDepth(const kernels::FrameUniforms& f, int tx, int ty, float depth);
+bool texelOfView(const kernels::FrameUniforms& f, Vec3 p, int& tx, int& ty);
+float smoothstep01(float x);
+Vec3 texel3(const HostImage& img, int x, int y);
+Status requireInput(const Context& ctx, size_t i, int width, int height, int minChannels);
+}  // namespace screen
+
+Result<std::vector<HostImage>> depthFromPosition(const Context& ctx) {
+    CAVITY_TRY(requireInputs(ctx, {4}));
+    const HostImage& position = *ctx.inputs[0];
+    const auto& f = ctx.frame;
+    auto out = makeOutputs(ctx);
+    for (int y = 0; y < f.size[1]; ++y)
+        for (int x = 0; x < f.size[0]; ++x) {
+            float depth = 1.0f;
+            if (!isBackground(position.at(x, y, 3))) {
+                const auto clip = screen::mulPoint(f.proj, screen::texel3(position, x, y), 1.0f);
+                depth = clip[2] * portableReciprocal(clip[3]);
+            }
+            out[0].at(x, y) = depth;
+        }
+    return out;
+}
+
+Result<std::vector<HostImage>> hemisphere(const Context& ctx) {
+    const auto& f = ctx.frame;
+    CAVITY_TRY(screen::requireInput(ctx, 0, f.size[0], f.size[1], 1));
+    CAVITY_TRY(screen::requireInput(ctx, 1, f.size[0], f.size[1], 3));
+    CAVITY_TRY(screen::requireInput(ctx, 2, 4, 4, 2));
+    const HostImage& depthIn = *ctx.inputs[0];
+    const HostImage& normal = *ctx.inputs[1];
+    const HostImage& noise = *ctx.inputs[2];
+    const int n = std::clamp(intParam(ctx, "samples"), 1, 256);
+    const float radius = floatParam(ctx, "radius");
+    const float bias = floatParam(ctx, "bias");
+    const float contrast = floatParam(ctx, "contrast");
+    const bool jitter = intParam(ctx, "ign_jitter") != 0;
+    const bool rangeCheck = intParam(ctx, "range_check") != 0;
+    const std::vector<float>& kernel = array(ctx, "kernel");
+    if (int(kernel.size()) < 4 * n)
+        return internal("reference hemisphere: kernel array holds " + std::to_string(kernel.size() / 4) +
+                        " points for " + std::to_string(n) + " samples");
+
+    auto out = makeOutputs(ctx);
+    for (int y = 0; y < f.size[1]; ++y)
+        for (int x = 0; x < f.size[0]; ++x) {
+            const float depth = depthIn.at(x, y);
+            Vec3 nrm = screen::texel3(normal, x, y);
+            if (depth >= 1.0f || lengthSquared(nrm) == 0.0f) {
+                out[0].at(x, y) = 1.0f;
+                continue;
+            }
+            nrm = screen::normalizeExact(nrm);
+            const Vec3 p = screen::viewFromDepth(f, x, y, depth);
+
+            Vec2 r{noise.at(x & 3, y & 3, 0), noise.at(x & 3, y & 3, 1)};
+            if (jitter) {
+                const Vec2 cs = cosSinTurns(ign(float(x) + 0.5f, float(y) + 0.5f));
+                r = {r.x * cs.x - r.y * cs.y, r.x * cs.y + r.y * cs.x};
+            }
+            Vec3 rv{r.x, r.y, 0.0f};
+            Vec3 t = rv - nrm * dot(rv, nrm);
+            if (lengthSquared(t) < 1e-6f) {
+                rv = {-r.y, r.x, 0.0f};
+                t = rv - nrm * dot(rv, nrm);
+            }
+            t = screen::normalizeExact(t);
+            const Vec3 b = cross(nrm, t);
+
+            float occlusion = 0.0f;
+            for (int i = 0; i < n; ++i) {
+                const float* k = &kernel[size_t(i) * 4];
+                const Vec3 s = p + (t * k[0] + b * k[1] + nrm * k[2]) * radius;
+                int tx, ty;
+                if (!screen::texelOfView(f, s, tx, ty)) continue;
+                tx = std::clamp(tx, 0, f.size[0] - 1);
+                ty = std::clamp(ty, 0, f.size[1] - 1);
+                const Vec3 q = screen::viewFromDepth(f, tx, ty, depthIn.at(tx, ty));
+                float rangeWeight = 1.0f;
+                if (rangeCheck) rangeWeight = screen::smoothstep01(radius / std::max(std::fabs(p.z - q.z), 1e-6f));
+                const float threshold = s.z + bias;
+                occlusion += (q.z >= threshold ? 1.0f : 0.0f) * rangeWeight;
+            }
+            const float ao = std::max(1.0f - occlusion / float(n), 0.0f);
+            out[0].at(x, y) = std::pow(ao, contrast);
+        }
+    return out;
+}
+
+Result<std::vector<HostImage>> blurBox(const Context& ctx) {
+    CAVITY_TRY(requireInputs(ctx, {1}));
+    const HostImage& in = *ctx.inputs[0];
+    const int w = in.width, h = in.height;
+    auto out = makeOutputs(ctx);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            // The window slides inwards at the border (blur_box.glsl).
+            const int sx = std::clamp(x - 2, 0, std::max(w - 4, 0));
+            const int sy = std::clamp(y - 2, 0, std::max(h - 4, 0));
+            float sum = 0.0f;
+            for (int j = 0; j < 4; ++j)
+                for (int i = 0; i < 4; ++i) sum += in.at(std::min(sx + i, w - 1), std::min(sy + j, h - 1));
+            out[0].at(x, y) = sum / 16.0f;
+        }
+    return out;
+}
+
+}  // namespace cavity::reference

@@ -1,0 +1,73 @@
+// reference::run: looks the kernel up among the references and checks what
+// goes in and comes out, so each ref_*.cpp can assume a well-formed context.
+#include "refs.h"
+
+#include <cmath>
+
+namespace cavity::reference {
+
+namespace {
+
+std::vector<RefEntry> firstSliceRefs() {
+    return {{"gbuffer_sdf", gbufferSdf}, {"alchemy", alchemy}, {"blur_bilateral", blurBilateral}, {"composite", composite}};
+}
+
+}  // namespace
+
+std::vector<HostImage> makeOutputs(const Context& ctx) {
+    std::vector<HostImage> out;
+    for (const auto& o : ctx.kernel.outputs)
+        out.emplace_back(ctx.frame.size[0], ctx.frame.size[1], gpu::channelCount(o.format));
+    return out;
+}
+
+int intParam(const Context& ctx, const std::string& name) { return int(std::lround(ctx.params.at(name))); }
+
+float floatParam(const Context& ctx, const std::string& name) { return float(ctx.params.at(name)); }
+
+const std::vector<float>& array(const Context& ctx, const std::string& name) {
+    static const std::vector<float> empty;
+    auto it = ctx.arrays.find(name);
+    return it == ctx.arrays.end() ? empty : it->second;
+}
+
+Status requireInputs(const Context& ctx, std::initializer_list<int> minChannels) {
+    size_t i = 0;
+    for (int channels : minChannels) {
+        const HostImage& in = *ctx.inputs.at(i);
+        const std::string what = "reference " + ctx.kernel.name + ": input '" + ctx.kernel.inputs[i].name + "' ";
+        if (in.width != ctx.frame.size[0] || in.height != ctx.frame.size[1])
+            return internal(what + "is " + std::to_string(in.width) + "x" + std::to_string(in.height) + ", the output " +
+                            std::to_string(ctx.frame.size[0]) + "x" + std::to_string(ctx.frame.size[1]));
+        if (in.channels < channels)
+            return internal(what + "has " + std::to_string(in.channels) + " channels, needs " + std::to_string(channels));
+        ++i;
+    }
+    return {};
+}
+
+Result<std::vector<HostImage>> run(const Context& ctx) {
+    const std::string& name = ctx.kernel.name;
+    if (ctx.inputs.size() != ctx.kernel.inputs.size())
+        return internal("reference " + name + ": " + std::to_string(ctx.inputs.size()) + " inputs given, the kernel reads " +
+                        std::to_string(ctx.kernel.inputs.size()));
+    for (size_t i = 0; i < ctx.inputs.size(); ++i)
+        if (!ctx.inputs[i] || ctx.inputs[i]->width <= 0 || ctx.inputs[i]->height <= 0)
+            return internal("reference " + name + ": input '" + ctx.kernel.inputs[i].name + "' is missing or empty");
+    for (const auto& p : ctx.kernel.params)
+        if (!ctx.params.count(p.name))
+            return internal("reference " + name + ": parameter '" + p.name + "' has no value (use withDefaults)");
+
+    std::vector<RefEntry> table = firstSliceRefs();
+    for (const auto& e : screenSpaceRefs()) table.push_back(e);
+    for (const auto& entry : table) {
+        if (name != entry.kernel) continue;
+        CAVITY_ASSIGN(auto out, entry.fn(ctx));
+        if (out.size() != ctx.kernel.outputs.size())
+            return internal("reference " + name + " returned " + std::to_string(out.size()) + " images");
+        return out;
+    }
+    return internal("no CPU reference for kernel '" + name + "' (harness/reference/)");
+}
+
+}  // namespace cavity::reference

@@ -1,0 +1,43 @@
+// CPU references: a plain C++ implementation of every kernel, written for
+// clarity rather than speed, as an oracle the GPU results are tested against.
+// They mirror the GLSL bodies' maths (float precision, the same hashes and
+// texel addressing) but share no code with them.
+#pragma once
+
+#include "image.h"
+#include "kernel.h"
+
+#include <map>
+#include <string>
+#include <vector>
+
+namespace cavity::reference {
+
+struct Context {
+    const kernels::KernelDecl& kernel;
+    const kernels::ParamValues& params;                      // complete (withDefaults)
+    const std::map<std::string, std::vector<float>>& arrays;  // from kernel.derive
+    const kernels::FrameUniforms& frame;
+    std::vector<const HostImage*> inputs;                    // in kernel.inputs order
+};
+
+// Runs the reference of ctx.kernel; outputs are in kernel.outputs order, each
+// frame.size[0] x frame.size[1] with channelCount(output format) channels.
+// Fails (Internal) when the kernel has no reference.
+Result<std::vector<HostImage>> run(const Context& ctx);
+
+}  // namespace cavity::reference
+
+namespace cavity::reference {
+
+// One reference function per kernel; each family's file (ref_*.cpp) returns
+// its table, and reference.cpp's run() looks kernels up in all of them.
+using RefFn = Result<std::vector<HostImage>> (*)(const Context&);
+struct RefEntry {
+    const char* kernel;
+    RefFn fn;
+};
+std::vector<RefEntry> screenSpaceRefs();   // ref_hemisphere.cpp, ref_ssdo.cpp, ref_halfres.cpp (via refs_screen_space.cpp)
+std::vector<RefEntry> sdfAoRefs();         // ref_sdf_ao.cpp
+
+}  // namespace cavity::reference

@@ -1,0 +1,24 @@
+// The CPU side of kernels/include/sdf_scenes.glsl: the same scenes, cameras
+// and materials, for the G-buffer reference.
+#pragma once
+
+#include "vec.h"
+
+namespace cavity::reference {
+
+enum class Scene { Corner = 0, Slats = 1 };
+
+struct SceneHit {
+    float distance;
+    int material;
+};
+
+SceneHit sceneDistance(Scene scene, Vec3 p);
+Vec3 materialAlbedo(int material);
+
+struct CameraPose {
+    Vec3 eye, target;
+};
+CameraPose sceneCamera(Scene scene, int view);
+
+}  // namespace cavity::reference

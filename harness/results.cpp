@@ -1,0 +1,107 @@
+#include "results.h"
+
+#include <chrono>
+#include <ctime>
+#include <filesystem>
+#include <fstream>
+
+#include <unistd.h>
+
+#ifndef CAVITY_GIT_COMMIT
+#define CAVITY_GIT_COMMIT "unknown"
+#endif
+
+namespace cavity {
+
+using nlohmann::json;
+
+std::string gitCommit() { return CAVITY_GIT_COMMIT; }
+
+std::string utcTimestamp() {
+    const std::time_t t = std::time(nullptr);
+    char buf[32];
+    std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&t));
+    return buf;
+}
+
+json toJson(const Stats& s) {
+    return {{"count", s.count}, {"median_ms", s.median}, {"min_ms", s.min}, {"max_ms", s.max},
+            {"mean_ms", s.mean}, {"p90_ms", s.p90}, {"stddev_ms", s.stddev}, {"cv", s.cv}};
+}
+
+namespace {
+
+json series(const Series& s) { return {{"stats", toJson(s.stats)}, {"samples_ms", s.ms}}; }
+
+}  // namespace
+
+json toJson(const RunRecord& r) {
+    json params = json::object();
+    for (const auto& [k, v] : r.config.params) params[k] = v;
+    // Every parameter of every kernel the pipeline ran, defaults included.
+    for (const auto& p : r.passes)
+        if (const auto* k = kernels::find(p.kernel))
+            for (const auto& [name, v] : kernels::withDefaults(*k, r.config.params)) params[name] = v;
+    json passes = json::array();
+    for (size_t i = 0; i < r.passes.size() && i < r.timing.passes.size(); ++i) {
+        passes.push_back({{"name", r.passes[i].name},
+                          {"kernel", r.passes[i].kernel},
+                          {"width", r.passSizes[i].first},
+                          {"height", r.passSizes[i].second},
+                          {"shader_path", r.shaderPaths.count(r.passes[i].name) ? r.shaderPaths.at(r.passes[i].name) : ""},
+                          {"stats", toJson(r.timing.passes[i].stats)},
+                          {"samples_ms", r.timing.passes[i].ms}});
+    }
+    return {
+        {"id", configId(r.config)},
+        {"backend", gpu::apiName(r.config.api)},
+        {"device",
+         {{"name", r.device.deviceName}, {"driver", r.device.driver}, {"api_version", r.device.apiVersion},
+          {"vendor", r.device.vendor}, {"software_renderer", r.device.softwareRenderer}}},
+        {"config",
+         {{"scene", r.config.scene()}, {"kernel", r.config.kernel}, {"samples", r.config.samples()},
+          {"blur", r.config.blur()}, {"width", r.config.width}, {"height", r.config.height},
+          {"resolution", r.config.half ? "half" : "full"},
+          {"stage", r.config.stage == gpu::Stage::Compute ? "compute" : "fragment"},
+          {"api", gpu::apiName(r.config.api)}, {"params", params}}},
+        {"frames", {{"warmup", r.warmup}, {"measured", r.frames}}},
+        {"clock", r.timing.clock},
+        {"clock_note", r.timing.clockNote},
+        {"passes", passes},
+        {"frame", series(r.timing.frame)},
+        {"frame_wall", series(r.timing.frameWall)},
+        {"frame_gpu_timestamps", series(r.timing.frameGpu)},
+        {"images", r.images},
+        {"debug_messages", r.debugMessages},
+    };
+}
+
+json resultsDocument(const std::vector<RunRecord>& runs, const std::vector<RunError>& errors,
+                     const std::string& command) {
+    json doc = {{"schema", kResultsSchema},
+                {"git_commit", gitCommit()},
+                {"created_utc", utcTimestamp()},
+                {"command", command},
+                {"runs", json::array()},
+                {"errors", json::array()}};
+    for (const auto& r : runs) doc["runs"].push_back(toJson(r));
+    for (const auto& e : errors) doc["errors"].push_back({{"backend", e.backend}, {"code", e.code}, {"message", e.message}});
+    return doc;
+}
+
+Status writeJson(const std::string& path, const json& doc) {
+    namespace fs = std::filesystem;
+    const std::string tmp = path + ".tmp-" + std::to_string(::getpid());
+    {
+        std::ofstream f(tmp);
+        if (!f) return badInput(path + ": cannot write");
+        f << doc.dump(2) << "\n";
+        if (!f) return internal("write " + path + " failed");
+    }
+    std::error_code ec;
+    fs::rename(tmp, path, ec);
+    if (ec) return internal("rename " + tmp + " -> " + path + ": " + ec.message());
+    return {};
+}
+
+}  // namespace cavity

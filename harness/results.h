@@ -1,0 +1,54 @@
+// results.json: what a run measured and on what, in the schema documented in
+// harness/results.schema.json (and README.md, "results.json").
+#pragma once
+
+#include "backend.h"
+#include "config.h"
+#include "image.h"
+#include "timing.h"
+
+#include <nlohmann/json.hpp>
+
+#include <map>
+#include <string>
+#include <vector>
+
+namespace cavity {
+
+constexpr const char* kResultsSchema = "cavity.results/1";
+
+struct RunRecord {
+    RunConfig config;
+    gpu::DeviceInfo device;
+    int warmup = 0, frames = 0;
+    Timing timing;
+    std::vector<PassSpec> passes;
+    std::vector<std::pair<int, int>> passSizes;
+    std::map<std::string, std::string> shaderPaths;
+    std::map<std::string, std::map<std::string, std::string>> images;   // image -> {"exr": path, "png": path}
+    std::vector<std::string> debugMessages;
+    // Kept only when RunOptions::keepImages: the user outputs, read back.
+    std::map<std::string, HostImage> pixels;
+    // With RunOptions::checkDeterminism: the outputs of a second frame were
+    // bit-identical to the first.
+    bool deterministic = true;
+};
+
+struct RunError {
+    std::string backend;
+    int code = 0;
+    std::string message;
+};
+
+nlohmann::json toJson(const Stats& s);
+nlohmann::json toJson(const RunRecord& r);
+nlohmann::json resultsDocument(const std::vector<RunRecord>& runs, const std::vector<RunError>& errors,
+                               const std::string& command);
+
+// Atomic: a temporary file renamed into place.
+Status writeJson(const std::string& path, const nlohmann::json& doc);
+
+std::string gitCommit();
+std::string utcTimestamp();
+
+}  // namespace cavity

@@ -1,0 +1,207 @@
+// `cavity run`: a sweep of configurations on one or both backends, with
+// images, results.json and a timing table on stdout.
+#include "cli.h"
+#include "runner.h"
+
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+
+namespace cavity::cli {
+
+namespace {
+
+constexpr const char* kRunUsage =
+    "usage: cavity run [--backend gl|vk|all] [--scene S[,S..]] [--kernel K[,K..]] [--samples N[,N..]]\n"
+    "                  [--blur R[,R..]] [--resolution full|half[,..]] [--res WxH[,WxH..]]\n"
+    "                  [--stage compute|fragment[,..]] [--gbuffer sdf|raster[,..]] [--frames N] [--warmup N] [--device K]\n"
+    "                  [--validation] [--out DIR] [--<kernel parameter> VALUE ...]\n";
+
+struct Sweep {
+    std::vector<std::string> backends{"all"};
+    std::vector<std::string> kernels{"alchemy"};
+    std::vector<std::string> scenes{"corner"};
+    std::vector<std::string> samples, blurs;
+    std::vector<std::string> resolutions{"full"};
+    std::vector<std::pair<int, int>> sizes{{320, 180}};
+    std::vector<gpu::Stage> stages{gpu::Stage::Compute};
+    std::vector<bool> raster{false};
+    RunConfig base;
+    RunOptions options;
+    gpu::BackendOptions backend;
+    std::string out = "out";
+};
+
+Result<Sweep> parse(const std::vector<std::string>& argv) {
+    Sweep s;
+    Args a(argv);
+    while (!a.done()) {
+        const std::string flag = a.next();
+        if (flag == "--validation") { s.backend.validation = true; continue; }
+        if (flag == "--help" || flag == "-h") return badInput(kRunUsage);
+        if (flag.rfind("--", 0) != 0) return badInput(std::string("cavity run: unexpected argument '") + flag + "'");
+        CAVITY_ASSIGN(const std::string v, a.value(flag));
+        if (flag == "--backend") {
+            s.backends = splitList(v);
+            for (const auto& b : s.backends)
+                if (b != "gl" && b != "vk" && b != "all") return badInput("--backend " + b + ": must be gl, vk or all");
+        } else if (flag == "--kernel") s.kernels = splitList(v);
+        else if (flag == "--scene") s.scenes = splitList(v);
+        else if (flag == "--samples") s.samples = splitList(v);
+        else if (flag == "--blur") s.blurs = splitList(v);
+        else if (flag == "--resolution") {
+            s.resolutions = splitList(v);
+            for (const auto& r : s.resolutions)
+                if (r != "full" && r != "half") return badInput("--resolution " + r + ": must be full or half");
+        } else if (flag == "--res") {
+            s.sizes.clear();
+            for (const auto& r : splitList(v)) {
+                CAVITY_ASSIGN(auto wh, parseResolution("--res", r));
+                s.sizes.push_back(wh);
+            }
+        } else if (flag == "--gbuffer") {
+            s.raster.clear();
+            for (const auto& g : splitList(v)) {
+                if (g != "sdf" && g != "raster") return badInput("--gbuffer " + g + ": must be sdf or raster");
+                s.raster.push_back(g == "raster");
+            }
+        } else if (flag == "--stage") {
+            s.stages.clear();
+            for (const auto& st : splitList(v)) {
+                if (st == "compute") s.stages.push_back(gpu::Stage::Compute);
+                else if (st == "fragment") s.stages.push_back(gpu::Stage::Fragment);
+                else return badInput("--stage " + st + ": must be compute or fragment");
+            }
+        } else if (flag == "--frames") {
+            CAVITY_ASSIGN(s.options.frames, parseInt(flag, v, 1, 100000));
+        } else if (flag == "--warmup") {
+            CAVITY_ASSIGN(s.options.warmup, parseInt(flag, v, 0, 10000));
+        } else if (flag == "--device") {
+            CAVITY_ASSIGN(s.backend.deviceIndex, parseInt(flag, v, 0, 64));
+        } else if (flag == "--out") s.out = v;
+        else if (isKernelParam(flag.substr(2))) {
+            CAVITY_TRY(setParam(s.base, flag.substr(2), v));
+        } else return badInput(flag + ": unknown flag (see cavity run --help)");
+    }
+    return s;
+}
+
+// Expands the sweep axes into validated configurations (API left unset).
+Result<std::vector<RunConfig>> expand(const Sweep& s) {
+    std::vector<RunConfig> out;
+    const std::vector<std::string> none{""};
+    for (const auto& scene : s.scenes)
+        for (const auto& kernel : s.kernels)
+            for (const auto& n : s.samples.empty() ? none : s.samples)
+                for (const auto& b : s.blurs.empty() ? none : s.blurs)
+                    for (const auto& res : s.resolutions)
+                        for (const auto& [w, h] : s.sizes)
+                            for (auto stage : s.stages)
+                            for (bool raster : s.raster) {
+                                RunConfig c = s.base;
+                                c.raster = raster;
+                                c.kernel = kernel;
+                                CAVITY_TRY(setParam(c, "scene", scene));
+                                if (!n.empty()) CAVITY_TRY(setParam(c, "samples", n));
+                                if (!b.empty()) CAVITY_TRY(setParam(c, "blur", b));
+                                c.half = res == "half";
+                                c.width = w;
+                                c.height = h;
+                                c.stage = stage;
+                                // A sweep skips the combinations a kernel lacks (SSDO at
+                                // half resolution); asked for alone, they are an error.
+                                const bool alone = s.kernels.size() == 1 && s.resolutions.size() == 1;
+                                if (c.half && !supportsHalf(c.kernel) && !alone) continue;
+                                CAVITY_TRY(validate(c));
+                                out.push_back(c);
+                            }
+    return out;
+}
+
+void printTable(const std::vector<RunRecord>& runs) {
+    std::printf("\n%-52s %-10s %10s %10s %10s %7s  %s\n", "configuration", "pass", "median ms", "min ms", "p90 ms",
+                "CV", "clock");
+    for (const auto& r : runs) {
+        const std::string id = configId(r.config);
+        auto row = [&](const std::string& name, const Stats& st) {
+            std::printf("%-52s %-10s %10.3f %10.3f %10.3f %6.1f%%  %s\n", id.c_str(), name.c_str(), st.median, st.min,
+                        st.p90, 100.0 * st.cv, r.timing.clock.c_str());
+        };
+        for (const auto& p : r.timing.passes) row(p.name, p.stats);
+        row("frame", r.timing.frame.stats);
+    }
+    for (const auto& r : runs)
+        if (!r.timing.clockNote.empty())
+            std::printf("note: %s %s: %s\n", gpu::apiName(r.config.api), r.device.deviceName.c_str(),
+                        r.timing.clockNote.c_str());
+}
+
+}  // namespace
+
+int runCommand(const std::vector<std::string>& argv) {
+    auto parsed = parse(argv);
+    if (!parsed) {
+        std::cerr << "cavity run: " << parsed.error().message << "\n";
+        return exitCode(parsed.error());
+    }
+    Sweep& s = *parsed;
+    auto configs = expand(s);
+    if (!configs) {
+        std::cerr << "cavity run: " << configs.error().message << "\n";
+        return exitCode(configs.error());
+    }
+    if (auto st = checkWritableDir("--out", s.out); !st) {
+        std::cerr << "cavity run: " << st.error().message << "\n";
+        return exitCode(st.error());
+    }
+    std::vector<gpu::Api> apis;
+    for (const auto& b : s.backends) {
+        if (b == "gl" || b == "all") apis.push_back(gpu::Api::OpenGL);
+        if (b == "vk" || b == "all") apis.push_back(gpu::Api::Vulkan);
+    }
+
+    std::vector<RunRecord> runs;
+    std::vector<RunError> errors;
+    int worst = 0;
+    std::string command = "cavity run";
+    for (const auto& a : argv) command += " " + a;
+    s.options.outDir = s.out;
+    for (auto api : apis) {
+        auto backend = gpu::createBackend(api, s.backend);
+        if (!backend) {
+            std::cerr << "cavity run: " << backend.error().message << "\n";
+            errors.push_back({gpu::apiName(api), exitCode(backend.error()), backend.error().message});
+            worst = std::max(worst, exitCode(backend.error()));
+            continue;
+        }
+        auto& gpu = **backend;
+        std::cerr << "cavity run: " << gpu::apiName(api) << ": " << gpu.info().deviceName << " (" << gpu.info().driver
+                  << ")\n";
+        for (auto c : *configs) {
+            c.api = api;
+            auto r = runConfig(gpu, c, s.options);
+            if (!r) {
+                std::cerr << "cavity run: " << configId(c) << ": " << r.error().message << "\n";
+                errors.push_back({gpu::apiName(api), exitCode(r.error()), configId(c) + ": " + r.error().message});
+                worst = std::max(worst, exitCode(r.error()));
+                continue;
+            }
+            for (const auto& m : r->debugMessages) std::cerr << "cavity run: " << gpu::apiName(api) << " debug: " << m << "\n";
+            runs.push_back(std::move(*r));
+        }
+    }
+    printTable(runs);
+    if (!runs.empty() || !errors.empty()) {
+        std::error_code ec;
+        std::filesystem::create_directories(s.out, ec);
+        const std::string path = (std::filesystem::path(s.out) / "results.json").string();
+        if (auto st = writeJson(path, resultsDocument(runs, errors, command)); !st) {
+            std::cerr << "cavity run: " << st.error().message << "\n";
+            return exitCode(st.error());
+        }
+        std::printf("\nwrote %s\n", path.c_str());
+    }
+    return worst;
+}
+
+}  // namespace cavity::cli

@@ -1,0 +1,82 @@
+#include "sweep.h"
+
+#include "pipeline.h"
+
+#include <set>
+
+namespace cavity {
+
+SweepAxes gpuSweep() { return {}; }
+
+SweepAxes cpuSweep() {
+    SweepAxes a;
+    a.samples = {4, 16, 64};
+    a.blurs = {0, 4};
+    a.sizes = {{320, 180}};
+    a.defaultSize = {320, 180};
+    a.product = false;
+    a.fragmentAxes = false;
+    return a;
+}
+
+std::vector<std::string> aoKernels() {
+    std::vector<std::string> names;
+    for (const auto& k : kernels::all())
+        if (k.role == "ao") names.push_back(k.name);
+    return names;
+}
+
+std::vector<RunConfig> benchmarkSweep(const SweepAxes& axes, const std::vector<gpu::Api>& apis) {
+    std::vector<RunConfig> out;
+    std::set<std::string> seen;
+    auto add = [&](RunConfig c) {
+        if (c.half && !supportsHalf(c.kernel)) return;
+        if (seen.insert(configId(c)).second) out.push_back(std::move(c));
+    };
+    for (const auto& kernel : aoKernels())
+        for (auto api : apis)
+            for (auto stage : {gpu::Stage::Compute, gpu::Stage::Fragment}) {
+                RunConfig base;
+                base.kernel = kernel;
+                base.api = api;
+                base.stage = stage;
+                base.width = axes.defaultSize.first;
+                base.height = axes.defaultSize.second;
+                add(base);
+                if (stage == gpu::Stage::Fragment && !axes.fragmentAxes) continue;
+                for (int n : axes.samples) {
+                    RunConfig c = base;
+                    c.params["samples"] = n;
+                    add(c);
+                }
+                for (int b : axes.blurs) {
+                    RunConfig c = base;
+                    c.params["blur"] = b;
+                    add(c);
+                }
+                {
+                    RunConfig c = base;
+                    c.half = true;
+                    add(c);
+                }
+                for (auto [w, h] : axes.sizes) {
+                    RunConfig c = base;
+                    c.width = w;
+                    c.height = h;
+                    add(c);
+                }
+                if (axes.product && stage == gpu::Stage::Compute)
+                    for (int n : axes.samples)
+                        for (int b : axes.blurs)
+                            for (bool half : {false, true}) {
+                                RunConfig c = base;
+                                c.params["samples"] = n;
+                                c.params["blur"] = b;
+                                c.half = half;
+                                add(c);
+                            }
+            }
+    return out;
+}
+
+}  // namespace cavity

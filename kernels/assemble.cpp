@@ -1,0 +1,240 @@
+// Turns a kernel declaration and its GLSL body into one translation unit per
+// stage, and its parameter values into the bytes of its uniform block. The
+// preamble is generated from the declaration, so the GLSL and the C++ side can
+// never disagree on a binding number or a uniform offset.
+#include "kernel.h"
+
+#include <cmath>
+#include <cstring>
+#include <set>
+#include <sstream>
+
+namespace cavity::kernels {
+
+const std::map<std::string, std::string>& embeddedSources();   // kernel_sources.cpp
+
+const std::string* sourceFile(const std::string& name) {
+    const auto& files = embeddedSources();
+    auto it = files.find(name);
+    return it == files.end() ? nullptr : &it->second;
+}
+
+const KernelDecl* find(const std::string& name) {
+    for (const auto& k : all())
+        if (k.name == name) return &k;
+    return nullptr;
+}
+
+ParamValues withDefaults(const KernelDecl& k, const ParamValues& given) {
+    ParamValues v;
+    for (const auto& p : k.params) {
+        auto it = given.find(p.name);
+        v[p.name] = it == given.end() ? p.def : it->second;
+    }
+    return v;
+}
+
+namespace {
+
+std::string number(double x) {
+    std::ostringstream s;
+    s << x;
+    return s.str();
+}
+
+bool isIntegral(ParamType t) { return t != ParamType::Float; }
+
+}  // namespace
+
+Status validate(const KernelDecl& k, const ParamValues& values) {
+    for (const auto& p : k.params) {
+        auto it = values.find(p.name);
+        if (it == values.end()) continue;
+        const double x = it->second;
+        const std::string flag = "--" + p.name + " " + number(x);
+        if (p.type == ParamType::Enum) {
+            if (x != std::floor(x) || x < 0 || x >= double(p.choices.size())) {
+                std::string allowed;
+                for (const auto& c : p.choices) allowed += (allowed.empty() ? "" : ", ") + c;
+                return badInput(flag + ": must be one of " + allowed);
+            }
+            continue;
+        }
+        const bool integral = isIntegral(p.type);
+        const bool lowOk = p.minExclusive ? x > p.min : x >= p.min;
+        if (!std::isfinite(x) || (integral && x != std::floor(x)) || !lowOk || x > p.max) {
+            std::string what = integral ? "an integer in " + number(p.min) + ".." + number(p.max)
+                             : p.minExclusive ? "a number > " + number(p.min) + " and <= " + number(p.max)
+                                              : "a number in " + number(p.min) + ".." + number(p.max);
+            if (p.type == ParamType::Bool) what = "0 or 1";
+            return badInput(flag + ": must be " + what + (p.unit.empty() ? "" : " (" + p.unit + ")"));
+        }
+    }
+    return {};
+}
+
+std::vector<std::byte> packParams(const KernelDecl& k, const ParamValues& values) {
+    // std140: scalars are 4 bytes with 4-byte alignment, vec4 arrays start on 16.
+    std::vector<std::byte> bytes;
+    auto put = [&](const void* p, size_t n) {
+        const auto* b = static_cast<const std::byte*>(p);
+        bytes.insert(bytes.end(), b, b + n);
+    };
+    const ParamValues full = withDefaults(k, values);
+    for (const auto& p : k.params) {
+        const double x = full.at(p.name);
+        if (isIntegral(p.type)) {
+            const int32_t i = int32_t(std::lround(x));
+            put(&i, 4);
+        } else {
+            const float f = float(x);
+            put(&f, 4);
+        }
+    }
+    if (k.params.empty() && k.arrays.empty()) bytes.resize(4);
+    std::map<std::string, std::vector<float>> arrays;
+    if (k.derive) k.derive(full, arrays);
+    for (const auto& a : k.arrays) {
+        bytes.resize((bytes.size() + 15) / 16 * 16);
+        std::vector<float> data(size_t(a.vec4Count) * 4, 0.0f);
+        auto it = arrays.find(a.name);
+        if (it != arrays.end())
+            std::memcpy(data.data(), it->second.data(), sizeof(float) * std::min(data.size(), it->second.size()));
+        put(data.data(), data.size() * sizeof(float));
+    }
+    bytes.resize((bytes.size() + 15) / 16 * 16);
+    return bytes;
+}
+
+std::vector<gpu::BindingSlot> bindingLayout(const KernelDecl& k, gpu::Stage stage) {
+    std::vector<gpu::BindingSlot> slots;
+    slots.push_back({kFrameBinding, gpu::BindingKind::UniformBuffer, {}});
+    slots.push_back({kParamsBinding, gpu::BindingKind::UniformBuffer, {}});
+    uint32_t b = kFirstImageBinding;
+    for (size_t i = 0; i < k.inputs.size(); ++i) slots.push_back({b++, gpu::BindingKind::SampledImage, {}});
+    if (stage == gpu::Stage::Compute)
+        for (const auto& o : k.outputs) slots.push_back({b++, gpu::BindingKind::StorageImage, o.format});
+    return slots;
+}
+
+namespace {
+
+const char* imageQualifier(gpu::Format f) {
+    switch (f) {
+    case gpu::Format::R8: return "r8";
+    case gpu::Format::R16F: return "r16f";
+    case gpu::Format::R32F: return "r32f";
+    case gpu::Format::RG16F: return "rg16f";
+    case gpu::Format::RGBA8: return "rgba8";
+    case gpu::Format::RGBA16F: return "rgba16f";
+    case gpu::Format::RGBA32F: return "rgba32f";
+    case gpu::Format::D32: return "r32f";
+    }
+    return "rgba32f";
+}
+
+// Expands `#include "path"` (relative to kernels/) once per file, with #line
+// directives whose source numbers index `files`, so every diagnostic can name
+// the kernel file and line.
+Status expand(const std::string& name, const std::map<std::string, std::string>& overrides,
+              std::set<std::string>& seen, std::vector<std::string>& files, std::string& out) {
+    if (!seen.insert(name).second) return {};
+    const std::string* text = nullptr;
+    if (auto it = overrides.find(name); it != overrides.end()) text = &it->second;
+    else text = sourceFile(name);
+    if (!text) return internal("kernel source 'kernels/" + name + "' is not embedded (kernels/CMakeLists.txt)");
+    const size_t index = files.size();
+    files.push_back("kernels/" + name);
+    out += "#line 1 " + std::to_string(index) + "\n";
+    std::istringstream in(*text);
+    std::string line;
+    int lineNo = 0;
+    while (std::getline(in, line)) {
+        ++lineNo;
+        const auto first = line.find_first_not_of(" \t");
+        if (first != std::string::npos && line.compare(first, 8, "#include") == 0) {
+            const auto q0 = line.find('"'), q1 = line.rfind('"');
+            if (q0 == std::string::npos || q1 <= q0)
+                return internal("kernels/" + name + ":" + std::to_string(lineNo) + ": malformed #include");
+            CAVITY_TRY(expand(line.substr(q0 + 1, q1 - q0 - 1), overrides, seen, files, out));
+            out += "#line " + std::to_string(lineNo + 1) + " " + std::to_string(index) + "\n";
+            continue;
+        }
+        out += line + "\n";
+    }
+    return {};
+}
+
+}  // namespace
+
+Result<gpu::ShaderSource> assemble(const KernelDecl& k, gpu::Stage stage,
+                                   const std::map<std::string, std::string>& overrides) {
+    gpu::ShaderSource src;
+    src.name = k.name;
+    src.stage = stage;
+    src.files.push_back("<preamble of " + k.name + ">");
+    std::ostringstream p;
+    p << "#version 450\n";
+    p << (stage == gpu::Stage::Compute ? "#define CAVITY_STAGE_COMPUTE 1\n" : "#define CAVITY_STAGE_FRAGMENT 1\n");
+    p << "layout(std140, binding = " << kFrameBinding << ") uniform Frame {\n"
+         "    mat4 proj;\n    mat4 invProj;\n    vec4 camera;\n"
+         "    ivec2 size;\n    ivec2 srcSize;\n    vec2 invSize;\n    vec2 pad_;\n} frame;\n";
+    p << "layout(std140, binding = " << kParamsBinding << ") uniform Params {\n";
+    for (const auto& prm : k.params) p << "    " << (isIntegral(prm.type) ? "int " : "float ") << prm.name << ";\n";
+    if (k.params.empty() && k.arrays.empty()) p << "    int unused_;\n";
+    for (const auto& a : k.arrays) p << "    vec4 " << a.name << "[" << a.vec4Count << "];\n";
+    p << "} P;\n";
+    uint32_t b = kFirstImageBinding;
+    for (const auto& in : k.inputs) p << "layout(binding = " << b++ << ") uniform sampler2D in_" << in.name << ";\n";
+    int location = 0;
+    for (const auto& o : k.outputs) {
+        if (stage == gpu::Stage::Compute) {
+            p << "layout(binding = " << b++ << ", " << imageQualifier(o.format) << ") uniform writeonly image2D out_"
+              << o.name << ";\n"
+              << "void write_" << o.name << "(ivec2 pixel, vec4 v) { imageStore(out_" << o.name << ", pixel, v); }\n";
+        } else {
+            p << "layout(location = " << location++ << ") out vec4 out_" << o.name << ";\n"
+              << "void write_" << o.name << "(ivec2 pixel, vec4 v) { out_" << o.name << " = v; }\n";
+        }
+    }
+    src.glsl = p.str();
+    std::set<std::string> seen;
+    CAVITY_TRY(expand(k.file, overrides, seen, src.files, src.glsl));
+    // The two thin entry points around the one body.
+    src.glsl += "#line 1 0\n";
+    if (stage == gpu::Stage::Compute) {
+        src.glsl +=
+            "layout(local_size_x = 8, local_size_y = 8) in;\n"
+            "void main() {\n"
+            "    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);\n"
+            "    if (pixel.x >= frame.size.x || pixel.y >= frame.size.y) return;\n"
+            "    cavity_main(pixel);\n"
+            "}\n";
+    } else {
+        src.glsl += "void main() { cavity_main(ivec2(gl_FragCoord.xy)); }\n";
+    }
+    return src;
+}
+
+gpu::ShaderSource fullscreenVertex() {
+    gpu::ShaderSource src;
+    src.name = "fullscreen_triangle";
+    src.stage = gpu::Stage::Vertex;
+    src.files = {"<fullscreen triangle>"};
+    // One triangle covering the viewport: vertices (-1,-1), (3,-1), (-1,3).
+    // glslang defines VULKAN for Vulkan semantics; GL (SPIR-V or GLSL) has gl_VertexID.
+    src.glsl =
+        "#version 450\n"
+        "void main() {\n"
+        "#ifdef VULKAN\n"
+        "    int id = gl_VertexIndex;\n"
+        "#else\n"
+        "    int id = gl_VertexID;\n"
+        "#endif\n"
+        "    vec2 p = vec2((id << 1) & 2, id & 2);\n"
+        "    gl_Position = vec4(p * 2.0 - 1.0, 0.0, 1.0);\n"
+        "}\n";
+    return src;
+}
+
+}  // namespace cavity::kernels

@@ -1,0 +1,89 @@
+#include "compiler.h"
+
+#include <glslang/Public/ResourceLimits.h>
+#include <glslang/Public/ShaderLang.h>
+#include <glslang/SPIRV/GlslangToSpv.h>
+
+#include <mutex>
+#include <regex>
+
+namespace cavity::kernels {
+
+namespace {
+
+EShLanguage toGlslang(gpu::Stage s) {
+    switch (s) {
+    case gpu::Stage::Compute: return EShLangCompute;
+    case gpu::Stage::Vertex: return EShLangVertex;
+    case gpu::Stage::Fragment: return EShLangFragment;
+    }
+    return EShLangCompute;
+}
+
+// glslang keeps global tables; initialise once per process and never finalise,
+// since the backends compile from more than one thread in the tests.
+void initOnce() {
+    static std::once_flag flag;
+    std::call_once(flag, [] { glslang::InitializeProcess(); });
+}
+
+}  // namespace
+
+std::string nameSourceLines(const std::string& log, const std::vector<std::string>& files) {
+    // glslang: "ERROR: 2:45: ..."; Mesa: "2:45(7): error: ..."; NVIDIA: "2(45) : error ...".
+    static const std::regex ref(R"((^|[\s])(\d+)([:(])(\d+))");
+    std::string out;
+    std::sregex_iterator it(log.begin(), log.end(), ref), end;
+    size_t last = 0;
+    for (; it != end; ++it) {
+        const auto& m = *it;
+        size_t k = std::stoul(m[2].str());
+        out.append(log, last, m.position(0) - last);
+        out += m[1].str();
+        if (k < files.size()) {
+            out += files[k] + ":" + m[4].str();
+        } else {
+            out += m[0].str().substr(m[1].length());
+        }
+        last = m.position(0) + m.length(0);
+    }
+    out.append(log, last, std::string::npos);
+    return out;
+}
+
+Result<std::vector<uint32_t>> compileToSpirv(const gpu::ShaderSource& src, gpu::Api target) {
+    initOnce();
+    const EShLanguage stage = toGlslang(src.stage);
+    glslang::TShader shader(stage);
+    const char* text = src.glsl.c_str();
+    shader.setStrings(&text, 1);
+    if (target == gpu::Api::Vulkan) {
+        shader.setEnvInput(glslang::EShSourceGlsl, stage, glslang::EShClientVulkan, 100);
+        shader.setEnvClient(glslang::EShClientVulkan, glslang::EShTargetVulkan_1_2);
+        shader.setEnvTarget(glslang::EShTargetSpv, glslang::EShTargetSpv_1_5);
+    } else {
+        shader.setEnvInput(glslang::EShSourceGlsl, stage, glslang::EShClientOpenGL, 100);
+        shader.setEnvClient(glslang::EShClientOpenGL, glslang::EShTargetOpenGL_450);
+        shader.setEnvTarget(glslang::EShTargetSpv, glslang::EShTargetSpv_1_0);
+    }
+    const auto messages = static_cast<EShMessages>(unsigned(EShMsgSpvRules) |
+        (target == gpu::Api::Vulkan ? unsigned(EShMsgVulkanRules) : 0u));
+    const std::string who = src.name + " (" + (target == gpu::Api::Vulkan ? "vk" : "gl") + ")";
+    if (!shader.parse(GetDefaultResources(), 450, false, messages)) {
+        return internal("compile " + who + ": " + nameSourceLines(shader.getInfoLog(), src.files));
+    }
+    glslang::TProgram program;
+    program.addShader(&shader);
+    if (!program.link(messages)) {
+        return internal("link " + who + ": " + nameSourceLines(program.getInfoLog(), src.files));
+    }
+    std::vector<uint32_t> spirv;
+    glslang::SpvOptions options;
+    options.validate = true;
+    spv::SpvBuildLogger logger;
+    glslang::GlslangToSpv(*program.getIntermediate(stage), spirv, &logger, &options);
+    if (spirv.empty()) return internal("SPIR-V generation " + who + ": " + logger.getAllMessages());
+    return spirv;
+}
+
+}  // namespace cavity::kernels

@@ -1,0 +1,21 @@
+// GLSL 4.50 -> SPIR-V through the glslang library, for either client API.
+// Both backends compile the same expanded source (backend.h ShaderSource);
+// only the client target differs (Vulkan 1.2 or OpenGL 4.5 SPIR-V).
+#pragma once
+
+#include "backend.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace cavity::kernels {
+
+// On failure the message names the kernel, the source file and line of every
+// diagnostic, e.g. "alchemy: kernels/ssao_alchemy.glsl:42: 'foo' : undeclared identifier".
+Result<std::vector<uint32_t>> compileToSpirv(const gpu::ShaderSource& source, gpu::Api target);
+
+// Rewrite "K:LINE" source-number references in a compiler or driver log into
+// "files[K]:LINE", so that GL driver messages (GLSL fallback path) also name files.
+std::string nameSourceLines(const std::string& log, const std::vector<std::string>& files);
+
+}  // namespace cavity::kernels

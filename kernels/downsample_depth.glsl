@@ -1,0 +1,41 @@
+// Depth-aware 2x2 downsample of the G-buffer for half-resolution AO. Seed
+// 000_79d41de70034b569.txt warns that upsampled half-resolution AO leaves
+// halos at silhouettes; averaging positions across a depth edge would make
+// it worse, inventing surfaces floating between foreground and background.
+// So each half texel copies one real full-resolution texel of its 2x2 block.
+//
+// Which one: a checkerboard of min and max depth (half texels with even
+// x + y take the nearest texel of their block, odd ones the farthest). Every
+// 2x2 neighbourhood of half texels then holds both sides of an edge that
+// crosses it, so the bilateral upsample (upsample_bilateral.glsl), which
+// looks at the 4 half texels around each full pixel, finds a depth match for
+// the pixels on either side. Taking the minimum everywhere would lose the far
+// side: thin gaps and background pixels next to silhouettes would have only
+// foreground half texels to choose from.
+//
+// frame.size is the half size; the full size is the inputs' own size.
+#include "include/common.glsl"
+
+// Background (w = 0) counts as infinitely far, so it wins the max.
+float blockDepth(vec4 p) {
+    return isBackground(p.w) ? 3.0e38 : p.w;
+}
+
+void cavity_main(ivec2 pixel) {
+    ivec2 full = textureSize(in_position, 0);
+    bool nearest = ((pixel.x + pixel.y) & 1) == 0;
+    ivec2 best = min(pixel * 2, full - 1);
+    float bestDepth = blockDepth(texelFetch(in_position, best, 0));
+    // Fixed order and strict comparisons: ties keep the first texel, on the
+    // GPU and in the reference alike. Odd full sizes clamp the last block.
+    for (int k = 1; k < 4; ++k) {
+        ivec2 texel = min(pixel * 2 + ivec2(k & 1, k >> 1), full - 1);
+        float d = blockDepth(texelFetch(in_position, texel, 0));
+        if (nearest ? d < bestDepth : d > bestDepth) {
+            best = texel;
+            bestDepth = d;
+        }
+    }
+    write_position_half(pixel, texelFetch(in_position, best, 0));
+    write_normal_half(pixel, texelFetch(in_normal, best, 0));
+}

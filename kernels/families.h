@@ -1,0 +1,15 @@
+// Kernel families beyond the first slice, each declared in its own file and
+// joined by registry.cpp's all().
+#pragma once
+
+#include "kernel.h"
+
+#include <vector>
+
+namespace cavity::kernels {
+
+std::vector<KernelDecl> screenSpaceKernels();   // decl_screen_space.cpp: hemisphere, box blur, SSDO, half resolution
+std::vector<KernelDecl> sdfAoKernels();         // decl_sdf_ao.cpp: the SDF AO variants and the ground truth
+std::vector<ConstantImageDecl> screenSpaceConstants();   // decl_screen_space.cpp: noise tile, sky panorama
+
+}  // namespace cavity::kernels

@@ -1,0 +1,86 @@
+// The hemisphere sampling shared by the SSDO direct and indirect passes
+// (003_9aa4a2c3c5c6ee23.txt): both must walk the very same directions,
+// lengths and visibility verdicts, since the indirect pass re-uses the
+// occluded samples of the direct one as senders.
+//
+// A kernel including this file declares inputs named `position` and
+// `normal` (the G-buffer at the output's resolution).
+#include "include/screen_space.glsl"
+
+struct SsdoBasis {
+    vec3 t, b, n;
+    float phiTurns;   // the seed's phi, in turns
+};
+
+// Tangent frame from an auxiliary up vector never collinear with N (seed
+// 003), and the per-pixel azimuth offset phi = pi IGN, i.e. IGN / 2 turns.
+SsdoBasis ssdoBasis(ivec2 pixel, vec3 n) {
+    SsdoBasis f;
+    vec3 up = abs(n.y) < 0.999 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0);
+    f.n = n;
+    f.t = portableNormalize(orderedCross(up, n));
+    f.b = orderedCross(n, f.t);
+    f.phiTurns = 0.5 * ign(vec2(pixel) + 0.5);
+    return f;
+}
+
+// Direction i of `count`: stratified elevation cos = 1 - alpha with
+// alpha = (i + 0.5) / count, uniform in solid angle over the hemisphere (so
+// each sample stands for 2 pi / count steradians), and azimuth
+// 2 pi alpha (7 count / 9) + phi, which is (i + 0.5) 7/9 turns + phi
+// whatever the count: successive samples 7/9 of a turn apart.
+// T, B, N are orthonormal and the local vector is unit, so the seed's
+// final normalize would change only rounding; it is left out.
+vec3 ssdoDirection(SsdoBasis f, int i, int count) {
+    precise float alpha = (float(i) + 0.5) * portableReciprocal(float(count));
+    precise float cosE = 1.0 - alpha;
+    precise float sin2 = 1.0 - cosE * cosE;
+    precise float sinE = sin2 * portableInverseSqrt(sin2);
+    precise float turns = (float(i) + 0.5) * 0.7777778 + f.phiTurns;
+    vec2 cs = cosSinTurns(turns);
+    precise vec3 d = f.t * (sinE * cs.x) + f.b * (sinE * cs.y) + f.n * cosE;
+    return d;
+}
+
+struct SsdoSample {
+    vec3 dir;
+    bool visible;
+    ivec2 texel;   // where the sample projects: the sender when not visible
+};
+
+// Sample i at p (view space), at a length lambda in (0, radius] drawn per
+// pixel and sample (seed 003: it jitters the shells into noise that the
+// bilateral blur removes).
+//
+// Visible (seed 003) when it projects outside the image, onto background
+// (normal 0), or when it is no further from the camera than the recorded
+// surface. That distance is taken along the sample's own ray, through the
+// recorded surface's tangent plane: the recorded point lies on its texel's
+// centre ray, up to half a texel beside the sample's, and comparing the raw
+// distances lets an open plane occlude itself wherever its depth changes
+// across a texel (everywhere off the image centre). The camera is in front
+// of any surface it sees, so "no further along the ray than the plane" is
+// "on the plane's front side": N_s . (S - Q) >= -bias, with the same bias
+// against G-buffer rounding as the other kernels. A recorded normal facing
+// away from the camera (possible at ray-marched silhouettes) falls back to
+// the plain distance test.
+SsdoSample ssdoSample(SsdoBasis f, vec3 p, ivec2 pixel, int i, int count, float radius, float bias) {
+    SsdoSample s;
+    s.dir = ssdoDirection(f, i, count);
+    precise float lambda = radius * (1.0 - sampleHash(pixel, i));
+    precise vec3 point = p + s.dir * lambda;
+    s.visible = true;
+    if (!texelOfView(point, s.texel) || !texelInside(s.texel)) return s;
+    vec4 q = texelFetch(in_position, s.texel, 0);
+    vec3 m = texelFetch(in_normal, s.texel, 0).xyz;
+    if (isBackground(q.w) || lengthSquared(m) == 0.0) return s;
+    if (orderedDot(m, q.xyz) < 0.0) {
+        precise vec3 rel = point - q.xyz;
+        s.visible = orderedDot(m, rel) >= -bias;
+    } else {
+        precise float reach = lengthSquared(q.xyz);
+        precise float limit = reach * portableInverseSqrt(reach) + bias;
+        s.visible = lengthSquared(point) <= limit * limit;
+    }
+    return s;
+}

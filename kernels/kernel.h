@@ -1,0 +1,151 @@
+// Kernel declarations: the one place that says what a kernel is called, which
+// GLSL file holds its body, which parameters it takes (with default, range and
+// unit), which images it reads and writes. The CLI, the config parser, the
+// benchmark registration, the uniform-block layout and the error messages all
+// read these declarations; adding a kernel touches no backend code.
+//
+// A kernel body (kernels/<file>) defines
+//
+//     void cavity_main(ivec2 pixel)
+//
+// and is wrapped by a generated preamble (assemble.cpp) that declares, for a
+// kernel with inputs {position, normal} and outputs {ao}:
+//
+//     layout(std140, binding = 0) uniform Frame { ... } frame;   // FrameUniforms
+//     layout(std140, binding = 1) uniform Params { <params>; <arrays> } P;
+//     layout(binding = 2) uniform sampler2D in_position;
+//     layout(binding = 3) uniform sampler2D in_normal;
+//     void write_ao(ivec2 pixel, vec4 value);   // imageStore or a render target
+//
+// Int and enum parameters become GLSL int, Float become float, Bool become
+// int (0/1). Arrays become vec4 NAME[N]. Which stage runs is visible as
+// CAVITY_STAGE_COMPUTE or CAVITY_STAGE_FRAGMENT; the body must not depend on it.
+#pragma once
+
+#include "backend.h"
+
+#include <functional>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace cavity::kernels {
+
+enum class ParamType { Int, Float, Bool, Enum };
+
+struct ParamDecl {
+    std::string name;          // the flag (--name), the GLSL field (P.name), the results key
+    ParamType type = ParamType::Float;
+    double def = 0;
+    double min = 0, max = 0;   // inclusive; for Enum: index range of choices
+    std::string unit;          // "world units", "px", "samples", ""
+    std::string help;
+    std::vector<std::string> choices;   // Enum only: names, value = index
+    bool minExclusive = false;          // e.g. R > 0
+};
+
+struct InputDecl {
+    std::string name;                   // GLSL sampler in_<name>
+    gpu::SamplerState sampler;          // default: nearest, clamp to edge
+};
+
+struct OutputDecl {
+    std::string name;                   // GLSL write_<name>(pixel, value)
+    gpu::Format format = gpu::Format::R16F;
+};
+
+struct ArrayDecl {
+    std::string name;                   // GLSL P.<name>[i], a vec4 array
+    int vec4Count = 1;
+};
+
+using ParamValues = std::map<std::string, double>;
+
+// What one output pixel of a kernel costs in memory traffic, for the
+// benchmark's bytes/s counter and the roofline note (bench/ROOFLINE.md).
+struct Cost {
+    double fetchesPerPixel = 0;   // texel fetches
+    double bytesPerPixel = 0;     // bytes read and written
+};
+
+// Fills derived uniform arrays (e.g. Gaussian weights for the blur radius)
+// from the parameter values: arrays[name] gets 4 * vec4Count floats.
+using DeriveFn = std::function<void(const ParamValues&, std::map<std::string, std::vector<float>>& arrays)>;
+
+struct KernelDecl {
+    std::string name;                   // "alchemy"
+    std::string file;                   // "ssao_alchemy.glsl", relative to kernels/
+    std::string summary;                // one line for --help
+    std::vector<ParamDecl> params;
+    std::vector<InputDecl> inputs;
+    std::vector<OutputDecl> outputs;
+    std::vector<ArrayDecl> arrays;
+    DeriveFn derive;                    // may be empty
+    // What the harness may use it for: "gbuffer", "ao" (selectable with
+    // --kernel), "blur", "upsample", "composite", "reference".
+    std::string role = "ao";
+    std::function<Cost(const ParamValues&)> cost;   // may be empty
+};
+
+// The fixed uniform block every kernel sees at binding 0 (std140).
+// View space is right-handed, the camera looks down -Z; "linear depth" is -z.
+struct FrameUniforms {
+    float proj[16];        // view -> clip, column-major (GLSL mat4)
+    float invProj[16];
+    float camera[4];       // tan(fovY/2) * aspect, tan(fovY/2), near, far
+    int size[2];           // this pass's output size in pixels
+    int srcSize[2];        // size of the pass's first input (the G-buffer's, for sources)
+    float invSize[2];      // 1 / size
+    float pad[2];
+};
+static_assert(sizeof(FrameUniforms) == 176);
+
+// An image the harness makes on the CPU rather than a pass: the 4x4 rotation
+// noise tile, the sky panorama with its mip chain. A pass reads one by naming
+// "const:<name>" among its inputs; the kernel's InputDecl gives the sampler.
+struct ConstantImageDecl {
+    std::string name;
+    gpu::Format format = gpu::Format::RGBA32F;
+    // Level 0 first; each level is width x height x channelCount(format) floats.
+    struct Level { int width, height; std::vector<float> pixels; };
+    std::function<std::vector<Level>(const ParamValues&)> make;
+};
+const std::vector<ConstantImageDecl>& constantImages();
+const ConstantImageDecl* findConstant(const std::string& name);
+
+// The registry: every kernel the harness knows, in declaration order.
+const std::vector<KernelDecl>& all();
+const KernelDecl* find(const std::string& name);
+// The same list, mutable: only the planted-bug tests use it, to swap a
+// declaration's derive function for a broken one and put it back.
+std::vector<KernelDecl>& registryForTests();
+
+// Default values for every parameter of a kernel, overridden by `given`.
+ParamValues withDefaults(const KernelDecl& k, const ParamValues& given = {});
+
+// Checks every value against its declared range. The message names the flag,
+// the value and what is allowed: "--samples 300: must be an integer in 1..256".
+Status validate(const KernelDecl& k, const ParamValues& values);
+
+// The std140 bytes of the Params block (binding 1) for these values.
+std::vector<std::byte> packParams(const KernelDecl& k, const ParamValues& values);
+
+// The full translation unit for one stage: preamble + includes + body + entry.
+// `overrides` maps a kernel file name to replacement text (planted-bug tests).
+Result<gpu::ShaderSource> assemble(const KernelDecl& k, gpu::Stage stage,
+                                   const std::map<std::string, std::string>& overrides = {});
+
+// The full-screen-triangle vertex shader used by fragment-stage passes.
+gpu::ShaderSource fullscreenVertex();
+
+// Binding layout of a kernel's pipeline for a stage: Frame UBO, Params UBO,
+// inputs as sampled images, and (compute only) outputs as storage images.
+std::vector<gpu::BindingSlot> bindingLayout(const KernelDecl& k, gpu::Stage stage);
+constexpr uint32_t kFrameBinding = 0;
+constexpr uint32_t kParamsBinding = 1;
+constexpr uint32_t kFirstImageBinding = 2;
+
+// The text of an embedded kernel file (kernels/*.glsl, kernels/include/*.glsl).
+const std::string* sourceFile(const std::string& name);
+
+}  // namespace cavity::kernels

@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages Cavity needs (when missing) and builds it.
+# Used by scripts/run.sh and scripts/test.sh; safe to run again.
+#   BUILD_DIR (default build), CAVITY_WERROR=ON to treat warnings as errors.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+packages=(
+  build-essential cmake ninja-build pkg-config git
+  libvulkan-dev vulkan-validationlayers mesa-vulkan-drivers   # Vulkan loader, Khronos validation, lavapipe
+  libegl-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri libepoxy-dev   # EGL/GL via libglvnd, llvmpipe, GL loader
+  glslang-dev spirv-tools                                       # GLSL -> SPIR-V (glslang links SPIRV-Tools)
+  libopenimageio-dev                                            # EXR/PNG images
+  libgtest-dev libgmock-dev libbenchmark-dev                    # tests and benchmarks
+  nlohmann-json3-dev                                            # results.json
+  python3 python3-matplotlib                                    # scripts/charts.py
+  chromium                                                      # the HTML report test (headless screenshot)
+)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  echo "setup: installing ${missing[*]}"
+  sudo=""
+  [ "$(id -u)" -eq 0 ] || sudo="sudo"
+  $sudo apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi
+
+build="${BUILD_DIR:-build}"
+cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DCAVITY_WERROR="${CAVITY_WERROR:-OFF}" >/dev/null
+cmake --build "$build" -j "$(nproc)"

@@ -1,0 +1,230 @@
+#!/usr/bin/env python3
+"""Tests for scripts/charts.py.
+
+    python3 -m unittest scripts/test_charts.py
+    python3 scripts/test_charts.py
+
+Drawing needs matplotlib (Debian's python3-matplotlib); charts.py re-runs
+itself under /usr/bin/python3 when the python3 on PATH lacks it, so these
+tests run from either.
+"""
+
+import json
+import os
+import re
+import subprocess
+import sys
+import tempfile
+import unittest
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(HERE)
+CHARTS = os.path.join(HERE, "charts.py")
+SAMPLE = os.path.join(ROOT, "bench", "testdata", "sample_benchmark.json")
+SAMPLE_OLD = os.path.join(ROOT, "bench", "testdata", "sample_benchmark_old.json")
+SINGLE_FILE_CHARTS = ("time_vs_samples", "time_vs_blur", "full_vs_half", "time_vs_megapixels",
+                      "gl_vs_vk", "compute_vs_fragment")
+
+sys.path.insert(0, HERE)
+import charts  # noqa: E402  (pure functions only; matplotlib is imported when drawing)
+
+
+def run_charts(*args):
+    return subprocess.run([sys.executable, CHARTS, *args], capture_output=True, text=True, timeout=300)
+
+
+class ParseId(unittest.TestCase):
+    def test_plain_id(self):
+        c = charts.parse_id("corner/alchemy/n16/b4/full/1920x1080/vk/compute")
+        self.assertEqual(c, {"scene": "corner", "kernel": "alchemy", "samples": 16, "blur": 4, "res": "full",
+                             "size": (1920, 1080), "api": "vk", "stage": "compute"})
+
+    def test_manual_time_and_iterations(self):
+        for name in ("corner/alchemy/n16/b4/full/1920x1080/vk/compute/manual_time",
+                     "corner/alchemy/n16/b4/full/1920x1080/vk/compute/iterations:50/manual_time",
+                     "corner/alchemy/n16/b4/full/1920x1080/vk/compute/iterations:50/repeats:3/manual_time"):
+            c = charts.parse_id(name)
+            self.assertIsNotNone(c, name)
+            self.assertEqual(charts.config_id(c), "corner/alchemy/n16/b4/full/1920x1080/vk/compute")
+
+    def test_aggregate_suffixes(self):
+        for suffix in ("_median", "_mean", "_stddev", "_cv"):
+            for base in ("slats/ssdo/n8/b0/half/320x180/gl/fragment",
+                         "slats/ssdo/n8/b0/half/320x180/gl/fragment/manual_time",
+                         "slats/ssdo/n8/b0/half/320x180/gl/fragment/iterations:50/manual_time"):
+                c = charts.parse_id(base + suffix)
+                self.assertIsNotNone(c, base + suffix)
+                self.assertEqual(charts.config_id(c), "slats/ssdo/n8/b0/half/320x180/gl/fragment")
+        # a custom aggregate, named by the entry's aggregate_name
+        c = charts.parse_id("corner/alchemy/n16/b4/full/1920x1080/vk/compute/manual_time_p90", None, "p90")
+        self.assertEqual(charts.config_id(c), "corner/alchemy/n16/b4/full/1920x1080/vk/compute")
+
+    def test_counters_fallback(self):
+        counters = {"samples": 32.0, "blur": 2.0, "half": 1.0, "fragment": 0.0, "width": 640.0, "height": 360.0}
+        c = charts.parse_id("corner/hemisphere/vk/manual_time", counters)
+        self.assertEqual(charts.config_id(c), "corner/hemisphere/n32/b2/half/640x360/vk/compute")
+        self.assertIsNone(charts.parse_id("BM_Something/8", {}))
+
+
+class Computations(unittest.TestCase):
+    def setUp(self):
+        self.records = list(charts.load_results(SAMPLE)["records"].values())
+        with open(SAMPLE) as f:
+            self.raw = json.load(f)["benchmarks"]
+
+    def raw_median(self, cid):
+        """The chart's time for an id, read independently from the raw JSON."""
+        entries = [e for e in self.raw if e["run_name"].startswith(cid + "/")]
+        med = [e for e in entries if e.get("aggregate_name") == "median"]
+        use = med or [e for e in entries if e["run_type"] == "iteration"]
+        return sum(e["real_time"] for e in use) / len(use)
+
+    def test_median_preferred(self):
+        cid = "corner/alchemy/n16/b4/full/1920x1080/vk/compute"
+        rec = charts.load_results(SAMPLE)["records"][cid]
+        med = [e["real_time"] for e in self.raw if e["name"].startswith(cid) and e.get("aggregate_name") == "median"]
+        self.assertEqual(len(med), 1)
+        self.assertAlmostEqual(rec["ms"], med[0])
+
+    def test_speedups_are_full_over_half(self):
+        sp = charts.speedups(self.records)
+        self.assertGreaterEqual(len(sp), 3)
+        for (kernel, api), (full, half, ratio) in sp.items():
+            fid = f"corner/{kernel}/n16/b4/full/1920x1080/{api}/compute"
+            hid = f"corner/{kernel}/n16/b4/half/1920x1080/{api}/compute"
+            self.assertAlmostEqual(full, self.raw_median(fid))
+            self.assertAlmostEqual(half, self.raw_median(hid))
+            self.assertAlmostEqual(ratio, self.raw_median(fid) / self.raw_median(hid))
+            self.assertGreater(ratio, 1.5)
+
+    def test_format_ratio(self):
+        self.assertEqual(charts.format_ratio(2.66), "2.7x")
+        self.assertEqual(charts.format_ratio(1.0), "1.0x")
+        self.assertEqual(charts.format_ratio(30.4), "30x")
+
+    def test_fit_through_origin(self):
+        slope, r2 = charts.fit_through_origin([1, 2, 4], [0.5, 1.0, 2.0])
+        self.assertAlmostEqual(slope, 0.5)
+        self.assertAlmostEqual(r2, 1.0)
+
+    def test_device_line(self):
+        ctx = {"cavity_device": "gl: NVIDIA H100 80GB HBM3; vk: NVIDIA H100 80GB HBM3"}
+        self.assertEqual(charts.device_line(ctx), "NVIDIA H100 80GB HBM3")
+        self.assertTrue(charts.is_compute_card(ctx))
+        self.assertFalse(charts.is_compute_card({"cavity_device": "vk: llvmpipe (LLVM 15.0.6, 256 bits)"}))
+
+
+class Command(unittest.TestCase):
+    def test_all_charts(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            out = os.path.join(tmp, "charts")
+            r = run_charts(SAMPLE_OLD, SAMPLE, "--out", out, "--title", "Cavity test")
+            self.assertEqual(r.returncode, 0, r.stderr)
+            with open(os.path.join(out, "index.json")) as f:
+                index = json.load(f)
+            names = [c["name"] for c in index["charts"]]
+            self.assertEqual(names, list(SINGLE_FILE_CHARTS) + ["history"])
+            printed = set(r.stdout.split())
+            for c in index["charts"]:
+                self.assertTrue(c["title"].startswith("Cavity test: "), c["title"])
+                for kind in ("png", "svg"):
+                    path = os.path.join(out, c[kind])
+                    self.assertTrue(os.path.isfile(path), path)
+                    self.assertGreater(os.path.getsize(path), 1000, path)
+                    self.assertIn(path, printed)
+                with open(os.path.join(out, c["png"]), "rb") as f:
+                    self.assertEqual(f.read(8), b"\x89PNG\r\n\x1a\n")
+                with open(os.path.join(out, c["svg"])) as f:
+                    self.assertIn("<svg", f.read(2000))
+
+            # the speed-ups written on full_vs_half are full/half from the data
+            records = list(charts.load_results(SAMPLE)["records"].values())
+            expected = {charts.series_label(k): charts.format_ratio(v[2]) for k, v in charts.speedups(records).items()}
+            entry = next(c for c in index["charts"] if c["name"] == "full_vs_half")
+            self.assertEqual(entry["labels"], expected)
+            with open(os.path.join(out, "full_vs_half.svg")) as f:
+                svg = f.read()
+            written = re.findall(r">\s*(\d+(?:\.\d)?x)\s*<", svg)  # text is kept as text (svg.fonttype none)
+            self.assertEqual(sorted(written), sorted(expected.values()))
+            for label, text in expected.items():
+                kernel, api = label.split(" · ")
+                api = {"Vulkan": "vk", "OpenGL": "gl"}[api]
+                full = next(r for r in records if r["id"] == f"corner/{kernel}/n16/b4/full/1920x1080/{api}/compute")
+                half = next(r for r in records if r["id"] == f"corner/{kernel}/n16/b4/half/1920x1080/{api}/compute")
+                self.assertEqual(text, charts.format_ratio(full["ms"] / half["ms"]))
+
+            # fragment bars are flagged on an H100
+            with open(os.path.join(out, "compute_vs_fragment.svg")) as f:
+                self.assertIn("fragment (non-representative on H100)", f.read())
+
+    def test_single_file_skips_history(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            r = run_charts(SAMPLE, "--out", tmp)
+            self.assertEqual(r.returncode, 0, r.stderr)
+            with open(os.path.join(tmp, "index.json")) as f:
+                index = json.load(f)
+            self.assertEqual([c["name"] for c in index["charts"]], list(SINGLE_FILE_CHARTS))
+            self.assertEqual([s["name"] for s in index["skipped"]], ["history"])
+            self.assertIn("skipped history", r.stderr)
+            self.assertFalse(os.path.exists(os.path.join(tmp, "history.png")))
+
+    def test_missing_axes_are_skipped(self):
+        # only a sample sweep: every chart but time_vs_samples lacks its axis
+        with open(SAMPLE) as f:
+            data = json.load(f)
+        data["benchmarks"] = [e for e in data["benchmarks"]
+                              if re.match(r"corner/alchemy/n\d+/b4/full/1920x1080/vk/compute/", e["name"])]
+        with tempfile.TemporaryDirectory() as tmp:
+            src = os.path.join(tmp, "samples_only.json")
+            with open(src, "w") as f:
+                json.dump(data, f)
+            out = os.path.join(tmp, "out")
+            r = run_charts(src, "--out", out)
+            self.assertEqual(r.returncode, 0, r.stderr)
+            with open(os.path.join(out, "index.json")) as f:
+                index = json.load(f)
+            self.assertEqual([c["name"] for c in index["charts"]], ["time_vs_samples"])
+            self.assertEqual(sorted(os.listdir(out)), ["index.json", "time_vs_samples.png", "time_vs_samples.svg"])
+
+    def check_bad(self, content, expect):
+        with tempfile.TemporaryDirectory() as tmp:
+            bad = os.path.join(tmp, "results.json")
+            with open(bad, "w") as f:
+                f.write(content)
+            out = os.path.join(tmp, "out")
+            # a good file first: nothing is written even though it alone would chart
+            r = run_charts(SAMPLE, bad, "--out", out)
+            self.assertEqual(r.returncode, 2)
+            lines = r.stderr.strip().splitlines()
+            self.assertEqual(len(lines), 1, r.stderr)
+            self.assertTrue(lines[0].startswith(f"charts: {bad}: "), lines[0])
+            self.assertIn(expect, lines[0])
+            self.assertEqual(r.stdout, "")
+            self.assertFalse(os.path.exists(out))
+
+    def test_not_benchmark_json(self):
+        self.check_bad('{"runs": []}', "not Google Benchmark JSON (no 'benchmarks' list)")
+
+    def test_not_json(self):
+        self.check_bad("corner/alchemy/n16 0.09 ms\n", "not JSON")
+
+    def test_entry_without_time(self):
+        self.check_bad('{"context": {}, "benchmarks": [{"name": "corner/alchemy/n16/b4/full/1920x1080/vk/compute"}]}',
+                       "has no numeric 'real_time'")
+
+    def test_entry_without_name(self):
+        self.check_bad('{"context": {}, "benchmarks": [{"real_time": 1.0}]}', "has no 'name'")
+
+    def test_missing_file(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            out = os.path.join(tmp, "out")
+            missing = os.path.join(tmp, "nope.json")
+            r = run_charts(missing, "--out", out)
+            self.assertEqual(r.returncode, 2)
+            self.assertEqual(len(r.stderr.strip().splitlines()), 1)
+            self.assertIn(f"charts: {missing}: cannot read", r.stderr)
+            self.assertFalse(os.path.exists(out))
+
+
+if __name__ == "__main__":
+    unittest.main()

@@ -1,0 +1,216 @@
+// The gate as a reviewer relies on it: it catches planted bugs and names the
+// configuration, passes an unchanged build (twice, on both APIs), reports
+// bad baselines and manifests as bad input, and its HTML report opens.
+#include "blur_weights.h"
+#include "gate.h"
+#include "gate_report.h"
+#include "gpu_fixture.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <set>
+
+namespace cavity::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::string kBaselines = std::string(CAVITY_SOURCE_DIR) + "/baselines";
+
+fs::path tempDir(const std::string& name) {
+    const fs::path d = fs::temp_directory_path() / ("cavity-gate-" + std::to_string(::getpid()) + "-" + name);
+    fs::remove_all(d);
+    return d;
+}
+
+gate::GateRun runOrDie(gate::GateOptions o) {
+    auto r = gate::runGate(o);
+    EXPECT_TRUE(r) << (r ? "" : r.error().message);
+    return r ? *r : gate::GateRun{};
+}
+
+std::set<std::string> failing(const gate::GateRun& run) {
+    std::set<std::string> ids;
+    for (const auto& r : run.results)
+        if (!r.passed()) ids.insert(r.id);
+    return ids;
+}
+
+bool bothBackends(std::string* why) {
+    return sharedBackend(gpu::Api::OpenGL, why) && sharedBackend(gpu::Api::Vulkan, why);
+}
+
+#define REQUIRE_BACKENDS()                                                    \
+    do {                                                                      \
+        std::string why;                                                      \
+        if (!bothBackends(&why)) {                                            \
+            if (inCI()) FAIL() << "CI=true requires both backends: " << why;  \
+            GTEST_SKIP() << why;                                              \
+        }                                                                     \
+    } while (0)
+
+// A planted defect: a source edit (file, text to find, replacement) or a
+// swap of a declaration's derive function; the gate must fail `expect`.
+struct Defect {
+    std::string name;
+    std::string file, find, replace;
+    std::string kernel;                 // derive swap
+    kernels::DeriveFn derive;
+    std::string filter;                 // configurations to run
+    std::string expect;                 // an id that must fail
+};
+
+std::vector<Defect> defects() {
+    // The blur weights normalised by sum instead of 2·sum − w0: every tap but
+    // the centre counts twice, so the kernel sums to more than one.
+    kernels::DeriveFn sumNormalised = [](const kernels::ParamValues& v, std::map<std::string, std::vector<float>>& a) {
+        const int r = int(std::lround(v.at("blur")));
+        std::vector<float> w;
+        if (r > 0) {
+            const float s = float(r) / 2.0f;
+            float sum = 0;
+            for (int i = 0; i <= r; ++i) {
+                w.push_back(std::exp(-0.5f * float(i * i) / (s * s)));
+                sum += w.back();
+            }
+            for (auto& x : w) x /= sum;
+        } else {
+            w = {1.0f};
+        }
+        a["weights"] = w;
+    };
+    const std::string alchemy = "^corner/alchemy/n16/b4/full/160x90/vk/compute$";
+    const std::string expect = "corner/alchemy/n16/b4/full/160x90/vk/compute";
+    return {
+        {"blur normalised by sum", "", "", "", "blur_bilateral", sumNormalised, alchemy, expect},
+        {"bias sign flipped", "ssao_alchemy.glsl", "- P.bias", "+ P.bias", "", {}, alchemy, expect},
+        {"sample count off by one", "ssao_alchemy.glsl", "int n = P.samples;", "int n = P.samples + 1;", "", {}, alchemy, expect},
+        {"near clamp c = R", "ssao_alchemy.glsl", "float c = 0.1 * R;", "float c = R;", "", {}, alchemy, expect},
+        {"range check removed", "ssao_hemisphere.glsl",
+         "if (P.range_check != 0) rangeWeight = smoothstep(0.0, 1.0, P.radius / max(abs(p.z - q.z), 1e-6));", "",
+         "", {}, "^corner/hemisphere/n16/b4/full/160x90/vk/compute$", "corner/hemisphere/n16/b4/full/160x90/vk/compute"},
+        {"half-resolution upsample offset by one texel", "upsample_bilateral.glsl", "ivec2 base = ivec2(floor(c));",
+         "ivec2 base = ivec2(floor(c)) + ivec2(1, 0);", "", {}, "^corner/alchemy/n16/b4/half/160x90/vk/compute$",
+         "corner/alchemy/n16/b4/half/160x90/vk/compute"},
+    };
+}
+
+class PlantedBug : public ::testing::TestWithParam<size_t> {};
+
+TEST_P(PlantedBug, GateFailsAndNamesTheConfiguration) {
+    REQUIRE_BACKENDS();
+    const Defect d = defects()[GetParam()];
+    gate::GateOptions o;
+    o.baselines = kBaselines;
+    o.out = tempDir("planted" + std::to_string(GetParam())).string();
+    o.filter = d.filter;
+    auto& registry = kernels::registryForTests();
+    kernels::DeriveFn saved;
+    kernels::KernelDecl* swapped = nullptr;
+    if (!d.file.empty()) {
+        const std::string* text = kernels::sourceFile(d.file);
+        ASSERT_NE(text, nullptr) << d.file;
+        const auto at = text->find(d.find);
+        // The defect must really be planted, or this test proves nothing.
+        ASSERT_NE(at, std::string::npos) << d.name << ": '" << d.find << "' not in kernels/" << d.file;
+        std::string broken = *text;
+        broken.replace(at, d.find.size(), d.replace);
+        o.overrides[d.file] = broken;
+    } else {
+        for (auto& k : registry)
+            if (k.name == d.kernel) swapped = &k;
+        ASSERT_NE(swapped, nullptr);
+        saved = swapped->derive;
+        swapped->derive = d.derive;
+    }
+    const auto run = runOrDie(o);
+    if (swapped) swapped->derive = saved;
+    EXPECT_EQ(run.exitCode(), 1) << d.name;
+    const auto ids = failing(run);
+    EXPECT_TRUE(ids.count(d.expect)) << d.name << ": the gate did not fail " << d.expect;
+    fs::remove_all(o.out);
+}
+
+INSTANTIATE_TEST_SUITE_P(Defects, PlantedBug, ::testing::Range<size_t>(0, defects().size()),
+                         [](const auto& info) {
+                             std::string n = defects()[info.param].name;
+                             for (auto& ch : n)
+                                 if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
+                             return n;
+                         });
+
+TEST(Gate, UnchangedBuildPassesTwiceOnBothApis) {
+    REQUIRE_BACKENDS();
+    for (int round = 0; round < 2; ++round) {
+        gate::GateOptions o;
+        o.baselines = kBaselines;
+        o.out = tempDir("clean" + std::to_string(round)).string();
+        const auto run = runOrDie(o);
+        EXPECT_EQ(run.exitCode(), 0) << "round " << round << "\n" << gate::summaryMarkdown(run);
+        std::set<std::string> apis;
+        for (const auto& r : run.results) {
+            apis.insert(r.id.substr(r.id.rfind('/', r.id.rfind('/') - 1) + 1, 2));
+            EXPECT_TRUE(r.deterministic) << r.id;
+        }
+        EXPECT_EQ(apis, (std::set<std::string>{"gl", "vk"}));
+        fs::remove_all(o.out);
+    }
+}
+
+TEST(Gate, ShardsPartitionTheMatrix) {
+    std::set<size_t> seen;
+    for (int shard = 0; shard < 3; ++shard)
+        for (size_t i = 0; i < 20; ++i)
+            if (gate::inShard(i, shard, 3)) {
+                EXPECT_TRUE(seen.insert(i).second) << i;
+            }
+    EXPECT_EQ(seen.size(), 20u);
+}
+
+// The report a reviewer opens: every configuration present, failing first,
+// loadable by headless Chromium from disk; the screenshot is kept to look at.
+TEST(Gate, HtmlReportOpensInHeadlessChromiumWithFailuresFirst) {
+    REQUIRE_BACKENDS();
+    if (std::system("command -v chromium >/dev/null 2>&1") != 0) {
+        if (inCI()) FAIL() << "chromium is not installed (scripts/setup.sh installs it)";
+        GTEST_SKIP() << "chromium is not installed";
+    }
+    gate::GateOptions o;
+    o.baselines = kBaselines;
+    o.out = tempDir("report").string();
+    o.matrix = "ci";
+    o.filter = "/vk/";
+    const Defect d = defects()[1];   // bias sign flipped: alchemy fails
+    std::string broken = *kernels::sourceFile(d.file);
+    broken.replace(broken.find(d.find), d.find.size(), d.replace);
+    o.overrides[d.file] = broken;
+    const auto run = runOrDie(o);
+    ASSERT_TRUE(gate::writeReports(run, o.out).ok());
+    const fs::path html = fs::path(o.out) / "index.html";
+    const fs::path dom = fs::path(o.out) / "dom.html";
+    const fs::path shot = fs::path(CAVITY_BINARY_DIR) / "gate_report_screenshot.png";
+    const std::string flags = "timeout 120 chromium --headless=new --no-sandbox --disable-gpu --hide-scrollbars "
+                              "--window-size=1400,1000 ";
+    ASSERT_EQ(std::system((flags + "--dump-dom file://" + html.string() + " > " + dom.string() + " 2>/dev/null").c_str()), 0);
+    ASSERT_EQ(std::system((flags + "--screenshot=" + shot.string() + " file://" + html.string() + " >/dev/null 2>&1").c_str()), 0);
+    EXPECT_GT(fs::file_size(shot), 10000u);
+    std::ifstream f(dom);
+    const std::string text((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+    size_t lastFail = 0, firstPass = std::string::npos;
+    for (const auto& r : run.results) {
+        const auto at = text.find("data-id=\"" + r.id + "\"");
+        ASSERT_NE(at, std::string::npos) << r.id << " missing from the report";
+        if (r.passed()) firstPass = std::min(firstPass, at);
+        else lastFail = std::max(lastFail, at);
+    }
+    EXPECT_FALSE(failing(run).empty());
+    EXPECT_LT(lastFail, firstPass) << "failing configurations must come first";
+}
+
+}  // namespace
+}  // namespace cavity::test

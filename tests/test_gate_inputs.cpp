@@ -1,0 +1,167 @@
+// Bad gate inputs are reported as bad input (exit 2, one line naming the
+// file), never silently passed; `baselines update` rewrites only what it is
+// asked to, atomically.
+#include "image_io.h"
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <string>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Outcome {
+    int code = -1;
+    std::string output;
+};
+
+Outcome run(const std::string& args, const std::string& env = "") {
+    const std::string cmd = env + " " + CAVITY_EXE + " " + args + " 2>&1";
+    Outcome o;
+    FILE* p = popen(cmd.c_str(), "r");
+    std::array<char, 4096> buf;
+    size_t n;
+    while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) o.output.append(buf.data(), n);
+    const int status = pclose(p);
+    o.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return o;
+}
+
+std::string checksum(const fs::path& p) {
+    std::ifstream f(p, std::ios::binary);
+    const std::string d((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+    return std::to_string(std::hash<std::string>{}(d)) + ":" + std::to_string(d.size());
+}
+
+std::map<std::string, std::string> checksums(const fs::path& root) {
+    std::map<std::string, std::string> m;
+    for (const auto& e : fs::recursive_directory_iterator(root))
+        if (e.is_regular_file()) m[fs::relative(e.path(), root).string()] = checksum(e.path());
+    return m;
+}
+
+class GateInputs : public ::testing::Test {
+protected:
+    void SetUp() override {
+        dir = fs::temp_directory_path() / ("cavity-gate-inputs-" + std::to_string(::getpid()) + "-" +
+                                           ::testing::UnitTest::GetInstance()->current_test_info()->name());
+        fs::remove_all(dir);
+        fs::create_directories(dir);
+        base = dir / "baselines";
+        fs::copy(fs::path(CAVITY_SOURCE_DIR) / "baselines", base, fs::copy_options::recursive);
+    }
+    void TearDown() override { fs::remove_all(dir); }
+    Outcome gate(const std::string& extra = "") {
+        return run("gate --matrix smoke --baselines " + base.string() + " --out " + (dir / "out").string() + " " + extra);
+    }
+    fs::path image(const std::string& name) { return base / "images/corner/alchemy/n16/b4/full/160x90" / name; }
+    void expectBad(const Outcome& o, const std::string& mustName) {
+        EXPECT_EQ(o.code, 2) << o.output;
+        const std::string first = o.output.substr(0, o.output.find('\n'));
+        EXPECT_NE(first.find(mustName), std::string::npos) << o.output;
+        EXPECT_EQ(first.rfind("cavity gate: ", 0), 0u) << o.output;
+    }
+    fs::path dir, base;
+};
+
+TEST_F(GateInputs, MissingBaselineIsBadInputNamingTheFile) {
+    fs::remove(image("ao.exr"));
+    const Outcome o = gate();
+    EXPECT_EQ(o.code, 2) << o.output;
+    EXPECT_NE(o.output.find("baseline missing: " + image("ao.exr").string()), std::string::npos) << o.output;
+}
+
+TEST_F(GateInputs, CorruptBaselineIsBadInput) {
+    std::ofstream(image("ao.exr"), std::ios::trunc) << "not an exr";
+    expectBad(gate(), image("ao.exr").string());
+}
+
+TEST_F(GateInputs, BaselineOfTheWrongSizeIsBadInput) {
+    ASSERT_TRUE(cavity::writeImage(image("ao.exr").string(), cavity::HostImage(80, 45, 1, 1.0f)).ok());
+    expectBad(gate(), image("ao.exr").string() + ": baseline is 80x45x1, configuration needs 160x90x1");
+}
+
+TEST_F(GateInputs, BaselineWithTheWrongChannelCountIsBadInput) {
+    ASSERT_TRUE(cavity::writeImage(image("ao.exr").string(), cavity::HostImage(160, 90, 3, 1.0f)).ok());
+    expectBad(gate(), image("ao.exr").string() + ": baseline is 160x90x3, configuration needs 160x90x1");
+}
+
+TEST_F(GateInputs, ManifestWithAnUnknownKeyIsBadInput) {
+    std::ofstream(base / "manifest.json", std::ios::trunc)
+        << R"({"pipelines": {"*": {"max_abss": 0.1}}})";
+    expectBad(gate(), "manifest.json: unknown key 'max_abss'");
+}
+
+TEST_F(GateInputs, ManifestWithANegativeToleranceIsBadInput) {
+    std::ofstream(base / "manifest.json", std::ios::trunc) << R"({"pipelines": {"alchemy": {"rmse": -0.5}}})";
+    expectBad(gate(), "pipelines.alchemy.rmse is -0.5: tolerances must be >= 0");
+}
+
+TEST_F(GateInputs, BudgetsThatDoNotParseAreBadInput) {
+    std::ofstream(base / "budgets.json", std::ios::trunc) << "{ \"devices\": [ ";
+    expectBad(gate(), "budgets.json: does not parse");
+}
+
+TEST_F(GateInputs, BudgetOverrunIsARegressionAndSaysByHowMuch) {
+    std::ofstream(base / "budgets.json", std::ios::trunc)
+        << R"({"devices": [{"pattern": "", "budgets_ms": {"corner/alchemy/n16/b4/full/160x90/vk/compute": {"ao": 1e-9}}}]})";
+    const Outcome o = gate();
+    EXPECT_EQ(o.code, 1) << o.output;
+    EXPECT_NE(o.output.find("time ao"), std::string::npos) << o.output;
+    EXPECT_NE(o.output.find("ms (+"), std::string::npos) << o.output;
+}
+
+TEST_F(GateInputs, UnknownMatrixIsBadInput) {
+    const Outcome o = run("gate --matrix nope --baselines " + base.string() + " --out " + (dir / "out").string());
+    EXPECT_EQ(o.code, 2);
+    EXPECT_NE(o.output.find("--matrix nope: no such matrix"), std::string::npos) << o.output;
+}
+
+TEST_F(GateInputs, UpdateRewritesOnlyTheSelectedEntries) {
+    // Break one baseline so the gate fails exactly that configuration.
+    const fs::path victim = image("ao_blur.exr");
+    fs::copy_file(base / "images/slats/alchemy/n16/b4/full/160x90/ao_blur.exr", victim,
+                  fs::copy_options::overwrite_existing);
+    ASSERT_EQ(gate().code, 1);
+    const auto before = checksums(base);
+    const Outcome u = run("baselines update --from " + (dir / "out").string() + " --baselines " + base.string());
+    ASSERT_EQ(u.code, 0) << u.output;
+    EXPECT_NE(u.output.find("updated " + victim.string()), std::string::npos) << u.output;
+    const auto after = checksums(base);
+    std::vector<std::string> changed;
+    for (const auto& [f, sum] : after)
+        if (before.at(f) != sum) changed.push_back(f);
+    // The failing image of the failing configuration, and nothing else.
+    ASSERT_EQ(changed.size(), 1u) << u.output;
+    EXPECT_EQ(changed[0], "images/corner/alchemy/n16/b4/full/160x90/ao_blur.exr");
+    EXPECT_EQ(gate().code, 0);
+    // No temporary file is left behind.
+    for (const auto& e : fs::recursive_directory_iterator(base))
+        EXPECT_EQ(e.path().filename().string().find(".tmp-"), std::string::npos) << e.path();
+}
+
+TEST_F(GateInputs, InterruptedUpdateLeavesTheOldFileWhole) {
+    const fs::path victim = image("ao_blur.exr");
+    fs::copy_file(base / "images/slats/alchemy/n16/b4/full/160x90/ao_blur.exr", victim,
+                  fs::copy_options::overwrite_existing);
+    ASSERT_EQ(gate().code, 1);
+    const std::string old = checksum(victim);
+    // The test hook stops the update after the copy and before the rename,
+    // as a kill would.
+    const Outcome u = run("baselines update --from " + (dir / "out").string() + " --baselines " + base.string(),
+                          "CAVITY_TEST_INTERRUPT_UPDATE=1");
+    EXPECT_NE(u.code, 0);
+    EXPECT_EQ(checksum(victim), old);
+    // The next update cleans the leftover and completes.
+    ASSERT_EQ(run("baselines update --from " + (dir / "out").string() + " --baselines " + base.string()).code, 0);
+    for (const auto& e : fs::recursive_directory_iterator(base))
+        EXPECT_EQ(e.path().filename().string().find(".tmp-"), std::string::npos) << e.path();
+}
+
+}  // namespace

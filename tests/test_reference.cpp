@@ -1,0 +1,256 @@
+// Every kernel on the GPU against its CPU reference, on both backends, both
+// scenes, at 160x90 and 320x180. Each pass is checked on its own: the CPU
+// reference gets the very inputs the GPU pass read back, so an error in one
+// kernel cannot hide in, or be blamed on, another.
+//
+// Tolerances, and why:
+//  * AO (R16F, values in [0, 1]): 1e-3. Half floats round to within 2.4e-4
+//    near 1 and the CPU result is rounded the same way; the rest is float
+//    transcendental differences (sin/cos/exp/pow) between drivers and libm.
+//  * Composite (RGBA8): one 8-bit step, since the dithered value can sit on a
+//    rounding boundary.
+//  * G-buffer: see kGbuffer below; the ray march is iterative, so a ray that
+//    grazes a silhouette may hit on one side and miss on the other.
+#include "camera.h"
+#include "gpu_fixture.h"
+#include "kernel_runner.h"
+#include "pipeline.h"
+#include "reference.h"
+
+#include <cmath>
+#include <cstdio>
+
+namespace cavity::test {
+namespace {
+
+struct Case {
+    std::string scene;
+    int width, height;
+    std::string kernel = "alchemy";
+    bool half = false;
+    gpu::Stage stage = gpu::Stage::Compute;
+};
+
+class KernelVsReference : public GpuTest {};
+
+struct Tolerance {
+    double maxAbs;
+    double outlierFraction;   // share of pixels allowed over maxAbs
+};
+
+Tolerance toleranceFor(const std::string& kernel) {
+    if (kernel == "gbuffer_sdf") return {2e-3, 0.003};
+    if (kernel == "composite") return {1.0 / 255.0 + 1e-6, 0.0};
+    return {1e-3, 0.0};
+}
+
+void checkChain(gpu::Backend& gpu, gpu::Api api, const Case& cs) {
+    RunConfig c;
+    c.api = api;
+    c.width = cs.width;
+    c.height = cs.height;
+    c.kernel = cs.kernel;
+    c.half = cs.half;
+    c.stage = cs.stage;
+    ASSERT_TRUE(setParam(c, "scene", cs.scene).ok());
+    auto chain = PassChain::create(gpu, c);
+    ASSERT_TRUE(chain) << chain.error().message;
+    gpu.beginFrame();
+    (*chain)->record();
+    ASSERT_TRUE(gpu.endFrame().ok());
+
+    for (const auto& pass : (*chain)->passes()) {
+        SCOPED_TRACE(configId(c) + " pass " + pass.name);
+        const auto* k = kernels::find(pass.kernel);
+        ASSERT_NE(k, nullptr);
+        std::vector<HostImage> inputs;
+        for (const auto& in : pass.inputs) {
+            if (in.rfind("const:", 0) == 0) {
+                // CPU-made inputs: the reference gets the level-0 data itself.
+                const auto* decl = kernels::findConstant(in.substr(6));
+                ASSERT_NE(decl, nullptr) << in;
+                const auto levels = decl->make(kernels::withDefaults(*k, c.params));
+                HostImage img(levels[0].width, levels[0].height, gpu::channelCount(decl->format));
+                img.pixels = levels[0].pixels;
+                inputs.push_back(std::move(img));
+                continue;
+            }
+            auto img = (*chain)->read(in);
+            ASSERT_TRUE(img) << img.error().message;
+            inputs.push_back(std::move(*img));
+        }
+        const auto params = kernels::withDefaults(*k, c.params);
+        std::map<std::string, std::vector<float>> arrays;
+        if (k->derive) k->derive(params, arrays);
+        const int w = pass.half ? (c.width + 1) / 2 : c.width, h = pass.half ? (c.height + 1) / 2 : c.height;
+        const auto frame = frameUniforms(w, h, c.width, c.height);
+        reference::Context ctx{*k, params, arrays, frame, {}};
+        for (const auto& i : inputs) ctx.inputs.push_back(&i);
+        auto expected = reference::run(ctx);
+        ASSERT_TRUE(expected) << expected.error().message;
+        ASSERT_EQ(expected->size(), pass.outputs.size());
+        for (size_t o = 0; o < pass.outputs.size(); ++o) {
+            // 8-bit outputs may round either way on a value that sits on a step.
+            Tolerance tol = toleranceFor(k->name);
+            if (k->outputs[o].format == gpu::Format::RGBA8 || k->outputs[o].format == gpu::Format::R8)
+                tol.maxAbs = std::max(tol.maxAbs, 1.0 / 255.0 + 1e-6);
+            auto got = (*chain)->read(pass.outputs[o]);
+            ASSERT_TRUE(got) << got.error().message;
+            HostImage want = (*expected)[o];
+            quantize(want, k->outputs[o].format);
+            const Diff d = diff(want, *got, tol.maxAbs);
+            const double allowed = tol.outlierFraction * double(d.compared);
+            EXPECT_LE(double(d.over), allowed)
+                << pass.outputs[o] << ": " << d.over << " of " << d.compared << " pixels differ by more than "
+                << tol.maxAbs << "; max " << d.maxAbs << " at (" << d.worstX << "," << d.worstY << "), mean "
+                << d.meanAbs;
+            if (tol.outlierFraction == 0) {
+                EXPECT_LE(d.maxAbs, tol.maxAbs) << pass.outputs[o];
+            }
+        }
+    }
+}
+
+// Every AO pipeline, full and half resolution; the fragment stage too at 160x90.
+void checkAll(gpu::Backend& gpu, gpu::Api api, const std::string& scene, int w, int h) {
+    for (const auto& k : kernels::all()) {
+        if (k.role != "ao") continue;
+        for (bool half : {false, true}) {
+            if (half && !supportsHalf(k.name)) continue;
+            for (auto stage : {gpu::Stage::Compute, gpu::Stage::Fragment}) {
+                if (stage == gpu::Stage::Fragment && w > 160) continue;
+                checkChain(gpu, api, {scene, w, h, k.name, half, stage});
+            }
+        }
+    }
+}
+
+TEST_P(KernelVsReference, Corner160x90) { checkAll(gpu(), api(), "corner", 160, 90); }
+TEST_P(KernelVsReference, Corner320x180) { checkAll(gpu(), api(), "corner", 320, 180); }
+TEST_P(KernelVsReference, Slats160x90) { checkAll(gpu(), api(), "slats", 160, 90); }
+TEST_P(KernelVsReference, Slats320x180) { checkAll(gpu(), api(), "slats", 320, 180); }
+
+CAVITY_ALL_BACKENDS(KernelVsReference);
+
+// OpenGL against Vulkan on the same SPIR-V. Mesa compiles the two SPIR-V
+// flavours (GL 4.5 and Vulkan 1.2 targets) separately, so a handful of
+// pixels round differently: measured on llvmpipe/lavapipe, at most one
+// storage step (a half-float ulp, 4.9e-4 below 1.0) on under 0.5% of pixels,
+// and 32-bit positions within the ray march's own hit tolerance (it stops
+// once the distance is under 1e-4 t, so two compilations may stop a step
+// apart: 3.2e-4 world units seen). The bound: every pixel within one storage
+// step (3e-4 relative for positions, one 8-bit step for the dithered
+// composite) and a mean difference of at most 1e-5.
+TEST(ApiAgreement, GlAndVkProduceTheSameImages) {
+    std::string why;
+    gpu::Backend* gl = sharedBackend(gpu::Api::OpenGL, &why);
+    gpu::Backend* vk = gl ? sharedBackend(gpu::Api::Vulkan, &why) : nullptr;
+    if (!gl || !vk) {
+        if (inCI()) FAIL() << "CI=true requires both backends: " << why;
+        GTEST_SKIP() << why;
+    }
+    for (const std::string scene : {"corner", "slats"}) {
+        std::map<std::string, HostImage> images[2];
+        int which = 0;
+        for (auto* g : {gl, vk}) {
+            RunConfig c;
+            c.api = g->api();
+            ASSERT_TRUE(setParam(c, "scene", scene).ok());
+            auto chain = PassChain::create(*g, c);
+            ASSERT_TRUE(chain) << chain.error().message;
+            g->beginFrame();
+            (*chain)->record();
+            ASSERT_TRUE(g->endFrame().ok());
+            for (const std::string name : {"position", "normal", "ao", "ao_blur", "color"}) {
+                auto img = (*chain)->read(name);
+                ASSERT_TRUE(img) << img.error().message;
+                images[which][name] = std::move(*img);
+            }
+            ++which;
+        }
+        for (const auto& [name, a] : images[0]) {
+            const HostImage& b = images[1][name];
+            ASSERT_TRUE(a.sameShape(b));
+            double worst = 0, sum = 0;
+            size_t over = 0;
+            for (size_t i = 0; i < a.pixels.size(); ++i) {
+                const double d = std::fabs(double(a.pixels[i]) - double(b.pixels[i]));
+                const double mag = std::max(1.0, double(std::fabs(a.pixels[i])));
+                const double step = name == "color" ? 1.0 / 255.0 + 1e-6
+                                  : name == "position" ? 3e-4 * mag   // the march stops within 1e-4 t
+                                                       : std::ldexp(1.0, -11) * mag;   // one half ulp at |v| <= 1
+                over += d > step;
+                worst = std::max(worst, d);
+                sum += d;
+            }
+            const double mean = sum / double(a.pixels.size());
+            EXPECT_EQ(over, 0u) << scene << " " << name << ": max difference " << worst;
+            EXPECT_LE(mean, 1e-5) << scene << " " << name;
+            std::printf("%s %s: GL vs VK max %.3g, mean %.3g\n", scene.c_str(), name.c_str(), worst, mean);
+        }
+    }
+}
+
+}  // namespace
+}  // namespace cavity::test
+
+namespace cavity::test {
+namespace {
+
+// The rasterised G-buffer (meshes from harness/meshes.cpp, hardware depth)
+// against the ray-marched one of the same scene: the same surfaces, so the
+// same positions and normals away from silhouettes. Bounds, and why: the
+// sphere's 96x48 tessellation is within 3e-4 of its radius, the march stops
+// within 1e-4 t; a pixel whose centre straddles a silhouette may hit in one
+// and miss in the other (at most 1% of pixels); positions within 2e-3 of the
+// linear depth on 99% of the pixels both hit; normals within 2.6 degrees.
+class RasterGBuffer : public GpuTest {};
+
+TEST_P(RasterGBuffer, MatchesTheRayMarchedGBuffer) {
+    for (const std::string scene : {"corner", "slats"}) {
+        std::map<bool, std::map<std::string, HostImage>> img;
+        for (bool raster : {false, true}) {
+            RunConfig c;
+            c.api = api();
+            c.raster = raster;
+            ASSERT_TRUE(setParam(c, "scene", scene).ok());
+            auto chain = PassChain::create(gpu(), c);
+            ASSERT_TRUE(chain) << chain.error().message;
+            gpu().beginFrame();
+            (*chain)->record();
+            ASSERT_TRUE(gpu().endFrame().ok());
+            for (const std::string name : {"position", "normal", "ao_blur"}) img[raster][name] = *(*chain)->read(name);
+        }
+        const auto& ps = img[false]["position"];
+        const auto& pr = img[true]["position"];
+        long long both = 0, mismatch = 0, farPos = 0, farNormal = 0;
+        double aoDiff = 0;
+        for (int y = 0; y < ps.height; ++y)
+            for (int x = 0; x < ps.width; ++x) {
+                const float ds = ps.at(x, y, 3), dr = pr.at(x, y, 3);
+                if ((ds > 0) != (dr > 0)) ++mismatch;
+                if (ds <= 0 || dr <= 0) continue;
+                ++both;
+                double d2 = 0, ndot = 0;
+                for (int k = 0; k < 3; ++k) {
+                    d2 += std::pow(ps.at(x, y, k) - pr.at(x, y, k), 2.0);
+                    ndot += img[false]["normal"].at(x, y, k) * img[true]["normal"].at(x, y, k);
+                }
+                farPos += std::sqrt(d2) > 2e-3 * ds;
+                farNormal += ndot < 0.999;
+                aoDiff += std::fabs(img[false]["ao_blur"].at(x, y) - img[true]["ao_blur"].at(x, y));
+            }
+        const double pixels = double(ps.width) * ps.height;
+        EXPECT_LE(mismatch, 0.01 * pixels) << scene << ": hit in one G-buffer only";
+        EXPECT_LE(farPos, 0.01 * double(both)) << scene << ": positions apart";
+        EXPECT_LE(farNormal, 0.02 * double(both)) << scene << ": normals apart";
+        EXPECT_LT(aoDiff / double(both), 0.01) << scene << ": mean blurred-AO difference";
+        std::printf("%s raster vs sdf: %lld silhouette mismatches, %lld far positions, %lld far normals of %lld; mean |dAO| %.4f\n",
+                    scene.c_str(), mismatch, farPos, farNormal, both, aoDiff / double(both));
+    }
+}
+
+CAVITY_ALL_BACKENDS(RasterGBuffer);
+
+}  // namespace
+}  // namespace cavity::test
