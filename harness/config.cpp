@@ -2,8 +2,10 @@
 
 #include "pipeline.h"
 
+#include <cctype>
 #include <charconv>
 #include <cmath>
+#include <filesystem>
 
 namespace cavity {
 
@@ -25,7 +27,18 @@ double paramOr(const RunConfig& c, const std::string& name) {
 std::string aoKernelNames() {
     std::string s;
     for (const auto& k : kernels::all())
-        if (k.role == "ao") s += (s.empty() ? "" : ", ") + k.name;
+        if (k.role == "ao" || k.role == "reference") s += (s.empty() ? "" : ", ") + k.name;
+    return s;
+}
+
+// The AO kernels that read only the G-buffer (no "scene" parameter).
+std::string screenSpaceAoNames() {
+    std::string s;
+    for (const auto& k : kernels::all()) {
+        bool scene = false;
+        for (const auto& p : k.params) scene |= p.name == "scene";
+        if (k.role == "ao" && !scene) s += (s.empty() ? "" : ", ") + k.name;
+    }
     return s;
 }
 
@@ -38,9 +51,18 @@ std::string RunConfig::scene() const {
 }
 int RunConfig::samples() const { return int(paramOr(*this, "samples")); }
 int RunConfig::blur() const { return int(paramOr(*this, "blur")); }
+std::string RunConfig::gbufferSource() const { return imported() ? "import" : raster ? "raster" : "sdf"; }
+
+std::string importStem(const std::string& path) {
+    std::string stem = std::filesystem::path(path).stem().string();
+    for (char& ch : stem)
+        if (!std::isalnum(static_cast<unsigned char>(ch)) && ch != '.' && ch != '_' && ch != '-') ch = '_';
+    return stem;
+}
 
 std::string configId(const RunConfig& c) {
-    return c.scene() + (c.raster ? "+raster" : "") + "/" + c.kernel + "/n" + std::to_string(c.samples()) + "/b" + std::to_string(c.blur()) +
+    const std::string scene = c.imported() ? importStem(c.gbufferFile) + "+import" : c.scene() + (c.raster ? "+raster" : "");
+    return scene + "/" + c.kernel + "/n" + std::to_string(c.samples()) + "/b" + std::to_string(c.blur()) +
            "/" + (c.half ? "half" : "full") + "/" + std::to_string(c.width) + "x" + std::to_string(c.height) +
            "/" + gpu::apiName(c.api) + "/" + (c.stage == gpu::Stage::Compute ? "compute" : "fragment");
 }
@@ -85,12 +107,24 @@ Status setParam(RunConfig& c, const std::string& name, const std::string& text) 
 
 Status validate(const RunConfig& c) {
     const auto* k = kernels::find(c.kernel);
-    if (!k || k->role != "ao") return badInput("--kernel " + c.kernel + ": unknown kernel (have: " + aoKernelNames() + ")");
+    // "reference" kernels (the ground truth) run in the AO slot when named;
+    // sweeps over "every AO kernel" leave them out (they are slow by design).
+    if (!k || (k->role != "ao" && k->role != "reference")) return badInput("--kernel " + c.kernel + ": unknown kernel (have: " + aoKernelNames() + ")");
     if (c.width < 1 || c.height < 1 || c.width > kMaxResolution || c.height > kMaxResolution)
         return badInput("--res " + std::to_string(c.width) + "x" + std::to_string(c.height) +
                         ": must be WIDTHxHEIGHT with each in 1.." + std::to_string(kMaxResolution));
-    if (c.raster && c.scene() != "corner" && c.scene() != "slats")
-        return badInput("--gbuffer raster: scene " + c.scene() + " has no mesh (have: corner, slats)");
+    if (c.raster && c.imported()) return badInput("--gbuffer: raster and import exclude each other");
+    // A pass that evaluates the analytic scene itself (a "scene" parameter
+    // outside the G-buffer passes: the signed-distance AO kernels) has no
+    // scene to evaluate when the G-buffer is a capture.
+    if (c.imported())
+        for (const auto& spec : buildPasses(c))
+            if (const auto* d = kernels::find(spec.kernel); d && d->role != "gbuffer")
+                for (const auto& p : d->params)
+                    if (p.name == "scene")
+                        return badInput("--kernel " + c.kernel + ": pass " + spec.name + " (" + d->name +
+                                        ") evaluates the analytic scene, so it cannot run on an imported G-buffer "
+                                        "(--gbuffer import); use a screen-space kernel (have: " + screenSpaceAoNames() + ")");
     if (c.half && !supportsHalf(c.kernel))
         return badInput("--resolution half: kernel " + c.kernel + " has no half-resolution pipeline (use full)");
     for (const auto& decl : kernels::all()) CAVITY_TRY(kernels::validate(decl, c.params));

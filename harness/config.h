@@ -5,15 +5,29 @@
 //     corner/alchemy/n16/b4/full/320x180/vk/compute
 //     scene / AO kernel / samples / blur radius / full|half / size / API / stage
 // A rasterised G-buffer appends "+raster" to the scene: corner+raster/...
+// An imported G-buffer (--gbuffer import, harness/gbuffer_import.h) puts the
+// capture's file stem in place of the scene, with "+import":
+//     capture+import/alchemy/n16/b4/full/320x180/vk/compute
+// (characters other than letters, digits, '.', '_' and '-' in the stem become '_').
 #pragma once
 
 #include "backend.h"
+#include "image.h"
 #include "kernel.h"
 
+#include <memory>
 #include <string>
 #include <vector>
 
 namespace cavity {
+
+// A G-buffer made on the CPU and uploaded rather than rendered, in the
+// formats and conventions gbuffer_sdf writes (kernels/gbuffer_sdf.glsl):
+// position RGBA (view x, y, z, linear depth -z), normal RGBA (view-space unit
+// normal, 0), albedo RGBA (linear RGB, 1); all zero at background pixels.
+struct GBufferImages {
+    HostImage position, normal, albedo;
+};
 
 struct RunConfig {
     std::string kernel = "alchemy";       // the AO kernel (role "ao")
@@ -23,6 +37,14 @@ struct RunConfig {
     gpu::Stage stage = gpu::Stage::Compute;
     gpu::Api api = gpu::Api::Vulkan;
     bool raster = false;                  // rasterised G-buffer (harness/meshes.cpp) instead of the ray march
+    // Imported G-buffer: the capture's path (non-empty: import; the scene is
+    // not used) and its images, loaded by the caller (runConfig loads them
+    // when this is null). The pipeline has no "gbuffer" pass then.
+    std::string gbufferFile;
+    std::shared_ptr<const GBufferImages> gbufferImages;
+
+    bool imported() const { return !gbufferFile.empty(); }
+    std::string gbufferSource() const;    // "sdf", "raster" or "import"
 
     std::string scene() const;            // the name of params["scene"]
     int samples() const;
@@ -30,6 +52,8 @@ struct RunConfig {
 };
 
 std::string configId(const RunConfig& c);
+// The file stem of an imported capture as the id shows it (see above).
+std::string importStem(const std::string& path);
 
 // Parses "320x180"; the message names the flag.
 Result<std::pair<int, int>> parseResolution(const std::string& flag, const std::string& text);
@@ -42,7 +66,8 @@ Status setParam(RunConfig& c, const std::string& name, const std::string& text);
 bool isKernelParam(const std::string& name);
 
 // Validates the whole configuration (kernel known and of role "ao", every
-// parameter in range for every kernel of the pipeline, sizes).
+// parameter in range for every kernel of the pipeline, sizes; with an
+// imported G-buffer, no pass that evaluates the analytic scene).
 Status validate(const RunConfig& c);
 
 }  // namespace cavity

@@ -60,11 +60,36 @@ Status PassChain::createRaster(const PassSpec& spec, const RunConfig& c) {
     return {};
 }
 
+// The imported G-buffer (harness/gbuffer_import.h): the three images
+// uploaded in the formats gbuffer_sdf writes, so every later pass reads them
+// as it reads a rendered G-buffer.
+Status PassChain::uploadGBuffer(const RunConfig& c) {
+    if (!c.gbufferImages) return internal("imported G-buffer " + c.gbufferFile + " was not loaded");
+    const auto* decl = kernels::find("gbuffer_sdf");
+    if (!decl || decl->outputs.size() != 3) return internal("no gbuffer_sdf declaration to take the G-buffer formats from");
+    const HostImage* src[3] = {&c.gbufferImages->position, &c.gbufferImages->normal, &c.gbufferImages->albedo};
+    for (size_t o = 0; o < 3; ++o) {
+        const auto& out = decl->outputs[o];
+        const HostImage& img = *src[o];
+        if (img.width != c.width || img.height != c.height || img.channels != gpu::channelCount(out.format) ||
+            img.pixels.size() != size_t(img.width) * img.height * img.channels)
+            return badInput("--gbuffer-file " + c.gbufferFile + ": " + out.name + " is " + std::to_string(img.width) +
+                            "x" + std::to_string(img.height) + "x" + std::to_string(img.channels) + ": must be " +
+                            std::to_string(c.width) + "x" + std::to_string(c.height) + "x" +
+                            std::to_string(gpu::channelCount(out.format)));
+        CAVITY_ASSIGN(gpu::Image image, gpu_.createImage({c.width, c.height, out.format, 1, out.name}));
+        images_[out.name] = {image, c.width, c.height, out.format};
+        CAVITY_TRY(gpu_.uploadImage(image, 0, img.pixels));
+    }
+    return {};
+}
+
 Result<std::unique_ptr<PassChain>> PassChain::create(gpu::Backend& gpu, const RunConfig& c,
                                                      const SourceOverrides& overrides) {
     std::unique_ptr<PassChain> chain(new PassChain(gpu));
     chain->specs_ = buildPasses(c);
     const int halfW = (c.width + 1) / 2, halfH = (c.height + 1) / 2;
+    if (c.imported()) CAVITY_TRY(chain->uploadGBuffer(c));
     for (const auto& spec : chain->specs_) {
         if (spec.kernel == "gbuffer_raster") {
             CAVITY_TRY(chain->createRaster(spec, c));

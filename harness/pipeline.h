@@ -36,6 +36,8 @@ using SourceOverrides = std::map<std::string, std::string>;
 
 class PassChain {
 public:
+    // With an imported G-buffer (c.imported()), c.gbufferImages must be set:
+    // its images are uploaded as "position", "normal" and "albedo".
     static Result<std::unique_ptr<PassChain>> create(gpu::Backend& gpu, const RunConfig& c,
                                                      const SourceOverrides& overrides = {});
     ~PassChain();
@@ -60,6 +62,7 @@ private:
     explicit PassChain(gpu::Backend& gpu);
     Status createConstant(const std::string& input, const kernels::ParamValues& params);
     Status createRaster(const PassSpec& spec, const RunConfig& c);
+    Status uploadGBuffer(const RunConfig& c);
     struct Pass;
     struct Target { gpu::Image image; int width, height; gpu::Format format; };
     gpu::Backend& gpu_;

@@ -25,7 +25,10 @@ bool supportsHalf(const std::string& kernel) {
 std::vector<PassSpec> buildPasses(const RunConfig& c) {
     const auto* k = kernels::find(c.kernel);
     std::vector<PassSpec> p;
-    p.push_back({"gbuffer", c.raster ? "gbuffer_raster" : "gbuffer_sdf", {}, {"position", "normal", "albedo"}, false});
+    // An imported G-buffer is uploaded once by PassChain::create: no pass, so
+    // nothing is timed for it.
+    if (!c.imported())
+        p.push_back({"gbuffer", c.raster ? "gbuffer_raster" : "gbuffer_sdf", {}, {"position", "normal", "albedo"}, false});
     if (!k) return p;
 
     if (isSsdo(*k)) {

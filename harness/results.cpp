@@ -42,6 +42,9 @@ json toJson(const RunRecord& r) {
     for (const auto& p : r.passes)
         if (const auto* k = kernels::find(p.kernel))
             for (const auto& [name, v] : kernels::withDefaults(*k, r.config.params)) params[name] = v;
+    // Where the G-buffer came from; an imported one has no pass in `passes`.
+    json gbuffer = {{"source", r.config.gbufferSource()}};
+    if (r.config.imported()) gbuffer["file"] = r.config.gbufferFile;
     json passes = json::array();
     for (size_t i = 0; i < r.passes.size() && i < r.timing.passes.size(); ++i) {
         passes.push_back({{"name", r.passes[i].name},
@@ -59,7 +62,9 @@ json toJson(const RunRecord& r) {
          {{"name", r.device.deviceName}, {"driver", r.device.driver}, {"api_version", r.device.apiVersion},
           {"vendor", r.device.vendor}, {"software_renderer", r.device.softwareRenderer}}},
         {"config",
-         {{"scene", r.config.scene()}, {"kernel", r.config.kernel}, {"samples", r.config.samples()},
+         {{"scene", r.config.imported() ? importStem(r.config.gbufferFile) : r.config.scene()},
+          {"gbuffer", gbuffer},
+          {"kernel", r.config.kernel}, {"samples", r.config.samples()},
           {"blur", r.config.blur()}, {"width", r.config.width}, {"height", r.config.height},
           {"resolution", r.config.half ? "half" : "full"},
           {"stage", r.config.stage == gpu::Stage::Compute ? "compute" : "fragment"},

@@ -1,11 +1,15 @@
 // `cavity run`: a sweep of configurations on one or both backends, with
 // images, results.json and a timing table on stdout.
 #include "cli.h"
+#include "gbuffer_import.h"
 #include "runner.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <map>
+#include <memory>
 
 namespace cavity::cli {
 
@@ -14,7 +18,8 @@ namespace {
 constexpr const char* kRunUsage =
     "usage: cavity run [--backend gl|vk|all] [--scene S[,S..]] [--kernel K[,K..]] [--samples N[,N..]]\n"
     "                  [--blur R[,R..]] [--resolution full|half[,..]] [--res WxH[,WxH..]]\n"
-    "                  [--stage compute|fragment[,..]] [--gbuffer sdf|raster[,..]] [--frames N] [--warmup N] [--device K]\n"
+    "                  [--stage compute|fragment[,..]] [--gbuffer sdf|raster|import[,..]] [--gbuffer-file FILE.exr]\n"
+    "                  [--frames N] [--warmup N] [--device K]\n"
     "                  [--validation] [--out DIR] [--<kernel parameter> VALUE ...]\n";
 
 struct Sweep {
@@ -25,7 +30,9 @@ struct Sweep {
     std::vector<std::string> resolutions{"full"};
     std::vector<std::pair<int, int>> sizes{{320, 180}};
     std::vector<gpu::Stage> stages{gpu::Stage::Compute};
-    std::vector<bool> raster{false};
+    std::vector<std::string> gbuffers{"sdf"};
+    std::string gbufferFile;          // --gbuffer-file
+    bool sizeGiven = false, sceneGiven = false;
     RunConfig base;
     RunOptions options;
     gpu::BackendOptions backend;
@@ -46,7 +53,10 @@ Result<Sweep> parse(const std::vector<std::string>& argv) {
             for (const auto& b : s.backends)
                 if (b != "gl" && b != "vk" && b != "all") return badInput("--backend " + b + ": must be gl, vk or all");
         } else if (flag == "--kernel") s.kernels = splitList(v);
-        else if (flag == "--scene") s.scenes = splitList(v);
+        else if (flag == "--scene") {
+            s.scenes = splitList(v);
+            s.sceneGiven = true;
+        }
         else if (flag == "--samples") s.samples = splitList(v);
         else if (flag == "--blur") s.blurs = splitList(v);
         else if (flag == "--resolution") {
@@ -54,17 +64,20 @@ Result<Sweep> parse(const std::vector<std::string>& argv) {
             for (const auto& r : s.resolutions)
                 if (r != "full" && r != "half") return badInput("--resolution " + r + ": must be full or half");
         } else if (flag == "--res") {
+            s.sizeGiven = true;
             s.sizes.clear();
             for (const auto& r : splitList(v)) {
                 CAVITY_ASSIGN(auto wh, parseResolution("--res", r));
                 s.sizes.push_back(wh);
             }
         } else if (flag == "--gbuffer") {
-            s.raster.clear();
-            for (const auto& g : splitList(v)) {
-                if (g != "sdf" && g != "raster") return badInput("--gbuffer " + g + ": must be sdf or raster");
-                s.raster.push_back(g == "raster");
-            }
+            s.gbuffers = splitList(v);
+            for (const auto& g : s.gbuffers)
+                if (g != "sdf" && g != "raster" && g != "import")
+                    return badInput("--gbuffer " + g + ": must be sdf, raster or import");
+        } else if (flag == "--gbuffer-file") {
+            if (v.empty()) return badInput("--gbuffer-file: missing value");
+            s.gbufferFile = v;
         } else if (flag == "--stage") {
             s.stages.clear();
             for (const auto& st : splitList(v)) {
@@ -83,6 +96,15 @@ Result<Sweep> parse(const std::vector<std::string>& argv) {
             CAVITY_TRY(setParam(s.base, flag.substr(2), v));
         } else return badInput(flag + ": unknown flag (see cavity run --help)");
     }
+    const bool import = std::find(s.gbuffers.begin(), s.gbuffers.end(), "import") != s.gbuffers.end();
+    if (import && s.gbufferFile.empty())
+        return badInput("--gbuffer import: needs --gbuffer-file FILE (a multi-channel OpenEXR capture)");
+    if (!import && !s.gbufferFile.empty())
+        return badInput("--gbuffer-file " + s.gbufferFile + ": only used with --gbuffer import");
+    const bool onlyImport =
+        std::all_of(s.gbuffers.begin(), s.gbuffers.end(), [](const std::string& g) { return g == "import"; });
+    if (onlyImport && s.sceneGiven)
+        return badInput("--scene " + s.scenes[0] + ": not used with --gbuffer import (the capture is the scene)");
     return s;
 }
 
@@ -97,11 +119,17 @@ Result<std::vector<RunConfig>> expand(const Sweep& s) {
                     for (const auto& res : s.resolutions)
                         for (const auto& [w, h] : s.sizes)
                             for (auto stage : s.stages)
-                            for (bool raster : s.raster) {
+                            for (const auto& gbuffer : s.gbuffers) {
                                 RunConfig c = s.base;
-                                c.raster = raster;
+                                c.raster = gbuffer == "raster";
                                 c.kernel = kernel;
-                                CAVITY_TRY(setParam(c, "scene", scene));
+                                if (gbuffer == "import") {
+                                    // The capture is the scene: one configuration, whatever --scene says.
+                                    if (scene != s.scenes.front()) continue;
+                                    c.gbufferFile = s.gbufferFile;
+                                } else {
+                                    CAVITY_TRY(setParam(c, "scene", scene));
+                                }
                                 if (!n.empty()) CAVITY_TRY(setParam(c, "samples", n));
                                 if (!b.empty()) CAVITY_TRY(setParam(c, "blur", b));
                                 c.half = res == "half";
@@ -145,10 +173,36 @@ int runCommand(const std::vector<std::string>& argv) {
         return exitCode(parsed.error());
     }
     Sweep& s = *parsed;
+    // An imported G-buffer is read here, before anything runs or is written;
+    // without --res the run takes the capture's size.
+    std::map<std::pair<int, int>, std::shared_ptr<const GBufferImages>> captures;
+    if (!s.gbufferFile.empty() && !s.sizeGiven) {
+        auto g = importGBuffer(s.gbufferFile);
+        if (!g) {
+            std::cerr << "cavity run: " << g.error().message << "\n";
+            return exitCode(g.error());
+        }
+        const std::pair<int, int> size{g->position.width, g->position.height};
+        s.sizes = {size};
+        captures[size] = std::make_shared<const GBufferImages>(std::move(*g));
+    }
     auto configs = expand(s);
     if (!configs) {
         std::cerr << "cavity run: " << configs.error().message << "\n";
         return exitCode(configs.error());
+    }
+    for (auto& c : *configs) {
+        if (!c.imported()) continue;
+        auto& images = captures[{c.width, c.height}];
+        if (!images) {
+            auto g = importGBuffer(c.gbufferFile, c.width, c.height);
+            if (!g) {
+                std::cerr << "cavity run: " << g.error().message << "\n";
+                return exitCode(g.error());
+            }
+            images = std::make_shared<const GBufferImages>(std::move(*g));
+        }
+        c.gbufferImages = images;
     }
     if (auto st = checkWritableDir("--out", s.out); !st) {
         std::cerr << "cavity run: " << st.error().message << "\n";

@@ -1,5 +1,6 @@
 #include "runner.h"
 
+#include "gbuffer_import.h"
 #include "image_io.h"
 
 #include <filesystem>
@@ -21,7 +22,12 @@ Status checkWritableDir(const std::string& flag, const std::string& dir) {
     return {};
 }
 
-Result<RunRecord> runConfig(gpu::Backend& gpu, const RunConfig& c, const RunOptions& o) {
+Result<RunRecord> runConfig(gpu::Backend& gpu, const RunConfig& given, const RunOptions& o) {
+    RunConfig c = given;
+    if (c.imported() && !c.gbufferImages) {
+        CAVITY_ASSIGN(auto images, importGBuffer(c.gbufferFile, c.width, c.height));
+        c.gbufferImages = std::make_shared<const GBufferImages>(std::move(images));
+    }
     CAVITY_ASSIGN(auto chain, PassChain::create(gpu, c, o.overrides));
     RunRecord r;
     r.config = c;
