@@ -34,5 +34,6 @@ int runCommand(const std::vector<std::string>& args);
 int gateCommand(const std::vector<std::string>& args);
 int baselinesCommand(const std::vector<std::string>& args);
 int compareCommand(const std::vector<std::string>& args);
+int qualityCommand(const std::vector<std::string>& args);
 
 }  // namespace cavity::cli

@@ -14,7 +14,8 @@ constexpr const char* kUsage =
     "  gate       run a matrix against baselines and budgets; junit.xml, summary.md, index.html\n"
     "  gate merge join shard outputs into one verdict\n"
     "  baselines update   accept new images as baselines\n"
-    "  compare    compare two results.json files pass by pass (Mann-Whitney U)\n";
+    "  compare    compare two results.json files pass by pass (Mann-Whitney U)\n"
+    "  quality    each AO kernel's mean absolute error against the ray-traced ground truth\n";
 
 }  // namespace
 
@@ -30,6 +31,7 @@ int main(int argc, char** argv) {
     if (command == "gate") return cavity::cli::gateCommand(args);
     if (command == "baselines") return cavity::cli::baselinesCommand(args);
     if (command == "compare") return cavity::cli::compareCommand(args);
+    if (command == "quality") return cavity::cli::qualityCommand(args);
     std::cerr << "cavity: unknown command '" << command << "'\n" << kUsage;
     return 2;
 }

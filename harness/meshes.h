@@ -15,8 +15,9 @@ struct MeshVertex {
     float albedo[4];
 };
 
-// Triangles (3 vertices each) of scene `scene` ("corner", "slats") seen from
-// camera view `view` (0..3). Empty for a scene without a mesh.
+// Triangles (3 vertices each) of scene `scene` (the index of a --scene
+// choice: corner, slats, open, contact, grille, plates) seen from camera
+// view `view` (0..3). Empty for an index that names no scene.
 std::vector<MeshVertex> sceneMesh(int scene, int view);
 
 }  // namespace cavity

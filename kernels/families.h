@@ -8,6 +8,11 @@
 
 namespace cavity::kernels {
 
+// The --scene and --view parameters (registry.cpp), one declaration for
+// every kernel that takes them.
+ParamDecl sceneParam();
+ParamDecl viewParam();
+
 std::vector<KernelDecl> screenSpaceKernels();   // decl_screen_space.cpp: hemisphere, box blur, SSDO, half resolution
 std::vector<KernelDecl> sdfAoKernels();         // decl_sdf_ao.cpp: the SDF AO variants and the ground truth
 std::vector<ConstantImageDecl> screenSpaceConstants();   // decl_screen_space.cpp: noise tile, sky panorama

@@ -47,6 +47,22 @@ ParamDecl enumParam(std::string name, std::vector<std::string> choices, std::str
     return p;
 }
 
+}  // namespace
+
+// The scene and camera pose: shared by the G-buffer kernels and every kernel
+// that evaluates the signed-distance scene itself (the SDF AO family), so one
+// --scene flag drives them all. Order is kernels/include/sdf_scenes.glsl's.
+ParamDecl sceneParam() {
+    return enumParam("scene", {"corner", "slats", "open", "contact", "grille", "plates"},
+                     "scene: corner (floor, two walls, a sphere at the crease), slats (a cabinet of 30 slats "
+                     "with recesses), open (a bare floor), contact (objects resting on a table), grille (a "
+                     "perforated panel before a cavity), plates (three stacked plates)");
+}
+
+ParamDecl viewParam() { return intParam("view", 0, 0, 3, "", "camera pose of the scene (four per scene)"); }
+
+namespace {
+
 // Bytes per texel of the formats below, for the cost model.
 constexpr double kRgba32f = 16, kRgba16f = 8, kRgba8 = 4, kR16f = 2;
 
@@ -57,10 +73,8 @@ KernelDecl gbufferSdf() {
     k.summary = "G-buffer (view position and depth, normal, albedo) by sphere tracing a signed-distance scene";
     k.role = "gbuffer";
     k.params = {
-        enumParam("scene", {"corner", "slats"},
-                  "signed-distance scene: corner (floor, two walls, a sphere at the crease) or slats "
-                  "(a cabinet of 30 slats with recesses)"),
-        intParam("view", 0, 0, 3, "", "camera pose of the scene (four per scene)"),
+        sceneParam(),
+        viewParam(),
     };
     k.outputs = {{"position", Format::RGBA32F}, {"normal", Format::RGBA16F}, {"albedo", Format::RGBA8}};
     k.cost = [](const ParamValues&) { return Cost{0, kRgba32f + kRgba16f + kRgba8}; };
@@ -143,6 +157,7 @@ std::vector<KernelDecl>& registryForTests() {
     static std::vector<KernelDecl> kernels = [] {
         std::vector<KernelDecl> k = {gbufferSdf(), alchemy(), blurBilateral(), composite()};
         for (auto& d : screenSpaceKernels()) k.push_back(std::move(d));
+        for (auto& d : sdfAoKernels()) k.push_back(std::move(d));
         return k;
     }();
     return kernels;

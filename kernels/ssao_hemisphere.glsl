@@ -56,6 +56,25 @@ void cavity_main(ivec2 pixel) {
         // against the border texel.
         texel = clamp(texel, ivec2(0), frame.size - 1);
         vec3 q = viewFromDepth(texel, texelFetch(in_depth, texel, 0).r);
+        // The stored surface's depth along the sample's own ray. q lies on
+        // the ray through its texel's centre, up to half a texel beside the
+        // sample; on a plane seen at a grazing angle the depth changes by
+        // more than any sensible bias over that half texel, and the plane
+        // shadows itself (seed 004 tunes bias against it; on `open` at
+        // 160x90 a quarter of the floor read as occluded). So intersect the
+        // sample's ray (through the eye, view-space origin) with the plane
+        // of q and the texel's normal: z = s.z (Nq . q) / (Nq . s), exact on
+        // a plane and never mixing surfaces across a silhouette. Where that
+        // plane is seen nearly edge-on (|cos| under 0.01) or faces away, or
+        // the texel is background (normal 0), q's own depth stands.
+        vec3 nq = texelFetch(in_normal, texel, 0).xyz;
+        precise float ns = orderedDot(nq, s);
+        precise float edgeOn = 1e-4 * lengthSquared(nq) * lengthSquared(s);
+        precise float stored = q.z;
+        if (ns < 0.0 && ns * ns > edgeOn) {
+            precise float along = -orderedDot(nq, q) * portableReciprocal(-ns);
+            stored = along * s.z;
+        }
         // Range check (seed 004): a surface much further than R in depth
         // (a far floor seen past a silhouette) must not occlude, or
         // silhouettes get dark halos. Kept on one line: the planted-bug
@@ -63,14 +82,10 @@ void cavity_main(ivec2 pixel) {
         float rangeWeight = 1.0;
         if (P.range_check != 0) rangeWeight = smoothstep(0.0, 1.0, P.radius / max(abs(p.z - q.z), 1e-6));
         // View z grows towards the camera: the stored surface hides the
-        // sample when its z is larger, by at least `bias` so that a plane
-        // does not shadow itself. The stored point lies on its texel's
-        // centre ray, up to half a texel beside the sample, so on a plane
-        // seen at an angle samples lower than the plane's depth change over
-        // half a texel still self-occlude; the seed accepts that and tunes
-        // bias (SSDO's tangent-plane test, include/ssdo.glsl, avoids it).
+        // sample when its z is larger, by at least `bias` (G-buffer and
+        // depth rounding).
         precise float threshold = s.z + P.bias;
-        occlusion += (q.z >= threshold ? 1.0 : 0.0) * rangeWeight;
+        occlusion += (stored >= threshold ? 1.0 : 0.0) * rangeWeight;
     }
     float ao = max(1.0 - occlusion / float(n), 0.0);
     // The power curve is pow(ao, contrast), not 002's

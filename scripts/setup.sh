@@ -9,7 +9,7 @@ packages=(
   build-essential cmake ninja-build pkg-config git
   libvulkan-dev vulkan-validationlayers mesa-vulkan-drivers   # Vulkan loader, Khronos validation, lavapipe
   libegl-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri libepoxy-dev   # EGL/GL via libglvnd, llvmpipe, GL loader
-  glslang-dev spirv-tools                                       # GLSL -> SPIR-V (glslang links SPIRV-Tools)
+  glslang-dev glslang-tools spirv-tools                         # GLSL -> SPIR-V (glslang links SPIRV-Tools; its CMake config names glslangValidator)
   libopenimageio-dev                                            # EXR/PNG images
   libgtest-dev libgmock-dev libbenchmark-dev                    # tests and benchmarks
   nlohmann-json3-dev                                            # results.json

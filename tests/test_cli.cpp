@@ -1,5 +1,6 @@
 // The cavity command as a user meets it: exit codes, one-line errors that
 // name the flag, the value and what is allowed, and nothing written on bad input.
+#include "kernel.h"
 #include "sweep.h"
 
 #include <gtest/gtest.h>
@@ -34,10 +35,14 @@ Outcome cavity(const std::string& args, const std::string& env = "") {
     return o;
 }
 
-// The AO kernels as the registry lists them, the way the message names them.
+// The kernels --kernel accepts as the registry lists them, the way the
+// message names them: the AO kernels, then the ground truth (role
+// "reference", declared last).
 std::string aoList() {
     std::string s;
     for (const auto& k : cavity::aoKernels()) s += (s.empty() ? "" : ", ") + k;
+    for (const auto& k : cavity::kernels::all())
+        if (k.role == "reference") s += ", " + k.name;
     return s;
 }
 

@@ -6,6 +6,8 @@
 #include "refs.h"
 #include "sdf_scenes.h"
 
+#include <algorithm>
+
 namespace cavity::reference {
 
 namespace {
@@ -25,7 +27,7 @@ Vec3 sceneNormal(Scene scene, Vec3 p) {
 
 Result<std::vector<HostImage>> gbufferSdf(const Context& ctx) {
     const auto& f = ctx.frame;
-    const Scene scene = intParam(ctx, "scene") == 1 ? Scene::Slats : Scene::Corner;
+    const Scene scene = Scene(std::clamp(intParam(ctx, "scene"), 0, kSceneCount - 1));
     const CameraPose pose = sceneCamera(scene, intParam(ctx, "view"));
     const Vec3 forward = normalize(pose.target - pose.eye);
     const Vec3 right = normalize(cross(forward, Vec3{0, 1, 0}));

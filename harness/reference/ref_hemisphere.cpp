@@ -93,10 +93,16 @@ Result<std::vector<HostImage>> hemisphere(const Context& ctx) {
                 tx = std::clamp(tx, 0, f.size[0] - 1);
                 ty = std::clamp(ty, 0, f.size[1] - 1);
                 const Vec3 q = screen::viewFromDepth(f, tx, ty, depthIn.at(tx, ty));
+                // The stored plane's depth along the sample's ray (see the kernel).
+                const Vec3 nq = screen::texel3(normal, tx, ty);
+                const float ns = dot(nq, s);
+                const float edgeOn = 1e-4f * lengthSquared(nq) * lengthSquared(s);
+                float stored = q.z;
+                if (ns < 0.0f && ns * ns > edgeOn) stored = -dot(nq, q) * portableReciprocal(-ns) * s.z;
                 float rangeWeight = 1.0f;
                 if (rangeCheck) rangeWeight = screen::smoothstep01(radius / std::max(std::fabs(p.z - q.z), 1e-6f));
                 const float threshold = s.z + bias;
-                occlusion += (q.z >= threshold ? 1.0f : 0.0f) * rangeWeight;
+                occlusion += (stored >= threshold ? 1.0f : 0.0f) * rangeWeight;
             }
             const float ao = std::max(1.0f - occlusion / float(n), 0.0f);
             out[0].at(x, y) = std::pow(ao, contrast);

@@ -6,7 +6,8 @@
 
 namespace cavity::reference {
 
-enum class Scene { Corner = 0, Slats = 1 };
+enum class Scene { Corner = 0, Slats = 1, Open = 2, Contact = 3, Grille = 4, Plates = 5 };
+constexpr int kSceneCount = 6;
 
 struct SceneHit {
     float distance;
