@@ -65,7 +65,11 @@ struct BadCase {
 TEST_F(Cli, BadInputExitsTwoWithOneLineAndWritesNothing) {
     const std::vector<BadCase> cases = {
         {"--backend metal", "cavity run: --backend metal: must be gl, vk or all"},
-        {"--scene moon", "cavity run: --scene moon: must be one of corner, slats"},
+        {"--scene moon", "cavity run: --scene moon: must be one of corner, slats, open, contact, grille, plates"},
+        {"--view 4", "cavity run: --view 4: must be an integer in 0..3"},
+        {"--kernel sdf_classic --strength -1", "cavity run: --strength -1: must be a number in 0..100"},
+        {"--kernel ground_truth --rays 512", "cavity run: --rays 512: must be an integer in 1024..65536"},
+        {"--kernel ground_truth --rays many", "cavity run: --rays many: not a number"},
         {"--kernel nope", "cavity run: --kernel nope: unknown kernel (have: " + aoList() + ")"},
         {"--samples 0", "cavity run: --samples 0: must be an integer in 1..256"},
         {"--samples 257", "cavity run: --samples 257: must be an integer in 1..256"},
@@ -81,6 +85,26 @@ TEST_F(Cli, BadInputExitsTwoWithOneLineAndWritesNothing) {
     };
     for (const auto& c : cases) {
         const Outcome o = cavity("run " + c.args + " --out " + dir.string());
+        EXPECT_EQ(o.code, 2) << c.args << "\n" << o.output;
+        EXPECT_EQ(o.output.rfind(c.message, 0), 0u) << c.args << "\n" << o.output;
+        EXPECT_EQ(std::count(o.output.begin(), o.output.end(), '\n'), 1) << c.args << "\n" << o.output;
+        EXPECT_FALSE(fs::exists(dir)) << c.args;
+    }
+}
+
+TEST_F(Cli, QualityBadInputExitsTwoWithOneLine) {
+    const std::vector<BadCase> cases = {
+        {"--backend all", "cavity quality: --backend all: must be gl or vk"},
+        {"--scene moon", "cavity quality: --scene moon: must be one of corner, slats, open, contact, grille, plates"},
+        {"--kernel ground_truth", "cavity quality: --kernel ground_truth: not an AO kernel (see cavity run --help)"},
+        {"--samples 0", "cavity quality: --samples 0: must be an integer in 1..256"},
+        {"--rays 10", "cavity quality: --rays 10: must be an integer in 1024..65536"},
+        {"--res 0x1", "cavity quality: --res 0x1: must be WIDTHxHEIGHT with each in 1..16384"},
+        {"--resolution quarter", "cavity quality: --resolution quarter: must be full or half"},
+        {"--nope 1", "cavity quality: --nope: unknown flag (see cavity quality --help)"},
+    };
+    for (const auto& c : cases) {
+        const Outcome o = cavity("quality " + c.args + " --out " + dir.string());
         EXPECT_EQ(o.code, 2) << c.args << "\n" << o.output;
         EXPECT_EQ(o.output.rfind(c.message, 0), 0u) << c.args << "\n" << o.output;
         EXPECT_EQ(std::count(o.output.begin(), o.output.end(), '\n'), 1) << c.args << "\n" << o.output;
