@@ -29,31 +29,17 @@ constexpr double kPi = 3.14159265358979323846;
 // uniforms, well inside the 16 KiB every GL and Vulkan device offers.
 constexpr int kMaxSamples = 256;
 
-ParamDecl param(std::string name, ParamType type, double def, double min, double max, std::string unit,
-                std::string help, bool minExclusive = false) {
-    ParamDecl p;
-    p.name = std::move(name);
-    p.type = type;
-    p.def = def;
-    p.min = min;
-    p.max = max;
-    p.unit = std::move(unit);
-    p.help = std::move(help);
-    p.minExclusive = minExclusive;
-    return p;
-}
-
 ParamDecl samplesParam(const std::string& help) {
-    return param("samples", ParamType::Int, 16, 1, kMaxSamples, "samples", help);
+    return makeParam("samples", ParamType::Int, 16, 1, kMaxSamples, "samples", help);
 }
 ParamDecl radiusParam(const std::string& help) {
-    return param("radius", ParamType::Float, 0.5, 0, 100, "world units", help, true);
+    return makeParam("radius", ParamType::Float, 0.5, 0, 100, "world units", help, true);
 }
 ParamDecl biasParam(const std::string& help) {
-    return param("bias", ParamType::Float, 0.01, 0, 1, "world units", help);
+    return makeParam("bias", ParamType::Float, 0.01, 0, 1, "world units", help);
 }
 ParamDecl contrastParam(double def, const std::string& help) {
-    return param("contrast", ParamType::Float, def, 0.1, 10, "", help);
+    return makeParam("contrast", ParamType::Float, def, 0.1, 10, "", help);
 }
 
 // --- deterministic random numbers for the CPU-made tables ------------------
@@ -283,9 +269,9 @@ KernelDecl hemisphere() {
         // seed 004's exercise 4 and for matching Alchemy's look (1.5 in
         // registry.cpp) in comparisons.
         contrastParam(1.0, "power curve on the result: AO = (1 - occluded / n)^k"),
-        param("ign_jitter", ParamType::Bool, 1, 0, 1, "",
+        makeParam("ign_jitter", ParamType::Bool, 1, 0, 1, "",
               "rotate the 4x4 noise vector by interleaved gradient noise, hiding the tile's grid"),
-        param("range_check", ParamType::Bool, 1, 0, 1, "",
+        makeParam("range_check", ParamType::Bool, 1, 0, 1, "",
               "fade out occluders far from the surface in depth (smoothstep(0, 1, R / |dz|))"),
     };
     gpu::SamplerState repeat;
@@ -336,7 +322,7 @@ KernelDecl upsampleBilateral() {
     k.summary = "joint bilateral upsample of half-resolution AO: bilinear x tangent-plane distance x normal weights";
     k.role = "upsample";
     k.params = {
-        param("upsample_depth_tolerance", ParamType::Float, 0.01, 0, 1, "fraction of depth",
+        makeParam("upsample_depth_tolerance", ParamType::Float, 0.01, 0, 1, "fraction of depth",
               "distance of a half texel from the pixel's tangent plane, relative to depth, at which its "
               "weight falls to exp(-1/2)",
               true),
@@ -370,7 +356,7 @@ ParamDecl skyLodParam() {
     // the sun's direction is mostly lost. Seed 003's "8 to 10" is the same
     // choice for a panorama 8-32 times wider. An integer level also keeps
     // the GPU's quantised mip blend out of the reference comparison.
-    return param("sky_lod", ParamType::Float, 5, 0, 8, "mip level",
+    return makeParam("sky_lod", ParamType::Float, 5, 0, 8, "mip level",
                  "level of the sky panorama the SSDO samples read (0: 256x128, 8: 1x1)");
 }
 
@@ -405,8 +391,8 @@ KernelDecl blurBilateralSsdo() {
     k.summary = "bilateral blur of SSDO visibility and radiance together (the weights of blur_bilateral)";
     k.role = "blur";
     k.params = {
-        param("blur", ParamType::Int, 4, 0, 32, "px", "blur radius r: (2r+1)^2 taps, sigma = r/2; 0 passes through"),
-        param("depth_sigma", ParamType::Float, 0.1, 0, 10, "world units",
+        makeParam("blur", ParamType::Int, 4, 0, 32, "px", "blur radius r: (2r+1)^2 taps, sigma = r/2; 0 passes through"),
+        makeParam("depth_sigma", ParamType::Float, 0.1, 0, 10, "world units",
               "sigma of the depth weight exp(-dd^2 / (2 sigma^2)) between a tap and the centre", true),
     };
     k.inputs = {{"visibility", {}}, {"radiance", {}}, {"position", {}}, {"normal", {}}};
@@ -433,13 +419,13 @@ KernelDecl ssdoIndirect() {
         samplesParam("hemisphere directions per pixel (n); the same as the direct pass"),
         radiusParam("world-space hemisphere radius R; the same as the direct pass"),
         biasParam("distance a sample must lie behind the recorded surface's plane to be occluded"),
-        param("bounce_strength", ParamType::Float, 1, 0, 100, "", "scale of the indirect bounce (seed 003's strength)"),
+        makeParam("bounce_strength", ParamType::Float, 1, 0, 100, "", "scale of the indirect bounce (seed 003's strength)"),
         // R / 5 at the default R. With Alchemy's 0.1 R, senders almost
         // touching their receiver at a crease gave single-pixel sparks of
         // up to 2.6 on the corner and slats scenes (direct radiance is about
         // 1 there); R / 5 caps 1/d^2 at 25 / R^2, and the bounce still grows
         // smoothly towards the crease.
-        param("distance_clamp", ParamType::Float, 0.1, 0, 10, "world units",
+        makeParam("distance_clamp", ParamType::Float, 0.1, 0, 10, "world units",
               "lower bound of the sender-receiver distance in the form factor's 1/d^2", true),
     };
     k.inputs = {{"position", {}}, {"normal", {}}, {"albedo", {}}, {"radiance", {}}};
@@ -459,9 +445,9 @@ KernelDecl compositeSsdo() {
     k.summary = "SSDO lit image: SH sky ambient x visibility, or the direct radiance, plus the bounce, on albedo";
     k.role = "composite";
     k.params = {
-        param("ssdo_mode", ParamType::Enum, 0, 0, 1, "",
+        makeParam("ssdo_mode", ParamType::Enum, 0, 0, 1, "",
               "visibility: SH sky ambient x visibility + bounce; radiance: direct sky radiance + bounce"),
-        param("dither", ParamType::Bool, 1, 0, 1, "", "add +-0.5/255 of interleaved gradient noise against 8-bit banding"),
+        makeParam("dither", ParamType::Bool, 1, 0, 1, "", "add +-0.5/255 of interleaved gradient noise against 8-bit banding"),
     };
     k.params[0].choices = {"visibility", "radiance"};
     k.inputs = {{"visibility", {}}, {"radiance", {}}, {"indirect", {}}, {"normal", {}}, {"albedo", {}}};
@@ -473,6 +459,20 @@ KernelDecl compositeSsdo() {
 }
 
 }  // namespace
+
+ParamDecl makeParam(std::string name, ParamType type, double def, double min, double max, std::string unit,
+                    std::string help, bool minExclusive) {
+    ParamDecl p;
+    p.name = std::move(name);
+    p.type = type;
+    p.def = def;
+    p.min = min;
+    p.max = max;
+    p.unit = std::move(unit);
+    p.help = std::move(help);
+    p.minExclusive = minExclusive;
+    return p;
+}
 
 std::vector<KernelDecl> screenSpaceKernels() {
     return {depthFromPosition(), hemisphere(),        blurBox(),      downsampleDepth(), upsampleBilateral(),

@@ -20,20 +20,6 @@ using gpu::Format;
 
 constexpr double kRgba32f = 16, kRgba16f = 8, kR16f = 2;
 
-ParamDecl param(std::string name, ParamType type, double def, double min, double max, std::string unit,
-                std::string help, bool minExclusive = false) {
-    ParamDecl p;
-    p.name = std::move(name);
-    p.type = type;
-    p.def = def;
-    p.min = min;
-    p.max = max;
-    p.unit = std::move(unit);
-    p.help = std::move(help);
-    p.minExclusive = minExclusive;
-    return p;
-}
-
 KernelDecl sdfKernel(std::string name, std::string file, std::string summary, double radius, std::string radiusHelp,
                      double strength, std::string strengthHelp) {
     KernelDecl k;
@@ -44,11 +30,11 @@ KernelDecl sdfKernel(std::string name, std::string file, std::string summary, do
     k.params = {
         sceneParam(),
         viewParam(),
-        param("samples", ParamType::Int, 16, 1, 256, "samples", "distance-field probes per pixel (n)"),
-        param("radius", ParamType::Float, radius, 0, 100, "world units", std::move(radiusHelp), true),
+        makeParam("samples", ParamType::Int, 16, 1, 256, "samples", "distance-field probes per pixel (n)"),
+        makeParam("radius", ParamType::Float, radius, 0, 100, "world units", std::move(radiusHelp), true),
     };
     if (!strengthHelp.empty())
-        k.params.push_back(param("strength", ParamType::Float, strength, 0, 100, "", std::move(strengthHelp)));
+        k.params.push_back(makeParam("strength", ParamType::Float, strength, 0, 100, "", std::move(strengthHelp)));
     k.inputs = {{"position", {}}, {"normal", {}}};
     k.outputs = {{"ao", Format::R16F}};
     // Reads its own pixel of the G-buffer; the distance probes are
@@ -68,8 +54,8 @@ KernelDecl groundTruth() {
     k.params = {
         sceneParam(),
         viewParam(),
-        param("rays", ParamType::Int, 1024, 1024, 65536, "rays", "rays per pixel, stratified (a Fibonacci lattice)"),
-        param("radius", ParamType::Float, 0.5, 0, 100, "world units",
+        makeParam("rays", ParamType::Int, 1024, 1024, 65536, "rays", "rays per pixel, stratified (a Fibonacci lattice)"),
+        makeParam("radius", ParamType::Float, 0.5, 0, 100, "world units",
               "occluders farther than this along a ray do not count (the AO radius R of the screen-space kernels)",
               true),
     };

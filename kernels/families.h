@@ -11,6 +11,9 @@ namespace cavity::kernels {
 // The --scene and --view parameters (registry.cpp), one declaration for
 // every kernel that takes them.
 ParamDecl sceneParam();
+// A parameter declaration in one call (decl_screen_space.cpp).
+ParamDecl makeParam(std::string name, ParamType type, double def, double min, double max, std::string unit,
+                    std::string help, bool minExclusive = false);
 ParamDecl viewParam();
 
 std::vector<KernelDecl> screenSpaceKernels();   // decl_screen_space.cpp: hemisphere, box blur, SSDO, half resolution

@@ -40,12 +40,7 @@ bool blocked(vec3 o, vec3 dir, float reach) {
     return true;
 }
 
-void cavity_main(ivec2 pixel) {
-    SdfSurface s = sdfSurface(pixel);
-    if (s.background) {
-        write_ao(pixel, vec4(1.0));
-        return;
-    }
+float sdfAmbientOcclusion(ivec2 pixel, SdfSurface s) {
     vec3 t, b;
     basisAround(s.normal, t, b);
     vec3 origin = s.position + s.normal * GT_OFFSET;
@@ -60,5 +55,5 @@ void cavity_main(ivec2 pixel) {
         vec3 dir = t * (r * cs.x) + b * (r * cs.y) + s.normal * sqrt(max(0.0, 1.0 - u));
         if (!blocked(origin, dir, P.radius)) ++open;
     }
-    write_ao(pixel, vec4(float(open) / float(n), 0.0, 0.0, 0.0));
+    return float(open) / float(n);
 }

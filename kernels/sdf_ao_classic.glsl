@@ -6,12 +6,7 @@
 // the sampling: at n = 5, R = 0.13, k = 3 this is the seed's five-tap AO.
 #include "include/sdf_ao.glsl"
 
-void cavity_main(ivec2 pixel) {
-    SdfSurface s = sdfSurface(pixel);
-    if (s.background) {
-        write_ao(pixel, vec4(1.0));
-        return;
-    }
+float sdfAmbientOcclusion(ivec2 pixel, SdfSurface s) {
     int n = P.samples;
     float occ = 0.0;
     for (int i = 0; i < n; ++i) {
@@ -21,5 +16,5 @@ void cavity_main(ivec2 pixel) {
         occ += (h - d) * pow(0.95, 4.0 * t);
     }
     occ *= 5.0 / float(n);
-    write_ao(pixel, vec4(clamp(1.0 - P.strength * occ, 0.0, 1.0), 0.0, 0.0, 0.0));
+    return clamp(1.0 - P.strength * occ, 0.0, 1.0);
 }

@@ -9,12 +9,7 @@
 // random distance is a hash of i alone; here it is a hash of (pixel, i).
 #include "include/sdf_ao.glsl"
 
-void cavity_main(ivec2 pixel) {
-    SdfSurface s = sdfSurface(pixel);
-    if (s.background) {
-        write_ao(pixel, vec4(1.0));
-        return;
-    }
+float sdfAmbientOcclusion(ivec2 pixel, SdfSurface s) {
     int n = P.samples;
     uint seed = sdfPixelSeed(pixel);
     vec3 origin = s.position + s.normal * 0.01;
@@ -33,5 +28,5 @@ void cavity_main(ivec2 pixel) {
         float d = sceneMap(origin + dir * dist);
         vis += clamp(1.0 - P.strength * (0.01 + dist * c - d) / (0.01 + dist), 0.0, 1.0);
     }
-    write_ao(pixel, vec4(vis / float(n), 0.0, 0.0, 0.0));
+    return vis / float(n);
 }

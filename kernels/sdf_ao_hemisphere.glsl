@@ -10,12 +10,7 @@
 // (pixel, i), through the portable sin/cos, so the CPU gets them too.
 #include "include/sdf_ao.glsl"
 
-void cavity_main(ivec2 pixel) {
-    SdfSurface s = sdfSurface(pixel);
-    if (s.background) {
-        write_ao(pixel, vec4(1.0));
-        return;
-    }
+float sdfAmbientOcclusion(ivec2 pixel, SdfSurface s) {
     int n = P.samples;
     uint seed = sdfPixelSeed(pixel);
     float vis = 0.0;
@@ -35,5 +30,5 @@ void cavity_main(ivec2 pixel) {
         float d = sceneMap(s.position + dir * h);
         vis += clamp(1.0 - P.strength * (h * c - d) / h, 0.0, 1.0);
     }
-    write_ao(pixel, vec4(vis / float(n), 0.0, 0.0, 0.0));
+    return vis / float(n);
 }

@@ -8,12 +8,7 @@
 // probes, so the blur averages it away. R = 2 is the seed's maxDist 4.
 #include "include/sdf_ao.glsl"
 
-void cavity_main(ivec2 pixel) {
-    SdfSurface s = sdfSurface(pixel);
-    if (s.background) {
-        write_ao(pixel, vec4(1.0));
-        return;
-    }
+float sdfAmbientOcclusion(ivec2 pixel, SdfSurface s) {
     int n = P.samples;
     float u = pixelHash(pixel);
     float occ = 0.0;
@@ -25,5 +20,5 @@ void cavity_main(ivec2 pixel) {
         float l = (float(i) + j) * P.radius / float(n);
         occ += (l - sceneMap(s.position + s.normal * l)) / (1.0 + l);
     }
-    write_ao(pixel, vec4(clamp(1.0 - P.strength * occ / float(n), 0.0, 1.0), 0.0, 0.0, 0.0));
+    return clamp(1.0 - P.strength * occ / float(n), 0.0, 1.0);
 }

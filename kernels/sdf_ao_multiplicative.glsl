@@ -5,12 +5,7 @@
 // the same value as n grows rather than to zero.
 #include "include/sdf_ao.glsl"
 
-void cavity_main(ivec2 pixel) {
-    SdfSurface s = sdfSurface(pixel);
-    if (s.background) {
-        write_ao(pixel, vec4(1.0));
-        return;
-    }
+float sdfAmbientOcclusion(ivec2 pixel, SdfSurface s) {
     int n = P.samples;
     float ao = 1.0;
     float exponent = 6.0 / float(n);
@@ -20,5 +15,5 @@ void cavity_main(ivec2 pixel) {
         float factor = clamp(1.0 - P.strength * max(0.0, h - d) / h, 0.0, 1.0);
         ao *= pow(factor, exponent);
     }
-    write_ao(pixel, vec4(ao, 0.0, 0.0, 0.0));
+    return ao;
 }

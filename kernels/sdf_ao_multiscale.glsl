@@ -6,12 +6,7 @@
 // seed does: max(0.035, ao^0.3).
 #include "include/sdf_ao.glsl"
 
-void cavity_main(ivec2 pixel) {
-    SdfSurface s = sdfSurface(pixel);
-    if (s.background) {
-        write_ao(pixel, vec4(1.0));
-        return;
-    }
+float sdfAmbientOcclusion(ivec2 pixel, SdfSurface s) {
     int n = P.samples;
     float ao = 1.0;
     float exponent = 7.0 / float(n);
@@ -20,5 +15,5 @@ void cavity_main(ivec2 pixel) {
         float d = sceneMap(s.position + s.normal * h);
         ao *= pow(clamp(d / h, 0.0, 1.0), exponent);
     }
-    write_ao(pixel, vec4(max(0.035, pow(ao, 0.3)), 0.0, 0.0, 0.0));
+    return max(0.035, pow(ao, 0.3));
 }

@@ -36,6 +36,16 @@ SdfSurface sdfSurface(ivec2 pixel) {
     return s;
 }
 
+// Each kernel of the family defines only its estimator; background pixels
+// (no surface) are fully open and never reach it.
+float sdfAmbientOcclusion(ivec2 pixel, SdfSurface s);
+
+void cavity_main(ivec2 pixel) {
+    SdfSurface s = sdfSurface(pixel);
+    float ao = s.background ? 1.0 : sdfAmbientOcclusion(pixel, s);
+    write_ao(pixel, vec4(ao, 0.0, 0.0, 0.0));
+}
+
 float sceneMap(vec3 p) {
     return sceneDistance(P.scene, p).x;
 }
