@@ -26,6 +26,20 @@ std::vector<std::string> aoKernels() {
     return names;
 }
 
+namespace {
+
+// The SDF AO family: kernels that evaluate the scene themselves (a "scene"
+// parameter) rather than reading only the G-buffer.
+bool evaluatesScene(const std::string& kernel) {
+    const auto* k = kernels::find(kernel);
+    if (!k) return false;
+    for (const auto& p : k->params)
+        if (p.name == "scene") return true;
+    return false;
+}
+
+}  // namespace
+
 std::vector<RunConfig> benchmarkSweep(const SweepAxes& axes, const std::vector<gpu::Api>& apis) {
     std::vector<RunConfig> out;
     std::set<std::string> seen;
@@ -43,7 +57,7 @@ std::vector<RunConfig> benchmarkSweep(const SweepAxes& axes, const std::vector<g
                 base.width = axes.defaultSize.first;
                 base.height = axes.defaultSize.second;
                 add(base);
-                if (stage == gpu::Stage::Fragment && !axes.fragmentAxes) continue;
+                if (stage == gpu::Stage::Fragment && (!axes.fragmentAxes || evaluatesScene(kernel))) continue;
                 for (int n : axes.samples) {
                     RunConfig c = base;
                     c.params["samples"] = n;
@@ -65,7 +79,7 @@ std::vector<RunConfig> benchmarkSweep(const SweepAxes& axes, const std::vector<g
                     c.height = h;
                     add(c);
                 }
-                if (axes.product && stage == gpu::Stage::Compute)
+                if (axes.product && stage == gpu::Stage::Compute && !evaluatesScene(kernel))
                     for (int n : axes.samples)
                         for (int b : axes.blurs)
                             for (bool half : {false, true}) {
