@@ -82,7 +82,7 @@ Result<std::vector<HostImage>> runKernel(gpu::Backend& gpu, const KernelRun& run
             images.push_back(img);
             outs.push_back(img);
         }
-        CAVITY_ASSIGN(auto src, kernels::assemble(k, run.stage, run.overrides));
+        CAVITY_ASSIGN(auto src, kernels::assemble(k, run.stage, run.overrides, &run.params));
         const auto layout = kernels::bindingLayout(k, run.stage);
         if (run.stage == gpu::Stage::Compute) {
             for (auto o : outs) binds.push_back({b++, o, {}, {}});

@@ -130,7 +130,7 @@ Result<std::unique_ptr<PassChain>> PassChain::create(gpu::Backend& gpu, const Ru
                 return internal("pass '" + spec.name + "' reads image '" + spec.inputs[i] + "' before any pass writes it");
             pass->binds.push_back({b++, it->second.image, {}, k.inputs[i].sampler});
         }
-        CAVITY_ASSIGN(auto body, kernels::assemble(k, c.stage, overrides));
+        CAVITY_ASSIGN(auto body, kernels::assemble(k, c.stage, overrides, &c.params));
         const auto layout = kernels::bindingLayout(k, c.stage);
         if (c.stage == gpu::Stage::Compute) {
             for (const auto& out : spec.outputs) pass->binds.push_back({b++, chain->images_[out].image, {}, {}});

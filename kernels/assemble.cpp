@@ -168,7 +168,7 @@ Status expand(const std::string& name, const std::map<std::string, std::string>&
 }  // namespace
 
 Result<gpu::ShaderSource> assemble(const KernelDecl& k, gpu::Stage stage,
-                                   const std::map<std::string, std::string>& overrides) {
+                                   const std::map<std::string, std::string>& overrides, const ParamValues* values) {
     gpu::ShaderSource src;
     src.name = k.name;
     src.stage = stage;
@@ -176,6 +176,12 @@ Result<gpu::ShaderSource> assemble(const KernelDecl& k, gpu::Stage stage,
     std::ostringstream p;
     p << "#version 450\n";
     p << (stage == gpu::Stage::Compute ? "#define CAVITY_STAGE_COMPUTE 1\n" : "#define CAVITY_STAGE_FRAGMENT 1\n");
+    if (values) {
+        const ParamValues all = withDefaults(k, *values);
+        for (const auto& name : k.compileTime)
+            if (auto it = all.find(name); it != all.end())
+                p << "#define CAVITY_CONST_" << name << " " << std::lround(it->second) << "\n";
+    }
     p << "layout(std140, binding = " << kFrameBinding << ") uniform Frame {\n"
          "    mat4 proj;\n    mat4 invProj;\n    vec4 camera;\n"
          "    ivec2 size;\n    ivec2 srcSize;\n    vec2 invSize;\n    vec2 pad_;\n} frame;\n";

@@ -37,6 +37,7 @@ KernelDecl sdfKernel(std::string name, std::string file, std::string summary, do
         k.params.push_back(makeParam("strength", ParamType::Float, strength, 0, 100, "", std::move(strengthHelp)));
     k.inputs = {{"position", {}}, {"normal", {}}};
     k.outputs = {{"ao", Format::R16F}};
+    k.compileTime = {"scene"};
     // Reads its own pixel of the G-buffer; the distance probes are
     // arithmetic, not memory traffic.
     k.cost = [](const ParamValues&) { return Cost{2, kRgba32f + kRgba16f + kR16f}; };
@@ -61,6 +62,7 @@ KernelDecl groundTruth() {
     };
     k.inputs = {{"position", {}}, {"normal", {}}};
     k.outputs = {{"ao", Format::R16F}};
+    k.compileTime = {"scene"};
     k.cost = [](const ParamValues&) { return Cost{2, kRgba32f + kRgba16f + kR16f}; };
     return k;
 }

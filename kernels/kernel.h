@@ -85,6 +85,12 @@ struct KernelDecl {
     // --kernel), "blur", "upsample", "composite", "reference".
     std::string role = "ao";
     std::function<Cost(const ParamValues&)> cost;   // may be empty
+    // Parameters whose value is compiled into the shader as well as passed
+    // in the uniform block: assemble() defines CAVITY_CONST_<name> when it
+    // is given the values. For a value that selects whole code paths (the
+    // scene): CPU renderers (llvmpipe's GL) otherwise run every path of a
+    // branch on a uniform, and the ray march got 2.2x slower with six scenes.
+    std::vector<std::string> compileTime;
 };
 
 // The fixed uniform block every kernel sees at binding 0 (std140).
@@ -132,8 +138,10 @@ std::vector<std::byte> packParams(const KernelDecl& k, const ParamValues& values
 
 // The full translation unit for one stage: preamble + includes + body + entry.
 // `overrides` maps a kernel file name to replacement text (planted-bug tests).
+// With `values`, the kernel's compileTime parameters are also #defined.
 Result<gpu::ShaderSource> assemble(const KernelDecl& k, gpu::Stage stage,
-                                   const std::map<std::string, std::string>& overrides = {});
+                                   const std::map<std::string, std::string>& overrides = {},
+                                   const ParamValues* values = nullptr);
 
 // The full-screen-triangle vertex shader used by fragment-stage passes.
 gpu::ShaderSource fullscreenVertex();

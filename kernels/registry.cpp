@@ -77,6 +77,7 @@ KernelDecl gbufferSdf() {
         viewParam(),
     };
     k.outputs = {{"position", Format::RGBA32F}, {"normal", Format::RGBA16F}, {"albedo", Format::RGBA8}};
+    k.compileTime = {"scene"};
     k.cost = [](const ParamValues&) { return Cost{0, kRgba32f + kRgba16f + kRgba8}; };
     return k;
 }

@@ -169,7 +169,12 @@ vec2 platesScene(vec3 p) {
     return h;
 }
 
+// CAVITY_CONST_scene: the scene compiled in (KernelDecl::compileTime), so
+// that only its branch exists; the uniform says the same.
 vec2 sceneDistance(int scene, vec3 p) {
+#ifdef CAVITY_CONST_scene
+    scene = CAVITY_CONST_scene;
+#endif
     if (scene == SCENE_SLATS) return slatsScene(p);
     if (scene == SCENE_OPEN) return floorScene(p);
     if (scene == SCENE_CONTACT) return contactScene(p);
@@ -199,6 +204,9 @@ void sceneCamera(int scene, int view, out vec3 eye, out vec3 target) {
     const vec3 platesEye[4] = vec3[4](vec3(1.3, 0.75, 1.5), vec3(-1.3, 0.75, 1.5), vec3(0.0, 0.7, 1.8), vec3(1.7, 0.8, 0.9));
     const vec3 platesTarget[4] = vec3[4](vec3(0.0, 0.12, 0.0), vec3(0.0, 0.12, 0.0), vec3(0.0, 0.12, 0.0), vec3(0.0, 0.12, 0.0));
     int v = clamp(view, 0, 3);
+#ifdef CAVITY_CONST_scene
+    scene = CAVITY_CONST_scene;
+#endif
     if (scene == SCENE_SLATS) { eye = slatsEye[v]; target = slatsTarget[v]; }
     else if (scene == SCENE_OPEN) { eye = openEye[v]; target = openTarget[v]; }
     else if (scene == SCENE_CONTACT) { eye = contactEye[v]; target = contactTarget[v]; }
