@@ -1,5 +1,5 @@
 // The signed-distance scenes as triangle meshes, for the rasterised G-buffer:
-// the same boxes and sphere as kernels/include/sdf_scenes.glsl, built in C++
+// the same boxes, spheres and cylinders as kernels/include/sdf_scenes.glsl, built in C++
 // (no asset files) and transformed into the view space of a camera view.
 #pragma once
 
