@@ -31,14 +31,11 @@ std::string aoKernelNames() {
     return s;
 }
 
-// The AO kernels that read only the G-buffer (no "scene" parameter).
+// The AO kernels that read only the G-buffer.
 std::string screenSpaceAoNames() {
     std::string s;
-    for (const auto& k : kernels::all()) {
-        bool scene = false;
-        for (const auto& p : k.params) scene |= p.name == "scene";
-        if (k.role == "ao" && !scene) s += (s.empty() ? "" : ", ") + k.name;
-    }
+    for (const auto& k : kernels::all())
+        if (k.role == "ao" && !kernels::evaluatesScene(k)) s += (s.empty() ? "" : ", ") + k.name;
     return s;
 }
 
@@ -114,15 +111,12 @@ Status validate(const RunConfig& c) {
         return badInput("--res " + std::to_string(c.width) + "x" + std::to_string(c.height) +
                         ": must be WIDTHxHEIGHT with each in 1.." + std::to_string(kMaxResolution));
     if (c.raster && c.imported()) return badInput("--gbuffer: raster and import exclude each other");
-    // A pass that evaluates the analytic scene itself (a "scene" parameter
-    // outside the G-buffer passes: the signed-distance AO kernels) has no
-    // scene to evaluate when the G-buffer is a capture.
+    // A pass that evaluates the analytic scene itself has no scene to
+    // evaluate when the G-buffer is a capture.
     if (c.imported())
         for (const auto& spec : buildPasses(c))
-            if (const auto* d = kernels::find(spec.kernel); d && d->role != "gbuffer")
-                for (const auto& p : d->params)
-                    if (p.name == "scene")
-                        return badInput("--kernel " + c.kernel + ": pass " + spec.name + " (" + d->name +
+            if (const auto* d = kernels::find(spec.kernel); d && kernels::evaluatesScene(*d))
+                return badInput("--kernel " + c.kernel + ": pass " + spec.name + " (" + d->name +
                                         ") evaluates the analytic scene, so it cannot run on an imported G-buffer "
                                         "(--gbuffer import); use a screen-space kernel (have: " + screenSpaceAoNames() + ")");
     if (c.half && !supportsHalf(c.kernel))

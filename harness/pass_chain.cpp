@@ -221,4 +221,18 @@ long long PassChain::passPixels(size_t i) const {
     return (long long)passes_[i]->width * passes_[i]->height;
 }
 
+Result<std::map<std::string, HostImage>> renderImages(gpu::Backend& gpu, const RunConfig& c,
+                                                      const std::vector<std::string>& images) {
+    CAVITY_TRY(validate(c));
+    CAVITY_ASSIGN(auto chain, PassChain::create(gpu, c));
+    gpu.beginFrame();
+    chain->record();
+    CAVITY_TRY(gpu.endFrame());
+    std::map<std::string, HostImage> out;
+    for (const auto& name : images) {
+        CAVITY_ASSIGN(out[name], chain->read(name));
+    }
+    return out;
+}
+
 }  // namespace cavity

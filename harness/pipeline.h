@@ -31,6 +31,11 @@ bool supportsHalf(const std::string& kernel);
 struct OutputSpec { std::string image; std::string description; };
 std::vector<OutputSpec> userOutputs(const RunConfig& c);
 
+// Validates c, renders one frame of its pipeline and reads back the named
+// images (tests, cavity quality: where the images matter, not the timing).
+Result<std::map<std::string, HostImage>> renderImages(gpu::Backend& gpu, const RunConfig& c,
+                                                      const std::vector<std::string>& images);
+
 // Replacement kernel sources by file name (planted-bug tests).
 using SourceOverrides = std::map<std::string, std::string>;
 

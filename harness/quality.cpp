@@ -10,20 +10,6 @@ namespace cavity {
 
 namespace {
 
-Result<std::map<std::string, HostImage>> runAndRead(gpu::Backend& gpu, const RunConfig& c,
-                                                    const std::vector<std::string>& images) {
-    CAVITY_TRY(validate(c));
-    CAVITY_ASSIGN(auto chain, PassChain::create(gpu, c));
-    gpu.beginFrame();
-    chain->record();
-    CAVITY_TRY(gpu.endFrame());
-    std::map<std::string, HostImage> out;
-    for (const auto& name : images) {
-        CAVITY_ASSIGN(out[name], chain->read(name));
-    }
-    return out;
-}
-
 RunConfig baseConfig(gpu::Backend& gpu, const std::string& kernel, int width, int height) {
     RunConfig c;
     c.api = gpu.api();
@@ -40,7 +26,7 @@ Result<GroundTruth> groundTruth(gpu::Backend& gpu, const std::string& scene, int
     RunConfig c = baseConfig(gpu, "ground_truth", width, height);
     CAVITY_TRY(setParam(c, "scene", scene));
     c.params["rays"] = rays;
-    CAVITY_ASSIGN(auto images, runAndRead(gpu, c, {"ao", "position"}));
+    CAVITY_ASSIGN(auto images, renderImages(gpu, c, {"ao", "position"}));
     GroundTruth t;
     t.ao = std::move(images["ao"]);
     const HostImage& position = images["position"];
@@ -87,7 +73,7 @@ Result<std::vector<QualityRow>> measureQuality(gpu::Backend& gpu, const QualityO
                 c.params["samples"] = n;
                 c.half = o.half && supportsHalf(kernel);
                 c.stage = o.stage;
-                CAVITY_ASSIGN(auto images, runAndRead(gpu, c, {"ao_blur"}));
+                CAVITY_ASSIGN(auto images, renderImages(gpu, c, {"ao_blur"}));
                 QualityRow r = compareToTruth(images["ao_blur"], truth);
                 r.scene = scene;
                 r.kernel = kernel;

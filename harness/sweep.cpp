@@ -28,14 +28,10 @@ std::vector<std::string> aoKernels() {
 
 namespace {
 
-// The SDF AO family: kernels that evaluate the scene themselves (a "scene"
-// parameter) rather than reading only the G-buffer.
-bool evaluatesScene(const std::string& kernel) {
+// The SDF AO family: the kernels that evaluate the scene themselves.
+bool sdfFamily(const std::string& kernel) {
     const auto* k = kernels::find(kernel);
-    if (!k) return false;
-    for (const auto& p : k->params)
-        if (p.name == "scene") return true;
-    return false;
+    return k && kernels::evaluatesScene(*k);
 }
 
 }  // namespace
@@ -57,7 +53,7 @@ std::vector<RunConfig> benchmarkSweep(const SweepAxes& axes, const std::vector<g
                 base.width = axes.defaultSize.first;
                 base.height = axes.defaultSize.second;
                 add(base);
-                if (stage == gpu::Stage::Fragment && (!axes.fragmentAxes || evaluatesScene(kernel))) continue;
+                if (stage == gpu::Stage::Fragment && (!axes.fragmentAxes || sdfFamily(kernel))) continue;
                 for (int n : axes.samples) {
                     RunConfig c = base;
                     c.params["samples"] = n;
@@ -79,7 +75,7 @@ std::vector<RunConfig> benchmarkSweep(const SweepAxes& axes, const std::vector<g
                     c.height = h;
                     add(c);
                 }
-                if (axes.product && stage == gpu::Stage::Compute && !evaluatesScene(kernel))
+                if (axes.product && stage == gpu::Stage::Compute && !sdfFamily(kernel))
                     for (int n : axes.samples)
                         for (int b : axes.blurs)
                             for (bool half : {false, true}) {

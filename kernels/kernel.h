@@ -126,6 +126,11 @@ const KernelDecl* find(const std::string& name);
 // declaration's derive function for a broken one and put it back.
 std::vector<KernelDecl>& registryForTests();
 
+// True for a kernel that evaluates the analytic scene itself (it declares
+// --scene) outside the G-buffer passes: the SDF AO family and the ground
+// truth. They cannot run on an imported G-buffer.
+bool evaluatesScene(const KernelDecl& k);
+
 // Default values for every parameter of a kernel, overridden by `given`.
 ParamValues withDefaults(const KernelDecl& k, const ParamValues& given = {});
 

@@ -166,4 +166,11 @@ std::vector<KernelDecl>& registryForTests() {
 
 const std::vector<KernelDecl>& all() { return registryForTests(); }
 
+bool evaluatesScene(const KernelDecl& k) {
+    if (k.role == "gbuffer") return false;
+    for (const auto& p : k.params)
+        if (p.name == "scene") return true;
+    return false;
+}
+
 }  // namespace cavity::kernels

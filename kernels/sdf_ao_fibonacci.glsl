@@ -17,13 +17,8 @@ float sdfAmbientOcclusion(ivec2 pixel, SdfSurface s) {
     for (int i = 0; i < n; ++i) {
         float z = 1.0 - (2.0 * float(i) + 1.0) / float(n);
         vec2 cs = cosSinTurns(float(i) * 0.618034);
-        float r = sqrt(max(0.0, 1.0 - z * z));
-        vec3 dir = vec3(r * cs.x, r * cs.y, z);
-        float c = dot(dir, s.normal);
-        if (c < 0.0) {
-            dir = -dir;
-            c = -c;
-        }
+        float c;
+        vec3 dir = hemisphereDirection(z, cs, s.normal, c);
         float dist = P.radius * (0.1 + 0.9 * hashToUnit(pcgHash(seed + uint(i))));
         float d = sceneMap(origin + dir * dist);
         vis += clamp(1.0 - P.strength * (0.01 + dist * c - d) / (0.01 + dist), 0.0, 1.0);

@@ -18,13 +18,8 @@ float sdfAmbientOcclusion(ivec2 pixel, SdfSurface s) {
         uint h1 = pcgHash(seed + uint(i));
         float z = 1.0 - 2.0 * hashToUnit(h1);
         vec2 cs = cosSinTurns(hashToUnit(pcgHash(h1)));
-        float r = sqrt(max(0.0, 1.0 - z * z));
-        vec3 dir = vec3(r * cs.x, r * cs.y, z);
-        float c = dot(dir, s.normal);
-        if (c < 0.0) {
-            dir = -dir;
-            c = -c;
-        }
+        float c;
+        vec3 dir = hemisphereDirection(z, cs, s.normal, c);
         float t = sdfSpread(i, n);
         float h = 0.01 + P.radius * t * t;
         float d = sceneMap(s.position + dir * h);

@@ -342,14 +342,11 @@ TEST_F(ImportCli, BadInputExitsTwoWithOneLineAndWritesNothing) {
         {"scene with import", "--gbuffer import --scene corner --gbuffer-file " + good,
          "cavity run: --scene corner: not used with --gbuffer import"},
     };
-    // A kernel that evaluates the analytic scene (a "scene" parameter), found
-    // by its declaration, not its name.
+    // A kernel that evaluates the analytic scene, found by its declaration,
+    // not its name.
     std::string sceneKernel;
-    for (const auto& k : kernels::all()) {
-        bool scene = false;
-        for (const auto& p : k.params) scene |= p.name == "scene";
-        if (k.role == "ao" && scene && sceneKernel.empty()) sceneKernel = k.name;
-    }
+    for (const auto& k : kernels::all())
+        if (k.role == "ao" && kernels::evaluatesScene(k) && sceneKernel.empty()) sceneKernel = k.name;
     ASSERT_FALSE(sceneKernel.empty()) << "the SDF AO kernels declare a scene parameter";
     cases.push_back({"scene kernel", "--gbuffer import --gbuffer-file " + good + " --kernel " + sceneKernel,
                      "cavity run: --kernel " + sceneKernel + ": pass ao (" + sceneKernel +

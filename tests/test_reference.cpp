@@ -224,12 +224,9 @@ TEST_P(RasterGBuffer, MatchesTheRayMarchedGBuffer) {
             c.api = api();
             c.raster = raster;
             ASSERT_TRUE(setParam(c, "scene", scene).ok());
-            auto chain = PassChain::create(gpu(), c);
-            ASSERT_TRUE(chain) << chain.error().message;
-            gpu().beginFrame();
-            (*chain)->record();
-            ASSERT_TRUE(gpu().endFrame().ok());
-            for (const std::string name : {"position", "normal", "ao_blur"}) img[raster][name] = *(*chain)->read(name);
+            auto images = renderImages(gpu(), c, {"position", "normal", "ao_blur"});
+            ASSERT_TRUE(images) << images.error().message;
+            img[raster] = std::move(*images);
         }
         const auto& ps = img[false]["position"];
         const auto& pr = img[true]["position"];
@@ -301,17 +298,11 @@ TEST_P(StageAgreement, ComputeAndFragmentAgree) {
                     c.half = half;
                     c.stage = stage;
                     ASSERT_TRUE(setParam(c, "scene", scene).ok());
-                    auto chain = PassChain::create(gpu(), c);
-                    ASSERT_TRUE(chain) << chain.error().message;
-                    gpu().beginFrame();
-                    (*chain)->record();
-                    ASSERT_TRUE(gpu().endFrame().ok());
                     images.clear();
-                    for (const auto& p : (*chain)->passes())
-                        for (const auto& o : p.outputs) {
-                            images.push_back(o);
-                            img[stage][o] = *(*chain)->read(o);
-                        }
+                    for (const auto& p : buildPasses(c)) images.insert(images.end(), p.outputs.begin(), p.outputs.end());
+                    auto read = renderImages(gpu(), c, images);
+                    ASSERT_TRUE(read) << read.error().message;
+                    img[stage] = std::move(*read);
                 }
                 for (const auto& o : images) {
                     const HostImage& a = img[gpu::Stage::Compute][o];

@@ -21,20 +21,9 @@ class SdfAo : public GpuTest {
 protected:
     std::map<std::string, HostImage> run(RunConfig c, const std::vector<std::string>& images) {
         c.api = api();
-        EXPECT_TRUE(validate(c).ok()) << configId(c);
-        auto chain = PassChain::create(gpu(), c);
-        EXPECT_TRUE(chain) << chain.error().message;
-        std::map<std::string, HostImage> out;
-        if (!chain) return out;
-        gpu().beginFrame();
-        (*chain)->record();
-        EXPECT_TRUE(gpu().endFrame().ok());
-        for (const auto& name : images) {
-            auto img = (*chain)->read(name);
-            EXPECT_TRUE(img) << img.error().message;
-            if (img) out[name] = std::move(*img);
-        }
-        return out;
+        auto out = renderImages(gpu(), c, images);
+        EXPECT_TRUE(out) << configId(c) << ": " << out.error().message;
+        return out ? std::move(*out) : std::map<std::string, HostImage>{};
     }
 };
 

@@ -129,14 +129,17 @@ Result<std::vector<HostImage>> jittered(const Context& ctx) {
     });
 }
 
-// Flips dir into the hemisphere of n; returns cos(theta) >= 0.
-float flipInto(Vec3& dir, Vec3 n) {
-    float c = dot(dir, n);
-    if (c < 0.0f) {
+// sdf_ao.glsl's hemisphereDirection: the unit vector at height z and
+// azimuth cs, flipped into n's hemisphere; cosTheta its dot with n.
+Vec3 hemisphereDirection(float z, Vec2 cs, Vec3 n, float& cosTheta) {
+    const float r = std::sqrt(std::max(0.0f, 1.0f - z * z));
+    Vec3 dir{r * cs.x, r * cs.y, z};
+    cosTheta = dot(dir, n);
+    if (cosTheta < 0.0f) {
         dir = -dir;
-        c = -c;
+        cosTheta = -cosTheta;
     }
-    return c;
+    return dir;
 }
 
 Result<std::vector<HostImage>> hemisphere(const Context& ctx) {
@@ -149,9 +152,8 @@ Result<std::vector<HostImage>> hemisphere(const Context& ctx) {
             const uint32_t h1 = pcgHash(seed + uint32_t(i));
             const float z = 1.0f - 2.0f * hashToUnit(h1);
             const Vec2 cs = cosSinTurns(hashToUnit(pcgHash(h1)));
-            const float r = std::sqrt(std::max(0.0f, 1.0f - z * z));
-            Vec3 dir{r * cs.x, r * cs.y, z};
-            const float cosTheta = flipInto(dir, s.normal);
+            float cosTheta;
+            const Vec3 dir = hemisphereDirection(z, cs, s.normal, cosTheta);
             const float t = spread(i, n);
             const float h = 0.01f + R * t * t;
             const float d = c.map(s.position + dir * h);
@@ -171,9 +173,8 @@ Result<std::vector<HostImage>> fibonacci(const Context& ctx) {
         for (int i = 0; i < n; ++i) {
             const float z = 1.0f - (2.0f * float(i) + 1.0f) / float(n);
             const Vec2 cs = cosSinTurns(float(i) * 0.618034f);
-            const float r = std::sqrt(std::max(0.0f, 1.0f - z * z));
-            Vec3 dir{r * cs.x, r * cs.y, z};
-            const float cosTheta = flipInto(dir, s.normal);
+            float cosTheta;
+            const Vec3 dir = hemisphereDirection(z, cs, s.normal, cosTheta);
             const float dist = R * (0.1f + 0.9f * hashToUnit(pcgHash(seed + uint32_t(i))));
             const float d = c.map(origin + dir * dist);
             vis += clamp(1.0f - k * (0.01f + dist * cosTheta - d) / (0.01f + dist), 0.0f, 1.0f);

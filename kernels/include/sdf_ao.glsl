@@ -56,6 +56,19 @@ uint sdfPixelSeed(ivec2 pixel) {
     return pcgHash(uint(pixel.x) + uint(pixel.y) * 65521u);
 }
 
+// The unit vector at height z (cos of the polar angle) and azimuth
+// (cos, sin) = cs, flipped into n's hemisphere; cosTheta = its dot with n.
+vec3 hemisphereDirection(float z, vec2 cs, vec3 n, out float cosTheta) {
+    float r = sqrt(max(0.0, 1.0 - z * z));
+    vec3 dir = vec3(r * cs.x, r * cs.y, z);
+    cosTheta = dot(dir, n);
+    if (cosTheta < 0.0) {
+        dir = -dir;
+        cosTheta = -cosTheta;
+    }
+    return dir;
+}
+
 // Sample i's fraction along the kernel's reach: 0 for the first, 1 for the
 // last, evenly between (0 when there is one sample).
 float sdfSpread(int i, int n) {
