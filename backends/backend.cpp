@@ -8,6 +8,16 @@ Result<std::unique_ptr<Backend>> createVkBackend(const BackendOptions&);
 
 const char* apiName(Api api) { return api == Api::OpenGL ? "gl" : "vk"; }
 
+std::string hexUuid(const unsigned char (&bytes)[16]) {
+    static const char digits[] = "0123456789abcdef";
+    std::string s;
+    for (unsigned char b : bytes) {
+        s += digits[b >> 4];
+        s += digits[b & 15];
+    }
+    return s;
+}
+
 int channelCount(Format f) {
     switch (f) {
     case Format::RG16F: return 2;

@@ -128,7 +128,15 @@ struct DeviceInfo {
     std::string apiVersion;     // "4.5" / "1.3.238"
     std::string vendor;
     bool softwareRenderer = false;   // llvmpipe, lavapipe, swiftshader
+    // The device's UUID as 32 hex digits (VkPhysicalDeviceIDProperties,
+    // GL_EXT_memory_object's GL_DEVICE_UUID_EXT); empty where not reported.
+    // NVIDIA's equals the NVML / CUDA UUID, which is how the clocks of the
+    // device that ran are found (harness/gpu_clocks.h).
+    std::string uuid;
 };
+
+// 16 bytes as 32 lower-case hex digits.
+std::string hexUuid(const unsigned char (&bytes)[16]);
 
 struct ScopeTime {
     std::string name;

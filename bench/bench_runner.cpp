@@ -3,12 +3,14 @@
 #include "kernel.h"
 #include "pipeline.h"
 #include "sweep.h"
+#include "gpu_clocks.h"
 #include "timing.h"
 
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <iostream>
 #include <map>
 #include <memory>
@@ -35,75 +37,71 @@ double aoSamplesPerPixel(const PassSpec& p, const RunConfig& c) {
 
 struct Bench {
     RunConfig config;
-    int iterations, warmup;
+    TimingOptions timing;
+    PlantedSlowdown plant;
 };
 
+// The clock of each configuration, decided by its first repetition and kept
+// by the others, so that one configuration's repetitions are all on GPU
+// timestamps or all on the wall clock, never a mix.
+std::map<std::string, std::string>& configurationClocks() {
+    static std::map<std::string, std::string> clocks;
+    return clocks;
+}
+
+// One benchmark iteration is one whole measurement (harness/timing.h: batched
+// frames after a steady warm-up, stopped on noise), so every Google Benchmark
+// repetition is an independent measurement and the repetitions' spread is the
+// run-to-run noise a comparison has to beat.
 void run(benchmark::State& state, const Bench& b) {
     gpu::Backend& gpu = *backends().at(b.config.api);
-    // Four camera views of the scene, used in turn, so that no iteration
-    // reads inputs the previous one left in the caches.
+    const std::string id = configId(b.config);
+    // Four camera views of the scene, used in turn, so that no frame reads
+    // inputs the previous one left in the caches.
     std::vector<std::unique_ptr<PassChain>> chains;
+    std::vector<PassChain*> views;
     for (int view = 0; view < 4; ++view) {
         RunConfig c = b.config;
         c.params["view"] = view;
-        auto chain = PassChain::create(gpu, c);
+        auto chain = PassChain::create(gpu, c, {}, b.plant);
         if (!chain) {
             state.SkipWithError(chain.error().message.c_str());
             return;
         }
         chains.push_back(std::move(*chain));
+        views.push_back(chains.back().get());
     }
-    // Which clock brackets the work on this backend: decided on the first chain.
-    auto probe = measure(gpu, *chains[0], b.warmup, 3);
-    if (!probe) {
-        state.SkipWithError(probe.error().message.c_str());
-        return;
-    }
-    const bool wall = probe->clock == "wall";
+    TimingOptions options = b.timing;
+    auto& clocks = configurationClocks();
+    if (auto it = clocks.find(id); it != clocks.end()) options.clock = it->second;
     const auto& passes = chains[0]->passes();
-    std::vector<std::vector<double>> passMs(passes.size());
-    size_t turn = 0;
+    Timing t;
     for (auto _ : state) {
-        PassChain& chain = *chains[turn++ % chains.size()];
-        double aoMs = 0;
-        if (!wall) {
-            gpu.beginFrame();
-            chain.record();
-            if (auto s = gpu.endFrame(); !s) {
-                state.SkipWithError(s.error().message.c_str());
-                return;
-            }
-            const auto t = gpu.scopeTimes();
-            for (size_t i = 0; i < passes.size() && i < t.size(); ++i) {
-                passMs[i].push_back(t[i].gpuMs);
-                if (passes[i].name != "gbuffer") aoMs += t[i].gpuMs;
-            }
-        } else {
-            for (size_t i = 0; i < passes.size(); ++i) {
-                (void)gpu.finish();
-                const auto t0 = std::chrono::steady_clock::now();
-                gpu.beginFrame();
-                chain.recordPass(i);
-                if (auto s = gpu.endFrame(); !s) {
-                    state.SkipWithError(s.error().message.c_str());
-                    return;
-                }
-                const double ms =
-                    std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-                passMs[i].push_back(ms);
-                if (passes[i].name != "gbuffer") aoMs += ms;
-            }
+        auto m = measure(gpu, views, options, GpuClocks::forDevice(gpu.info()));
+        if (!m) {
+            state.SkipWithError(m.error().message.c_str());
+            return;
         }
-        state.SetIterationTime(aoMs / 1000.0);
+        t = std::move(*m);
+        clocks.emplace(id, t.clock);
+        // The benchmark's time: the AO pipeline, every pass but the G-buffer, per frame.
+        std::vector<double> pipeline(t.frame.ms.size(), 0.0);
+        for (size_t i = 0; i < passes.size(); ++i)
+            if (passes[i].name != "gbuffer")
+                for (size_t f = 0; f < pipeline.size(); ++f) pipeline[f] += t.passes[i].ms[f];
+        state.SetIterationTime(summarize(pipeline).median / 1000.0);
     }
     const RunConfig& c = b.config;
     double pixels = 0, samples = 0, bytes = 0;
     for (size_t i = 0; i < passes.size(); ++i) {
-        if (passes[i].name == "gbuffer") continue;
+        if (passes[i].name == "gbuffer") {
+            state.counters["pass_gbuffer_ms"] = t.passes[i].stats.median;
+            continue;
+        }
         const double px = double(chains[0]->passPixels(i));
         samples += px * aoSamplesPerPixel(passes[i], c);
         bytes += px * bytesPerPixel(passes[i], c);
-        state.counters["pass_" + passes[i].name + "_ms"] = summarize(passMs[i]).median;
+        state.counters["pass_" + passes[i].name + "_ms"] = t.passes[i].stats.median;
     }
     pixels = double(c.width) * c.height;
     using benchmark::Counter;
@@ -116,7 +114,23 @@ void run(benchmark::State& state, const Bench& b) {
     state.counters["blur"] = c.blur();
     state.counters["half"] = c.half;
     state.counters["fragment"] = c.stage == gpu::Stage::Fragment;
-    state.SetLabel(wall ? "clock=wall (timestamps do not bracket the work)" : "clock=gpu-timestamp");
+    // How this repetition was measured, and at which clocks.
+    state.counters["frames"] = double(t.frame.ms.size());
+    state.counters["batch_frames"] = t.batchFrames;
+    state.counters["noise_pct"] = std::isfinite(t.noise) ? 100.0 * t.noise : -1.0;
+    state.counters["rejected_frames"] = t.rejectedFrames;
+    state.counters["warmup_s"] = t.warmupSeconds;
+    if (!t.clocks.source.empty()) {
+        state.counters["sm_mhz_min"] = t.clocks.smMin;
+        state.counters["sm_mhz_median"] = t.clocks.smMedian;
+        state.counters["sm_mhz_max"] = t.clocks.smMax;
+        state.counters["mem_mhz_median"] = t.clocks.memMedian;
+    }
+    std::string label = "clock=" + t.clock + " mode=" + timingModeName(t.mode) + " stop=" + t.stop;
+    if (t.steadyChecked && !t.steady) label += " unsteady-warmup";
+    if (t.clocks.moved()) label += " sm-clock-moved";
+    if (t.rejectedFrames) label += " rejected=" + std::to_string(t.rejectedFrames);
+    state.SetLabel(label);
 }
 
 // What an empty timestamp pair reads: the floor under every pass time.
@@ -175,21 +189,40 @@ Result<int> registerSweep(const Options& o) {
     benchmark::AddCustomContext("cavity_software_renderer", allSoftware ? "true" : "false");
     benchmark::AddCustomContext("cavity_sweep", cpu ? "cpu" : "gpu");
     if (const char* clocks = std::getenv("CAVITY_GPU_CLOCKS")) benchmark::AddCustomContext("cavity_gpu_clocks", clocks);
-    const int iterations = o.iterations > 0 ? o.iterations : (cpu ? 5 : 50);
-    const int warmup = o.warmup > 0 ? o.warmup : (cpu ? 1 : 5);
+    // The timing options of the first backend's device (both APIs run on one device).
+    TimingOptions timing = defaultTimingOptions(backends().at(started[0])->info());
+    if (cpu) {
+        timing.frames = 5;
+        timing.warmup = 1;
+    }
+    if (o.frames) timing.frames = *o.frames;
+    if (o.warmup) timing.warmup = *o.warmup;
+    if (o.mode) timing.mode = *o.mode;
+    if (o.maxNoise) timing.maxNoise = *o.maxNoise;
+    if (o.maxSeconds) timing.maxSeconds = *o.maxSeconds;
+    benchmark::AddCustomContext("cavity_timing_mode", timingModeName(timing.mode));
+    benchmark::AddCustomContext("cavity_timing",
+                                "min_frames=" + std::to_string(timing.frames) + " warmup=" + std::to_string(timing.warmup) +
+                                    (timing.steadyWarmup ? "+steady" : "") + " max_noise=" +
+                                    std::to_string(timing.maxNoise) + " max_seconds=" + std::to_string(timing.maxSeconds));
+    if (!o.plant.empty()) {
+        std::string text;
+        for (const auto& [pass, fmas] : o.plant) text += (text.empty() ? "" : ",") + pass + ":" + std::to_string(fmas);
+        benchmark::AddCustomContext("cavity_planted_slowdown", text);
+    }
     const auto configs = benchmarkSweep(cpu ? cpuSweep() : gpuSweep(), started);
     for (const auto& c : configs) {
-        Bench b{c, iterations, warmup};
+        Bench b{c, timing, o.plant};
         benchmark::RegisterBenchmark(configId(c).c_str(), [b](benchmark::State& s) { run(s, b); })
             ->UseManualTime()
-            ->Iterations(iterations)
+            ->Iterations(1)
             ->Unit(benchmark::kMillisecond);
     }
     for (auto api : started)
         benchmark::RegisterBenchmark((std::string("timer/empty_scope/") + gpu::apiName(api)).c_str(),
                                      [api](benchmark::State& s) { emptyScope(s, api); })
             ->UseManualTime()
-            ->Iterations(iterations)
+            ->Iterations(50)
             ->Unit(benchmark::kMicrosecond);
     return int(configs.size() + started.size());
 }

@@ -1,7 +1,11 @@
 // Registration and the body of every Cavity benchmark.
 #pragma once
 
+#include "pipeline.h"
 #include "result.h"
+#include "timing.h"
+
+#include <optional>
 
 #include <string>
 
@@ -10,8 +14,12 @@ namespace cavity::bench {
 struct Options {
     std::string backend = "all";   // gl, vk, all
     std::string sweep = "auto";    // gpu, cpu, auto (cpu when every started backend is a software renderer)
-    int iterations = 0;            // 0: 50 on a GPU, 5 on a CPU renderer
-    int warmup = 0;                // 0: 5 on a GPU, 1 on a CPU renderer
+    // Unset: the device's defaults (harness/timing.h); on a CPU renderer 5
+    // frames after 1 warm-up frame.
+    std::optional<int> frames, warmup;
+    std::optional<TimingMode> mode;
+    std::optional<double> maxNoise, maxSeconds;
+    PlantedSlowdown plant;         // --plant ao:120,blur:40 (scripts/gpu_verdict.sh)
     int device = 0;
 };
 

@@ -1,6 +1,8 @@
 #include "cli.h"
 
 #include <charconv>
+#include <cmath>
+#include <sstream>
 
 namespace cavity::cli {
 
@@ -15,6 +17,18 @@ Result<int> parseInt(const std::string& flag, const std::string& text, int lo, i
     auto r = std::from_chars(text.data(), text.data() + text.size(), v);
     if (r.ec != std::errc() || r.ptr != text.data() + text.size() || v < lo || v > hi)
         return badInput(flag + " " + text + ": must be an integer in " + std::to_string(lo) + ".." + std::to_string(hi));
+    return v;
+}
+
+Result<double> parseNumber(const std::string& flag, const std::string& text, double lo, double hi) {
+    double v = 0;
+    auto r = std::from_chars(text.data(), text.data() + text.size(), v);
+    if (text.empty() || r.ec != std::errc() || r.ptr != text.data() + text.size() || !std::isfinite(v) || v < lo ||
+        v > hi) {
+        std::ostringstream range;
+        range << lo << ".." << hi;
+        return badInput(flag + " '" + text + "': must be a number in " + range.str());
+    }
     return v;
 }
 

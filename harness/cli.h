@@ -24,6 +24,8 @@ private:
 };
 
 Result<int> parseInt(const std::string& flag, const std::string& text, int lo, int hi);
+// A finite number in [lo, hi]; "nan", "inf", "1e999" and trailing text fail.
+Result<double> parseNumber(const std::string& flag, const std::string& text, double lo, double hi);
 std::vector<std::string> splitList(const std::string& text);   // "8,16,32"
 
 // Exit code for an error, as documented in README.md ("Exit codes").

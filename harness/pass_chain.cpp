@@ -85,7 +85,7 @@ Status PassChain::uploadGBuffer(const RunConfig& c) {
 }
 
 Result<std::unique_ptr<PassChain>> PassChain::create(gpu::Backend& gpu, const RunConfig& c,
-                                                     const SourceOverrides& overrides) {
+                                                     const SourceOverrides& overrides, const PlantedSlowdown& plant) {
     std::unique_ptr<PassChain> chain(new PassChain(gpu));
     chain->specs_ = buildPasses(c);
     const int halfW = (c.width + 1) / 2, halfH = (c.height + 1) / 2;
@@ -130,7 +130,9 @@ Result<std::unique_ptr<PassChain>> PassChain::create(gpu::Backend& gpu, const Ru
                 return internal("pass '" + spec.name + "' reads image '" + spec.inputs[i] + "' before any pass writes it");
             pass->binds.push_back({b++, it->second.image, {}, k.inputs[i].sampler});
         }
-        CAVITY_ASSIGN(auto body, kernels::assemble(k, c.stage, overrides, &c.params));
+        const auto planted = plant.find(spec.name);
+        CAVITY_ASSIGN(auto body, kernels::assemble(k, c.stage, overrides, &c.params,
+                                                   planted == plant.end() ? 0 : planted->second));
         const auto layout = kernels::bindingLayout(k, c.stage);
         if (c.stage == gpu::Stage::Compute) {
             for (const auto& out : spec.outputs) pass->binds.push_back({b++, chain->images_[out].image, {}, {}});

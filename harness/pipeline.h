@@ -38,13 +38,16 @@ Result<std::map<std::string, HostImage>> renderImages(gpu::Backend& gpu, const R
 
 // Replacement kernel sources by file name (planted-bug tests).
 using SourceOverrides = std::map<std::string, std::string>;
+// A planted slowdown: dependent FMAs per pixel by pass name (kernels::assemble).
+using PlantedSlowdown = std::map<std::string, int>;
 
 class PassChain {
 public:
     // With an imported G-buffer (c.imported()), c.gbufferImages must be set:
     // its images are uploaded as "position", "normal" and "albedo".
     static Result<std::unique_ptr<PassChain>> create(gpu::Backend& gpu, const RunConfig& c,
-                                                     const SourceOverrides& overrides = {});
+                                                     const SourceOverrides& overrides = {},
+                                                     const PlantedSlowdown& plant = {});
     ~PassChain();
     PassChain(const PassChain&) = delete;
     PassChain& operator=(const PassChain&) = delete;

@@ -1,6 +1,7 @@
 #include "results.h"
 
 #include <chrono>
+#include <cmath>
 #include <ctime>
 #include <filesystem>
 #include <fstream>
@@ -33,6 +34,38 @@ namespace {
 
 json series(const Series& s) { return {{"stats", toJson(s.stats)}, {"samples_ms", s.ms}}; }
 
+// A number JSON can hold: infinity (too few samples for a noise estimate) is null.
+json finite(double x) { return std::isfinite(x) ? json(x) : json(nullptr); }
+
+json timingJson(const TimingOptions& o, const Timing& t) {
+    json warmup = {{"frames", t.warmupFrames}, {"seconds", t.warmupSeconds},
+                   {"criterion", t.steadyChecked ? "steady" : "frames"},
+                   {"steady", t.steadyChecked ? json(t.steady) : json(nullptr)}};
+    return {{"mode", timingModeName(t.mode)},
+            {"mode_requested", timingModeName(o.mode)},
+            {"batch_frames", t.batchFrames},
+            {"warmup", warmup},
+            {"min_frames", o.frames},
+            {"target_noise", o.maxNoise},
+            {"max_seconds", o.maxSeconds},
+            {"stop", t.stop},
+            {"noise", finite(t.noise)},
+            {"seconds", t.seconds},
+            {"rejected_frames", t.rejectedFrames},
+            {"rejected_note", t.rejectedNote}};
+}
+
+json clocksJson(const GpuClockSummary& c) {
+    if (c.source.empty()) return nullptr;
+    return {{"source", c.source},
+            {"device", c.device},
+            {"samples", c.samples},
+            {"sm_mhz", {{"min", c.smMin}, {"median", c.smMedian}, {"max", c.smMax}}},
+            {"mem_mhz", {{"min", c.memMin}, {"median", c.memMedian}, {"max", c.memMax}}},
+            {"moved", c.moved()},
+            {"event_reasons", c.reasonNames()}};
+}
+
 }  // namespace
 
 json toJson(const RunRecord& r) {
@@ -60,7 +93,7 @@ json toJson(const RunRecord& r) {
         {"backend", gpu::apiName(r.config.api)},
         {"device",
          {{"name", r.device.deviceName}, {"driver", r.device.driver}, {"api_version", r.device.apiVersion},
-          {"vendor", r.device.vendor}, {"software_renderer", r.device.softwareRenderer}}},
+          {"vendor", r.device.vendor}, {"software_renderer", r.device.softwareRenderer}, {"uuid", r.device.uuid}}},
         {"config",
          {{"scene", r.config.imported() ? importStem(r.config.gbufferFile) : r.config.scene()},
           {"gbuffer", gbuffer},
@@ -69,7 +102,9 @@ json toJson(const RunRecord& r) {
           {"resolution", r.config.half ? "half" : "full"},
           {"stage", r.config.stage == gpu::Stage::Compute ? "compute" : "fragment"},
           {"api", gpu::apiName(r.config.api)}, {"params", params}}},
-        {"frames", {{"warmup", r.warmup}, {"measured", r.frames}}},
+        {"frames", {{"warmup", r.timing.warmupFrames}, {"measured", int(r.timing.frame.ms.size())}}},
+        {"timing", timingJson(r.timingOptions, r.timing)},
+        {"gpu_clocks", clocksJson(r.timing.clocks)},
         {"clock", r.timing.clock},
         {"clock_note", r.timing.clockNote},
         {"passes", passes},

@@ -20,8 +20,8 @@ constexpr const char* kResultsSchema = "cavity.results/1";
 struct RunRecord {
     RunConfig config;
     gpu::DeviceInfo device;
-    int warmup = 0, frames = 0;
-    Timing timing;
+    TimingOptions timingOptions;      // what was asked for
+    Timing timing;                    // what was measured
     std::vector<PassSpec> passes;
     std::vector<std::pair<int, int>> passSizes;
     std::map<std::string, std::string> shaderPaths;

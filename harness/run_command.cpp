@@ -19,7 +19,8 @@ constexpr const char* kRunUsage =
     "usage: cavity run [--backend gl|vk|all] [--scene S[,S..]] [--kernel K[,K..]] [--samples N[,N..]]\n"
     "                  [--blur R[,R..]] [--resolution full|half[,..]] [--res WxH[,WxH..]]\n"
     "                  [--stage compute|fragment[,..]] [--gbuffer sdf|raster|import[,..]] [--gbuffer-file FILE.exr]\n"
-    "                  [--frames N] [--warmup N] [--device K]\n"
+    "                  [--frames N] [--warmup N] [--timing batch|drained] [--max-noise PCT] [--max-time S]\n"
+    "                  [--device K]\n"
     "                  [--validation] [--out DIR] [--<kernel parameter> VALUE ...]\n";
 
 struct Sweep {
@@ -89,6 +90,14 @@ Result<Sweep> parse(const std::vector<std::string>& argv) {
             CAVITY_ASSIGN(s.options.frames, parseInt(flag, v, 1, 100000));
         } else if (flag == "--warmup") {
             CAVITY_ASSIGN(s.options.warmup, parseInt(flag, v, 0, 10000));
+        } else if (flag == "--timing") {
+            if (v != "batch" && v != "drained") return badInput("--timing " + v + ": must be batch or drained");
+            s.options.mode = v == "batch" ? TimingMode::Batch : TimingMode::Drained;
+        } else if (flag == "--max-noise") {
+            CAVITY_ASSIGN(const double pct, parseNumber(flag, v, 0, 100));
+            s.options.maxNoise = pct / 100;
+        } else if (flag == "--max-time") {
+            CAVITY_ASSIGN(s.options.maxSeconds, parseNumber(flag, v, 0.001, 3600));
         } else if (flag == "--device") {
             CAVITY_ASSIGN(s.backend.deviceIndex, parseInt(flag, v, 0, 64));
         } else if (flag == "--out") s.out = v;
@@ -152,11 +161,25 @@ void printTable(const std::vector<RunRecord>& runs) {
     for (const auto& r : runs) {
         const std::string id = configId(r.config);
         auto row = [&](const std::string& name, const Stats& st) {
-            std::printf("%-52s %-10s %10.3f %10.3f %10.3f %6.1f%%  %s\n", id.c_str(), name.c_str(), st.median, st.min,
-                        st.p90, 100.0 * st.cv, r.timing.clock.c_str());
+            std::printf("%-52s %-10s %10.3f %10.3f %10.3f %6.1f%%  %s/%s\n", id.c_str(), name.c_str(), st.median,
+                        st.min, st.p90, 100.0 * st.cv, r.timing.clock.c_str(), timingModeName(r.timing.mode));
         };
         for (const auto& p : r.timing.passes) row(p.name, p.stats);
         row("frame", r.timing.frame.stats);
+    }
+    for (const auto& r : runs) {
+        const auto& t = r.timing;
+        const std::string id = configId(r.config);
+        if (t.rejectedFrames)
+            std::printf("note: %s: %d frames failed the clock check and were left out (%s)\n", id.c_str(),
+                        t.rejectedFrames, t.rejectedNote.c_str());
+        if (t.steadyChecked && !t.steady)
+            std::printf("note: %s: the frame time was not steady after %.1f s of warm-up\n", id.c_str(),
+                        t.warmupSeconds);
+        if (!t.clocks.source.empty())
+            std::printf("clocks: %s: SM %.0f MHz (%.0f..%.0f), memory %.0f MHz%s\n", id.c_str(), t.clocks.smMedian,
+                        t.clocks.smMin, t.clocks.smMax, t.clocks.memMedian,
+                        t.clocks.moved() ? ": the SM clock moved during the measurement" : "");
     }
     for (const auto& r : runs)
         if (!r.timing.clockNote.empty())

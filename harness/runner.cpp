@@ -22,6 +22,16 @@ Status checkWritableDir(const std::string& flag, const std::string& dir) {
     return {};
 }
 
+TimingOptions timingOptions(const gpu::DeviceInfo& device, const RunOptions& o) {
+    TimingOptions t = defaultTimingOptions(device);
+    t.warmup = o.warmup;
+    t.frames = o.frames;
+    if (o.mode) t.mode = *o.mode;
+    if (o.maxNoise) t.maxNoise = *o.maxNoise;
+    if (o.maxSeconds) t.maxSeconds = *o.maxSeconds;
+    return t;
+}
+
 Result<RunRecord> runConfig(gpu::Backend& gpu, const RunConfig& given, const RunOptions& o) {
     RunConfig c = given;
     if (c.imported() && !c.gbufferImages) {
@@ -32,15 +42,14 @@ Result<RunRecord> runConfig(gpu::Backend& gpu, const RunConfig& given, const Run
     RunRecord r;
     r.config = c;
     r.device = gpu.info();
-    r.warmup = o.warmup;
-    r.frames = o.frames;
     r.passes = chain->passes();
     for (size_t i = 0; i < chain->passCount(); ++i) {
         const bool half = r.passes[i].half;
         r.passSizes.push_back({half ? (c.width + 1) / 2 : c.width, half ? (c.height + 1) / 2 : c.height});
     }
     r.shaderPaths = chain->shaderPaths();
-    CAVITY_ASSIGN(r.timing, measure(gpu, *chain, o.warmup, o.frames));
+    r.timingOptions = timingOptions(gpu.info(), o);
+    CAVITY_ASSIGN(r.timing, measure(gpu, *chain, r.timingOptions, GpuClocks::forDevice(gpu.info())));
     r.debugMessages = gpu.takeDebugMessages();
     if (o.keepImages || o.checkDeterminism) {
         for (const auto& out : userOutputs(c)) {

@@ -5,19 +5,30 @@
 
 #include "pipeline.h"
 #include "results.h"
+#include "timing.h"
+
+#include <optional>
 
 #include <string>
 
 namespace cavity {
 
 struct RunOptions {
-    int warmup = 5;
-    int frames = 50;
+    int warmup = 5;                   // warm-up frames at least
+    int frames = 50;                  // measured frames at least (exactly, with a fixed count)
+    // Unset: the device's default (timing.h: batch, stop on 0.5% noise within
+    // 2 s on a GPU; a fixed count on a software renderer).
+    std::optional<TimingMode> mode;
+    std::optional<double> maxNoise;   // relative; 0: a fixed count of frames
+    std::optional<double> maxSeconds;
     std::string outDir;               // images go to outDir/<config id>/; empty: none written
     SourceOverrides overrides;        // planted-bug tests
     bool keepImages = false;          // RunRecord::pixels
     bool checkDeterminism = false;    // render once more and compare bit for bit
 };
+
+// The timing options runConfig uses on this device.
+TimingOptions timingOptions(const gpu::DeviceInfo& device, const RunOptions& o);
 
 Result<RunRecord> runConfig(gpu::Backend& gpu, const RunConfig& c, const RunOptions& o);
 

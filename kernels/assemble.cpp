@@ -168,7 +168,8 @@ Status expand(const std::string& name, const std::map<std::string, std::string>&
 }  // namespace
 
 Result<gpu::ShaderSource> assemble(const KernelDecl& k, gpu::Stage stage,
-                                   const std::map<std::string, std::string>& overrides, const ParamValues* values) {
+                                   const std::map<std::string, std::string>& overrides, const ParamValues* values,
+                                   int plantedFmas) {
     gpu::ShaderSource src;
     src.name = k.name;
     src.stage = stage;
@@ -206,6 +207,14 @@ Result<gpu::ShaderSource> assemble(const KernelDecl& k, gpu::Stage stage,
     src.glsl = p.str();
     std::set<std::string> seen;
     CAVITY_TRY(expand(k.file, overrides, seen, src.files, src.glsl));
+    // A planted slowdown: a chain of dependent FMAs the compiler cannot fold
+    // (it starts from the pixel and the frame's uniforms) and whose result
+    // reaches a write only if it were negative, which it never is.
+    std::string plant;
+    if (plantedFmas > 0 && !k.outputs.empty())
+        plant = "    float plant_ = float(pixel.x + pixel.y) * frame.invSize.x;\n"
+                "    for (int i = 0; i < " + std::to_string(plantedFmas) + "; ++i) plant_ = fma(plant_, 0.9999, frame.invSize.y);\n"
+                "    if (plant_ < 0.0) write_" + k.outputs[0].name + "(pixel, vec4(plant_));\n";
     // The two thin entry points around the one body.
     src.glsl += "#line 1 0\n";
     if (stage == gpu::Stage::Compute) {
@@ -214,10 +223,10 @@ Result<gpu::ShaderSource> assemble(const KernelDecl& k, gpu::Stage stage,
             "void main() {\n"
             "    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);\n"
             "    if (pixel.x >= frame.size.x || pixel.y >= frame.size.y) return;\n"
-            "    cavity_main(pixel);\n"
+            "    cavity_main(pixel);\n" + plant +
             "}\n";
     } else {
-        src.glsl += "void main() { cavity_main(ivec2(gl_FragCoord.xy)); }\n";
+        src.glsl += "void main() {\n    ivec2 pixel = ivec2(gl_FragCoord.xy);\n    cavity_main(pixel);\n" + plant + "}\n";
     }
     return src;
 }

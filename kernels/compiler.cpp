@@ -4,7 +4,9 @@
 #include <glslang/Public/ShaderLang.h>
 #include <glslang/SPIRV/GlslangToSpv.h>
 
+#include <map>
 #include <mutex>
+#include <tuple>
 #include <regex>
 
 namespace cavity::kernels {
@@ -51,7 +53,33 @@ std::string nameSourceLines(const std::string& log, const std::vector<std::strin
     return out;
 }
 
+namespace {
+
+Result<std::vector<uint32_t>> compileUncached(const gpu::ShaderSource& src, gpu::Api target);
+
+}  // namespace
+
+// Compiled SPIR-V by (API, stage, source text). A benchmark repetition, a
+// camera view and a gate configuration rebuild the same pipelines; glslang
+// takes tens of milliseconds a kernel, during which a GPU sits idle and
+// lowers its clock. Failures are not kept, so their message comes every time.
 Result<std::vector<uint32_t>> compileToSpirv(const gpu::ShaderSource& src, gpu::Api target) {
+    static std::mutex mutex;
+    static std::map<std::tuple<int, int, std::string>, std::vector<uint32_t>> cache;
+    const auto key = std::make_tuple(int(target), int(src.stage), src.glsl);
+    {
+        std::lock_guard<std::mutex> lock(mutex);
+        if (auto it = cache.find(key); it != cache.end()) return it->second;
+    }
+    CAVITY_ASSIGN(auto words, compileUncached(src, target));
+    std::lock_guard<std::mutex> lock(mutex);
+    cache.emplace(key, words);
+    return words;
+}
+
+namespace {
+
+Result<std::vector<uint32_t>> compileUncached(const gpu::ShaderSource& src, gpu::Api target) {
     initOnce();
     const EShLanguage stage = toGlslang(src.stage);
     glslang::TShader shader(stage);
@@ -85,5 +113,7 @@ Result<std::vector<uint32_t>> compileToSpirv(const gpu::ShaderSource& src, gpu::
     if (spirv.empty()) return internal("SPIR-V generation " + who + ": " + logger.getAllMessages());
     return spirv;
 }
+
+}  // namespace
 
 }  // namespace cavity::kernels

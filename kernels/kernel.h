@@ -144,9 +144,12 @@ std::vector<std::byte> packParams(const KernelDecl& k, const ParamValues& values
 // The full translation unit for one stage: preamble + includes + body + entry.
 // `overrides` maps a kernel file name to replacement text (planted-bug tests).
 // With `values`, the kernel's compileTime parameters are also #defined.
+// `plantedFmas` > 0 plants a slowdown (the timing-verdict check,
+// scripts/gpu_verdict.sh): that many dependent FMAs per pixel after the body,
+// whose result is never written, so the images stay bit-identical.
 Result<gpu::ShaderSource> assemble(const KernelDecl& k, gpu::Stage stage,
                                    const std::map<std::string, std::string>& overrides = {},
-                                   const ParamValues* values = nullptr);
+                                   const ParamValues* values = nullptr, int plantedFmas = 0);
 
 // The full-screen-triangle vertex shader used by fragment-stage passes.
 gpu::ShaderSource fullscreenVertex();

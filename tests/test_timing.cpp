@@ -18,7 +18,11 @@ protected:
         auto chain = PassChain::create(gpu(), c);
         EXPECT_TRUE(chain) << chain.error().message;
         if (!chain) return {};
-        auto t = measure(gpu(), **chain, 2, frames);
+        TimingOptions o = defaultTimingOptions(gpu().info());
+        o.warmup = 2;
+        o.frames = frames;
+        o.maxNoise = 0;
+        auto t = measure(gpu(), **chain, o);
         EXPECT_TRUE(t) << t.error().message;
         return t ? *t : cavity::Timing{};
     }

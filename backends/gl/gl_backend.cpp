@@ -181,6 +181,11 @@ Status GlBackend::init(const BackendOptions& options) {
     info_.apiVersion = std::to_string(major) + "." + std::to_string(minor);
     info_.vendor = glString(GL_VENDOR);
     info_.softwareRenderer = isSoftware(info_.deviceName);
+    if (epoxy_has_gl_extension("GL_EXT_memory_object")) {
+        unsigned char uuid[16] = {};
+        glGetUnsignedBytei_vEXT(GL_DEVICE_UUID_EXT, 0, uuid);
+        if (glGetError() == GL_NO_ERROR) info_.uuid = hexUuid(uuid);
+    }
 
     // Lets tests and bug reports exercise the GLSL path on a driver with SPIR-V.
     const char* force = std::getenv("CAVITY_GL_FORCE_GLSL");

@@ -218,7 +218,8 @@ Status createLogicalDevice(Device& d, uint32_t instanceVersion) {
 }
 
 void describe(Device& d) {
-    auto driver = vkStruct<VkPhysicalDeviceDriverProperties>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES);
+    auto id = vkStruct<VkPhysicalDeviceIDProperties>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ID_PROPERTIES);
+    auto driver = vkStruct<VkPhysicalDeviceDriverProperties>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES, &id);
     auto props = vkStruct<VkPhysicalDeviceProperties2>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &driver);
     vkGetPhysicalDeviceProperties2(d.physical, &props);
     d.info.api = "vk";
@@ -227,6 +228,9 @@ void describe(Device& d) {
     d.info.apiVersion = versionString(d.props.apiVersion);
     d.info.vendor = vendorName(d.props.vendorID);
     d.info.softwareRenderer = d.props.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
+    unsigned char uuid[16];
+    std::memcpy(uuid, id.deviceUUID, sizeof uuid);
+    d.info.uuid = hexUuid(uuid);
 }
 
 }  // namespace
