@@ -1,11 +1,14 @@
 // Statistics and configuration ids: plain functions, no GPU.
 #include "config.h"
+#include "mann_whitney.h"
 #include "stats.h"
 #include "timing.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 namespace cavity {
 namespace {
@@ -53,6 +56,99 @@ TEST(ConfigValidation, NamesFlagValueAndRange) {
     ASSERT_FALSE(s.ok());
     EXPECT_EQ(s.error().code, ErrorCode::BadInput);
     EXPECT_EQ(s.error().message, "--samples 300: must be an integer in 1..256 (samples)");
+}
+
+// ---- Mann-Whitney U: p-values against scipy ----
+// Each expected value is what Debian 12's scipy 1.10.1 prints for the call
+// quoted beside it; its method='auto' goes exact when either sample has at
+// most 8 values and nothing is tied (scipy/stats/_mannwhitneyu.py,
+// _mwu_choose_method), as current scipy does.
+
+TEST(MannWhitney, OneSmallSampleIsEnoughForTheExactP) {
+    // mannwhitneyu([0.5, 1.5], [1, 2, ..., 12], alternative='two-sided') -> U = 1.0,
+    // p = 0.04395604395604396 (exact: 2 * 2 / C(14, 2)); method='asymptotic' gives 0.05523425371806383.
+    std::vector<double> twelve;
+    for (int i = 1; i <= 12; ++i) twelve.push_back(i);
+    const auto r = stats::mannWhitneyU({0.5, 1.5}, twelve);
+    EXPECT_TRUE(r.exact);
+    EXPECT_DOUBLE_EQ(r.u, 1.0);
+    EXPECT_NEAR(r.p, 0.04395604395604396, 1e-12);
+    EXPECT_NEAR(stats::mannWhitneyUAsymptotic({0.5, 1.5}, twelve).p, 0.05523425371806383, 1e-12);
+
+    // b = [10.05 + 0.15 * i for i in range(20)]
+    // mannwhitneyu([12.11, 12.51, 12.97], b, alternative='two-sided') -> U = 51.0, p = 0.05985319028797289
+    // (exact; method='asymptotic' gives 0.06129168042631612).
+    std::vector<double> twenty;
+    for (int i = 0; i < 20; ++i) twenty.push_back(10.05 + 0.15 * i);
+    const auto s = stats::mannWhitneyU({12.11, 12.51, 12.97}, twenty);
+    EXPECT_TRUE(s.exact);
+    EXPECT_DOUBLE_EQ(s.u, 51.0);
+    EXPECT_NEAR(s.p, 0.05985319028797289, 1e-12);
+}
+
+TEST(MannWhitney, MatchesScipyOnSmallLargeAndTiedSamples) {
+    // mannwhitneyu([1.1, 2.3, 3.8, 4.2, 5.9], [2.0, 4.5, 6.1, 6.6, 7.3, 8.8, 9.4],
+    //              alternative='two-sided') -> U = 5.0, p = 0.04797979797979798 (exact)
+    const auto small = stats::mannWhitneyU({1.1, 2.3, 3.8, 4.2, 5.9}, {2.0, 4.5, 6.1, 6.6, 7.3, 8.8, 9.4});
+    EXPECT_TRUE(small.exact);
+    EXPECT_DOUBLE_EQ(small.u, 5.0);
+    EXPECT_NEAR(small.p, 0.04797979797979798, 1e-12);
+
+    // mannwhitneyu([1, 2, 2, 3], [2, 3, 3, 4, 5], alternative='two-sided') -> U = 3.0,
+    // p = 0.09934224785346528 (ties: asymptotic, tie- and continuity-corrected)
+    const auto tied = stats::mannWhitneyU({1, 2, 2, 3}, {2, 3, 3, 4, 5});
+    EXPECT_FALSE(tied.exact);
+    EXPECT_DOUBLE_EQ(tied.u, 3.0);
+    EXPECT_NEAR(tied.p, 0.09934224785346528, 1e-12);
+
+    // mannwhitneyu(a, b, alternative='two-sided') with the 12 and 15 values below -> U = 38.0,
+    // p = 0.011972878389045894 (both > 8: asymptotic; method='exact' gives 0.010208434720482102)
+    const std::vector<double> a = {1.2, 3.4, 2.2, 5.6, 4.1, 3.3, 2.9, 4.8, 3.9, 2.5, 1.8, 4.4};
+    const std::vector<double> b = {3.1, 4.9, 5.2, 3.8, 6.3, 4.7, 5.5, 2.6, 4.0, 5.9, 6.8, 3.6, 4.3, 5.0, 6.1};
+    const auto large = stats::mannWhitneyU(a, b);
+    EXPECT_FALSE(large.exact);
+    EXPECT_DOUBLE_EQ(large.u, 38.0);
+    EXPECT_NEAR(large.p, 0.011972878389045894, 1e-12);
+    EXPECT_NEAR(stats::mannWhitneyUExact(a, b).p, 0.010208434720482102, 1e-12);
+}
+
+// The null distribution of U by brute force: every way to choose which n1 of
+// the n1 + n2 ranks belong to the first sample.
+std::vector<double> bruteUCounts(int n1, int n2) {
+    std::vector<double> counts(size_t(n1) * size_t(n2) + 1, 0.0);
+    const int n = n1 + n2;
+    for (uint32_t mask = 0; mask < (1u << n); ++mask) {
+        if (__builtin_popcount(mask) != n1) continue;
+        // U1 = pairs (first-sample rank above second-sample rank).
+        int u = 0, seenSecond = 0;
+        for (int rank = 0; rank < n; ++rank) {
+            if (mask >> rank & 1u) u += seenSecond;
+            else ++seenSecond;
+        }
+        counts[size_t(u)] += 1;
+    }
+    return counts;
+}
+
+TEST(MannWhitney, UCountsMatchEnumeration) {
+    for (auto [n1, n2] : std::vector<std::pair<int, int>>{{1, 1}, {1, 6}, {2, 2}, {3, 4}, {4, 3}, {5, 7}, {8, 8}, {2, 12}})
+        EXPECT_EQ(stats::uCounts(n1, n2), bruteUCounts(n1, n2)) << n1 << " x " << n2;
+}
+
+TEST(MannWhitney, ExactPStaysCheapWithOneLongSample) {
+    // 3 repetitions against 20,000 frames: exact by scipy's rule. The counts
+    // must add up to C(20003, 3) and the sample entirely above the other must
+    // get the smallest p there is, 2 / C(20003, 3).
+    const auto counts = stats::uCounts(3, 20000);
+    double total = 0;
+    for (double c : counts) total += c;
+    const double choose = 20003.0 * 20002.0 * 20001.0 / 6.0;
+    EXPECT_NEAR(total / choose, 1.0, 1e-12);
+    std::vector<double> frames;
+    for (int i = 0; i < 20000; ++i) frames.push_back(1.0 + i * 1e-5);
+    const auto r = stats::mannWhitneyU({5, 6, 7}, frames);
+    EXPECT_TRUE(r.exact);
+    EXPECT_NEAR(r.p / (2 / choose), 1.0, 1e-9);
 }
 
 }  // namespace
