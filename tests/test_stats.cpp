@@ -1,5 +1,6 @@
 // Statistics and configuration ids: plain functions, no GPU.
 #include "config.h"
+#include "hodges_lehmann.h"
 #include "mann_whitney.h"
 #include "stats.h"
 #include "timing.h"
@@ -149,6 +150,129 @@ TEST(MannWhitney, ExactPStaysCheapWithOneLongSample) {
     const auto r = stats::mannWhitneyU({5, 6, 7}, frames);
     EXPECT_TRUE(r.exact);
     EXPECT_NEAR(r.p / (2 / choose), 1.0, 1e-9);
+}
+
+// ---- Hodges-Lehmann shift and Moses' interval ----
+
+std::vector<double> allDifferences(const std::vector<double>& before, const std::vector<double>& after) {
+    std::vector<double> d;
+    for (double y : after)
+        for (double x : before) d.push_back(y - x);
+    std::sort(d.begin(), d.end());
+    return d;
+}
+
+// A deterministic generator, so that a failure reproduces everywhere.
+struct Lcg {
+    uint64_t state;
+    double uniform() {   // in (0, 1)
+        state = state * 6364136223846793005ull + 1442695040888963407ull;
+        return (double(state >> 11) + 0.5) / 9007199254740992.0;
+    }
+};
+
+TEST(HodgesLehmann, EveryOrderStatisticMatchesTheSortedDifferences) {
+    Lcg g{7};
+    for (int trial = 0; trial < 40; ++trial) {
+        const size_t m = 1 + size_t(g.uniform() * 12), n = 1 + size_t(g.uniform() * 15);
+        // Every third trial draws from a coarse grid, for ties and zero differences.
+        const bool coarse = trial % 3 == 0;
+        auto draw = [&] { return coarse ? std::round(g.uniform() * 5) * 0.25 : 0.3 + g.uniform() * g.uniform(); };
+        std::vector<double> before(m), after(n);
+        for (auto& v : before) v = draw();
+        for (auto& v : after) v = draw();
+        const auto d = allDifferences(before, after);
+        std::vector<double> sb = before, sa = after;
+        std::sort(sb.begin(), sb.end());
+        std::sort(sa.begin(), sa.end());
+        for (size_t k = 1; k <= d.size(); ++k)
+            ASSERT_EQ(stats::kthPairwiseDifference(sb, sa, k), d[k - 1]) << "trial " << trial << " k " << k;
+        const size_t mn = d.size();
+        const double median = mn % 2 ? d[mn / 2] : 0.5 * (d[mn / 2 - 1] + d[mn / 2]);
+        EXPECT_EQ(stats::hodgesLehmann(before, after, 0.05).shift, median) << "trial " << trial;
+    }
+}
+
+TEST(HodgesLehmann, ExactIntervalMatchesR) {
+    // R 4.2.2: x <- c(1.1, 2.3, 3.8, 4.2, 5.9); y <- c(2.0, 4.5, 6.1, 6.6, 7.3, 8.8, 9.4)
+    // wilcox.test(y, x, conf.int = TRUE): difference in location 3.0999999999999996,
+    // conf.int 0.19999999999999929 5.60000000000000053; with conf.level = 0.9: 0.3 5.5.
+    const std::vector<double> x = {1.1, 2.3, 3.8, 4.2, 5.9}, y = {2.0, 4.5, 6.1, 6.6, 7.3, 8.8, 9.4};
+    const auto r = stats::hodgesLehmann(x, y, 0.05);
+    EXPECT_TRUE(r.exact);
+    EXPECT_DOUBLE_EQ(r.shift, 3.0999999999999996);
+    EXPECT_DOUBLE_EQ(r.low, 0.19999999999999929);
+    EXPECT_DOUBLE_EQ(r.high, 5.60000000000000053);
+    EXPECT_GE(r.confidence, 0.95);
+    const auto r90 = stats::hodgesLehmann(x, y, 0.10);
+    EXPECT_DOUBLE_EQ(r90.low, 0.3);
+    EXPECT_DOUBLE_EQ(r90.high, 5.5);
+
+    // x <- c(12.11, 12.51, 12.97); y <- 10.05 + 0.15 * (0:19)
+    // wilcox.test(y, x, conf.int = TRUE): -1.0599999999999987, conf.int -2.159999999999998366 0.040000000000000924
+    std::vector<double> frames;
+    for (int i = 0; i < 20; ++i) frames.push_back(10.05 + 0.15 * i);
+    const auto s = stats::hodgesLehmann({12.11, 12.51, 12.97}, frames, 0.05);
+    EXPECT_TRUE(s.exact);
+    EXPECT_DOUBLE_EQ(s.shift, -1.0599999999999987);
+    EXPECT_DOUBLE_EQ(s.low, -2.159999999999998366);
+    EXPECT_DOUBLE_EQ(s.high, 0.040000000000000924);
+
+    // wilcox.test(c(3, 4), c(1, 2), conf.int = TRUE): 2, conf.int 1 3 with conf.level
+    // 0.66666666666666674 ("Requested conf.level not achievable").
+    const auto tiny = stats::hodgesLehmann({1, 2}, {3, 4}, 0.05);
+    EXPECT_DOUBLE_EQ(tiny.shift, 2);
+    EXPECT_DOUBLE_EQ(tiny.low, 1);
+    EXPECT_DOUBLE_EQ(tiny.high, 3);
+    EXPECT_NEAR(tiny.confidence, 2.0 / 3.0, 1e-12);
+}
+
+// How often the interval holds the true shift, over many pairs of samples
+// drawn from one skewed distribution (frame times have a long right tail)
+// with the second moved by `shift`.
+double coverage(size_t m, size_t n, double shift, double alpha, bool quantized, bool& exactSeen) {
+    Lcg g{12345};
+    // A long right tail, as frame times have; quantized, it ties as timestamps do.
+    // The shift is added before rounding, so on the grid it moves the law exactly.
+    auto draw = [&](double by) {
+        const double t = 1.0 - 0.2 * std::log(g.uniform()) + by;
+        return quantized ? std::round(t * 20) / 20 : t;
+    };
+    int hits = 0;
+    const int trials = 2000;
+    for (int trial = 0; trial < trials; ++trial) {
+        std::vector<double> before(m), after(n);
+        for (auto& v : before) v = draw(0);
+        for (auto& v : after) v = draw(shift);
+        const auto r = stats::hodgesLehmann(before, after, alpha);
+        exactSeen = exactSeen || r.exact;
+        hits += r.low <= shift && shift <= r.high;
+    }
+    return double(hits) / trials;
+}
+
+TEST(HodgesLehmann, IntervalCoversTheTrueShiftAsOftenAsItSays) {
+    bool exact = false;
+    // Normal approximation, continuous data: close to the nominal 95%.
+    const double normal = coverage(20, 25, 0.05, 0.05, false, exact);
+    EXPECT_FALSE(exact);
+    EXPECT_GT(normal, 0.93);
+    EXPECT_LT(normal, 0.97);
+    // Exact quantiles (5 against 7): at least the nominal level, as the step
+    // function of U allows (the step just above 95% there is 95.2%).
+    const double small = coverage(5, 7, 0.05, 0.05, false, exact);
+    EXPECT_TRUE(exact);
+    EXPECT_GT(small, 0.935);
+    // Ties (a 0.05 grid of a unit near 1): the interval's ends are differences
+    // on the grid, so it can only be wider than without ties.
+    exact = false;
+    const double tied = coverage(30, 30, 0.10, 0.05, true, exact);
+    EXPECT_FALSE(exact);
+    EXPECT_GT(tied, 0.93);
+    // At 90% the interval is narrower and covers less.
+    const double ninety = coverage(20, 25, 0.05, 0.10, false, exact);
+    EXPECT_GT(ninety, 0.87);
+    EXPECT_LT(ninety, 0.93);
 }
 
 }  // namespace
