@@ -1,109 +1,97 @@
-// `cavity compare old.json new.json`: per configuration and pass, old and
-// new median, the change, and a verdict from a two-sided Mann-Whitney U test
-// on the per-frame samples, as Google Benchmark's compare.py does.
+// `cavity compare OLD NEW`: per configuration and pass, both medians, the
+// Hodges-Lehmann change with its interval, the Mann-Whitney U p-value and a
+// verdict (compare_verdict.h). OLD and NEW are each a results.json or the
+// Google Benchmark JSON of cavity_bench, in any pairing.
 #include "cli.h"
-#include "mann_whitney.h"
+#include "compare_report.h"
+#include "results.h"
 
-#include <nlohmann/json.hpp>
-
+#include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <fstream>
+#include <cstdlib>
 #include <iostream>
-#include <map>
 
 namespace cavity::cli {
 
 namespace {
 
-using nlohmann::json;
+constexpr const char* kCompareUsage =
+    "usage: cavity compare OLD.json NEW.json [--alpha 0.05] [--min-change 2] [--json FILE] [--fail-on-slower]\n"
+    "  OLD, NEW          a results.json (cavity run) or Google Benchmark JSON (cavity_bench --benchmark_out)\n"
+    "  --alpha A         significance of the U test, and 1 - A the confidence of the interval; in (0, 1)\n"
+    "  --min-change P    smallest change, in percent of the old median, called slower or faster; >= 0\n"
+    "  --json FILE       also write the rows as cavity.compare/1 JSON\n"
+    "  --fail-on-slower  exit 1 when any row is slower\n";
 
-struct PassSamples {
-    double median = 0;
-    std::vector<double> samples;
-    std::string clock;
-};
+int fail(const std::string& message) {
+    std::cerr << "cavity compare: " << message << "\n";
+    return 2;
+}
 
-Result<std::map<std::string, PassSamples>> load(const std::string& path) {
-    std::ifstream f(path);
-    if (!f) return badInput(path + ": cannot be read");
-    json doc;
-    try {
-        doc = json::parse(f);
-    } catch (const json::exception& e) {
-        return badInput(path + ": does not parse: " + e.what());
-    }
-    if (!doc.is_object() || doc.value("schema", "") != "cavity.results/1")
-        return badInput(path + ": not a cavity results.json (schema cavity.results/1)");
-    std::map<std::string, PassSamples> out;
-    try {
-        for (const auto& r : doc.at("runs")) {
-            const std::string id = r.at("id");
-            for (const auto& p : r.at("passes"))
-                out[id + " " + p.at("name").get<std::string>()] = {p.at("stats").at("median_ms"),
-                                                                    p.at("samples_ms").get<std::vector<double>>(),
-                                                                    r.at("clock")};
-            out[id + " frame"] = {r.at("frame").at("stats").at("median_ms"),
-                                  r.at("frame").at("samples_ms").get<std::vector<double>>(), r.at("clock")};
-        }
-    } catch (const json::exception& e) {
-        return badInput(path + ": malformed results: " + e.what());
-    }
-    return out;
+Result<double> number(const std::string& flag, const std::string& text, double lo, double hi, bool openLo,
+                      const std::string& allowed) {
+    char* end = nullptr;
+    const double x = std::strtod(text.c_str(), &end);
+    const bool ok = !text.empty() && end && *end == '\0' && std::isfinite(x) && (openLo ? x > lo : x >= lo) && x < hi;
+    if (!ok) return badInput(flag + " " + text + ": must be " + allowed);
+    return x;
 }
 
 }  // namespace
 
 int compareCommand(const std::vector<std::string>& argv) {
     std::vector<std::string> files;
-    double alpha = 0.05, minChange = 2.0;
+    CompareThresholds t;
+    std::string jsonPath;
+    bool failOnSlower = false;
     Args a(argv);
     while (!a.done()) {
         const std::string flag = a.next();
-        if (flag == "--alpha" || flag == "--min-change") {
+        if (flag == "--help" || flag == "-h") {
+            std::cout << kCompareUsage;
+            return 0;
+        }
+        if (flag == "--alpha" || flag == "--min-change" || flag == "--json") {
             auto v = a.value(flag);
-            char* end = nullptr;
-            const double x = v ? std::strtod(v->c_str(), &end) : NAN;
-            const bool ok = v && end && *end == '\0' && std::isfinite(x) &&
-                            (flag == "--alpha" ? (x > 0 && x < 1) : (x >= 0));
-            if (!ok) {
-                std::cerr << "cavity compare: " << flag << " " << (v ? *v : "") << ": must be "
-                          << (flag == "--alpha" ? "a number in (0, 1)" : "a percentage >= 0") << "\n";
-                return 2;
+            if (!v) return fail(v.error().message);
+            if (flag == "--json") {
+                if (v->empty()) return fail("--json: missing value");
+                jsonPath = *v;
+                continue;
             }
-            (flag == "--alpha" ? alpha : minChange) = x;
-        } else if (flag.rfind("--", 0) == 0) {
-            std::cerr << "cavity compare: " << flag << ": unknown flag\n";
-            return 2;
-        } else files.push_back(flag);
+            auto x = flag == "--alpha" ? number(flag, *v, 0, 1, true, "a number in (0, 1)")
+                                       : number(flag, *v, 0, HUGE_VAL, false, "a percentage >= 0");
+            if (!x) return fail(x.error().message);
+            (flag == "--alpha" ? t.alpha : t.minChangePct) = *x;
+        } else if (flag == "--fail-on-slower") {
+            failOnSlower = true;
+        } else if (flag.rfind("-", 0) == 0 && flag.size() > 1) {
+            return fail(flag + ": unknown flag (see cavity compare --help)");
+        } else {
+            files.push_back(flag);
+        }
     }
-    if (files.size() != 2) {
-        std::cerr << "cavity compare: usage: cavity compare OLD.json NEW.json [--alpha 0.05] [--min-change 2]\n";
-        return 2;
+    if (files.size() != 2)
+        return fail("need two files, OLD.json NEW.json (have " + std::to_string(files.size()) +
+                    "; see cavity compare --help)");
+    auto before = loadSampleSets(files[0]);
+    if (!before) return fail(before.error().message);
+    auto after = loadSampleSets(files[1]);
+    if (!after) return fail(after.error().message);
+
+    const auto rows = compareAll(*before, *after, t);
+    // The JSON first: if it cannot be written the command fails before it
+    // has printed a table that looks like success.
+    if (!jsonPath.empty()) {
+        if (auto s = writeJson(jsonPath, compareJson(rows, *before, *after, t)); !s) {
+            if (s.error().code == ErrorCode::BadInput) return fail("--json " + jsonPath + ": cannot be written");
+            std::cerr << "cavity compare: --json " << s.error().message << "\n";
+            return exitCode(s.error());
+        }
     }
-    auto oldRuns = load(files[0]);
-    if (!oldRuns) return std::cerr << "cavity compare: " << oldRuns.error().message << "\n", 2;
-    auto newRuns = load(files[1]);
-    if (!newRuns) return std::cerr << "cavity compare: " << newRuns.error().message << "\n", 2;
-    std::printf("%-62s %10s %10s %8s %9s  %s\n", "configuration pass", "old ms", "new ms", "change", "U-test p",
-                "verdict");
-    int slower = 0;
-    for (const auto& [key, o] : *oldRuns) {
-        auto it = newRuns->find(key);
-        if (it == newRuns->end()) continue;
-        const auto& n = it->second;
-        const double change = o.median > 0 ? 100.0 * (n.median - o.median) / o.median : 0.0;
-        const auto u = stats::mannWhitneyU(o.samples, n.samples);
-        const bool significant = u.p < alpha && std::fabs(change) >= minChange;
-        const char* verdict = !significant ? "same" : change > 0 ? "SLOWER" : "faster";
-        slower += significant && change > 0;
-        std::printf("%-62s %10.4f %10.4f %+7.1f%% %9.4f  %s%s\n", key.c_str(), o.median, n.median, change, u.p, verdict,
-                    o.clock != n.clock ? " (clocks differ)" : "");
-    }
-    for (const auto& [key, n] : *newRuns)
-        if (!oldRuns->count(key)) std::printf("%-62s %10s %10.4f %8s %9s  new\n", key.c_str(), "-", n.median, "", "");
-    std::printf("\n%d significantly slower (p < %g and change >= %g%%)\n", slower, alpha, minChange);
-    return 0;
+    std::cout << compareTable(rows, *before, *after, t);
+    const bool anySlower = std::any_of(rows.begin(), rows.end(), [](const auto& r) { return r.verdict == "slower"; });
+    return failOnSlower && anySlower ? 1 : 0;
 }
 
 }  // namespace cavity::cli

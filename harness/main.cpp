@@ -14,7 +14,7 @@ constexpr const char* kUsage =
     "  gate       run a matrix against baselines and budgets; junit.xml, summary.md, index.html\n"
     "  gate merge join shard outputs into one verdict\n"
     "  baselines update   accept new images as baselines\n"
-    "  compare    compare two results.json files pass by pass (Mann-Whitney U)\n"
+    "  compare    two runs (results.json or cavity_bench JSON) pass by pass: change, interval, verdict\n"
     "  quality    each AO kernel's mean absolute error against the ray-traced ground truth\n";
 
 }  // namespace

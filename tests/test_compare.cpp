@@ -1,0 +1,397 @@
+// `cavity compare` as a pull request meets it: two runs with a known change,
+// in both file formats, and the verdicts, intervals, exit codes and
+// one-line errors that come out. No GPU: every input is fabricated here.
+#include "json_file.h"
+#include "sample_sets.h"
+
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <string>
+
+#include <sys/wait.h>
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+struct Outcome {
+    int code = -1;
+    std::string output;   // stdout and stderr
+};
+
+Outcome cavity(const std::string& args) {
+    const std::string cmd = std::string(CAVITY_EXE) + " " + args + " 2>&1";
+    Outcome o;
+    FILE* p = popen(cmd.c_str(), "r");
+    if (!p) return o;
+    std::array<char, 4096> buf;
+    size_t n;
+    while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) o.output.append(buf.data(), n);
+    const int status = pclose(p);
+    o.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return o;
+}
+
+// Deterministic noise in [-1, 1), so that every run of the test sees the same samples.
+struct Noise {
+    uint64_t state;
+    double next() {
+        state = state * 6364136223846793005ull + 1442695040888963407ull;
+        return double(state >> 11) / 4503599627370496.0 - 1.0;
+    }
+};
+
+// One configuration of a fabricated run: per repetition (or frame), each
+// pass's time and the clock that took it.
+struct FakeConfig {
+    std::string id;
+    std::map<std::string, std::vector<double>> passMs;
+    std::vector<std::string> clocks;   // one per repetition
+};
+
+// Base times of the fabricated alchemy pipeline, ms.
+const std::map<std::string, double> kBase = {{"ao", 0.6}, {"blur", 0.3}, {"composite", 0.1}};
+const std::string kId = "corner/alchemy/n16/b4/full/1920x1080/vk/compute";
+const std::string kOtherId = "slats/alchemy/n16/b4/full/1920x1080/vk/compute";
+
+// `count` samples of each pass with +-1% noise from `seed`, `aoShift` ms added to the AO pass.
+FakeConfig fakeConfig(const std::string& id, size_t count, uint64_t seed, double aoShift,
+                      const std::string& clock = "gpu-timestamp") {
+    FakeConfig c{id, {}, std::vector<std::string>(count, clock)};
+    Noise noise{seed};
+    for (const auto& [pass, base] : kBase)
+        for (size_t i = 0; i < count; ++i)
+            c.passMs[pass].push_back(base * (1 + 0.01 * noise.next()) + (pass == "ao" ? aoShift : 0));
+    return c;
+}
+
+double pipelineMs(const FakeConfig& c, size_t rep) {
+    double sum = 0;
+    for (const auto& [pass, ms] : c.passMs) sum += ms[rep];
+    return sum;
+}
+
+// Google Benchmark JSON as cavity_bench writes it with --benchmark_repetitions:
+// the iteration entries (real_time in microseconds here, to exercise the
+// unit), then the mean, median, stddev and cv aggregates, whose constant
+// counters are 0/0 and come out as a bare NaN.
+std::string benchmarkJson(const std::vector<FakeConfig>& configs, bool withErrorAndMirrors = false) {
+    json benchmarks = json::array();
+    for (const auto& c : configs) {
+        const std::string name = c.id + "/iterations:50/manual_time";
+        const size_t reps = c.clocks.size();
+        auto entry = [&](const std::string& entryName, const std::string& runType) {
+            return json{{"name", entryName},         {"family_index", 0}, {"per_family_instance_index", 0},
+                        {"run_name", name},          {"run_type", runType}, {"repetitions", reps},
+                        {"threads", 1},              {"iterations", 50},  {"time_unit", "us"},
+                        {"width", 1920.0},           {"height", 1080.0},  {"samples", 16.0}};
+        };
+        for (size_t r = 0; r < reps; ++r) {
+            json e = entry(name, "iteration");
+            e["repetition_index"] = r;
+            e["real_time"] = 1000.0 * pipelineMs(c, r);
+            e["cpu_time"] = 1300.0;
+            for (const auto& [pass, ms] : c.passMs) e["pass_" + pass + "_ms"] = ms[r];
+            e["label"] = "clock=" + c.clocks[r] + (c.clocks[r] == "wall" ? " (timestamps do not bracket the work)"
+                                                                          : " mode=batch");
+            benchmarks.push_back(e);
+            if (withErrorAndMirrors)   // cavity_bench's per-pass mirror for compare.py: same numbers again
+                for (const auto& [pass, ms] : c.passMs) {
+                    json m = e;
+                    m["name"] = m["run_name"] = c.id + "@" + pass + "/iterations:50/manual_time";
+                    m["real_time"] = 1000.0 * ms[r];
+                    benchmarks.push_back(m);
+                }
+        }
+        for (const char* aggregate : {"mean", "median", "stddev", "cv"}) {
+            json e = entry(name + "_" + aggregate, "aggregate");
+            e["aggregate_name"] = aggregate;
+            e["real_time"] = 1.0;
+            const std::string a = aggregate;
+            e["samples"] = a == "cv" ? json("@NAN@") : a == "stddev" ? json("@INF@") : json(16.0);
+            e["label"] = "clock=" + c.clocks[0];
+            benchmarks.push_back(e);
+        }
+    }
+    if (withErrorAndMirrors)
+        benchmarks.push_back({{"name", kOtherId + "/iterations:50/manual_time"},
+                              {"run_name", kOtherId + "/iterations:50/manual_time"},
+                              {"run_type", "iteration"},
+                              {"error_occurred", true},
+                              {"error_message", "vkCreateImage: VK_ERROR_OUT_OF_DEVICE_MEMORY"},
+                              {"real_time", 0.0},
+                              {"time_unit", "us"}});
+    const json doc = {{"context", {{"date", "2026-12-01T10:00:00+00:00"}, {"cavity_sweep", "gpu"}}},
+                      {"benchmarks", benchmarks}};
+    std::string text = doc.dump(2);
+    // Google Benchmark's own spelling of 0/0 and of an overflow.
+    for (auto [from, to] : {std::pair<std::string, std::string>{"\"@NAN@\"", "NaN"}, {"\"@INF@\"", "Infinity"}})
+        for (size_t at; (at = text.find(from)) != std::string::npos;) text.replace(at, from.size(), to);
+    return text;
+}
+
+// results.json (cavity.results/1) with one sample per frame.
+std::string resultsJson(const std::vector<FakeConfig>& configs) {
+    json runs = json::array();
+    for (const auto& c : configs) {
+        json passes = json::array();
+        std::vector<double> frame;
+        for (size_t r = 0; r < c.clocks.size(); ++r) frame.push_back(0.05 + pipelineMs(c, r));
+        for (const char* pass : {"gbuffer", "ao", "blur", "composite"}) {
+            const auto it = c.passMs.find(pass);
+            passes.push_back({{"name", pass},
+                              {"samples_ms", it == c.passMs.end() ? std::vector<double>(c.clocks.size(), 0.05)
+                                                                  : it->second},
+                              {"stats", {{"median_ms", 0.0}}}});
+        }
+        runs.push_back({{"id", c.id}, {"backend", "vk"}, {"clock", c.clocks[0]}, {"passes", passes},
+                        {"frame", {{"samples_ms", frame}, {"stats", {{"median_ms", 0.0}}}}}});
+    }
+    return json{{"schema", "cavity.results/1"}, {"runs", runs}}.dump(2);
+}
+
+class Compare : public ::testing::Test {
+protected:
+    void SetUp() override {
+        dir = fs::temp_directory_path() / ("cavity-compare-" + std::to_string(::getpid()) + "-" +
+                                           ::testing::UnitTest::GetInstance()->current_test_info()->name());
+        fs::remove_all(dir);
+        fs::create_directories(dir);
+    }
+    void TearDown() override { fs::remove_all(dir); }
+    std::string write(const std::string& name, const std::string& text) {
+        std::ofstream(dir / name) << text;
+        return (dir / name).string();
+    }
+    json rowsOf(const std::string& jsonPath) {
+        std::ifstream f(jsonPath);
+        const json doc = json::parse(f);
+        EXPECT_EQ(doc["schema"], "cavity.compare/1");
+        return doc["rows"];
+    }
+    static const json& row(const json& rows, const std::string& id, const std::string& pass) {
+        for (const auto& r : rows)
+            if (r["id"] == id && r["pass"] == pass) return r;
+        static const json none;
+        ADD_FAILURE() << "no row " << id << " " << pass;
+        return none;
+    }
+    fs::path dir;
+};
+
+// ---- reading the files ----
+
+TEST(CompareInput, NonFiniteTokensBecomeNullOutsideStrings) {
+    EXPECT_EQ(cavity::nullNonFiniteTokens(R"({"cv": NaN, "a": -Infinity, "b": inf, "c": -inf, "d": [Infinity,nan]})"),
+              R"({"cv": null, "a": null, "b": null, "c": null, "d": [null,null]})");
+    // Inside strings, and as parts of other words, nothing changes.
+    const std::string kept = R"({"label": "NaN Infinity \" inf", "infinity_count": 1e5, "x": null, "nanite": true})";
+    EXPECT_EQ(cavity::nullNonFiniteTokens(kept), kept);
+}
+
+TEST(CompareInput, ConfigurationIdAndClockFromTheBenchmarkEntry) {
+    EXPECT_EQ(cavity::configurationIdOf(kId + "/iterations:50/manual_time"), kId);
+    EXPECT_EQ(cavity::configurationIdOf(kId + "/min_time:0.500/repeats:5/threads:1/real_time"), kId);
+    EXPECT_EQ(cavity::configurationIdOf(kId), kId);
+    EXPECT_EQ(cavity::clockOfLabel("clock=gpu-timestamp mode=batch"), "gpu-timestamp");
+    EXPECT_EQ(cavity::clockOfLabel("clock=wall (timestamps do not bracket the work)"), "wall");
+    EXPECT_EQ(cavity::clockOfLabel("mode=batch clock=wall"), "wall");
+    EXPECT_EQ(cavity::clockOfLabel(""), "unknown");
+}
+
+TEST_F(Compare, BenchmarkJsonGivesOneSamplePerRepetitionInMilliseconds) {
+    const auto c = fakeConfig(kId, 6, 1, 0);
+    const auto sets = cavity::loadSampleSets(write("bench.json", benchmarkJson({c}, true)));
+    ASSERT_TRUE(sets.ok()) << sets.error().message;
+    EXPECT_EQ(sets->format, "google-benchmark");
+    EXPECT_EQ(sets->skippedErrors, 1);
+    EXPECT_EQ(sets->skippedMirrors, 6 * 3);
+    const auto& pipeline = sets->series.at({kId, "pipeline"});
+    ASSERT_EQ(pipeline.ms.size(), 6u);   // the aggregates are not samples
+    EXPECT_NEAR(pipeline.ms[2], pipelineMs(c, 2), 1e-12);
+    EXPECT_EQ(pipeline.clock, "gpu-timestamp");
+    EXPECT_EQ(sets->series.at({kId, "ao"}).ms, c.passMs.at("ao"));
+    EXPECT_EQ(sets->series.size(), 4u);   // pipeline and three passes; no series from the errored entry
+}
+
+// ---- the verdicts ----
+
+TEST_F(Compare, KnownShiftIsSlowerAndTheRestIsSame) {
+    // Ten repetitions each; the new run's AO pass is 5% slower (0.03 of 0.6 ms),
+    // blur is the very same numbers, composite is fresh noise around the same time.
+    const auto before = fakeConfig(kId, 10, 1, 0);
+    auto after = fakeConfig(kId, 10, 2, 0.03);
+    after.passMs["blur"] = before.passMs.at("blur");
+    const std::string o = write("old.json", benchmarkJson({before}, true));
+    const std::string n = write("new.json", benchmarkJson({after}));
+    const std::string out = (dir / "verdicts.json").string();
+    const Outcome r = cavity("compare " + o + " " + n + " --json " + out);
+    ASSERT_EQ(r.code, 0) << r.output;   // slower, but not asked to fail on it
+    const json rows = rowsOf(out);
+    ASSERT_EQ(rows.size(), 4u);
+
+    const json& ao = row(rows, kId, "ao");
+    EXPECT_EQ(ao["verdict"], "slower") << ao.dump();
+    EXPECT_EQ(ao["n_old"], 10);
+    EXPECT_EQ(ao["n_new"], 10);
+    EXPECT_LT(ao["p"].get<double>(), 0.001);
+    EXPECT_EQ(ao["method"], "asymptotic");
+    // The interval holds the true shift, in ms and as a share of the old median.
+    EXPECT_LE(ao["ci_low_ms"].get<double>(), 0.03);
+    EXPECT_GE(ao["ci_high_ms"].get<double>(), 0.03);
+    const double truePct = 100 * 0.03 / ao["old_median_ms"].get<double>();
+    EXPECT_LE(ao["ci_low_pct"].get<double>(), truePct);
+    EXPECT_GE(ao["ci_high_pct"].get<double>(), truePct);
+    EXPECT_NEAR(ao["change_pct"].get<double>(), 5.0, 1.0);
+    EXPECT_GT(ao["ci_low_pct"].get<double>(), 0);
+
+    // The pipeline carries the same 0.03 ms over 1.0 ms: 3%, over --min-change 2.
+    EXPECT_EQ(row(rows, kId, "pipeline")["verdict"], "slower");
+    const json& blur = row(rows, kId, "blur");
+    EXPECT_EQ(blur["verdict"], "same");
+    EXPECT_EQ(blur["shift_ms"].get<double>(), 0.0);
+    EXPECT_NEAR(blur["p"].get<double>(), 1.0, 1e-12);
+    EXPECT_EQ(row(rows, kId, "composite")["verdict"], "same");
+
+    // The table: one line per row, every column lined up under its header.
+    EXPECT_NE(r.output.find("1 errored entry"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("2 slower, 0 faster, 2 same"), std::string::npos) << r.output;
+    const size_t header = r.output.find("\nconfiguration") + 1;
+    ASSERT_NE(header, 0u) << r.output;
+    const size_t verdictColumn = r.output.find("verdict", header) - header;
+    size_t lines = 0;
+    for (size_t at = r.output.find(kId); at != std::string::npos; at = r.output.find(kId, at + 1), ++lines) {
+        const size_t lineStart = r.output.rfind('\n', at) + 1;
+        const std::string line = r.output.substr(lineStart, r.output.find('\n', at) - lineStart);
+        EXPECT_GE(line.size(), verdictColumn) << line;
+        const std::string verdict = line.substr(verdictColumn);
+        EXPECT_TRUE(verdict == "slower" || verdict == "same") << "'" << line << "'";
+    }
+    EXPECT_EQ(lines, 4u) << r.output;
+
+    // And a pull request can gate on it.
+    EXPECT_EQ(cavity("compare " + o + " " + n + " --fail-on-slower").code, 1);
+    EXPECT_EQ(cavity("compare " + o + " " + o + " --fail-on-slower").code, 0);
+    // A faster change is symmetric: swap the files.
+    const Outcome back = cavity("compare " + n + " " + o + " --json " + out + " --fail-on-slower");
+    EXPECT_EQ(back.code, 0) << back.output;
+    EXPECT_EQ(row(rowsOf(out), kId, "ao")["verdict"], "faster");
+    // The same shift under a --min-change of 10% is not worth a verdict.
+    EXPECT_EQ(cavity("compare " + o + " " + n + " --min-change 10 --fail-on-slower").code, 0);
+}
+
+TEST_F(Compare, ResultsJsonAgainstResultsJsonAndAgainstBenchmarkJson) {
+    const auto before = fakeConfig(kId, 40, 3, 0);
+    const auto after = fakeConfig(kId, 40, 4, 0.03);
+    fs::create_directories(dir / "old");
+    const std::string oldResults = write("old/results.json", resultsJson({before}));
+    const std::string newResults = write("new_results.json", resultsJson({after}));
+    const std::string out = (dir / "v.json").string();
+    Outcome r = cavity("compare " + oldResults + " " + newResults + " --json " + out);
+    ASSERT_EQ(r.code, 0) << r.output;
+    json rows = rowsOf(out);
+    EXPECT_EQ(row(rows, kId, "ao")["verdict"], "slower");
+    EXPECT_EQ(row(rows, kId, "ao")["n_old"], 40);
+    EXPECT_EQ(row(rows, kId, "gbuffer")["verdict"], "same");   // every frame 0.05 on both sides
+    EXPECT_EQ(row(rows, kId, "frame")["verdict"], "slower");
+    EXPECT_LE(row(rows, kId, "ao")["ci_low_ms"].get<double>(), 0.03);
+    EXPECT_GE(row(rows, kId, "ao")["ci_high_ms"].get<double>(), 0.03);
+
+    // Frames against repetitions, matched by id and pass: the passes pair up,
+    // the frame (results.json) and the pipeline (benchmark) do not.
+    const std::string bench = write("bench.json", benchmarkJson({fakeConfig(kId, 8, 5, 0.03)}));
+    r = cavity("compare " + oldResults + " " + bench + " --json " + out);
+    ASSERT_EQ(r.code, 0) << r.output;
+    rows = rowsOf(out);
+    EXPECT_EQ(row(rows, kId, "ao")["verdict"], "slower");
+    EXPECT_EQ(row(rows, kId, "ao")["n_new"], 8);
+    EXPECT_EQ(row(rows, kId, "ao")["method"], "exact");   // 8 repetitions, no ties
+    EXPECT_EQ(row(rows, kId, "blur")["verdict"], "same");
+    EXPECT_EQ(row(rows, kId, "frame")["verdict"], "gone");
+    EXPECT_EQ(row(rows, kId, "gbuffer")["verdict"], "gone");
+    EXPECT_EQ(row(rows, kId, "pipeline")["verdict"], "new");
+}
+
+TEST_F(Compare, ClocksAreNeverPooled) {
+    // The new run's second configuration fell back to the wall clock for some
+    // repetitions; a third configuration is on the wall clock in the new run only;
+    // a fourth has two repetitions.
+    auto mixed = fakeConfig(kOtherId, 10, 6, 0.1);
+    for (size_t i = 0; i < mixed.clocks.size(); i += 2) mixed.clocks[i] = "wall";
+    const std::string third = "open/alchemy/n16/b4/full/1920x1080/vk/compute";
+    const std::string fourth = "grille/alchemy/n16/b4/full/1920x1080/vk/compute";
+    const std::string o = write("old.json", benchmarkJson({fakeConfig(kId, 10, 1, 0), fakeConfig(kOtherId, 10, 2, 0),
+                                                           fakeConfig(third, 10, 3, 0), fakeConfig(fourth, 2, 4, 0)}));
+    const std::string n = write("new.json", benchmarkJson({fakeConfig(kId, 10, 5, 0), mixed,
+                                                           fakeConfig(third, 10, 7, 0.1, "wall"),
+                                                           fakeConfig(fourth, 2, 8, 0.3)}));
+    const std::string out = (dir / "v.json").string();
+    const Outcome r = cavity("compare " + o + " " + n + " --json " + out + " --fail-on-slower");
+    EXPECT_EQ(r.code, 0) << r.output;   // no verdict, so nothing slower
+    const json rows = rowsOf(out);
+    for (const char* pass : {"pipeline", "ao", "blur", "composite"}) {
+        const json& m = row(rows, kOtherId, pass);
+        EXPECT_EQ(m["verdict"], "mixed clocks") << pass;
+        EXPECT_EQ(m["new_clock"], "mixed");
+        EXPECT_TRUE(m["p"].is_null());
+        EXPECT_TRUE(m["change_pct"].is_null());
+        EXPECT_TRUE(m["new_median_ms"].is_null());
+        const json& d = row(rows, third, pass);
+        EXPECT_EQ(d["verdict"], "clocks differ") << pass;
+        EXPECT_EQ(d["old_clock"], "gpu-timestamp");
+        EXPECT_EQ(d["new_clock"], "wall");
+        EXPECT_TRUE(d["p"].is_null());
+        EXPECT_EQ(row(rows, fourth, pass)["verdict"], "too few samples") << pass;
+        EXPECT_EQ(row(rows, kId, pass)["verdict"], "same") << pass;
+    }
+    EXPECT_NE(r.output.find("mixed clocks"), std::string::npos);
+}
+
+// ---- bad input ----
+
+TEST_F(Compare, BadInputExitsTwoWithOneLineNamingIt) {
+    const std::string good = write("good.json", benchmarkJson({fakeConfig(kId, 5, 1, 0)}));
+    const std::string garbage = write("garbage.json", "{\n  \"benchmarks\": [\n    {\"name\": oops}\n  ]\n}\n");
+    const std::string neither = write("neither.json", R"({"schema": "cavity.gate/1", "rows": []})");
+    const std::string badUnit = write("unit.json", R"({"benchmarks": [{"name": "a/b", "run_type": "iteration",
+                                                   "real_time": 1, "time_unit": "min"}]})");
+    fs::create_directories(dir / "folder.json");
+    const std::string folder = (dir / "folder.json").string(), missing = (dir / "missing.json").string();
+    const std::string out = (dir / "v.json").string();
+    const std::vector<std::pair<std::string, std::string>> cases = {
+        {missing + " " + good, "cavity compare: " + missing + ": cannot be read (no such file)"},
+        {good + " " + folder, "cavity compare: " + folder + ": is a folder, not a JSON file"},
+        {good + " " + garbage, "cavity compare: " + garbage + ": does not parse: line 3: syntax error"},
+        {neither + " " + good, "cavity compare: " + neither +
+                                   ": neither a cavity results.json (schema cavity.results/1) nor Google Benchmark "
+                                   "JSON (benchmarks[])"},
+        {good + " " + badUnit, "cavity compare: " + badUnit + ": benchmarks[0] a/b: time_unit min: must be ns, us, ms or s"},
+        {good, "cavity compare: need two files, OLD.json NEW.json (have 1; see cavity compare --help)"},
+        {good + " " + good + " --alpha 1.5", "cavity compare: --alpha 1.5: must be a number in (0, 1)"},
+        {good + " " + good + " --alpha", "cavity compare: --alpha: missing value"},
+        {good + " " + good + " --min-change -1", "cavity compare: --min-change -1: must be a percentage >= 0"},
+        {good + " " + good + " --json", "cavity compare: --json: missing value"},
+        {good + " " + good + " --bogus", "cavity compare: --bogus: unknown flag (see cavity compare --help)"},
+        {good + " " + good + " --json " + (dir / "no" / "such" / "v.json").string(),
+         "cavity compare: --json " + (dir / "no" / "such" / "v.json").string() + ": cannot be written"},
+    };
+    for (const auto& [args, message] : cases) {
+        const Outcome o = cavity("compare " + args + (args.find("--json") == std::string::npos ? " --json " + out : ""));
+        EXPECT_EQ(o.code, 2) << args << "\n" << o.output;
+        EXPECT_EQ(o.output.rfind(message, 0), 0u) << args << "\n" << o.output;
+        EXPECT_EQ(std::count(o.output.begin(), o.output.end(), '\n'), 1) << args << "\n" << o.output;
+        EXPECT_FALSE(fs::exists(out)) << args;
+    }
+}
+
+}  // namespace
