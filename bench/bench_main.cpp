@@ -10,7 +10,7 @@
 //
 //   cavity_bench [--backend gl|vk|all] [--sweep gpu|cpu|auto] [--frames N] [--warmup N]
 //                [--timing batch|drained] [--max-noise PCT] [--max-time S]
-//                [--plant PASS:FMAS[,PASS:FMAS]] [--device K]
+//                [--plant PASS:FMAS[,PASS:FMAS]] [--plant-file FILE.json] [--device K]
 //                [google benchmark flags: --benchmark_filter=..., --benchmark_out=..., ...]
 #include "bench_runner.h"
 #include "per_pass_reporter.h"
@@ -18,8 +18,11 @@
 #include "cli.h"
 
 #include <benchmark/benchmark.h>
+#include <nlohmann/json.hpp>
 
 #include <cstring>
+#include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <memory>
 
@@ -28,7 +31,8 @@ namespace {
 constexpr const char* kUsage =
     "usage: cavity_bench [--backend gl|vk|all] [--sweep gpu|cpu|auto] [--frames N] [--warmup N]\n"
     "                    [--timing batch|drained] [--max-noise PCT] [--max-time S]\n"
-    "                    [--plant PASS:FMAS[,PASS:FMAS..]] [--device K] [--benchmark_* flags]\n";
+    "                    [--plant PASS:FMAS[,PASS:FMAS..]] [--plant-file FILE.json] [--device K]\n"
+    "                    [--benchmark_* flags]\n";
 
 using cavity::Result;
 using cavity::Status;
@@ -42,6 +46,25 @@ Status parsePlant(const std::string& text, cavity::PlantedSlowdown& plant) {
                                                          1000000));
         if (!plant.emplace(item.substr(0, colon), n).second)
             return cavity::badInput("--plant " + item.substr(0, colon) + ": given twice");
+    }
+    return {};
+}
+
+// {"<configuration id>": {"<pass>": FMAS, ...}, ...} (scripts/plant_calibrate.py writes it).
+Status readPlantFile(const std::string& path, std::map<std::string, cavity::PlantedSlowdown>& out) {
+    std::ifstream f(path);
+    if (!f || std::filesystem::is_directory(path)) return cavity::badInput("--plant-file " + path + ": cannot be read");
+    try {
+        const auto doc = nlohmann::json::parse(f);
+        for (const auto& [id, passes] : doc.items())
+            for (const auto& [pass, n] : passes.items()) {
+                if (!n.is_number_integer() || n.get<long>() < 1 || n.get<long>() > 1000000)
+                    return cavity::badInput("--plant-file " + path + ": " + id + " " + pass + " = " + n.dump() +
+                                            ": must be an integer in 1..1000000");
+                out[id][pass] = n.get<int>();
+            }
+    } catch (const nlohmann::json::exception& e) {
+        return cavity::badInput("--plant-file " + path + ": " + e.what());
     }
     return {};
 }
@@ -90,6 +113,8 @@ Result<cavity::bench::Options> parse(int argc, char** argv, std::vector<char*>& 
             CAVITY_ASSIGN(o.maxSeconds, parseNumber(flag, value, 0.001, 3600));
         } else if (flag == "--plant") {
             CAVITY_TRY(parsePlant(value, o.plant));
+        } else if (flag == "--plant-file") {
+            CAVITY_TRY(readPlantFile(value, o.plantById));
         } else if (flag == "--device") {
             CAVITY_ASSIGN(o.device, parseInt(flag, value, 0, 64));
         } else {

@@ -205,14 +205,16 @@ Result<int> registerSweep(const Options& o) {
                                 "min_frames=" + std::to_string(timing.frames) + " warmup=" + std::to_string(timing.warmup) +
                                     (timing.steadyWarmup ? "+steady" : "") + " max_noise=" +
                                     std::to_string(timing.maxNoise) + " max_seconds=" + std::to_string(timing.maxSeconds));
-    if (!o.plant.empty()) {
+    if (!o.plant.empty() || !o.plantById.empty()) {
         std::string text;
         for (const auto& [pass, fmas] : o.plant) text += (text.empty() ? "" : ",") + pass + ":" + std::to_string(fmas);
+        if (!o.plantById.empty()) text += (text.empty() ? "" : "; ") + std::to_string(o.plantById.size()) + " configurations from --plant-file";
         benchmark::AddCustomContext("cavity_planted_slowdown", text);
     }
     const auto configs = benchmarkSweep(cpu ? cpuSweep() : gpuSweep(), started);
     for (const auto& c : configs) {
-        Bench b{c, timing, o.plant};
+        const auto planted = o.plantById.find(configId(c));
+        Bench b{c, timing, planted == o.plantById.end() ? o.plant : planted->second};
         benchmark::RegisterBenchmark(configId(c).c_str(), [b](benchmark::State& s) { run(s, b); })
             ->UseManualTime()
             ->Iterations(1)

@@ -5,6 +5,7 @@
 #include "result.h"
 #include "timing.h"
 
+#include <map>
 #include <optional>
 
 #include <string>
@@ -19,7 +20,8 @@ struct Options {
     std::optional<int> frames, warmup;
     std::optional<TimingMode> mode;
     std::optional<double> maxNoise, maxSeconds;
-    PlantedSlowdown plant;         // --plant ao:120,blur:40 (scripts/gpu_verdict.sh)
+    PlantedSlowdown plant;         // --plant ao:120,blur:40, every configuration (scripts/gpu_verdict.sh)
+    std::map<std::string, PlantedSlowdown> plantById;   // --plant-file: {"<id>": {"ao": 120}}; wins over plant
     int device = 0;
 };
 
