@@ -1,38 +1,53 @@
 #!/usr/bin/env bash
 # The timing-verdict check, in one call on the GPU machine (README, "Timing
-# verdicts"): the unchanged build twice (A/A), a calibration run, and the
-# build with a planted slowdown of the AO pass calibrated to +5% and +2%
-# (A/B), each with the clocks sampled beside it. Judge the files it leaves
-# in $OUT with scripts/verdict_table.py here.
-#   scripts/gpu_verdict.sh [REPS (10)] [MAX_TIME_S (0.5)] [FILTER]
+# verdicts"): the unchanged build (A), a planted slowdown calibrated to +5% of
+# the AO pass (B5), the unchanged build again (A/A), every pass +10% (B10, for
+# the budgets) and the AO pass +2% (B2, if time allows), each run with the
+# clocks sampled beside it. Leaves verdict.tgz in $OUT; judge it here with
+# scripts/verdict_table.py.
+#   scripts/gpu_verdict.sh [REPS (10)] [MAX_TIME_S (0.35)] [FILTER]
 set -uo pipefail
 cd "$(dirname "$0")/.."
 . scripts/gpu_env.sh
 reps="${1:-10}"
-maxt="${2:-0.5}"
+maxt="${2:-0.35}"
 filter="${3:-^corner/(alchemy|hemisphere)/n(16|32)/b4/(full|half)/1920x1080/(gl|vk)/compute/}"
 start=$(date +%s)
+elapsed() { echo $(( $(date +%s) - start )); }
 bench() {   # name, extra flags...
   local name=$1; shift
-  echo "== $name ($(( $(date +%s) - start )) s)"
+  echo "== $name ($(elapsed) s)"
   smi_start "$OUT/$name.clocks.csv"
   .bundle/run.sh --sweep gpu --benchmark_filter="$filter" --benchmark_repetitions="$reps" \
     --benchmark_enable_random_interleaving=true --max-time "$maxt" \
     --benchmark_out="$OUT/$name.json" --benchmark_out_format=json "$@" > "$OUT/$name.txt" 2> "$OUT/$name.err"
   local rc=$?
   smi_stop
-  tail -2 "$OUT/$name.err"
+  tail -1 "$OUT/$name.err"
   return $rc
 }
+calibrate() {   # out, passes, target, refinement points...
+  local out=$1 passes=$2 target=$3; shift 3
+  python3 scripts/plant_calibrate.py "$OUT/a1.json" --point "512:$OUT/cal512.json" --point "2048:$OUT/cal2048.json" \
+    --passes "$passes" --target "$target" "$@" > "$OUT/$out" 2>> "$OUT/calibration.log"
+}
 bench a1 || exit 1
-bench a2
-# Planted dependent FMAs per pixel after the AO kernel: measure the cost of
-# 256 once, then plant the count that costs +5% (+2%) of each configuration's AO pass.
-bench cal --plant ao:256 --benchmark_repetitions=3
-python3 scripts/plant_calibrate.py "$OUT/a1.json" "$OUT/cal.json" --fmas 256 --target 0.05 > "$OUT/plant5.json" || exit 1
-python3 scripts/plant_calibrate.py "$OUT/a1.json" "$OUT/cal.json" --fmas 256 --target 0.02 > "$OUT/plant2.json" || exit 1
+# Dependent FMAs per pixel after a pass's kernel (kernels/assemble.cpp):
+# their cost curve at 512 and 2048, one guess per target, one measured
+# refinement of each guess, then the runs that are judged.
+all=ao:512,blur:512,composite:512
+bench cal512 --plant "$all" --benchmark_repetitions=3
+bench cal2048 --plant "${all//512/2048}" --benchmark_repetitions=3
+calibrate guess5.json ao 0.05 && calibrate guess10.json ao,blur,composite 0.10 || exit 1
+bench r5 --plant-file "$OUT/guess5.json" --benchmark_repetitions=3
+bench r10 --plant-file "$OUT/guess10.json" --benchmark_repetitions=3
+calibrate plant5.json ao 0.05 --point-file "$OUT/guess5.json:$OUT/r5.json" &&
+  calibrate plant10.json ao,blur,composite 0.10 --point-file "$OUT/guess10.json:$OUT/r10.json" &&
+  calibrate plant2.json ao 0.02 --point-file "$OUT/guess5.json:$OUT/r5.json" || exit 1
 bench b5 --plant-file "$OUT/plant5.json"
-if [ $(( $(date +%s) - start )) -lt 400 ]; then bench b2 --plant-file "$OUT/plant2.json"; fi
-echo "== done ($(( $(date +%s) - start )) s)"
-cd "$OUT" && tar czf verdict.tgz ./*.json ./*.csv ./*.err ./*.txt && rm -f ./*.json ./*.csv ./*.err ./*.txt
+bench a2
+bench b10 --plant-file "$OUT/plant10.json"
+if [ "$(elapsed)" -lt 440 ]; then bench b2 --plant-file "$OUT/plant2.json"; fi
+echo "== done ($(elapsed) s)"
+cd "$OUT" && tar czf verdict.tgz ./*.json ./*.csv ./*.err ./*.txt ./*.log && rm -f ./*.json ./*.csv ./*.err ./*.txt ./*.log
 ls -la "$OUT"

@@ -1,14 +1,18 @@
 #!/usr/bin/env python3
 """Calibrates a planted slowdown for the timing-verdict check.
 
-    python3 scripts/plant_calibrate.py base.json planted.json --fmas 256 --target 0.05 > plant.json
+    python3 scripts/plant_calibrate.py base.json --point 512:cal512.json --point 2048:cal2048.json \\
+        --passes ao --target 0.05 > plant.json
 
-base.json and planted.json are cavity_bench JSON of the same configurations,
-the second run with `--plant PASS:FMAS`. The planted cost grows linearly with
-the count of dependent FMAs per pixel, so for each configuration the count
-that slows PASS by `target` is target x base / ((planted - base) / FMAS).
-Writes {"<configuration id>": {"PASS": count}} for cavity_bench --plant-file;
-says on stderr what it expects of each configuration.
+base.json and each cal file are cavity_bench JSON of the same configurations,
+the cal runs made with `--plant PASS:FMAS` (every pass in --passes at once:
+passes are timed apart, so one run calibrates them all). A chain of dependent
+FMAs costs little until it outlasts the memory latency it hides behind (256
+cost nothing measurable in the hemisphere kernel on the H200's Vulkan), then
+grows linearly; so the cost curve is taken as piecewise linear through
+(0, base), (FMAS, cal) ..., extended past the last point, and inverted at
+base x (1 + target). Writes {"<configuration id>": {"PASS": count}} for
+cavity_bench --plant-file; says on stderr what it expects of each.
 """
 import argparse
 import json
@@ -23,8 +27,8 @@ def config_id(name):
     return SUFFIX.sub("", name)
 
 
-def medians(path, counter):
-    """Per configuration id, the median over repetitions of a counter."""
+def medians(path):
+    """{(configuration id, pass): median over repetitions of pass_<pass>_ms}."""
     try:
         doc = json.load(open(path))
     except (OSError, json.JSONDecodeError) as e:
@@ -33,35 +37,71 @@ def medians(path, counter):
     for b in doc.get("benchmarks", []):
         if b.get("run_type") != "iteration" or "@" in b["name"] or b.get("error_occurred"):
             continue
-        if counter in b:
-            values.setdefault(config_id(b["run_name"]), []).append(b[counter])
+        for k, v in b.items():
+            if k.startswith("pass_") and k.endswith("_ms"):
+                values.setdefault((config_id(b["run_name"]), k[5:-3]), []).append(v)
     return {k: statistics.median(v) for k, v in values.items()}
+
+
+def invert(points, wanted):
+    """FMA count where the piecewise-linear curve through points reaches wanted."""
+    for (k0, t0), (k1, t1) in zip(points, points[1:]):
+        if t1 >= wanted and t1 > t0:
+            return k0 + (wanted - t0) * (k1 - k0) / (t1 - t0)
+    (k0, t0), (k1, t1) = points[-2], points[-1]
+    if t1 <= t0:
+        return None
+    return k1 + (wanted - t1) * (k1 - k0) / (t1 - t0)
 
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("base")
-    ap.add_argument("planted")
-    ap.add_argument("--fmas", type=int, required=True, help="the FMA count of the planted run")
+    ap.add_argument("--point", action="append", default=[], help="FMAS:FILE, a run with --plant PASS:FMAS")
+    ap.add_argument("--point-file", action="append", default=[],
+                    help="PLANT.json:FILE, a run with --plant-file PLANT.json (a refinement round)")
+    ap.add_argument("--passes", default="ao", help="comma list of passes to plant")
     ap.add_argument("--target", type=float, required=True, help="relative slowdown wanted, e.g. 0.05")
-    ap.add_argument("--pass", dest="pass_", default="ao")
     a = ap.parse_args()
-    if a.fmas < 1 or not 0 < a.target < 10:
-        sys.exit("plant_calibrate: --fmas must be >= 1 and --target in (0, 10)")
-    counter = f"pass_{a.pass_}_ms"
-    base, planted = medians(a.base, counter), medians(a.planted, counter)
+    if not 0 < a.target < 10:
+        sys.exit(f"plant_calibrate: --target {a.target}: must be in (0, 10)")
+    base = medians(a.base)
+    # Each point: (FMA count for a (configuration, pass), medians of that run).
+    points = []
+    for p in a.point:
+        fmas, _, path = p.partition(":")
+        if not fmas.isdigit() or not path:
+            sys.exit(f"plant_calibrate: --point {p}: must be FMAS:FILE")
+        points.append((lambda key, n=int(fmas): n, medians(path)))
+    for p in a.point_file:
+        plant_path, _, path = p.partition(":")
+        try:
+            plant = json.load(open(plant_path))
+        except (OSError, json.JSONDecodeError) as e:
+            sys.exit(f"plant_calibrate: --point-file {plant_path}: {e}")
+        points.append((lambda key, plant=plant: plant.get(key[0], {}).get(key[1]), medians(path)))
+    if not points:
+        sys.exit("plant_calibrate: give at least one --point or --point-file")
     out = {}
-    for cid in sorted(base):
-        if cid not in planted:
+    for (cid, pass_), t0 in sorted(base.items()):
+        if pass_ not in a.passes.split(","):
             continue
-        per_fma = (planted[cid] - base[cid]) / a.fmas
-        if per_fma <= 0:
-            print(f"plant_calibrate: {cid}: {a.fmas} FMAs cost nothing measurable; skipped", file=sys.stderr)
+        measured = {}
+        for count_of, m in points:
+            k = count_of((cid, pass_))
+            if k and (cid, pass_) in m:
+                measured[k] = m[(cid, pass_)]
+        curve = [(0, t0)] + sorted(measured.items())
+        if len(curve) < 2:
             continue
-        count = max(1, round(a.target * base[cid] / per_fma))
-        out[cid] = {a.pass_: count}
-        print(f"plant_calibrate: {cid}: {a.pass_} {base[cid]:.4f} ms, {1e6 * per_fma:.3f} ns per FMA per frame, "
-              f"{count} FMAs for +{100 * count * per_fma / base[cid]:.2f}%", file=sys.stderr)
+        count = invert(curve, t0 * (1 + a.target))
+        if count is None:
+            print(f"plant_calibrate: {cid} {pass_}: the planted FMAs cost nothing measurable; skipped", file=sys.stderr)
+            continue
+        out.setdefault(cid, {})[pass_] = max(1, round(count))
+        shown = ", ".join(f"{k}: {t:.4f}" for k, t in curve)
+        print(f"plant_calibrate: {cid} {pass_}: ms at FMAs {{{shown}}} -> {max(1, round(count))} FMAs "
+              f"for +{100 * a.target:.1f}%", file=sys.stderr)
     if not out:
         sys.exit("plant_calibrate: no configuration in both files")
     json.dump(out, sys.stdout, indent=1)
