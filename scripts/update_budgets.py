@@ -1,7 +1,15 @@
 #!/usr/bin/env python3
-"""Writes timing budgets into baselines/budgets.json from a gate run.
+"""Writes timing budgets into baselines/budgets.json from a gate run or a benchmark run.
 
     python3 scripts/update_budgets.py out/gate/gate.json --pattern llvmpipe --factor 5 --min-ms 10
+    python3 scripts/update_budgets.py a1.json --pattern "NVIDIA H200"      # cavity_bench JSON, repetitions
+
+From cavity_bench JSON (--benchmark_repetitions=N, N >= 5), each pass's
+budget is its median over the repetitions plus a margin derived from the
+measured noise: max(--min-margin, --noise-factor x the repetition CV), and at
+least --min-abs-ms (two GL timer steps of 128 ns are 1% of a 25 us pass).
+On the H200 (repetition CV <= 0.63%) that is 3%, so a pass 10% slower fails
+by 7% while an unchanged run must move 5 standard deviations to fail.
 
 Every pass of every configuration in gate.json gets budget = factor x its
 measured median, under the device class `pattern` (a substring of the device
@@ -12,8 +20,42 @@ hence the generous default factor; on a GPU use 1.2 to 1.5.
 import argparse
 import json
 import os
+import re
+import statistics
 import sys
 import tempfile
+
+
+def from_bench(doc, a):
+    """Budgets from the repetitions of a cavity_bench run: median + noise-derived margin."""
+    suffix = re.compile(r"(/[a-z_]+:[^/]*|/manual_time|/real_time)+$")
+    values = {}
+    for b in doc["benchmarks"]:
+        if b.get("run_type") != "iteration" or "@" in b["name"] or b.get("error_occurred"):
+            continue
+        if not b.get("label", "").startswith("clock=gpu-timestamp"):
+            continue   # a wall-clock time is no budget for a GPU
+        cid = suffix.sub("", b["run_name"])
+        for k, v in b.items():
+            if k.startswith("pass_") and k.endswith("_ms"):
+                values.setdefault(cid, {}).setdefault(k[5:-3], []).append(v)
+    table, widest = {}, 0.0
+    for cid, passes in values.items():
+        for p, v in passes.items():
+            if len(v) < 5:
+                sys.exit(f"update_budgets: {cid} {p}: {len(v)} repetitions; need --benchmark_repetitions=5 or more")
+            m = statistics.median(v)
+            margin = max(a.min_margin, a.noise_factor * statistics.stdev(v) / statistics.mean(v))
+            widest = max(widest, margin)
+            table.setdefault(cid, {})[p] = round(max(m * (1 + margin), m + a.min_abs_ms), 5)
+    if widest >= 0.09:
+        print(f"update_budgets: a margin of {100 * widest:.1f}%: a 10% slowdown of that pass may pass", file=sys.stderr)
+    ctx = doc.get("context", {})
+    note = (f"median of {len(next(iter(next(iter(values.values())).values())))} repetitions + "
+            f"max({100 * a.min_margin:g}%, {a.noise_factor:g} x repetition CV), at least {a.min_abs_ms} ms, "
+            f"from cavity_bench on {ctx.get('cavity_device', '?')} ({ctx.get('cavity_timing_mode', '?')} timing, "
+            f"{ctx.get('date', '?')})")
+    return table, note
 
 
 def main():
@@ -23,6 +65,9 @@ def main():
     ap.add_argument("--factor", type=float, default=5.0)
     ap.add_argument("--min-ms", type=float, default=0.0,
                     help="floor for every budget: a 0.5 ms pass on a loaded 2-core CPU renderer can take 3 ms")
+    ap.add_argument("--noise-factor", type=float, default=5.0, help="benchmark JSON: margin in repetition CVs")
+    ap.add_argument("--min-margin", type=float, default=0.03, help="benchmark JSON: smallest relative margin")
+    ap.add_argument("--min-abs-ms", type=float, default=0.002, help="benchmark JSON: smallest margin in ms")
     ap.add_argument("--budgets", default=os.path.join(os.path.dirname(__file__), "..", "baselines", "budgets.json"))
     a = ap.parse_args()
     if a.factor <= 1:
@@ -32,18 +77,20 @@ def main():
         budgets = json.load(open(a.budgets))
     except (OSError, json.JSONDecodeError) as e:
         sys.exit(f"update_budgets: {e}")
-    if gate.get("schema") != "cavity.gate/1":
-        sys.exit(f"update_budgets: {a.gate_json}: not a cavity gate.json")
-    table = {}
-    devices = set()
-    for r in gate["results"]:
-        if r["error"]:
-            continue
-        devices.add(r["device"])
-        table[r["id"]] = {t["pass"]: round(max(a.factor * t["median_ms"], a.min_ms), 4) for t in r["timings"]}
-    entry = {"pattern": a.pattern,
-             "note": f"max({a.factor}x the median, {a.min_ms} ms) from a gate run on {', '.join(sorted(devices))}",
-             "budgets_ms": dict(sorted(table.items()))}
+    if "benchmarks" in gate:
+        table, note = from_bench(gate, a)
+    elif gate.get("schema") == "cavity.gate/1":
+        table = {}
+        devices = set()
+        for r in gate["results"]:
+            if r["error"]:
+                continue
+            devices.add(r["device"])
+            table[r["id"]] = {t["pass"]: round(max(a.factor * t["median_ms"], a.min_ms), 4) for t in r["timings"]}
+        note = f"max({a.factor}x the median, {a.min_ms} ms) from a gate run on {', '.join(sorted(devices))}"
+    else:
+        sys.exit(f"update_budgets: {a.gate_json}: neither a cavity gate.json nor cavity_bench JSON")
+    entry = {"pattern": a.pattern, "note": note, "budgets_ms": dict(sorted(table.items()))}
     budgets["devices"] = [d for d in budgets.get("devices", []) if d["pattern"] != a.pattern] + [entry]
     fd, tmp = tempfile.mkstemp(dir=os.path.dirname(os.path.abspath(a.budgets)))
     with os.fdopen(fd, "w") as f:

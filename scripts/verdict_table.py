@@ -1,0 +1,173 @@
+#!/usr/bin/env python3
+"""The timing-verdict tables from what scripts/gpu_verdict.sh brought back.
+
+    python3 scripts/verdict_table.py DIR [--cavity build/harness/cavity] > table.md
+
+DIR holds a1.json, a2.json (unchanged build), b5.json, b2.json (AO pass
+planted +5%, +2%), b10.json (every pass +10%), *.clocks.csv (nvidia-smi
+every 200 ms) and the plant files. Runs `cavity compare --json` for A/A and
+each A/B, and prints: repetition CV per pass, the A/A table, each A/B's
+detection table (planted pass called slower, untouched passes called
+changed), the budget check, and the clocks seen.
+"""
+import argparse
+import csv
+import json
+import os
+import re
+import statistics
+import subprocess
+import sys
+
+SUFFIX = re.compile(r"(/[a-z_]+:[^/]*|/manual_time|/real_time)+$")
+
+
+def reps(path):
+    """{(id, pass): [per-repetition medians]}, pass 'pipeline' for the benchmark time."""
+    out = {}
+    for b in json.load(open(path))["benchmarks"]:
+        if b.get("run_type") != "iteration" or "@" in b["name"] or b.get("error_occurred"):
+            continue
+        cid = SUFFIX.sub("", b["run_name"])
+        out.setdefault((cid, "pipeline"), []).append(b["real_time"])
+        for k, v in b.items():
+            if k.startswith("pass_") and k.endswith("_ms"):
+                out.setdefault((cid, k[5:-3]), []).append(v)
+    return out
+
+
+def cv(v):
+    return statistics.stdev(v) / statistics.mean(v) if len(v) > 1 and statistics.mean(v) else 0.0
+
+
+def compare(cavity, d, old, new):
+    out = os.path.join(d, f"compare_{old}_{new}.json")
+    subprocess.run([cavity, "compare", os.path.join(d, old + ".json"), os.path.join(d, new + ".json"), "--json", out],
+                   check=True, stdout=subprocess.DEVNULL)
+    return {(r["id"], r["pass"]): r for r in json.load(open(out))["rows"]}
+
+
+def clocks(path):
+    sm, mem, reasons = [], [], set()
+    with open(path) as f:
+        for row in csv.reader(f, skipinitialspace=True):
+            if len(row) < 6 or not row[1].endswith("MHz"):
+                continue
+            sm.append(int(row[1].split()[0]))
+            mem.append(int(row[2].split()[0]))
+            reasons.add(row[5])
+    return sm, mem, reasons
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("dir")
+    ap.add_argument("--cavity", default=os.path.join(os.path.dirname(__file__), "..", "build", "harness", "cavity"))
+    ap.add_argument("--budgets", default=os.path.join(os.path.dirname(__file__), "..", "baselines", "budgets.json"))
+    ap.add_argument("--pattern", default="NVIDIA H200")
+    a = ap.parse_args()
+    d = a.dir
+    runs = {n: reps(os.path.join(d, n + ".json")) for n in ("a1", "a2", "b5", "b2", "b10")
+            if os.path.exists(os.path.join(d, n + ".json"))}
+    a1, a2 = runs["a1"], runs["a2"]
+    ids = sorted({k[0] for k in a1})
+    order = ["pipeline", "gbuffer", "downsample", "depth", "ao", "box", "blur", "upsample", "indirect", "composite"]
+    present = {k[1] for k in a1}
+    passes = [p for p in order if p in present] + sorted(present - set(order))
+
+    print("## Repetition CV (A1 and A2, 10 interleaved repetitions each)\n")
+    print("| configuration | " + " | ".join(passes) + " |")
+    print("|---|" + "---:|" * len(passes))
+    worst = 0
+    for cid in ids:
+        cells = []
+        for p in passes:
+            c = max(cv(a1.get((cid, p), [0, 0])), cv(a2.get((cid, p), [0, 0])))
+            worst = max(worst, c)
+            cells.append(f"{100 * c:.2f}%" if (cid, p) in a1 else "")
+        print(f"| {cid} | " + " | ".join(cells) + " |")
+    print(f"\nlargest repetition CV: {100 * worst:.2f}%\n")
+
+    aa = compare(a.cavity, d, "a1", "a2")
+    diffs = [abs(r["new_median_ms"] / r["old_median_ms"] - 1) for r in aa.values()
+             if r["old_median_ms"] and r["new_median_ms"]]
+    called = [k for k, r in aa.items() if r["verdict"] in ("slower", "faster")]
+    print("## A/A: the unchanged build twice\n")
+    print(f"- (configuration, pass) pairs: {len(aa)}; called different: {len(called)} "
+          f"({100 * len(called) / max(1, len(aa)):.1f}%)")
+    print(f"- largest |median change|: {100 * max(diffs):.2f}%; median |change|: {100 * statistics.median(diffs):.3f}%\n")
+
+    for name, planted_passes, size in (("b5", ["ao"], 5), ("b2", ["ao"], 2), ("b10", ["ao", "blur", "composite"], 10)):
+        if name not in runs:
+            continue
+        ab = compare(a.cavity, d, "a1", name)
+        plant = json.load(open(os.path.join(d, {"b5": "plant5", "b2": "plant2", "b10": "plant10"}[name] + ".json")))
+        print(f"## A/B: {', '.join(planted_passes)} planted +{size}% ({name})\n")
+        print("| configuration | pass | FMAs | measured change [95% interval] | p | verdict |")
+        print("|---|---|---:|---|---:|---|")
+        hit = total = false_alarm = untouched = 0
+        for cid in ids:
+            for p in passes:
+                r = ab.get((cid, p))
+                if not r:
+                    continue
+                is_planted = p in plant.get(cid, {})
+                if p == "pipeline":
+                    pass
+                elif is_planted:
+                    total += 1
+                    hit += r["verdict"] == "slower"
+                else:
+                    untouched += 1
+                    false_alarm += r["verdict"] in ("slower", "faster")
+                if is_planted or (p != "pipeline" and r["verdict"] != "same"):
+                    change = "-" if r["change_pct"] is None else \
+                        f"{r['change_pct']:+.2f}% [{r['ci_low_pct']:+.2f}, {r['ci_high_pct']:+.2f}]"
+                    print(f"| {cid} | {p} | {plant.get(cid, {}).get(p, '-')} | {change} | {r['p']:.2g} | {r['verdict']} |")
+        print(f"\n- planted passes called slower: {hit} of {total} ({100 * hit / max(1, total):.0f}%)")
+        print(f"- untouched passes called changed: {false_alarm} of {untouched}\n")
+
+    # Budgets: each repetition of a run is one measurement, checked alone.
+    try:
+        budgets = next(x for x in json.load(open(a.budgets))["devices"] if x["pattern"] == a.pattern)["budgets_ms"]
+    except (OSError, StopIteration, KeyError):
+        budgets = None
+    if budgets:
+        print(f"## Budgets ({a.pattern} class in baselines/budgets.json), one check per repetition\n")
+        plant10 = json.load(open(os.path.join(d, "plant10.json"))) if os.path.exists(os.path.join(d, "plant10.json")) else {}
+        print("| run | pass | repetitions over budget | of | largest median / budget |")
+        print("|---|---|---:|---:|---:|")
+        for name in ("a2", "b10"):
+            if name not in runs:
+                continue
+            for p in passes:
+                over = checked = 0
+                worst = 0.0
+                for (cid, q), values in runs[name].items():
+                    b = budgets.get(cid, {}).get(q)
+                    if q != p or b is None:
+                        continue
+                    for v in values:
+                        checked += 1
+                        over += v > b
+                        worst = max(worst, v / b)
+                if checked:
+                    planted = name == "b10" and any(p in x for x in plant10.values())
+                    print(f"| {name} | {p}{' (planted +10%)' if planted else ''} | {over} | {checked} | {worst:.3f} |")
+        print()
+
+    print("## Clocks (nvidia-smi every 200 ms during each run)\n")
+    print("| run | samples | SM MHz min / median / max | at 1980 MHz | memory MHz | event reasons |")
+    print("|---|---:|---|---:|---|---|")
+    for name in ("a1", "a2", "b5", "b2", "b10"):
+        path = os.path.join(d, name + ".clocks.csv")
+        if not os.path.exists(path):
+            continue
+        sm, mem, reasons = clocks(path)
+        at_max = sum(1 for x in sm if x >= 1980)
+        print(f"| {name} | {len(sm)} | {min(sm)} / {statistics.median(sm):.0f} / {max(sm)} | "
+              f"{100 * at_max / len(sm):.0f}% | {min(mem)}-{max(mem)} | {', '.join(sorted(reasons))} |")
+
+
+if __name__ == "__main__":
+    main()
