@@ -10,6 +10,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <map>
 #include <set>
 #include <sstream>
 
@@ -57,36 +59,94 @@ TEST(Bench, RegistersExactlyTheDeclaredSweep) {
     }
 }
 
-TEST(Bench, SmokeRunOnBothApisWithManualTimeFromTimestamps) {
+nlohmann::json runBench(const std::string& args) {
     const fs::path out = fs::temp_directory_path() / ("cavity-bench-" + std::to_string(::getpid()) + ".json");
-    const Outcome o = bench("--iterations 1 --warmup 1 --benchmark_filter='corner/alchemy/n16/b4/full/320x180/(gl|vk)/compute'"
-                            " --benchmark_out=" + out.string() + " --benchmark_out_format=json");
-    ASSERT_EQ(o.code, 0) << o.output;
+    const Outcome o = bench(args + " --benchmark_out=" + out.string() + " --benchmark_out_format=json");
+    EXPECT_EQ(o.code, 0) << o.output;
     std::ifstream f(out);
-    const auto doc = nlohmann::json::parse(f);
+    if (!f) return {};
+    // Google Benchmark writes bare NaN for the cv of a constant counter;
+    // nlohmann reads JSON only, so those become null first.
+    std::string text((std::istreambuf_iterator<char>(f)), {});
+    for (size_t at; (at = text.find(": NaN")) != std::string::npos;) text.replace(at, 5, ": null");
+    for (size_t at; (at = text.find(": -nan")) != std::string::npos;) text.replace(at, 6, ": null");
     fs::remove(out);
+    return nlohmann::json::parse(text);
+}
+
+bool mirror(const nlohmann::json& b) { return b["name"].get<std::string>().find('@') != std::string::npos; }
+
+TEST(Bench, SmokeRunOnBothApisWithManualTimeFromTimestamps) {
+    const auto doc = runBench("--frames 1 --warmup 1 --benchmark_filter='corner/alchemy/n16/b4/full/320x180/(gl|vk)/compute/'");
+    ASSERT_TRUE(doc.contains("benchmarks"));
     std::set<std::string> apis;
     for (const auto& b : doc["benchmarks"]) {
         ASSERT_FALSE(b.value("error_occurred", false)) << b.dump();
+        if (mirror(b)) continue;
         apis.insert(b["name"].get<std::string>().find("/gl/") != std::string::npos ? "gl" : "vk");
-        // One iteration: the manual time is that frame's AO + blur + composite
-        // timestamps, and each pass counter is its only sample.
+        // One frame: the manual time is that frame's AO + blur + composite
+        // times, and each pass counter is its only sample.
         const double sum = b["pass_ao_ms"].get<double>() + b["pass_blur_ms"].get<double>() +
                            b["pass_composite_ms"].get<double>();
         EXPECT_NEAR(b["real_time"].get<double>(), sum, 1e-6 * sum) << b["name"];
         EXPECT_EQ(b["time_unit"], "ms");
         EXPECT_GT(b["MP/s"].get<double>(), 0.0);
+        EXPECT_EQ(b["frames"].get<double>(), 1.0);
     }
     if (ci()) {
         EXPECT_EQ(apis.size(), 2u);
     }
     EXPECT_EQ(doc["context"]["cavity_sweep"], "cpu");
+    EXPECT_TRUE(doc["context"].contains("cavity_timing_mode"));
+}
+
+// Every repetition carries one clock for its configuration, and each pass
+// appears as an entry of its own (<id>@<pass>) whose time is that pass's
+// counter, so Google Benchmark's compare.py sees every pass.
+TEST(Bench, RepetitionsShareOneClockAndEveryPassHasAnEntry) {
+    const auto doc = runBench("--frames 2 --warmup 0 --benchmark_repetitions=3 "
+                              "--benchmark_filter='corner/alchemy/n16/b4/full/320x180/(gl|vk)/compute/'");
+    ASSERT_TRUE(doc.contains("benchmarks"));
+    std::map<std::string, std::set<std::string>> clocks;   // run name -> clock words seen
+    std::map<std::string, double> counters;                // "<run name> <pass> <repetition>" -> ms
+    std::map<std::string, double> mirrors;
+    for (const auto& b : doc["benchmarks"]) {
+        if (b["run_type"] != "iteration") continue;
+        const std::string name = b["run_name"], label = b.value("label", "");
+        const std::string rep = std::to_string(b["repetition_index"].get<int>());
+        ASSERT_EQ(label.rfind("clock=", 0), 0u) << label;
+        if (mirror(b)) {
+            const auto at = name.find('@'), slash = name.find('/', at);
+            const std::string base = name.substr(0, at) + name.substr(slash);
+            mirrors[base + " " + name.substr(at + 1, slash - at - 1) + " " + rep] = b["real_time"];
+            continue;
+        }
+        clocks[name].insert(label.substr(6, label.find(' ') - 6));
+        for (const auto& [k, v] : b.items())
+            if (k.rfind("pass_", 0) == 0) counters[name + " " + k.substr(5, k.size() - 8) + " " + rep] = v;
+    }
+    ASSERT_FALSE(clocks.empty());
+    for (const auto& [name, seen] : clocks) EXPECT_EQ(seen.size(), 1u) << name << " mixes clocks";
+    ASSERT_FALSE(counters.empty());
+    EXPECT_EQ(mirrors.size(), counters.size());
+    for (const auto& [key, ms] : counters) {
+        ASSERT_TRUE(mirrors.count(key)) << key;
+        EXPECT_NEAR(mirrors[key], ms, 1e-9 + 1e-9 * ms) << key;
+    }
 }
 
 TEST(Bench, BadFlagIsAnError) {
     const Outcome o = bench("--sweep huge --benchmark_list_tests");
     EXPECT_EQ(o.code, 2) << o.output;
-    EXPECT_NE(o.output.find("--sweep huge: must be gpu, cpu or auto"), std::string::npos) << o.output;
+    EXPECT_NE(o.output.find("--sweep 'huge': must be gpu, cpu or auto"), std::string::npos) << o.output;
+    for (const std::string bad : {"--frames 0", "--frames abc", "--frames -3", "--warmup abc", "--device abc",
+                                  "--max-noise nan", "--max-time 1e999", "--timing hot", "--plant ao:0", "--plant ao"}) {
+        const Outcome b = bench(bad + " --benchmark_list_tests");
+        EXPECT_EQ(b.code, 2) << bad << ": " << b.output;
+        EXPECT_NE(b.output.find(bad.substr(0, bad.find(' '))), std::string::npos) << b.output;
+    }
+    const Outcome none = bench("--benchmark_filter=nothing-matches-this");
+    EXPECT_EQ(none.code, 2) << none.output;
 }
 
 }  // namespace

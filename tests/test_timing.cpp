@@ -5,6 +5,9 @@
 #include "gpu_fixture.h"
 #include "timing.h"
 
+#include <cmath>
+#include <map>
+
 namespace cavity::test {
 namespace {
 
@@ -69,7 +72,113 @@ TEST_P(Timing, FourTimesThePixelsTakesAtLeastTwiceTheTime) {
     }
 }
 
+// Batched frames (many per submission) and drained frames (one each) run the
+// same passes on the same inputs: the same images, bit for bit, and with a
+// fixed count the same number of samples of every pass.
+TEST_P(Timing, BatchedAndDrainedGiveTheSameImagesAndSampleCounts) {
+    RunConfig c;
+    c.api = api();
+    c.width = 160;
+    c.height = 90;
+    auto chain = PassChain::create(gpu(), c);
+    ASSERT_TRUE(chain) << chain.error().message;
+    std::map<TimingMode, std::map<std::string, HostImage>> images;
+    for (TimingMode mode : {TimingMode::Batch, TimingMode::Drained}) {
+        TimingOptions o = defaultTimingOptions(gpu().info());
+        o.mode = mode;
+        o.warmup = 1;
+        o.steadyWarmup = false;
+        o.frames = 7;
+        o.maxNoise = 0;
+        o.batchMs = 1e6;   // the whole measurement in one submission where batched
+        auto t = measure(gpu(), **chain, o);
+        ASSERT_TRUE(t) << t.error().message;
+        EXPECT_EQ(t->frame.ms.size(), 7u) << timingModeName(mode);
+        for (const auto& p : t->passes) EXPECT_EQ(p.ms.size(), 7u) << p.name << " " << timingModeName(mode);
+        EXPECT_EQ(t->stop, "frames");
+        if (t->clock == "gpu-timestamp") {
+            EXPECT_EQ(t->mode, mode);
+        } else {
+            EXPECT_EQ(t->mode, TimingMode::Drained) << "the wall clock times passes alone";
+        }
+        if (t->clock == "gpu-timestamp" && mode == TimingMode::Batch) {
+            EXPECT_GT(t->batchFrames, 1);
+        }
+        for (const auto& out : userOutputs(c)) {
+            auto img = (*chain)->read(out.image);
+            ASSERT_TRUE(img) << img.error().message;
+            images[mode][out.image] = std::move(*img);
+        }
+    }
+    for (const auto& [name, img] : images[TimingMode::Batch])
+        EXPECT_TRUE(img.pixels == images[TimingMode::Drained][name].pixels) << name;
+    EXPECT_TRUE(gpu().takeDebugMessages().empty());
+}
+
+// A clock given by the caller (the benchmark's later repetitions) is kept,
+// whatever this measurement's own probe would have chosen.
+TEST_P(Timing, AGivenClockIsKept) {
+    RunConfig c;
+    c.api = api();
+    c.width = 160;
+    c.height = 90;
+    auto chain = PassChain::create(gpu(), c);
+    ASSERT_TRUE(chain) << chain.error().message;
+    TimingOptions o = defaultTimingOptions(gpu().info());
+    o.warmup = 0;
+    o.steadyWarmup = false;
+    o.frames = 3;
+    o.maxNoise = 0;
+    o.clock = "wall";
+    auto t = measure(gpu(), **chain, o);
+    ASSERT_TRUE(t) << t.error().message;
+    EXPECT_EQ(t->clock, "wall");
+    EXPECT_EQ(t->mode, TimingMode::Drained);
+    EXPECT_EQ(t->frame.ms.size(), 3u);
+}
+
+// A planted slowdown (kernels/assemble.cpp) adds work whose result is never
+// written: every image stays bit-identical, so a timing A/B compares the same output.
+TEST_P(Timing, APlantedSlowdownLeavesEveryImageUnchanged) {
+    RunConfig c;
+    c.api = api();
+    c.width = 96;
+    c.height = 54;
+    auto plain = PassChain::create(gpu(), c);
+    auto planted = PassChain::create(gpu(), c, {}, {{"ao", 300}, {"blur", 50}, {"composite", 10}});
+    ASSERT_TRUE(plain && planted);
+    for (auto* chain : {plain->get(), planted->get()}) {
+        gpu().beginFrame();
+        chain->record();
+        ASSERT_TRUE(gpu().endFrame());
+    }
+    for (const auto& out : userOutputs(c)) {
+        auto a = (*plain)->read(out.image), b = (*planted)->read(out.image);
+        ASSERT_TRUE(a && b);
+        EXPECT_TRUE(a->pixels == b->pixels) << out.image;
+    }
+}
+
 CAVITY_ALL_BACKENDS(Timing);
+
+// The median's interval narrows as 1/sqrt(n): a sample four times longer
+// from the same distribution has about half the noise.
+TEST(MedianNoise, ShrinksWithTheSquareRootOfTheSampleCount) {
+    auto sample = [](int n) {
+        std::vector<double> v;
+        unsigned s = 12345;
+        for (int i = 0; i < n; ++i) {
+            s = s * 1103515245u + 12345u;
+            v.push_back(1.0 + 0.05 * double((s >> 8) % 1000) / 1000.0);
+        }
+        return v;
+    };
+    EXPECT_TRUE(std::isinf(medianNoise({1, 2, 3})));
+    const double n400 = medianNoise(sample(400)), n1600 = medianNoise(sample(1600));
+    EXPECT_GT(n400, 0);
+    EXPECT_NEAR(n1600 / n400, 0.5, 0.15);
+    EXPECT_EQ(medianNoise(std::vector<double>(50, 2.0)), 0.0);
+}
 
 }  // namespace
 }  // namespace cavity::test
