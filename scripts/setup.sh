@@ -13,7 +13,7 @@ packages=(
   libopenimageio-dev                                            # EXR/PNG images
   libgtest-dev libgmock-dev libbenchmark-dev                    # tests and benchmarks
   nlohmann-json3-dev                                            # results.json
-  python3 python3-matplotlib                                    # scripts/charts.py
+  python3 python3-matplotlib python3-jsonschema                 # scripts/charts.py; tests/validate_results.py
   chromium                                                      # the HTML report test (headless screenshot)
 )
 missing=()
