@@ -1,7 +1,7 @@
 #include "baselines.h"
 
-#include "pipeline.h"
-#include "sweep.h"
+#include "json_input.h"
+#include "kernel.h"
 
 #include <nlohmann/json.hpp>
 
@@ -14,23 +14,6 @@ namespace cavity::gate {
 
 using nlohmann::json;
 
-std::string baselineKey(const RunConfig& c) {
-    const std::string id = configId(c);
-    // Drop "/<api>/<stage>".
-    const auto stage = id.rfind('/');
-    const auto api = id.rfind('/', stage - 1);
-    return id.substr(0, api);
-}
-
-const std::vector<CheckedImage>& checkedImages() {
-    static const std::vector<CheckedImage> images = {
-        {"ao", ".exr", false},
-        {"ao_blur", ".exr", false},
-        {"color", ".png", true},
-    };
-    return images;
-}
-
 namespace {
 
 bool icontains(const std::string& hay, const std::string& needle) {
@@ -39,27 +22,6 @@ bool icontains(const std::string& hay, const std::string& needle) {
         return s;
     };
     return lower(hay).find(lower(needle)) != std::string::npos;
-}
-
-Result<json> readJson(const std::string& path) {
-    std::ifstream f(path);
-    if (!f) return badInput(path + ": cannot be read");
-    try {
-        return json::parse(f);
-    } catch (const json::parse_error& e) {
-        return badInput(path + ": does not parse: " + e.what());
-    }
-}
-
-Status onlyKeys(const std::string& path, const std::string& where, const json& obj, const std::set<std::string>& allowed) {
-    if (!obj.is_object()) return badInput(path + ": " + where + " must be an object");
-    for (const auto& [k, v] : obj.items())
-        if (!allowed.count(k)) {
-            std::string list;
-            for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
-            return badInput(path + ": unknown key '" + k + "' in " + where + " (allowed: " + list + ")");
-        }
-    return {};
 }
 
 const std::map<std::string, double Tolerance::*>& toleranceFields() {
@@ -94,110 +56,7 @@ void apply(Tolerance& t, const std::map<std::string, double>& values) {
     for (const auto& [k, v] : values) t.*(toleranceFields().at(k)) = v;
 }
 
-template <class T>
-Result<std::vector<T>> list(const std::string& path, const std::string& where, const json& j) {
-    if (!j.is_array()) return badInput(path + ": " + where + " must be a list");
-    std::vector<T> out;
-    for (const auto& e : j) {
-        try {
-            out.push_back(e.get<T>());
-        } catch (const json::exception&) {
-            return badInput(path + ": " + where + " has a value of the wrong type: " + e.dump());
-        }
-    }
-    return out;
-}
-
 }  // namespace
-
-// ---- matrices ----
-
-std::vector<RunConfig> Matrix::expand() const {
-    std::vector<RunConfig> out;
-    std::set<std::string> seen;
-    for (const auto& g : groups) {
-        std::vector<std::string> kernels = g.kernels;
-        if (kernels.size() == 1 && kernels[0] == "all") kernels = aoKernels();
-        for (const auto& scene : g.scenes)
-            for (const auto& k : kernels)
-                for (int n : g.samples)
-                    for (int b : g.blurs)
-                        for (bool half : g.half)
-                            for (auto [w, h] : g.sizes)
-                                for (auto api : g.apis)
-                                    for (auto stage : g.stages) {
-                                        RunConfig c;
-                                        c.kernel = k;
-                                        (void)setParam(c, "scene", scene);
-                                        c.params["samples"] = n;
-                                        c.params["blur"] = b;
-                                        c.half = half;
-                                        c.width = w;
-                                        c.height = h;
-                                        c.api = api;
-                                        c.stage = stage;
-                                        if (half && !supportsHalf(k)) continue;
-                                        if (seen.insert(configId(c)).second) out.push_back(c);
-                                    }
-    }
-    return out;
-}
-
-Result<Matrix> loadMatrix(const std::string& path, const std::string& name) {
-    CAVITY_ASSIGN(json doc, readJson(path));
-    if (!doc.is_object() || !doc.contains(name)) {
-        std::string have;
-        if (doc.is_object())
-            for (const auto& [k, v] : doc.items()) have += (have.empty() ? "" : ", ") + k;
-        return badInput("--matrix " + name + ": no such matrix in " + path + " (have: " + have + ")");
-    }
-    const json& m = doc[name];
-    const std::string where = name;
-    CAVITY_TRY(onlyKeys(path, where, m, {"description", "frames", "warmup", "groups"}));
-    Matrix matrix;
-    matrix.name = name;
-    if (m.contains("frames")) matrix.frames = m["frames"].get<int>();
-    if (m.contains("warmup")) matrix.warmup = m["warmup"].get<int>();
-    if (!m.contains("groups") || !m["groups"].is_array()) return badInput(path + ": " + where + ".groups must be a list");
-    int gi = 0;
-    for (const auto& g : m["groups"]) {
-        const std::string gw = where + ".groups[" + std::to_string(gi++) + "]";
-        CAVITY_TRY(onlyKeys(path, gw, g,
-                            {"scenes", "kernels", "samples", "blurs", "resolutions", "sizes", "apis", "stages"}));
-        for (const char* key : {"scenes", "kernels", "samples", "blurs", "resolutions", "sizes", "apis", "stages"})
-            if (!g.contains(key)) return badInput(path + ": " + gw + " lacks '" + key + "'");
-        MatrixGroup grp;
-        CAVITY_ASSIGN(grp.scenes, list<std::string>(path, gw + ".scenes", g["scenes"]));
-        CAVITY_ASSIGN(grp.kernels, list<std::string>(path, gw + ".kernels", g["kernels"]));
-        CAVITY_ASSIGN(grp.samples, list<int>(path, gw + ".samples", g["samples"]));
-        CAVITY_ASSIGN(grp.blurs, list<int>(path, gw + ".blurs", g["blurs"]));
-        CAVITY_ASSIGN(auto res, list<std::string>(path, gw + ".resolutions", g["resolutions"]));
-        for (const auto& r : res) {
-            if (r != "full" && r != "half") return badInput(path + ": " + gw + ".resolutions has '" + r + "' (full or half)");
-            grp.half.push_back(r == "half");
-        }
-        CAVITY_ASSIGN(auto sizes, list<std::string>(path, gw + ".sizes", g["sizes"]));
-        for (const auto& s : sizes) {
-            CAVITY_ASSIGN(auto wh, parseResolution(path + ": " + gw + ".sizes", s));
-            grp.sizes.push_back(wh);
-        }
-        CAVITY_ASSIGN(auto apis, list<std::string>(path, gw + ".apis", g["apis"]));
-        for (const auto& a : apis) {
-            if (a != "gl" && a != "vk") return badInput(path + ": " + gw + ".apis has '" + a + "' (gl or vk)");
-            grp.apis.push_back(a == "gl" ? gpu::Api::OpenGL : gpu::Api::Vulkan);
-        }
-        CAVITY_ASSIGN(auto stages, list<std::string>(path, gw + ".stages", g["stages"]));
-        for (const auto& s : stages) {
-            if (s != "compute" && s != "fragment") return badInput(path + ": " + gw + ".stages has '" + s + "'");
-            grp.stages.push_back(s == "compute" ? gpu::Stage::Compute : gpu::Stage::Fragment);
-        }
-        matrix.groups.push_back(std::move(grp));
-    }
-    for (const auto& c : matrix.expand()) {
-        if (auto s = validate(c); !s) return badInput(path + ": matrix " + name + ": " + s.error().message);
-    }
-    return matrix;
-}
 
 // ---- manifest ----
 
@@ -214,7 +73,7 @@ Tolerance Manifest::forPipeline(const std::string& kernel, const std::string& de
 }
 
 Result<Manifest> loadManifest(const std::string& path) {
-    CAVITY_ASSIGN(json doc, readJson(path));
+    CAVITY_ASSIGN(json doc, readJsonFile(path));
     CAVITY_TRY(onlyKeys(path, "the top level", doc, {"version", "pipelines", "devices", "note"}));
     Manifest m;
     if (doc.contains("pipelines")) {
@@ -260,7 +119,7 @@ std::optional<double> Budgets::find(const std::string& deviceName, const std::st
 }
 
 Result<Budgets> loadBudgets(const std::string& path) {
-    CAVITY_ASSIGN(json doc, readJson(path));
+    CAVITY_ASSIGN(json doc, readJsonFile(path));
     CAVITY_TRY(onlyKeys(path, "the top level", doc, {"version", "devices", "note"}));
     Budgets b;
     if (!doc.contains("devices")) return b;

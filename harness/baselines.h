@@ -3,12 +3,11 @@
 //   manifest.json           per-pipeline tolerances for each image metric, with per-device overrides
 //   budgets.json            per-device-class timing budgets (median ms per pass) by configuration id
 //   images/<baseline key>/<image>.exr|png
-// A baseline key is a configuration id without its API and stage
-// ("corner/alchemy/n16/b4/full/160x90"): OpenGL and Vulkan, compute and
-// fragment, must all match the same images.
+// Baseline keys, the checked images and the matrices are in matrix.h.
 #pragma once
 
 #include "config.h"
+#include "matrix.h"
 
 #include <map>
 #include <optional>
@@ -16,33 +15,6 @@
 #include <vector>
 
 namespace cavity::gate {
-
-std::string baselineKey(const RunConfig& c);
-
-// The images the gate checks for every configuration, with how they are stored.
-struct CheckedImage {
-    std::string name;        // pipeline image name: "ao", "ao_blur", "color"
-    std::string extension;   // ".exr" (half, zip) or ".png" (8-bit, exact)
-    bool perceptual;         // also scored with FLIP (LDR colour)
-};
-const std::vector<CheckedImage>& checkedImages();
-
-// ---- matrices.json ----
-struct MatrixGroup {
-    std::vector<std::string> scenes, kernels;   // kernels: names, or {"all"} for every AO kernel
-    std::vector<int> samples, blurs;
-    std::vector<bool> half;
-    std::vector<std::pair<int, int>> sizes;
-    std::vector<gpu::Api> apis;
-    std::vector<gpu::Stage> stages;
-};
-struct Matrix {
-    std::string name;
-    int frames = 3, warmup = 1;
-    std::vector<MatrixGroup> groups;
-    std::vector<RunConfig> expand() const;   // deduplicated by id, stable order
-};
-Result<Matrix> loadMatrix(const std::string& path, const std::string& name);
 
 // ---- manifest.json ----
 struct Tolerance {

@@ -44,6 +44,16 @@ std::vector<std::string> splitList(const std::string& text) {
     return out;
 }
 
+Result<std::pair<int, int>> parseShard(const std::string& text) {
+    const auto slash = text.find('/');
+    const std::string msg = "--shard " + text + ": must be I/N with 0 <= I < N";
+    if (slash == std::string::npos) return badInput(msg);
+    auto i = parseInt("--shard", text.substr(0, slash), 0, 1 << 20);
+    auto n = parseInt("--shard", text.substr(slash + 1), 1, 1 << 20);
+    if (!i || !n || *i >= *n) return badInput(msg);
+    return std::pair{*i, *n};
+}
+
 int exitCode(const Error& e) { return static_cast<int>(e.code); }
 
 }  // namespace cavity::cli

@@ -27,6 +27,8 @@ Result<int> parseInt(const std::string& flag, const std::string& text, int lo, i
 // A finite number in [lo, hi]; "nan", "inf", "1e999" and trailing text fail.
 Result<double> parseNumber(const std::string& flag, const std::string& text, double lo, double hi);
 std::vector<std::string> splitList(const std::string& text);   // "8,16,32"
+// "--shard I/N": (I, N) with 0 <= I < N.
+Result<std::pair<int, int>> parseShard(const std::string& text);
 
 // Exit code for an error, as documented in README.md ("Exit codes").
 int exitCode(const Error& e);
@@ -36,6 +38,7 @@ int runCommand(const std::vector<std::string>& args);
 int gateCommand(const std::vector<std::string>& args);
 int baselinesCommand(const std::vector<std::string>& args);
 int compareCommand(const std::vector<std::string>& args);
-int qualityCommand(const std::vector<std::string>& args);
+// `program` starts every message: "cavity quality", "cavity_render quality".
+int qualityCommand(const std::vector<std::string>& args, const std::string& program = "cavity quality");
 
 }  // namespace cavity::cli

@@ -2,6 +2,9 @@
 // image compared with its stored baseline and each pass's median time with
 // its budget. Verdicts go to gate.json (read by `gate merge` and
 // `baselines update`), junit.xml, summary.md and index.html (gate_report.h).
+// Two halves: rendering (render/rendering.h, no OpenImageIO: cavity_render
+// runs it on the GPU machine) and judging (gate_judge.h); runGate does both
+// in one process, judge_folders.h judges what cavity_render left.
 #pragma once
 
 #include "baselines.h"
@@ -18,6 +21,7 @@ namespace cavity::gate {
 
 struct ImageCheck {
     std::string image;                 // "ao", "ao_blur", "color"
+    std::string digest;                // digest.h imageDigest() of the new image
     std::string baseline;              // path of the baseline file (relative to the repo root or absolute)
     std::string newPng, newExact;      // written new image: PNG to look at, and the exact file (.exr / .png)
     std::string baselinePng, diffPng;  // for the report
@@ -37,6 +41,7 @@ struct TimingCheck {
 
 struct ConfigResult {
     std::string id, key, device;
+    int repetition = 0;                // cavity_render --repeat: every repetition is judged
     RunConfig config;
     std::vector<ImageCheck> images;
     std::vector<TimingCheck> timings;
@@ -46,6 +51,8 @@ struct ConfigResult {
     bool imagesPassed() const;
     bool timingPassed() const;
     bool passed() const { return error.empty() && imagesPassed() && timingPassed(); }
+    // The id, and "(repetition K)" after it for a later repetition.
+    std::string label() const;
 };
 
 struct GateOptions {
@@ -69,11 +76,8 @@ struct GateRun {
     int exitCode() const;
 };
 
-// Shard I of N holds the matrix entries whose index i has i % N == I, as
-// GoogleTest's GTEST_TOTAL_SHARDS / GTEST_SHARD_INDEX split tests.
-bool inShard(size_t index, int shardIndex, int shardCount);
-
-// Validates every input file first (exit 2 before any GPU work), then runs.
+// Validates every input file first (exit 2 before any GPU work), then
+// renders and judges each configuration in turn.
 Result<GateRun> runGate(const GateOptions& o);
 
 nlohmann::json toJson(const GateRun& run);

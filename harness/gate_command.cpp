@@ -1,7 +1,8 @@
-// `cavity gate`, `cavity gate merge` and `cavity baselines update`.
+// `cavity gate`, `cavity gate judge`, `cavity gate merge` and `cavity baselines update`.
 #include "cli.h"
 #include "gate_report.h"
 #include "image_io.h"
+#include "judge_folders.h"
 #include "results.h"
 #include "runner.h"
 
@@ -23,16 +24,6 @@ namespace {
 int fail(const std::string& who, const Error& e) {
     std::cerr << who << ": " << e.message << "\n";
     return exitCode(e);
-}
-
-Result<std::pair<int, int>> parseShard(const std::string& text) {
-    const auto slash = text.find('/');
-    const std::string msg = "--shard " + text + ": must be I/N with 0 <= I < N";
-    if (slash == std::string::npos) return badInput(msg);
-    auto i = parseInt("--shard", text.substr(0, slash), 0, 1 << 20);
-    auto n = parseInt("--shard", text.substr(slash + 1), 1, 1 << 20);
-    if (!i || !n || *i >= *n) return badInput(msg);
-    return std::pair{*i, *n};
 }
 
 Result<gate::GateRun> loadGateJson(const std::string& dir) {
@@ -66,7 +57,7 @@ int merge(const std::vector<std::string>& argv) {
     }
     if (dirs.empty()) return fail("cavity gate merge", badInput("needs one or more shard output folders"));
     gate::GateRun merged;
-    std::set<std::string> seen;
+    std::set<std::pair<std::string, int>> seen;
     for (const auto& d : dirs) {
         auto run = loadGateJson(d);
         if (!run) return fail("cavity gate merge", run.error());
@@ -76,7 +67,7 @@ int merge(const std::vector<std::string>& argv) {
         merged.seconds = std::max(merged.seconds, run->seconds);
         for (auto& e : run->backendErrors) merged.backendErrors.push_back(e);
         for (auto& r : run->results)
-            if (seen.insert(r.id).second) merged.results.push_back(std::move(r));
+            if (seen.insert({r.id, r.repetition}).second) merged.results.push_back(std::move(r));
     }
     if (auto st = checkWritableDir("--out", out); !st) return fail("cavity gate merge", st.error());
     if (auto st = gate::writeReports(merged, out); !st) return fail("cavity gate merge", st.error());
@@ -84,10 +75,36 @@ int merge(const std::vector<std::string>& argv) {
     return merged.exitCode();
 }
 
+// Nothing is written unless every folder is whole (judge_folders.h).
+int judge(const std::vector<std::string>& argv) {
+    std::vector<std::string> dirs;
+    std::string out = "out/gate", baselines = "baselines";
+    Args a(argv);
+    while (!a.done()) {
+        const std::string flag = a.next();
+        if (flag == "--out" || flag == "--baselines") {
+            auto v = a.value(flag);
+            if (!v) return fail("cavity gate judge", v.error());
+            (flag == "--out" ? out : baselines) = *v;
+        } else if (flag.rfind("--", 0) == 0) {
+            return fail("cavity gate judge", badInput(flag + ": unknown flag (cavity gate judge RENDER_DIR... [--baselines DIR] [--out DIR])"));
+        } else {
+            dirs.push_back(flag);
+        }
+    }
+    auto run = gate::judgeFolders(dirs, baselines, out);
+    if (!run) return fail("cavity gate judge", run.error());
+    if (auto st = gate::writeReports(*run, out); !st) return fail("cavity gate judge", st.error());
+    std::cout << gate::summaryMarkdown(*run);
+    std::cout << "\nreport: " << (fs::path(out) / "index.html").string() << "\n";
+    return run->exitCode();
+}
+
 }  // namespace
 
 int gateCommand(const std::vector<std::string>& argv) {
     if (!argv.empty() && argv[0] == "merge") return merge({argv.begin() + 1, argv.end()});
+    if (!argv.empty() && argv[0] == "judge") return judge({argv.begin() + 1, argv.end()});
     gate::GateOptions o;
     bool shardGiven = false;
     Args a(argv);

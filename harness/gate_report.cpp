@@ -108,23 +108,24 @@ std::string junitXml(const GateRun& run) {
             }
             cases << "</testcase>\n";
         };
+        const std::string name = r->label();
         if (!r->error.empty()) {
-            testcase(r->id, r->error, true);
+            testcase(name, r->error, true);
             continue;
         }
         for (const auto& i : r->images) {
             std::string f;
             for (const auto& line : i.failures) f += (f.empty() ? "" : "; ") + line;
-            testcase(r->id + "/image/" + i.image, f, false);
+            testcase(name + "/image/" + i.image, f, false);
         }
         for (const auto& t : r->timings) {
             std::string f;
             if (!t.passed())
                 f = "median " + num(t.medianMs) + " ms > budget " + num(*t.budgetMs) + " ms (+" +
                     num(100 * (t.medianMs / *t.budgetMs - 1), 3) + "%)";
-            testcase(r->id + "/time/" + t.pass, f, false);
+            testcase(name + "/time/" + t.pass, f, false);
         }
-        testcase(r->id + "/deterministic", r->deterministic ? "" : "a second frame was not bit-identical", false);
+        testcase(name + "/deterministic", r->deterministic ? "" : "a second frame was not bit-identical", false);
     }
     std::ostringstream x;
     x << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
@@ -137,9 +138,10 @@ std::string junitXml(const GateRun& run) {
 }
 
 std::string summaryMarkdown(const GateRun& run) {
-    int failed = 0, unbudgeted = 0, nondet = 0;
+    int failed = 0, unbudgeted = 0, nondet = 0, repetitions = 1;
     for (const auto& r : run.results) {
         failed += !r.passed();
+        repetitions = std::max(repetitions, r.repetition + 1);
         nondet += !r.deterministic;
         for (const auto& t : r.timings) unbudgeted += !t.budgetMs;
     }
@@ -159,16 +161,19 @@ std::string summaryMarkdown(const GateRun& run) {
                 m << "| … | | more in index.html | |\n";
                 break;
             }
-            if (!r->error.empty()) m << "| `" << r->id << "` | run | " << r->error << " | |\n";
+            const std::string name = "`" + r->id + "`" + (r->repetition ? " rep " + std::to_string(r->repetition) : "");
+            if (!r->error.empty()) m << "| " << name << " | run | " << r->error << " | |\n";
             for (const auto& i : r->images)
-                for (const auto& f : i.failures) m << "| `" << r->id << "` | " << i.image << " | " << f << " | |\n";
+                for (const auto& f : i.failures) m << "| " << name << " | " << i.image << " | " << f << " | |\n";
             for (const auto& t : r->timings)
                 if (!t.passed())
-                    m << "| `" << r->id << "` | time " << t.pass << " | " << num(t.medianMs) << " ms (+"
+                    m << "| " << name << " | time " << t.pass << " | " << num(t.medianMs) << " ms (+"
                       << num(100 * (t.medianMs / *t.budgetMs - 1), 3) << "%) | ≤ " << num(*t.budgetMs) << " ms |\n";
         }
         m << "\n";
     }
+    if (repetitions > 1)
+        m << "- each configuration was rendered " << repetitions << " times; every repetition is judged on its own and counted above\n";
     if (nondet) m << "- " << nondet << " configurations were not bit-identical across two frames on the same device\n";
     if (unbudgeted) m << "- " << unbudgeted << " pass timings had no budget for this device (reported, not failed)\n";
     m << "\nAccept intended changes with `cavity baselines update --from <gate output>`; details in index.html.\n";
@@ -203,8 +208,8 @@ td.l,th.l{text-align:left} .bad{color:#ff6b6b;font-weight:bold}
     for (const auto& e : run.backendErrors) h << "<p class=bad>backend could not start: " << esc(e) << "</p>\n";
     int n = 0;
     for (const auto* r : ordered(run)) {
-        h << "<div class=\"cfg " << (r->passed() ? "pass" : "fail") << "\" data-id=\"" << esc(r->id) << "\"><h2>"
-          << esc(r->id) << "<span class=badge>" << (r->passed() ? "pass" : "FAIL") << "</span></h2>\n";
+        h << "<div class=\"cfg " << (r->passed() ? "pass" : "fail") << "\" data-id=\"" << esc(r->id) << "\" data-repetition=\""
+          << r->repetition << "\"><h2>" << esc(r->label()) << "<span class=badge>" << (r->passed() ? "pass" : "FAIL") << "</span></h2>\n";
         if (!r->error.empty()) h << "<p class=bad>" << esc(r->error) << "</p>\n";
         if (!r->deterministic) h << "<p class=bad>not bit-identical across two frames on this device</p>\n";
         for (const auto& i : r->images) {

@@ -12,6 +12,7 @@ constexpr const char* kUsage =
     "commands:\n"
     "  run        run kernel configurations, write images, results.json and a timing table\n"
     "  gate       run a matrix against baselines and budgets; junit.xml, summary.md, index.html\n"
+    "  gate judge judge render folders written by cavity_render (the gate in two steps)\n"
     "  gate merge join shard outputs into one verdict\n"
     "  baselines update   accept new images as baselines\n"
     "  compare    two runs (results.json or cavity_bench JSON) pass by pass: change, interval, verdict\n"

@@ -13,19 +13,22 @@ namespace cavity::cli {
 
 namespace {
 
-constexpr const char* kQualityUsage =
-    "usage: cavity quality [--backend gl|vk] [--scene S[,S..]] [--kernel K[,K..]] [--samples N[,N..]]\n"
-    "                      [--res WxH] [--rays N] [--resolution full|half] [--device K] [--out DIR]\n"
-    "mean absolute error of each AO kernel (raw AO, no bilateral blur) against the ground truth\n";
-
-int fail(const Error& e) {
-    std::cerr << "cavity quality: " << e.message << "\n";
-    return exitCode(e);
+std::string usage(const std::string& program) {
+    const std::string pad(program.size(), ' ');
+    return "usage: " + program + " [--backend gl|vk] [--scene S[,S..]] [--kernel K[,K..]] [--samples N[,N..]]\n" +
+           "       " + pad + " [--res WxH] [--rays N] [--resolution full|half] [--device K] [--out DIR]\n" +
+           "mean absolute error of each AO kernel (raw AO, no bilateral blur) against the ground truth\n";
 }
 
 }  // namespace
 
-int qualityCommand(const std::vector<std::string>& argv) {
+// Shared by `cavity quality` and `cavity_render quality` (which runs on the
+// GPU machine): one parser, one table, one quality.json.
+int qualityCommand(const std::vector<std::string>& argv, const std::string& program) {
+    auto fail = [&](const Error& e) {
+        std::cerr << program << ": " << e.message << "\n";
+        return exitCode(e);
+    };
     QualityOptions o;
     gpu::Api api = gpu::Api::Vulkan;
     gpu::BackendOptions backend;
@@ -34,7 +37,7 @@ int qualityCommand(const std::vector<std::string>& argv) {
     while (!a.done()) {
         const std::string flag = a.next();
         if (flag == "--help" || flag == "-h") {
-            std::cout << kQualityUsage;
+            std::cout << usage(program);
             return 0;
         }
         auto v = a.value(flag);
@@ -79,7 +82,7 @@ int qualityCommand(const std::vector<std::string>& argv) {
         } else if (flag == "--out") {
             out = *v;
         } else {
-            return fail(badInput(flag + ": unknown flag (see cavity quality --help)"));
+            return fail(badInput(flag + ": unknown flag (see " + program + " --help)"));
         }
     }
     if (!out.empty())
@@ -87,7 +90,7 @@ int qualityCommand(const std::vector<std::string>& argv) {
 
     auto gpu = gpu::createBackend(api, backend);
     if (!gpu) return fail(gpu.error());
-    std::cerr << "cavity quality: " << gpu::apiName(api) << ": " << (*gpu)->info().deviceName << "\n";
+    std::cerr << program << ": " << gpu::apiName(api) << ": " << (*gpu)->info().deviceName << "\n";
     auto rows = measureQuality(**gpu, o);
     if (!rows) return fail(rows.error());
 

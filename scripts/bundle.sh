@@ -1,23 +1,30 @@
 #!/usr/bin/env bash
 # Packs a self-contained folder for the GPU machine (../shared/docs/GPU.md):
-# the benchmark runner and every shared library it needs that a stock Ubuntu
-# 24.04 with only the NVIDIA driver lacks. The GL/Vulkan loaders come from the
+# the benchmark runner, the gate's render binary, every shared library they
+# need that a stock Ubuntu 24.04 with only the NVIDIA driver lacks, and the
+# one repository file cavity_render reads at run time (baselines/matrices.json;
+# the kernel sources are compiled in). The GL/Vulkan loaders come from the
 # .gl/ Debian packages the device recipe unpacks; OpenImageIO is not needed
-# (cavity_bench writes JSON only).
+# (cavity_bench writes JSON, cavity_render a render folder of zlib images).
 #   scripts/bundle.sh [DIR]   (default .bundle; must stay under 40 MiB)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out="${1:-.bundle}"
 build="${BUILD_DIR:-build}"
-cmake --build "$build" --target cavity_bench >/dev/null
+cmake --build "$build" --target cavity_bench cavity_render >/dev/null
 rm -rf "$out"
-mkdir -p "$out/lib"
-cp "$build/bench/cavity_bench" "$out/"
-strip "$out/cavity_bench"
+mkdir -p "$out/lib" "$out/baselines"
+cp "$build/bench/cavity_bench" "$build/render/cavity_render" "$out/"
+strip "$out/cavity_bench" "$out/cavity_render"
+cp baselines/matrices.json "$out/baselines/"
 # Libraries resolved by the loader here, minus what every glibc system and the
-# GPU machine's loaders provide.
-system='^(linux-vdso|libc\.so|libm\.so|libdl\.so|librt\.so|libpthread\.so|ld-linux|libstdc\+\+|libgcc_s|libvulkan|libEGL|libGL|libOpenGL|libGLX|libGLdispatch|libX|libxcb)'
-ldd "$out/cavity_bench" | awk '/=>/ {print $1, $3}' | while read -r name path; do
+# GPU machine's loaders provide. libz is part of every Linux base system
+# (Ubuntu's zlib1g is "required"), and the system's own must win: the NVIDIA
+# driver's libraries load it too, and ours (Debian 12's) is older.
+system='^(linux-vdso|libc\.so|libm\.so|libdl\.so|librt\.so|libpthread\.so|ld-linux|libstdc\+\+|libgcc_s|libz\.so|libvulkan|libEGL|libGL|libOpenGL|libGLX|libGLdispatch|libX|libxcb)'
+for exe in cavity_bench cavity_render; do
+  ldd "$out/$exe" | awk '/=>/ {print $1, $3}'
+done | sort -u | while read -r name path; do
   if ! [[ "$name" =~ $system ]]; then cp -L "$path" "$out/lib/"; fi
 done
 cat > "$out/run.sh" <<'RUN'
@@ -27,7 +34,19 @@ here="$(cd "$(dirname "$0")" && pwd)"
 export LD_LIBRARY_PATH="$here/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
 exec "$here/cavity_bench" "$@"
 RUN
-chmod +x "$out/run.sh"
+cat > "$out/render.sh" <<'RENDER'
+#!/usr/bin/env bash
+# Renders a gate matrix into a render folder for `cavity gate judge`, or runs
+# `quality`; arguments go to cavity_render. The matrices are the bundle's
+# copy of baselines/matrices.json unless --baselines says otherwise.
+here="$(cd "$(dirname "$0")" && pwd)"
+export LD_LIBRARY_PATH="$here/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
+if [ "${1:-}" != quality ] && [[ " $* " != *" --baselines "* ]]; then
+  set -- "$@" --baselines "$here/baselines"
+fi
+exec "$here/cavity_render" "$@"
+RENDER
+chmod +x "$out/run.sh" "$out/render.sh"
 size=$(du -sm "$out" | cut -f1)
-echo "bundle: $out ($size MiB): $(ls "$out/lib" | tr '\n' ' ')"
+echo "bundle: $out ($size MiB): cavity_bench cavity_render baselines/matrices.json lib/: $(ls "$out/lib" | tr '\n' ' ')"
 if [ "$size" -gt 40 ]; then echo "bundle: over the 40 MiB limit" >&2; exit 1; fi

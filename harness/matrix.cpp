@@ -1,0 +1,171 @@
+#include "matrix.h"
+
+#include "digest.h"
+#include "json_input.h"
+#include "pipeline.h"
+#include "sweep.h"
+
+#include <optional>
+#include <regex>
+#include <set>
+
+namespace cavity::gate {
+
+using nlohmann::json;
+
+std::string baselineKey(const RunConfig& c) {
+    const std::string id = configId(c);
+    // Drop "/<api>/<stage>".
+    const auto stage = id.rfind('/');
+    const auto api = id.rfind('/', stage - 1);
+    return id.substr(0, api);
+}
+
+const std::vector<CheckedImage>& checkedImages() {
+    static const std::vector<CheckedImage> images = {
+        {"ao", ".exr", false},
+        {"ao_blur", ".exr", false},
+        {"color", ".png", true},
+    };
+    return images;
+}
+
+ImageShape checkedShape(const RunConfig& c, const std::string& image) {
+    const bool half = c.half && supportsHalf(c.kernel) && image == "ao";
+    return {half ? (c.width + 1) / 2 : c.width, half ? (c.height + 1) / 2 : c.height, image == "color" ? 4 : 1};
+}
+
+std::string shapeText(const ImageShape& s) {
+    return std::to_string(s.width) + "x" + std::to_string(s.height) + "x" + std::to_string(s.channels);
+}
+
+namespace {
+
+template <class T>
+Result<std::vector<T>> list(const std::string& path, const std::string& where, const json& j) {
+    if (!j.is_array()) return badInput(path + ": " + where + " must be a list");
+    std::vector<T> out;
+    for (const auto& e : j) {
+        try {
+            out.push_back(e.get<T>());
+        } catch (const json::exception&) {
+            return badInput(path + ": " + where + " has a value of the wrong type: " + e.dump());
+        }
+    }
+    return out;
+}
+
+}  // namespace
+
+std::vector<RunConfig> Matrix::expand() const {
+    std::vector<RunConfig> out;
+    std::set<std::string> seen;
+    for (const auto& g : groups) {
+        std::vector<std::string> kernels = g.kernels;
+        if (kernels.size() == 1 && kernels[0] == "all") kernels = aoKernels();
+        for (const auto& scene : g.scenes)
+            for (const auto& k : kernels)
+                for (int n : g.samples)
+                    for (int b : g.blurs)
+                        for (bool half : g.half)
+                            for (auto [w, h] : g.sizes)
+                                for (auto api : g.apis)
+                                    for (auto stage : g.stages) {
+                                        RunConfig c;
+                                        c.kernel = k;
+                                        (void)setParam(c, "scene", scene);
+                                        c.params["samples"] = n;
+                                        c.params["blur"] = b;
+                                        c.half = half;
+                                        c.width = w;
+                                        c.height = h;
+                                        c.api = api;
+                                        c.stage = stage;
+                                        if (half && !supportsHalf(k)) continue;
+                                        if (seen.insert(configId(c)).second) out.push_back(c);
+                                    }
+    }
+    return out;
+}
+
+Result<Matrix> loadMatrix(const std::string& path, const std::string& name) {
+    CAVITY_ASSIGN(json doc, readJsonFile(path));
+    if (!doc.is_object() || !doc.contains(name)) {
+        std::string have;
+        if (doc.is_object())
+            for (const auto& [k, v] : doc.items()) have += (have.empty() ? "" : ", ") + k;
+        return badInput("--matrix " + name + ": no such matrix in " + path + " (have: " + have + ")");
+    }
+    const json& m = doc[name];
+    const std::string where = name;
+    CAVITY_TRY(onlyKeys(path, where, m, {"description", "frames", "warmup", "groups"}));
+    Matrix matrix;
+    matrix.name = name;
+    const std::string text = m.dump();
+    matrix.hash = digestText(fnv1a64(text.data(), text.size()));
+    if (m.contains("frames")) matrix.frames = m["frames"].get<int>();
+    if (m.contains("warmup")) matrix.warmup = m["warmup"].get<int>();
+    if (!m.contains("groups") || !m["groups"].is_array()) return badInput(path + ": " + where + ".groups must be a list");
+    int gi = 0;
+    for (const auto& g : m["groups"]) {
+        const std::string gw = where + ".groups[" + std::to_string(gi++) + "]";
+        CAVITY_TRY(onlyKeys(path, gw, g,
+                            {"scenes", "kernels", "samples", "blurs", "resolutions", "sizes", "apis", "stages"}));
+        for (const char* key : {"scenes", "kernels", "samples", "blurs", "resolutions", "sizes", "apis", "stages"})
+            if (!g.contains(key)) return badInput(path + ": " + gw + " lacks '" + key + "'");
+        MatrixGroup grp;
+        CAVITY_ASSIGN(grp.scenes, list<std::string>(path, gw + ".scenes", g["scenes"]));
+        CAVITY_ASSIGN(grp.kernels, list<std::string>(path, gw + ".kernels", g["kernels"]));
+        CAVITY_ASSIGN(grp.samples, list<int>(path, gw + ".samples", g["samples"]));
+        CAVITY_ASSIGN(grp.blurs, list<int>(path, gw + ".blurs", g["blurs"]));
+        CAVITY_ASSIGN(auto res, list<std::string>(path, gw + ".resolutions", g["resolutions"]));
+        for (const auto& r : res) {
+            if (r != "full" && r != "half") return badInput(path + ": " + gw + ".resolutions has '" + r + "' (full or half)");
+            grp.half.push_back(r == "half");
+        }
+        CAVITY_ASSIGN(auto sizes, list<std::string>(path, gw + ".sizes", g["sizes"]));
+        for (const auto& s : sizes) {
+            CAVITY_ASSIGN(auto wh, parseResolution(path + ": " + gw + ".sizes", s));
+            grp.sizes.push_back(wh);
+        }
+        CAVITY_ASSIGN(auto apis, list<std::string>(path, gw + ".apis", g["apis"]));
+        for (const auto& a : apis) {
+            if (a != "gl" && a != "vk") return badInput(path + ": " + gw + ".apis has '" + a + "' (gl or vk)");
+            grp.apis.push_back(a == "gl" ? gpu::Api::OpenGL : gpu::Api::Vulkan);
+        }
+        CAVITY_ASSIGN(auto stages, list<std::string>(path, gw + ".stages", g["stages"]));
+        for (const auto& s : stages) {
+            if (s != "compute" && s != "fragment") return badInput(path + ": " + gw + ".stages has '" + s + "'");
+            grp.stages.push_back(s == "compute" ? gpu::Stage::Compute : gpu::Stage::Fragment);
+        }
+        matrix.groups.push_back(std::move(grp));
+    }
+    for (const auto& c : matrix.expand()) {
+        if (auto s = validate(c); !s) return badInput(path + ": matrix " + name + ": " + s.error().message);
+    }
+    return matrix;
+}
+
+bool inShard(size_t index, int shardIndex, int shardCount) {
+    return shardCount <= 1 || int(index % size_t(shardCount)) == shardIndex;
+}
+
+Result<std::vector<MatrixEntry>> selectEntries(const Matrix& m, int shardIndex, int shardCount,
+                                               const std::string& filter) {
+    std::optional<std::regex> re;
+    if (!filter.empty()) {
+        try {
+            re.emplace(filter);
+        } catch (const std::regex_error& e) {
+            return badInput("--filter " + filter + ": not a regular expression (" + e.what() + ")");
+        }
+    }
+    std::vector<MatrixEntry> out;
+    const auto all = m.expand();
+    for (size_t i = 0; i < all.size(); ++i)
+        if (inShard(i, shardIndex, shardCount) && (!re || std::regex_search(configId(all[i]), *re)))
+            out.push_back({i, all[i]});
+    return out;
+}
+
+}  // namespace cavity::gate

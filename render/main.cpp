@@ -1,0 +1,16 @@
+// cavity_render: the rendering half of the gate, and `quality`, for the GPU
+// machine. It links no OpenImageIO (tests/test_render.cpp reads its dynamic
+// section to keep it so); images go to a render folder that `cavity gate
+// judge` reads. Exit codes as cavity's (README.md, "Exit codes").
+#include "cli.h"
+#include "render_command.h"
+
+#include <string>
+#include <vector>
+
+int main(int argc, char** argv) {
+    std::vector<std::string> args(argv + 1, argv + argc);
+    if (!args.empty() && args[0] == "quality")
+        return cavity::cli::qualityCommand({args.begin() + 1, args.end()}, "cavity_render quality");
+    return cavity::render::renderCommand(args);
+}

@@ -1,0 +1,131 @@
+#include "render_command.h"
+
+#include "cli.h"
+#include "render_folder.h"
+#include "results.h"
+#include "runner.h"
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+
+namespace cavity::render {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr const char* kUsage =
+    "usage: cavity_render --matrix NAME [--baselines DIR] [--backend gl|vk|all] [--shard I/N] [--device K]\n"
+    "                     [--filter REGEX] [--repeat N] [--validation] --out DIR\n"
+    "       cavity_render quality [the flags of cavity quality]\n"
+    "renders a matrix of DIR/matrices.json (default baselines/) into a render folder for `cavity gate judge`\n";
+
+int fail(const Error& e) {
+    std::cerr << "cavity_render: " << e.message << "\n";
+    return cli::exitCode(e);
+}
+
+std::string joined(const std::vector<std::string>& argv) {
+    std::string s = "cavity_render";
+    for (const auto& a : argv) s += " " + a;
+    return s;
+}
+
+// The gate's precedence (gate::GateRun::exitCode): bad input, then a
+// backend that did not start, then a GPU error.
+int worst(const RenderManifest& m) {
+    bool bad = false, backend = !m.backendErrors.empty(), gpuError = false;
+    for (const auto& c : m.configs)
+        for (const auto& r : c.renders) {
+            bad |= r.errorCode == int(ErrorCode::BadInput);
+            backend |= r.errorCode == int(ErrorCode::BackendUnavailable);
+            gpuError |= r.errorCode != 0;
+        }
+    return bad ? 2 : backend ? 3 : gpuError ? 4 : 0;
+}
+
+}  // namespace
+
+Result<RenderCommand> parseRenderFlags(const std::vector<std::string>& argv) {
+    RenderCommand o;
+    cli::Args a(argv);
+    while (!a.done()) {
+        const std::string flag = a.next();
+        if (flag == "--validation") {
+            o.render.validation = true;
+            continue;
+        }
+        CAVITY_ASSIGN(const std::string v, a.value(flag));
+        if (flag == "--matrix") o.matrix = v;
+        else if (flag == "--baselines") o.baselines = v;
+        else if (flag == "--out") o.out = v;
+        else if (flag == "--filter") o.filter = v;
+        else if (flag == "--backend") {
+            if (v == "gl") o.render.apis = {gpu::Api::OpenGL};
+            else if (v == "vk") o.render.apis = {gpu::Api::Vulkan};
+            else if (v == "all") o.render.apis = {gpu::Api::OpenGL, gpu::Api::Vulkan};
+            else return badInput("--backend " + v + ": must be gl, vk or all");
+        } else if (flag == "--shard") {
+            CAVITY_ASSIGN(std::tie(o.shardIndex, o.shardCount), cli::parseShard(v));
+        } else if (flag == "--device") {
+            CAVITY_ASSIGN(o.render.device, cli::parseInt(flag, v, 0, 64));
+        } else if (flag == "--repeat") {
+            CAVITY_ASSIGN(o.render.repeat, cli::parseInt(flag, v, 1, 1000));
+        } else {
+            return badInput(flag + ": unknown flag (see cavity_render --help)");
+        }
+    }
+    if (o.matrix.empty()) return badInput("--matrix: missing (name a matrix of " + o.baselines + "/matrices.json)");
+    if (o.out.empty()) return badInput("--out: missing (the render folder to write)");
+    return o;
+}
+
+int renderCommand(const std::vector<std::string>& argv) {
+    if (!argv.empty() && (argv[0] == "--help" || argv[0] == "-h")) {
+        std::cout << kUsage;
+        return 0;
+    }
+    const auto start = std::chrono::steady_clock::now();
+    auto o = parseRenderFlags(argv);
+    if (!o) return fail(o.error());
+    auto matrix = gate::loadMatrix((fs::path(o->baselines) / "matrices.json").string(), o->matrix);
+    if (!matrix) return fail(matrix.error());
+    auto entries = gate::selectEntries(*matrix, o->shardIndex, o->shardCount, o->filter);
+    if (!entries) return fail(entries.error());
+    if (auto st = checkWritableDir("--out", o->out); !st) return fail(st.error());
+
+    RenderManifest header;
+    header.matrix = matrix->name;
+    header.matrixHash = matrix->hash;
+    header.gitCommit = gitCommit();
+    header.createdUtc = utcTimestamp();
+    header.command = joined(argv);
+    header.shardIndex = o->shardIndex;
+    header.shardCount = o->shardCount;
+    header.filter = o->filter;
+    header.repeat = o->render.repeat;
+    FolderWriter writer(o->out, header);
+    if (auto st = writer.begin(); !st) return fail(st.error());
+    auto sink = [&](Rendering&& r) -> Status {
+        const std::string what = r.id + (r.repetition ? " (repetition " + std::to_string(r.repetition) + ")" : "");
+        const std::string error = r.error;
+        const uint64_t before = writer.bytesWritten();
+        CAVITY_TRY(writer.add(std::move(r)));
+        if (!error.empty()) std::fprintf(stderr, "render: %-60s error: %s\n", what.c_str(), error.c_str());
+        else std::fprintf(stderr, "render: %-60s %8.1f KiB\n", what.c_str(), double(writer.bytesWritten() - before) / 1024.0);
+        return {};
+    };
+    std::vector<BackendFailure> failures;
+    if (auto st = renderEntries(*matrix, *entries, o->render, sink, &failures); !st) return fail(st.error());
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (auto st = writer.finish(failures, seconds); !st) return fail(st.error());
+    for (const auto& f : failures) std::cerr << "cavity_render: " << gpu::apiName(f.api) << ": " << f.message << "\n";
+    std::printf("wrote %s: %zu configurations x %d repetitions of matrix %s, %d image files, %.1f MiB, %.1f s\n",
+                (fs::path(o->out) / "manifest.json").c_str(), writer.manifest().configs.size(), o->render.repeat,
+                matrix->name.c_str(), writer.filesWritten(), double(writer.bytesWritten()) / (1024.0 * 1024.0), seconds);
+    return worst(writer.manifest());
+}
+
+}  // namespace cavity::render

@@ -1,0 +1,29 @@
+// The cavity_render command line (README.md, "The two-step gate"):
+//   cavity_render --matrix NAME [--baselines DIR] [--backend gl|vk|all] [--shard I/N]
+//                 [--device K] [--filter REGEX] [--repeat N] [--validation] --out DIR
+//   cavity_render quality [the flags of cavity quality]
+#pragma once
+
+#include "rendering.h"
+
+#include <string>
+#include <vector>
+
+namespace cavity::render {
+
+struct RenderCommand {
+    std::string matrix, baselines = "baselines", out, filter;
+    int shardIndex = 0, shardCount = 1;
+    RenderOptions render;
+};
+
+// Every error names the flag, the value and what is allowed.
+Result<RenderCommand> parseRenderFlags(const std::vector<std::string>& argv);
+
+// Validates, renders, writes DIR; returns the process exit code: 0 every
+// configuration rendered, 2 bad input (nothing written), 3 a backend did
+// not start, 4 a configuration failed on the GPU (3 and 4 still write the
+// folder, with the errors in the manifest for the judge to report).
+int renderCommand(const std::vector<std::string>& argv);
+
+}  // namespace cavity::render
