@@ -2,6 +2,7 @@
 // every error is one line naming the file, what is wrong and what is allowed.
 #pragma once
 
+#include "json_file.h"
 #include "result.h"
 
 #include <nlohmann/json.hpp>
@@ -11,8 +12,7 @@
 
 namespace cavity {
 
-// The parsed file, or "PATH: cannot be read" / "PATH: does not parse: ...".
-Result<nlohmann::json> readJsonFile(const std::string& path);
+// readJsonFile (json_file.h) reads them.
 
 // Fails on a key of `obj` outside `allowed`, listing the allowed ones.
 Status onlyKeys(const std::string& path, const std::string& where, const nlohmann::json& obj,

@@ -18,7 +18,8 @@ namespace {
 
 constexpr const char* kUsage =
     "usage: cavity_render --matrix NAME [--baselines DIR] [--backend gl|vk|all] [--shard I/N] [--device K]\n"
-    "                     [--filter REGEX] [--repeat N] [--validation] --out DIR\n"
+    "                     [--filter REGEX] [--repeat N] [--validation]\n"
+    "                     [--timing batch|drained] [--max-noise PCT] [--max-time S] --out DIR\n"
     "       cavity_render quality [the flags of cavity quality]\n"
     "renders a matrix of DIR/matrices.json (default baselines/) into a render folder for `cavity gate judge`\n";
 
@@ -73,6 +74,14 @@ Result<RenderCommand> parseRenderFlags(const std::vector<std::string>& argv) {
             CAVITY_ASSIGN(o.render.device, cli::parseInt(flag, v, 0, 64));
         } else if (flag == "--repeat") {
             CAVITY_ASSIGN(o.render.repeat, cli::parseInt(flag, v, 1, 1000));
+        } else if (flag == "--timing") {
+            if (v != "batch" && v != "drained") return badInput("--timing " + v + ": must be batch or drained");
+            o.render.mode = v == "batch" ? TimingMode::Batch : TimingMode::Drained;
+        } else if (flag == "--max-noise") {
+            CAVITY_ASSIGN(const double pct, cli::parseNumber(flag, v, 0, 100));
+            o.render.maxNoise = pct / 100;
+        } else if (flag == "--max-time") {
+            CAVITY_ASSIGN(o.render.maxSeconds, cli::parseNumber(flag, v, 0.001, 3600));
         } else {
             return badInput(flag + ": unknown flag (see cavity_render --help)");
         }

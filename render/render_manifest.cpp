@@ -8,7 +8,7 @@ namespace {
 
 json toJson(const gpu::DeviceInfo& d) {
     return {{"name", d.deviceName}, {"driver", d.driver}, {"api_version", d.apiVersion}, {"vendor", d.vendor},
-            {"software_renderer", d.softwareRenderer}};
+            {"software_renderer", d.softwareRenderer}, {"uuid", d.uuid}};
 }
 
 json toJson(const RenderEntry& r) {
@@ -74,7 +74,7 @@ Result<RenderManifest> parseManifest(const json& j, const std::string& path) {
         m.seconds = j.at("seconds");
         for (const auto& [api, d] : j.at("devices").items())
             m.devices[api] = {api, d.at("name"), d.at("driver"), d.at("api_version"), d.at("vendor"),
-                              d.at("software_renderer")};
+                              d.at("software_renderer"), d.value("uuid", std::string())};
         for (const auto& e : j.at("backend_errors")) m.backendErrors.push_back({e.at("api"), e.at("code"), e.at("message")});
         for (const auto& cj : j.at("configurations")) {
             ConfigEntry c;

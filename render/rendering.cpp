@@ -53,6 +53,9 @@ Status renderEntries(const gate::Matrix& m, const std::vector<gate::MatrixEntry>
                 ro.keepImages = true;
                 ro.checkDeterminism = true;
                 ro.overrides = o.overrides;
+                ro.mode = o.mode;
+                ro.maxNoise = o.maxNoise;
+                ro.maxSeconds = o.maxSeconds;
                 auto rec = runConfig(gpu, e->config, ro);
                 if (!rec) {
                     r.error = rec.error().message;

@@ -9,9 +9,11 @@
 #include "image.h"
 #include "matrix.h"
 #include "pipeline.h"
+#include "timing.h"
 
 #include <functional>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -53,6 +55,11 @@ struct RenderOptions {
     bool validation = false;
     int repeat = 1;               // render the whole selection this many times
     SourceOverrides overrides;    // planted-bug tests
+    // Timing (harness/timing.h); unset: the device's default. `--max-noise 0`
+    // measures exactly the matrix's frames, which keeps a 70-configuration
+    // render of 160x90 images to seconds on a GPU.
+    std::optional<TimingMode> mode;
+    std::optional<double> maxNoise, maxSeconds;
 };
 
 using RenderSink = std::function<Status(Rendering&&)>;
