@@ -1,5 +1,7 @@
 #include "render_command.h"
 
+#include "kernel.h"
+
 #include "cli.h"
 #include "render_folder.h"
 #include "results.h"
@@ -8,7 +10,9 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
+#include <iterator>
 
 namespace cavity::render {
 
@@ -19,7 +23,8 @@ namespace {
 constexpr const char* kUsage =
     "usage: cavity_render --matrix NAME [--baselines DIR] [--backend gl|vk|all] [--shard I/N] [--device K]\n"
     "                     [--filter REGEX] [--repeat N] [--validation]\n"
-    "                     [--timing batch|drained] [--max-noise PCT] [--max-time S] --out DIR\n"
+    "                     [--timing batch|drained] [--max-noise PCT] [--max-time S]\n"
+    "                     [--kernel-source NAME=FILE] --out DIR\n"
     "       cavity_render quality [the flags of cavity quality]\n"
     "renders a matrix of DIR/matrices.json (default baselines/) into a render folder for `cavity gate judge`\n";
 
@@ -74,6 +79,19 @@ Result<RenderCommand> parseRenderFlags(const std::vector<std::string>& argv) {
             CAVITY_ASSIGN(o.render.device, cli::parseInt(flag, v, 0, 64));
         } else if (flag == "--repeat") {
             CAVITY_ASSIGN(o.render.repeat, cli::parseInt(flag, v, 1, 1000));
+        } else if (flag == "--kernel-source") {
+            // NAME=FILE: render with kernels/NAME replaced by FILE's text, so a
+            // planted defect can be rendered on a machine without a build.
+            const auto eq = v.find('=');
+            if (eq == std::string::npos || eq == 0 || eq + 1 == v.size())
+                return badInput("--kernel-source '" + v + "': must be NAME=FILE, e.g. ssao_alchemy.glsl=broken.glsl");
+            const std::string name = v.substr(0, eq), file = v.substr(eq + 1);
+            if (!kernels::sourceFile(name))
+                return badInput("--kernel-source " + name + ": no kernel source of that name (kernels/*.glsl)");
+            std::ifstream in(file);
+            if (!in || std::filesystem::is_directory(file))
+                return badInput("--kernel-source " + name + "=" + file + ": cannot be read");
+            o.render.overrides[name] = std::string((std::istreambuf_iterator<char>(in)), {});
         } else if (flag == "--timing") {
             if (v != "batch" && v != "drained") return badInput("--timing " + v + ": must be batch or drained");
             o.render.mode = v == "batch" ? TimingMode::Batch : TimingMode::Drained;
