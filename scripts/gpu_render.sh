@@ -7,14 +7,8 @@
 #   scripts/gpu_render.sh --matrix gpu [other cavity_render flags, not --out]
 # Back here: cat render.tar.* | tar -x -C out/ && build/harness/cavity gate judge out/render --out out/gate
 set -uo pipefail
-for f in .gl/*.deb; do dpkg -x "$f" /; done
-ldconfig
-if ! ls /usr/share/vulkan/icd.d/*nvidia* >/dev/null 2>&1 && ! ls /etc/vulkan/icd.d/*nvidia* >/dev/null 2>&1; then
-  export VK_DRIVER_FILES=/usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json
-fi
-if ! ls /usr/share/glvnd/egl_vendor.d/*nvidia* >/dev/null 2>&1; then
-  export __EGL_VENDOR_LIBRARY_FILENAMES=/usr/local/nvidia/share/glvnd/egl_vendor.d/10_nvidia.json
-fi
+cd "$(dirname "$0")/.."
+. scripts/gpu_env.sh
 out="${OUT:-/tmp/out}"
 work=/tmp/cavity-render
 rm -rf "$work"

@@ -13,6 +13,13 @@ namespace {
 
 class Timing : public GpuTest {
 protected:
+    RunConfig configAt(int w, int h) {
+        RunConfig c;
+        c.api = api();
+        c.width = w;
+        c.height = h;
+        return c;
+    }
     cavity::Timing measureAt(int w, int h, int frames) {
         RunConfig c;
         c.api = api();
@@ -76,10 +83,7 @@ TEST_P(Timing, FourTimesThePixelsTakesAtLeastTwiceTheTime) {
 // same passes on the same inputs: the same images, bit for bit, and with a
 // fixed count the same number of samples of every pass.
 TEST_P(Timing, BatchedAndDrainedGiveTheSameImagesAndSampleCounts) {
-    RunConfig c;
-    c.api = api();
-    c.width = 160;
-    c.height = 90;
+    const RunConfig c = configAt(160, 90);
     auto chain = PassChain::create(gpu(), c);
     ASSERT_TRUE(chain) << chain.error().message;
     std::map<TimingMode, std::map<std::string, HostImage>> images;
@@ -118,10 +122,7 @@ TEST_P(Timing, BatchedAndDrainedGiveTheSameImagesAndSampleCounts) {
 // A clock given by the caller (the benchmark's later repetitions) is kept,
 // whatever this measurement's own probe would have chosen.
 TEST_P(Timing, AGivenClockIsKept) {
-    RunConfig c;
-    c.api = api();
-    c.width = 160;
-    c.height = 90;
+    const RunConfig c = configAt(160, 90);
     auto chain = PassChain::create(gpu(), c);
     ASSERT_TRUE(chain) << chain.error().message;
     TimingOptions o = defaultTimingOptions(gpu().info());
@@ -140,10 +141,7 @@ TEST_P(Timing, AGivenClockIsKept) {
 // A planted slowdown (kernels/assemble.cpp) adds work whose result is never
 // written: every image stays bit-identical, so a timing A/B compares the same output.
 TEST_P(Timing, APlantedSlowdownLeavesEveryImageUnchanged) {
-    RunConfig c;
-    c.api = api();
-    c.width = 96;
-    c.height = 54;
+    const RunConfig c = configAt(96, 54);
     auto plain = PassChain::create(gpu(), c);
     auto planted = PassChain::create(gpu(), c, {}, {{"ao", 300}, {"blur", 50}, {"composite", 10}});
     ASSERT_TRUE(plain && planted);
