@@ -31,6 +31,13 @@ std::string esc(const std::string& s) {
     return o;
 }
 
+// Seconds as JUnit readers take them: fixed, three decimals.
+std::string seconds3(double x) {
+    char b[32];
+    std::snprintf(b, sizeof b, "%.3f", std::isfinite(x) && x > 0 ? x : 0.0);
+    return b;
+}
+
 std::string num(double x, int digits = 4) {
     if (!std::isfinite(x) || x >= 1e299) return "inf";
     char b[32];
@@ -99,12 +106,18 @@ std::string junitXml(const GateRun& run) {
     int tests = 0, failures = 0, errors = 0;
     std::ostringstream cases;
     for (const auto* r : ordered(run)) {
-        auto testcase = [&](const std::string& name, const std::string& failure, bool isError) {
+        // GitLab shows a failure's element text, Jenkins its message: both
+        // carry it. A timing check's time is the pass's median; JUnit times
+        // are seconds with at most 3 decimals (the xunit plugin's schema).
+        auto testcase = [&](const std::string& name, const std::string& failure, bool isError, double seconds = 0) {
             ++tests;
-            cases << "    <testcase classname=\"cavity.gate." << esc(run.matrix) << "\" name=\"" << esc(name) << "\">";
+            cases << "    <testcase classname=\"cavity.gate." << esc(run.matrix) << "\" name=\"" << esc(name)
+                  << "\" time=\"" << seconds3(seconds) << "\">";
             if (!failure.empty()) {
                 (isError ? errors : failures)++;
-                cases << "\n      <" << (isError ? "error" : "failure") << " message=\"" << esc(failure) << "\"/>\n    ";
+                const char* tag = isError ? "error" : "failure";
+                cases << "\n      <" << tag << " message=\"" << esc(failure) << "\" type=\"" << tag << "\">" << esc(failure)
+                      << "</" << tag << ">\n    ";
             }
             cases << "</testcase>\n";
         };
@@ -123,16 +136,16 @@ std::string junitXml(const GateRun& run) {
             if (!t.passed())
                 f = "median " + num(t.medianMs) + " ms > budget " + num(*t.budgetMs) + " ms (+" +
                     num(100 * (t.medianMs / *t.budgetMs - 1), 3) + "%)";
-            testcase(name + "/time/" + t.pass, f, false);
+            testcase(name + "/time/" + t.pass, f, false, t.medianMs / 1000);
         }
         testcase(name + "/deterministic", r->deterministic ? "" : "a second frame was not bit-identical", false);
     }
     std::ostringstream x;
     x << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
       << "<testsuites tests=\"" << tests << "\" failures=\"" << failures << "\" errors=\"" << errors << "\" time=\""
-      << num(run.seconds, 6) << "\">\n"
+      << seconds3(run.seconds) << "\">\n"
       << "  <testsuite name=\"cavity.gate." << esc(run.matrix) << "\" tests=\"" << tests << "\" failures=\"" << failures
-      << "\" errors=\"" << errors << "\">\n"
+      << "\" errors=\"" << errors << "\" time=\"" << seconds3(run.seconds) << "\">\n"
       << cases.str() << "  </testsuite>\n</testsuites>\n";
     return x.str();
 }
@@ -184,7 +197,8 @@ std::string reportHtml(const GateRun& run, const std::string& chartsDir) {
     std::ostringstream h;
     int failed = 0;
     for (const auto& r : run.results) failed += !r.passed();
-    h << R"html(<!doctype html><html><head><meta charset="utf-8"><title>Cavity gate )" << esc(run.matrix) << R"(</title>
+    h << R"html(<!doctype html><html><head><meta charset="utf-8"><title>Cavity gate )html" << esc(run.matrix)
+      << (failed ? ": " + std::to_string(failed) + " failed" : std::string(": passed")) << R"html(</title>
 <style>
 body{font:14px system-ui,sans-serif;margin:16px;background:#1b1d21;color:#e6e6e6}
 h1{font-size:20px} h2{font-size:15px;margin:0 0 6px 0;font-family:monospace}

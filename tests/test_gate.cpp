@@ -12,6 +12,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <regex>
 #include <functional>
 #include <set>
 
@@ -210,6 +211,23 @@ TEST(Gate, HtmlReportOpensInHeadlessChromiumWithFailuresFirst) {
     }
     EXPECT_FALSE(failing(run).empty());
     EXPECT_LT(lastFail, firstPass) << "failing configurations must come first";
+    // JUnit as GitLab and Jenkins read it: failure text in the element body,
+    // every time in seconds with three decimals, a time on every testcase.
+    std::ifstream j(fs::path(o.out) / "junit.xml");
+    const std::string junit((std::istreambuf_iterator<char>(j)), std::istreambuf_iterator<char>());
+    const std::regex timeAttr("time=\"([^\"]*)\""), threeDecimals("[0-9]+\\.[0-9]{3}");
+    int times = 0;
+    for (auto it = std::sregex_iterator(junit.begin(), junit.end(), timeAttr); it != std::sregex_iterator(); ++it, ++times)
+        EXPECT_TRUE(std::regex_match((*it)[1].str(), threeDecimals)) << (*it)[1].str();
+    size_t testcases = 0;
+    for (size_t at = junit.find("<testcase "); at != std::string::npos; at = junit.find("<testcase ", at + 1)) ++testcases;
+    EXPECT_EQ(size_t(times), testcases + 2) << "a time on every testcase, the suite and the suites";
+    EXPECT_TRUE(std::regex_search(junit, std::regex("<failure message=\"[^\"]+\" type=\"failure\">[^<]+</failure>")))
+        << "failure text belongs in the element body";
+    // The title as the browser parsed it (a raw-string delimiter once leaked into it).
+    const auto t0 = text.find("<title>"), t1 = text.find("</title>");
+    ASSERT_NE(t0, std::string::npos);
+    EXPECT_EQ(text.substr(t0 + 7, t1 - t0 - 7), "Cavity gate ci: " + std::to_string(failing(run).size()) + " failed");
 }
 
 }  // namespace
