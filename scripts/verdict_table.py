@@ -69,7 +69,8 @@ def main():
     d = a.dir
     runs = {n: reps(os.path.join(d, n + ".json")) for n in ("a1", "a2", "b5", "b2", "b10")
             if os.path.exists(os.path.join(d, n + ".json"))}
-    a1, a2 = runs["a1"], runs["a2"]
+    a1 = runs["a1"]
+    a2 = runs.get("a2", {})
     ids = sorted({k[0] for k in a1})
     order = ["pipeline", "gbuffer", "downsample", "depth", "ao", "box", "blur", "upsample", "indirect", "composite"]
     present = {k[1] for k in a1}
@@ -88,6 +89,8 @@ def main():
         print(f"| {cid} | " + " | ".join(cells) + " |")
     print(f"\nlargest repetition CV: {100 * worst:.2f}%\n")
 
+    if not a2:   # scripts/gpu_budget_check.sh: no A/A, no A/B tables
+        return budgets_and_clocks(a, d, runs, passes)
     aa = compare(a.cavity, d, "a1", "a2")
     diffs = [abs(r["new_median_ms"] / r["old_median_ms"] - 1) for r in aa.values()
              if r["old_median_ms"] and r["new_median_ms"]]
@@ -127,6 +130,10 @@ def main():
         print(f"\n- planted passes called slower: {hit} of {total} ({100 * hit / max(1, total):.0f}%)")
         print(f"- untouched passes called changed: {false_alarm} of {untouched}\n")
 
+    budgets_and_clocks(a, d, runs, passes)
+
+
+def budgets_and_clocks(a, d, runs, passes):
     # Budgets: each repetition of a run is one measurement, checked alone.
     try:
         budgets = next(x for x in json.load(open(a.budgets))["devices"] if x["pattern"] == a.pattern)["budgets_ms"]
@@ -137,7 +144,7 @@ def main():
         plant10 = json.load(open(os.path.join(d, "plant10.json"))) if os.path.exists(os.path.join(d, "plant10.json")) else {}
         print("| run | pass | repetitions over budget | of | largest median / budget |")
         print("|---|---|---:|---:|---:|")
-        for name in ("a2", "b10"):
+        for name in ("a1" if "a2" not in runs else "a2", "b10"):
             if name not in runs:
                 continue
             for p in passes:
@@ -154,6 +161,12 @@ def main():
                 if checked:
                     planted = name == "b10" and any(p in x for x in plant10.values())
                     print(f"| {name} | {p}{' (planted +10%)' if planted else ''} | {over} | {checked} | {worst:.3f} |")
+        if "b10" in runs and plant10:
+            ab = compare(a.cavity, d, "a1", "b10")
+            got = [r["change_pct"] for (cid, p), r in ab.items() if p in plant10.get(cid, {}) and r["change_pct"] is not None]
+            if got:
+                print(f"\nplanted +10%: measured changes {min(got):+.1f}% to {max(got):+.1f}% (median {statistics.median(got):+.1f}%) "
+                      f"over {len(got)} planted passes")
         print()
 
     print("## Clocks (nvidia-smi every 200 ms during each run)\n")
