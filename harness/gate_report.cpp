@@ -100,6 +100,34 @@ Status writeText(const fs::path& path, const std::string& text) {
     return {};
 }
 
+// "rmse 0.0123 > 0.005 at (3,4)" -> {"rmse 0.0123", "> 0.005 at (3,4)"}: the
+// summary's result and tolerance columns. A line without a comparator is all result.
+std::pair<std::string, std::string> splitFailure(const std::string& f) {
+    for (const char* op : {" > ", " < "}) {
+        const auto at = f.find(op);
+        if (at == std::string::npos) continue;
+        std::string result = f.substr(0, at), tolerance = f.substr(at + 3);
+        if (const auto where = tolerance.find(" at ("); where != std::string::npos) {
+            result += tolerance.substr(where);
+            tolerance.resize(where);
+        }
+        return {result, (op[1] == '>' ? "≤ " : "≥ ") + tolerance};
+    }
+    return {f, ""};
+}
+
+// The heat-map's colour scale as a CSS gradient, from the colours it is drawn with.
+std::string heatScaleCss() {
+    std::string g = "linear-gradient(to right";
+    for (int k = 0; k <= 8; ++k) {
+        const auto c = metrics::heatColor(k / 8.0);
+        char b[48];
+        std::snprintf(b, sizeof b, ",rgb(%d,%d,%d)", int(255 * c[0] + 0.5f), int(255 * c[1] + 0.5f), int(255 * c[2] + 0.5f));
+        g += b;
+    }
+    return g + ")";
+}
+
 }  // namespace
 
 std::string junitXml(const GateRun& run) {
@@ -177,7 +205,10 @@ std::string summaryMarkdown(const GateRun& run) {
             const std::string name = "`" + r->id + "`" + (r->repetition ? " rep " + std::to_string(r->repetition) : "");
             if (!r->error.empty()) m << "| " << name << " | run | " << r->error << " | |\n";
             for (const auto& i : r->images)
-                for (const auto& f : i.failures) m << "| " << name << " | " << i.image << " | " << f << " | |\n";
+                for (const auto& f : i.failures) {
+                    const auto [result, tolerance] = splitFailure(f);
+                    m << "| " << name << " | " << i.image << " | " << result << " | " << tolerance << " |\n";
+                }
             for (const auto& t : r->timings)
                 if (!t.passed())
                     m << "| " << name << " | time " << t.pass << " | " << num(t.medianMs) << " ms (+"
@@ -213,6 +244,9 @@ figure{margin:0} figcaption{font-size:12px;color:#aaa}
 table{border-collapse:collapse;font-size:12px} td,th{border:1px solid #3a3d44;padding:2px 6px;text-align:right}
 td.l,th.l{text-align:left} .bad{color:#ff6b6b;font-weight:bold}
 .controls{position:sticky;top:0;background:#1b1d21;padding:6px 0;z-index:2}
+.thumb{width:120px;image-rendering:auto;border:1px solid #444}
+.scale{height:8px;width:100%;margin-top:2px;border:1px solid #444}
+.scalelabels{display:flex;justify-content:space-between;font-size:11px;color:#aaa}
 </style></head><body>
 <div class="controls"><b>Cavity gate</b> matrix <code>)html"
       << esc(run.matrix) << "</code> · " << run.results.size() << " configurations · <span class=\""
@@ -226,14 +260,31 @@ td.l,th.l{text-align:left} .bad{color:#ff6b6b;font-weight:bold}
           << r->repetition << "\"><h2>" << esc(r->label()) << "<span class=badge>" << (r->passed() ? "pass" : "FAIL") << "</span></h2>\n";
         if (!r->error.empty()) h << "<p class=bad>" << esc(r->error) << "</p>\n";
         if (!r->deterministic) h << "<p class=bad>not bit-identical across two frames on this device</p>\n";
+        if (r->passed()) {
+            // A passing configuration gets thumbnails of what it rendered and
+            // its worst numbers: the page stays small enough to open
+            // (every image of every passing ci configuration embedded in full
+            // made 8.4 MB), and a reviewer's eye goes to the failures.
+            h << "<div class=row>";
+            for (const auto& i : r->images) {
+                h << "<figure><figcaption>" << esc(i.image);
+                if (i.metrics) h << " · max " << num(i.metrics->maxAbs, 2) << " · SSIM " << num(i.metrics->ssim, 5);
+                h << "</figcaption><img class=thumb src=\"" << dataUri(i.newPng) << "\"></figure>";
+            }
+            h << "</div>\n";
+        }
         for (const auto& i : r->images) {
+            if (r->passed()) break;
             ++n;
             const std::string base = dataUri(i.baselinePng), now = dataUri(i.newPng), diff = dataUri(i.diffPng);
             h << "<div class=row><figure class=zoomable><figcaption>" << esc(i.image) << " baseline</figcaption>"
               << (base.empty() ? "<p class=bad>missing</p>" : "<img class=z src=\"" + base + "\">") << "</figure>"
               << "<figure class=zoomable><figcaption>new</figcaption><img class=z src=\"" << now << "\"></figure>"
-              << "<figure class=zoomable><figcaption>diff (white ≥ " << num(2 * i.tolerance.pixelThreshold)
-              << ")</figcaption>" << (diff.empty() ? "" : "<img class=z src=\"" + diff + "\">") << "</figure>";
+              << "<figure class=zoomable><figcaption>|new - baseline|</figcaption>"
+              << (diff.empty() ? "" : "<img class=z src=\"" + diff + "\">")
+              << "<div class=scale style=\"background:" << heatScaleCss() << "\"></div><div class=scalelabels><span>0</span><span>"
+              << num(i.tolerance.pixelThreshold) << "</span><span>≥ " << num(2 * i.tolerance.pixelThreshold)
+              << "</span></div></figure>";
             if (!base.empty())
                 h << "<figure class=zoomable><figcaption>baseline ◀ slider ▶ new</figcaption><div class=cmp><img class=z src=\""
                   << now << "\"><div class=top id=t" << n << "><img class=z src=\"" << base
@@ -252,7 +303,7 @@ td.l,th.l{text-align:left} .bad{color:#ff6b6b;font-weight:bold}
                 row("mean abs", m.meanAbs, t.meanAbs, true);
                 row("RMSE", m.rmse, t.rmse, true);
                 row("PSNR", m.psnr, t.psnrMin, false, " dB");
-                row("pixels over threshold", m.overThresholdShare, t.overThresholdShare, true);
+                row("pixels over threshold", 100 * m.overThresholdShare, 100 * t.overThresholdShare, true, "%");
                 row("SSIM", m.ssim, t.ssimMin, false);
                 if (m.flipMean >= 0) row("FLIP mean", m.flipMean, t.flipMeanMax, true);
                 if (m.nonFinite) h << "<tr><td class=l>non-finite</td><td class=bad>" << m.nonFinite << "</td><td>0</td></tr>";

@@ -224,6 +224,20 @@ TEST(Gate, HtmlReportOpensInHeadlessChromiumWithFailuresFirst) {
     EXPECT_EQ(size_t(times), testcases + 2) << "a time on every testcase, the suite and the suites";
     EXPECT_TRUE(std::regex_search(junit, std::regex("<failure message=\"[^\"]+\" type=\"failure\">[^<]+</failure>")))
         << "failure text belongs in the element body";
+    // The summary fills its tolerance column; a failing image's heat-map has
+    // its colour scale; a passing configuration shows thumbnails, not the
+    // baseline, diff and slider.
+    std::ifstream sm(fs::path(o.out) / "summary.md");
+    const std::string summary((std::istreambuf_iterator<char>(sm)), std::istreambuf_iterator<char>());
+    EXPECT_TRUE(std::regex_search(summary, std::regex("\\| ao \\| mean abs error [0-9.]+ \\| ≤ 0\\.001 \\|"))) << summary;
+    EXPECT_NE(text.find("class=\"scale\""), std::string::npos);
+    for (const auto& r : run.results) {
+        if (!r.passed()) continue;
+        const auto at = text.find("data-id=\"" + r.id + "\""), next = text.find("data-id=", at + 1);
+        const std::string block = text.substr(at, next == std::string::npos ? std::string::npos : next - at);
+        EXPECT_NE(block.find("class=\"thumb\""), std::string::npos) << r.id;
+        EXPECT_EQ(block.find("slider"), std::string::npos) << r.id << " passed but shows the full comparison";
+    }
     // The title as the browser parsed it (a raw-string delimiter once leaked into it).
     const auto t0 = text.find("<title>"), t1 = text.find("</title>");
     ASSERT_NE(t0, std::string::npos);
