@@ -1,4 +1,5 @@
 // `cavity gate`, `cavity gate judge`, `cavity gate merge` and `cavity baselines update`.
+#include "baseline_update.h"
 #include "cli.h"
 #include "gate_report.h"
 #include "image_io.h"
@@ -12,6 +13,7 @@
 #include <iostream>
 #include <regex>
 #include <set>
+#include <sstream>
 
 #include <unistd.h>
 
@@ -92,6 +94,7 @@ int judge(const std::vector<std::string>& argv) {
             dirs.push_back(flag);
         }
     }
+    if (auto st = gate::recoverBaselineUpdate(baselines); !st) return fail("cavity gate judge", st.error());
     auto run = gate::judgeFolders(dirs, baselines, out);
     if (!run) return fail("cavity gate judge", run.error());
     if (auto st = gate::writeReports(*run, out); !st) return fail("cavity gate judge", st.error());
@@ -137,6 +140,7 @@ int gateCommand(const std::vector<std::string>& argv) {
         if (!s) return fail("cavity gate", badInput("GTEST_SHARD_INDEX/GTEST_TOTAL_SHARDS: " + s.error().message));
         std::tie(o.shardIndex, o.shardCount) = *s;
     }
+    if (auto st = gate::recoverBaselineUpdate(o.baselines); !st) return fail("cavity gate", st.error());
     auto run = gate::runGate(o);
     if (!run) return fail("cavity gate", run.error());
     if (auto st = gate::writeReports(*run, o.out); !st) return fail("cavity gate", st.error());
@@ -167,17 +171,14 @@ int baselinesCommand(const std::vector<std::string>& argv) {
             return fail("cavity baselines update", badInput("--filter " + filterText + ": not a regular expression"));
         }
     }
+    if (auto st = gate::recoverBaselineUpdate(root); !st) return fail("cavity baselines update", st.error());
     auto run = loadGateJson(from);
     if (!run) return fail("cavity baselines update", run.error());
-    // Leftovers of an interrupted update: never a baseline, always safe to drop.
-    std::error_code scan;
-    for (auto it = fs::recursive_directory_iterator(fs::path(root) / "images", scan);
-         !scan && it != fs::recursive_directory_iterator(); ++it)
-        if (it->path().filename().string().rfind(".tmp-", 0) == 0) fs::remove(it->path(), scan);
     // One baseline key is shared by every API and stage: take the first
     // selected configuration of each key.
     std::set<std::string> done;
-    int changed = 0;
+    std::vector<gate::BaselineWrite> writes;
+    std::vector<std::string> said;
     for (const auto& r : run->results) {
         const bool selected = filter ? std::regex_search(r.id, *filter) : !r.passed();
         if (!selected || !r.error.empty() || done.count(r.key)) continue;
@@ -186,26 +187,21 @@ int baselinesCommand(const std::vector<std::string>& argv) {
             // A selected configuration rewrites the images that failed (all of
             // them when chosen by --filter): passing ones keep their bytes.
             if (!filter && i.passed()) continue;
-            const fs::path target = fs::path(root) / "images" / r.key / fs::path(i.baseline).filename();
-            std::error_code ec;
-            fs::create_directories(target.parent_path(), ec);
-            // Copy then rename: an interrupted update leaves the old file whole.
-            const fs::path tmp = target.parent_path() / (".tmp-" + std::to_string(::getpid()) + "-" + target.filename().string());
-            fs::copy_file(i.newExact, tmp, fs::copy_options::overwrite_existing, ec);
-            if (ec) return fail("cavity baselines update", internal("copy " + i.newExact + ": " + ec.message()));
-            if (std::getenv("CAVITY_TEST_INTERRUPT_UPDATE"))   // tests: stop as a kill between copy and rename would
-                return fail("cavity baselines update", internal("interrupted before renaming " + tmp.string()));
-            fs::rename(tmp, target, ec);
-            if (ec) return fail("cavity baselines update", internal("rename " + tmp.string() + ": " + ec.message()));
-            ++changed;
-            std::cout << "updated " << target.string() << "  (from " << r.id;
+            const fs::path target = fs::path("images") / r.key / fs::path(i.baseline).filename();
+            writes.push_back({i.newExact, target});
+            std::ostringstream line;
+            line << "updated " << (fs::path(root) / target).string() << "  (from " << r.id;
             if (i.metrics)
-                std::cout << ": max abs " << i.metrics->maxAbs << ", RMSE " << i.metrics->rmse << ", SSIM " << i.metrics->ssim;
+                line << ": max abs " << i.metrics->maxAbs << ", RMSE " << i.metrics->rmse << ", SSIM " << i.metrics->ssim;
             else
-                std::cout << ": new baseline";
-            std::cout << ")\n";
+                line << ": new baseline";
+            said.push_back(line.str() + ")");
         }
     }
+    // All or nothing (harness/baseline_update.h).
+    if (auto st = gate::applyBaselineUpdate(root, writes); !st) return fail("cavity baselines update", st.error());
+    for (const auto& line : said) std::cout << line << "\n";
+    const size_t changed = writes.size();
     std::cout << changed << " baseline files updated\n";
     return 0;
 }

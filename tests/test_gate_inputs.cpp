@@ -6,6 +6,15 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <chrono>
+#include <csignal>
+#include <cstdlib>
+#include <random>
+#include <sstream>
+#include <thread>
+
+#include <sys/wait.h>
+#include <unistd.h>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -160,8 +169,83 @@ TEST_F(GateInputs, InterruptedUpdateLeavesTheOldFileWhole) {
     EXPECT_EQ(checksum(victim), old);
     // The next update cleans the leftover and completes.
     ASSERT_EQ(run("baselines update --from " + (dir / "out").string() + " --baselines " + base.string()).code, 0);
-    for (const auto& e : fs::recursive_directory_iterator(base))
+    for (const auto& e : fs::recursive_directory_iterator(base)) {
         EXPECT_EQ(e.path().filename().string().find(".tmp-"), std::string::npos) << e.path();
+        EXPECT_EQ(e.path().filename().string().find(".update-"), std::string::npos) << e.path();
+    }
+}
+
+// A gate output that names a file that is gone: exit 2 before any baseline changes.
+TEST_F(GateInputs, UpdateFromAnIncompleteOutputChangesNothing) {
+    ASSERT_EQ(gate().code, 0);
+    const auto before = checksums(base);
+    std::vector<fs::path> victims;   // every API's, whichever the update would take
+    for (const auto& e : fs::recursive_directory_iterator(dir / "out"))
+        if (e.path().filename() == "ao_blur.new.exr") victims.push_back(e.path());
+    ASSERT_FALSE(victims.empty()) << "the gate wrote no ao_blur.new.exr";
+    for (const auto& v : victims) fs::remove(v);
+    const Outcome u = run("baselines update --from " + (dir / "out").string() + " --baselines " + base.string() +
+                          " --filter .");
+    EXPECT_EQ(u.code, 2) << u.output;
+    EXPECT_NE(u.output.find("ao_blur.new.exr: missing or not a readable file"), std::string::npos) << u.output;
+    EXPECT_EQ(checksums(base), before);
+}
+
+// SIGKILL at random instants of `baselines update`: after the next command,
+// the images are the whole old set or the whole new set, and nothing is left over.
+TEST_F(GateInputs, KilledUpdatesLeaveTheOldSetOrTheNewSet) {
+    ASSERT_EQ(gate().code, 0);
+    const std::string update = std::string(CAVITY_EXE) + " baselines update --from " + (dir / "out").string() +
+                               " --baselines " + base.string() + " --filter . > /dev/null 2>&1";
+    // Old set: the baselines with a byte appended, so that every file the update rewrites changes.
+    const fs::path images = base / "images", saved = dir / "old-images";
+    const auto t0 = std::chrono::steady_clock::now();
+    const Outcome first = run("baselines update --from " + (dir / "out").string() + " --baselines " + base.string() +
+                              " --filter .");
+    const double fullMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    ASSERT_EQ(first.code, 0) << first.output;
+    const auto newSet = checksums(images);
+    std::vector<fs::path> rewritten;   // from its "updated <path>  (from ...)" lines
+    std::istringstream lines(first.output);
+    for (std::string line; std::getline(lines, line);)
+        if (line.rfind("updated ", 0) == 0) rewritten.push_back(line.substr(8, line.find("  (from") - 8));
+    ASSERT_GE(rewritten.size(), 3u) << first.output;
+    for (const auto& f : rewritten) std::ofstream(f, std::ios::app | std::ios::binary) << '#';
+    const auto oldSet = checksums(images);
+    ASSERT_NE(oldSet, newSet);
+    fs::copy(images, saved, fs::copy_options::recursive);
+    std::mt19937 rng(20261201);
+    std::uniform_real_distribution<double> at(0.0, 1.2 * fullMs);
+    int sawOld = 0, sawNew = 0;
+    for (int trial = 0; trial < 50; ++trial) {
+        fs::remove_all(images);
+        fs::copy(saved, images, fs::copy_options::recursive);
+        const pid_t pid = fork();
+        ASSERT_GE(pid, 0);
+        if (pid == 0) {
+            execl("/bin/sh", "sh", "-c", ("exec " + update).c_str(), static_cast<char*>(nullptr));
+            _exit(127);
+        }
+        std::this_thread::sleep_for(std::chrono::duration<double, std::milli>(at(rng)));
+        kill(pid, SIGKILL);
+        int status = 0;
+        waitpid(pid, &status, 0);
+        // The next command that reads the baselines finishes or drops what the kill interrupted.
+        ASSERT_EQ(run("baselines update --from " + (dir / "out").string() + " --baselines " + base.string() +
+                      " --filter no-configuration-matches-this").code, 0);
+        const auto now = checksums(images);
+        const bool isOld = now == oldSet, isNew = now == newSet;
+        EXPECT_TRUE(isOld || isNew) << "trial " << trial << ": a mix of old and new baselines";
+        sawOld += isOld;
+        sawNew += isNew;
+        for (const auto& e : fs::recursive_directory_iterator(base)) {
+            const std::string name = e.path().filename().string();
+            EXPECT_TRUE(name.find(".update-") == std::string::npos && name.find(".tmp-") == std::string::npos)
+                << "trial " << trial << ": leftover " << e.path();
+        }
+    }
+    EXPECT_EQ(sawOld + sawNew, 50);
+    std::printf("50 kills within %.0f ms: %d left the old set, %d the new set\n", 1.2 * fullMs, sawOld, sawNew);
 }
 
 }  // namespace
