@@ -25,6 +25,7 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <regex>
 
 namespace {
 
@@ -38,7 +39,8 @@ using cavity::Result;
 using cavity::Status;
 
 Status parsePlant(const std::string& text, cavity::PlantedSlowdown& plant) {
-    for (const auto& item : cavity::cli::splitList(text)) {
+    CAVITY_ASSIGN(const auto items, cavity::cli::splitList("--plant", text));
+    for (const auto& item : items) {
         const auto colon = item.find(':');
         if (colon == std::string::npos || colon == 0)
             return cavity::badInput("--plant '" + item + "': must be PASS:FMAS, e.g. ao:120");
@@ -147,6 +149,17 @@ int main(int argc, char** argv) {
     // Read before Initialize, which takes its flags out of the list.
     const std::string out = benchmarkFlag(rest, "benchmark_out"), format = benchmarkFlag(rest, "benchmark_out_format"),
                       filter = benchmarkFlag(rest, "benchmark_filter");
+    // Google Benchmark compiles the filter as a std::regex (extended; '-'
+    // first negates it) and prints its own error before running nothing; ours
+    // is one line and exit 2.
+    if (!filter.empty()) {
+        try {
+            std::regex(filter[0] == '-' ? filter.substr(1) : filter, std::regex_constants::extended);
+        } catch (const std::regex_error& e) {
+            std::cerr << "cavity_bench: --benchmark_filter='" << filter << "': not a regular expression (" << e.what() << ")\n";
+            return 2;
+        }
+    }
     int n = int(rest.size());
     benchmark::Initialize(&n, rest.data());
     if (benchmark::ReportUnrecognizedArguments(n, rest.data())) return 2;

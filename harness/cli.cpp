@@ -1,5 +1,6 @@
 #include "cli.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <sstream>
@@ -9,6 +10,9 @@ namespace cavity::cli {
 Result<std::string> Args::value(const std::string& flag) {
     if (done() || (a_[i_].rfind("--", 0) == 0 && a_[i_].size() > 2))
         return badInput(flag + ": missing value");
+    if (!seen_.insert(flag).second && !repeatable_.count(flag))
+        return badInput(flag + ": given twice (give one value, or one comma-separated list where the flag takes a list)");
+    if (a_[i_].empty()) return badInput(flag + " '': empty value");
     return next();
 }
 
@@ -32,12 +36,16 @@ Result<double> parseNumber(const std::string& flag, const std::string& text, dou
     return v;
 }
 
-std::vector<std::string> splitList(const std::string& text) {
+Result<std::vector<std::string>> splitList(const std::string& flag, const std::string& text) {
     std::vector<std::string> out;
     size_t start = 0;
     while (true) {
         const size_t comma = text.find(',', start);
-        out.push_back(text.substr(start, comma - start));
+        std::string item = text.substr(start, comma - start);
+        if (item.empty()) return badInput(flag + " '" + text + "': empty item in the list (give VALUE[,VALUE...])");
+        if (std::find(out.begin(), out.end(), item) != out.end())
+            return badInput(flag + " '" + text + "': " + item + " given twice");
+        out.push_back(std::move(item));
         if (comma == std::string::npos) break;
         start = comma + 1;
     }

@@ -4,6 +4,7 @@
 
 #include "result.h"
 
+#include <set>
 #include <string>
 #include <vector>
 
@@ -11,22 +12,30 @@ namespace cavity::cli {
 
 class Args {
 public:
-    Args(std::vector<std::string> a) : a_(std::move(a)) {}
+    // Flags in `repeatable` may be given more than once (--kernel-source A=x
+    // --kernel-source B=y); any other flag given twice is an error, never
+    // "the last one wins".
+    Args(std::vector<std::string> a, std::set<std::string> repeatable = {})
+        : a_(std::move(a)), repeatable_(std::move(repeatable)) {}
     bool done() const { return i_ >= a_.size(); }
     const std::string& peek() const { return a_[i_]; }
     std::string next() { return a_[i_++]; }
-    // The value after a flag, or an error naming the flag.
+    // The value after a flag, or an error naming the flag: missing, empty, or
+    // the flag given twice.
     Result<std::string> value(const std::string& flag);
 
 private:
     std::vector<std::string> a_;
+    std::set<std::string> repeatable_, seen_;
     size_t i_ = 0;
 };
 
 Result<int> parseInt(const std::string& flag, const std::string& text, int lo, int hi);
 // A finite number in [lo, hi]; "nan", "inf", "1e999" and trailing text fail.
 Result<double> parseNumber(const std::string& flag, const std::string& text, double lo, double hi);
-std::vector<std::string> splitList(const std::string& text);   // "8,16,32"
+// "8,16,32" -> {"8", "16", "32"}; an empty list, an empty item ("8,,16")
+// and an item given twice ("8,8": the same configuration twice) are errors.
+Result<std::vector<std::string>> splitList(const std::string& flag, const std::string& text);
 // "--shard I/N": (I, N) with 0 <= I < N.
 Result<std::pair<int, int>> parseShard(const std::string& text);
 

@@ -96,8 +96,8 @@ Status setParam(RunConfig& c, const std::string& name, const std::string& text) 
     double v = 0;
     const char* b = text.data();
     auto r = std::from_chars(b, b + text.size(), v);
-    if (r.ec != std::errc() || r.ptr != b + text.size() || !std::isfinite(v))
-        return badInput("--" + name + " " + text + ": not a number");
+    if (text.empty() || r.ec != std::errc() || r.ptr != b + text.size() || !std::isfinite(v))
+        return badInput("--" + name + " '" + text + "': must be " + kernels::allowedValues(*p));
     c.params[name] = v;
     return {};
 }

@@ -1,6 +1,7 @@
 // `cavity gate`, `cavity gate judge`, `cavity gate merge` and `cavity baselines update`.
 #include "baseline_update.h"
 #include "cli.h"
+#include "json_file.h"
 #include "gate_report.h"
 #include "image_io.h"
 #include "judge_folders.h"
@@ -30,14 +31,8 @@ int fail(const std::string& who, const Error& e) {
 
 Result<gate::GateRun> loadGateJson(const std::string& dir) {
     const std::string path = (fs::path(dir) / "gate.json").string();
-    std::ifstream f(path);
-    if (!f) return badInput(path + ": cannot be read (run `cavity gate --out " + dir + "` first)");
-    nlohmann::json j;
-    try {
-        j = nlohmann::json::parse(f);
-    } catch (const nlohmann::json::exception& e) {
-        return badInput(path + ": does not parse: " + e.what());
-    }
+    if (!fs::exists(path)) return badInput(path + ": cannot be read (run `cavity gate --out " + dir + "` first)");
+    CAVITY_ASSIGN(const nlohmann::json j, readJsonFile(path));
     return gate::fromJson(j, path);
 }
 

@@ -1,6 +1,7 @@
 // gate.json ("cavity.gate/1"): the verdicts `gate merge` joins and
 // `baselines update` accepts from.
 #include "gate.h"
+#include "json_input.h"
 
 #include <cmath>
 
@@ -48,67 +49,102 @@ json toJson(const GateRun& run) {
             {"results", results}};
 }
 
+namespace {
+
+constexpr double kAny = 1e300;   // gate.json writes a non-finite metric as +-1e300 (num() above)
+
+Result<Tolerance> readTolerance(const JsonObject& t) {
+    Tolerance out;
+    CAVITY_ASSIGN(out.maxAbs, t.number("max_abs", 0, kAny));
+    CAVITY_ASSIGN(out.meanAbs, t.number("mean_abs", 0, kAny));
+    CAVITY_ASSIGN(out.rmse, t.number("rmse", 0, kAny));
+    CAVITY_ASSIGN(out.psnrMin, t.number("psnr_min", -kAny, kAny));
+    CAVITY_ASSIGN(out.pixelThreshold, t.number("pixel_threshold", 0, kAny));
+    CAVITY_ASSIGN(out.overThresholdShare, t.number("over_threshold_share", 0, kAny));
+    CAVITY_ASSIGN(out.ssimMin, t.number("ssim_min", -kAny, kAny));
+    CAVITY_ASSIGN(out.flipMeanMax, t.number("flip_mean_max", 0, kAny));
+    return out;
+}
+
+Result<metrics::Report> readMetrics(const JsonObject& m) {
+    metrics::Report rep{};
+    CAVITY_ASSIGN(rep.maxAbs, m.number("max_abs", 0, kAny));
+    CAVITY_ASSIGN(rep.meanAbs, m.number("mean_abs", 0, kAny));
+    CAVITY_ASSIGN(rep.rmse, m.number("rmse", 0, kAny));
+    CAVITY_ASSIGN(rep.psnr, m.number("psnr", -kAny, kAny));
+    CAVITY_ASSIGN(rep.overThresholdShare, m.number("over_threshold_share", 0, 1));
+    CAVITY_ASSIGN(rep.ssim, m.number("ssim", -kAny, kAny));
+    CAVITY_ASSIGN(rep.flipMean, m.number("flip_mean", -1, kAny));
+    CAVITY_ASSIGN(const double nonFinite, m.number("non_finite", 0, 1e18));
+    rep.nonFinite = (long long)nonFinite;
+    return rep;
+}
+
+Result<ImageCheck> readImage(const JsonObject& ij) {
+    ImageCheck i;
+    CAVITY_ASSIGN(i.image, ij.str("image"));
+    CAVITY_ASSIGN(i.digest, ij.str("digest", ""));
+    CAVITY_ASSIGN(i.baseline, ij.str("baseline"));
+    CAVITY_ASSIGN(i.newExact, ij.str("new"));
+    CAVITY_ASSIGN(i.newPng, ij.str("new_png"));
+    CAVITY_ASSIGN(i.baselinePng, ij.str("baseline_png"));
+    CAVITY_ASSIGN(i.diffPng, ij.str("diff_png"));
+    CAVITY_ASSIGN(i.failures, ij.strings("failures"));
+    CAVITY_ASSIGN(const JsonObject t, ij.object("tolerance"));
+    CAVITY_ASSIGN(i.tolerance, readTolerance(t));
+    if (!ij.has("metrics")) return ij.bad("metrics", "missing");
+    if (!ij.raw()["metrics"].is_null()) {
+        CAVITY_ASSIGN(const JsonObject m, ij.object("metrics"));
+        CAVITY_ASSIGN(i.metrics, readMetrics(m));
+    }
+    return i;
+}
+
+Result<ConfigResult> readResult(const JsonObject& rj) {
+    ConfigResult r;
+    CAVITY_ASSIGN(r.id, rj.str("id"));
+    CAVITY_ASSIGN(r.repetition, rj.integer("repetition", 0, 1 << 20, 0));   // absent before cavity_render --repeat
+    CAVITY_ASSIGN(r.key, rj.str("baseline_key"));
+    CAVITY_ASSIGN(r.device, rj.str("device"));
+    CAVITY_ASSIGN(r.config.kernel, rj.str("kernel"));
+    CAVITY_ASSIGN(r.deterministic, rj.boolean("deterministic"));
+    CAVITY_ASSIGN(r.error, rj.str("error"));
+    CAVITY_ASSIGN(r.errorCode, rj.integer("error_code", 0, 255));
+    CAVITY_ASSIGN(const auto images, rj.objects("images"));
+    for (const auto& ij : images) {
+        CAVITY_ASSIGN(auto i, readImage(ij));
+        r.images.push_back(std::move(i));
+    }
+    CAVITY_ASSIGN(const auto timings, rj.objects("timings"));
+    for (const auto& tj : timings) {
+        TimingCheck t;
+        CAVITY_ASSIGN(t.pass, tj.str("pass"));
+        CAVITY_ASSIGN(t.medianMs, tj.number("median_ms", 0, kAny));
+        CAVITY_ASSIGN(t.clock, tj.str("clock"));
+        CAVITY_ASSIGN(t.budgetMs, tj.numberOrNull("budget_ms", 0, kAny));
+        r.timings.push_back(t);
+    }
+    return r;
+}
+
+}  // namespace
+
 Result<GateRun> fromJson(const json& j, const std::string& path) {
     if (!j.is_object() || j.value("schema", "") != "cavity.gate/1")
         return badInput(path + ": not a cavity gate.json (schema cavity.gate/1)");
+    CAVITY_ASSIGN(const JsonObject top, JsonObject::of(path, "", j));
     GateRun run;
-    try {
-        run.matrix = j.at("matrix");
-        run.shardIndex = j.at("shard")[0];
-        run.shardCount = j.at("shard")[1];
-        run.seconds = j.at("seconds");
-        run.backendErrors = j.at("backend_errors").get<std::vector<std::string>>();
-        for (const auto& rj : j.at("results")) {
-            ConfigResult r;
-            r.id = rj.at("id");
-            r.repetition = rj.value("repetition", 0);   // absent before cavity_render --repeat
-            r.key = rj.at("baseline_key");
-            r.device = rj.at("device");
-            r.config.kernel = rj.at("kernel");
-            r.deterministic = rj.at("deterministic");
-            r.error = rj.at("error");
-            r.errorCode = rj.at("error_code");
-            for (const auto& ij : rj.at("images")) {
-                ImageCheck i;
-                i.image = ij.at("image");
-                i.digest = ij.value("digest", "");
-                i.baseline = ij.at("baseline");
-                i.newExact = ij.at("new");
-                i.newPng = ij.at("new_png");
-                i.baselinePng = ij.at("baseline_png");
-                i.diffPng = ij.at("diff_png");
-                i.failures = ij.at("failures").get<std::vector<std::string>>();
-                const auto& t = ij.at("tolerance");
-                i.tolerance = {t.at("max_abs"), t.at("mean_abs"), t.at("rmse"), t.at("psnr_min"),
-                               t.at("pixel_threshold"), t.at("over_threshold_share"), t.at("ssim_min"),
-                               t.at("flip_mean_max")};
-                if (!ij.at("metrics").is_null()) {
-                    const auto& m = ij.at("metrics");
-                    metrics::Report rep{};
-                    rep.maxAbs = m.at("max_abs");
-                    rep.meanAbs = m.at("mean_abs");
-                    rep.rmse = m.at("rmse");
-                    rep.psnr = m.at("psnr");
-                    rep.overThresholdShare = m.at("over_threshold_share");
-                    rep.ssim = m.at("ssim");
-                    rep.flipMean = m.at("flip_mean");
-                    rep.nonFinite = m.at("non_finite");
-                    i.metrics = rep;
-                }
-                r.images.push_back(std::move(i));
-            }
-            for (const auto& tj : rj.at("timings")) {
-                TimingCheck t;
-                t.pass = tj.at("pass");
-                t.medianMs = tj.at("median_ms");
-                t.clock = tj.at("clock");
-                if (!tj.at("budget_ms").is_null()) t.budgetMs = tj.at("budget_ms").get<double>();
-                r.timings.push_back(t);
-            }
-            run.results.push_back(std::move(r));
-        }
-    } catch (const json::exception& e) {
-        return badInput(path + ": malformed gate.json: " + e.what());
+    CAVITY_ASSIGN(run.matrix, top.str("matrix"));
+    CAVITY_ASSIGN(const auto shard, top.integers("shard", 0, 1 << 20));
+    if (shard.size() != 2 || shard[1] < 1 || shard[0] >= shard[1]) return top.bad("shard", "must be [I, N] with 0 <= I < N");
+    run.shardIndex = shard[0];
+    run.shardCount = shard[1];
+    CAVITY_ASSIGN(run.seconds, top.number("seconds", 0, kAny));
+    CAVITY_ASSIGN(run.backendErrors, top.strings("backend_errors"));
+    CAVITY_ASSIGN(const auto results, top.objects("results"));
+    for (const auto& rj : results) {
+        CAVITY_ASSIGN(auto r, readResult(rj));
+        run.results.push_back(std::move(r));
     }
     return run;
 }

@@ -5,8 +5,11 @@
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cstdio>
 #include <filesystem>
+#include <string>
+#include <vector>
 
 #include <unistd.h>
 
@@ -50,13 +53,79 @@ Status writeImage(const std::string& path, const HostImage& img, Encoding enc, b
     return {};
 }
 
+namespace {
+
+// libpng prints "libpng error: ..." on stderr itself before OpenImageIO
+// reports the same failure, in several lines. While a file is read, stderr
+// goes to a temporary file; what was printed joins our one-line message.
+class StderrCapture {
+public:
+    StderrCapture() {
+        std::fflush(stderr);
+        file_ = std::tmpfile();
+        saved_ = file_ ? ::dup(2) : -1;
+        if (saved_ >= 0) ::dup2(::fileno(file_), 2);
+    }
+    ~StderrCapture() { release(); }
+    StderrCapture(const StderrCapture&) = delete;
+    StderrCapture& operator=(const StderrCapture&) = delete;
+    // Restores stderr and returns what was printed meanwhile.
+    std::string release() {
+        std::string text;
+        if (saved_ < 0) return text;
+        std::fflush(stderr);
+        ::dup2(saved_, 2);
+        ::close(saved_);
+        saved_ = -1;
+        std::rewind(file_);
+        char buf[4096];
+        for (size_t n; (n = std::fread(buf, 1, sizeof buf, file_)) > 0;) text.append(buf, n);
+        std::fclose(file_);
+        file_ = nullptr;
+        return text;
+    }
+
+private:
+    std::FILE* file_ = nullptr;
+    int saved_ = -1;
+};
+
+// The distinct lines of several messages, joined with "; ".
+std::string oneLine(const std::vector<std::string>& messages) {
+    std::vector<std::string> lines;
+    for (const auto& m : messages) {
+        size_t start = 0;
+        while (start <= m.size()) {
+            size_t end = m.find('\n', start);
+            if (end == std::string::npos) end = m.size();
+            std::string line = m.substr(start, end - start);
+            while (!line.empty() && std::isspace(static_cast<unsigned char>(line.back()))) line.pop_back();
+            if (!line.empty() && std::find(lines.begin(), lines.end(), line) == lines.end()) lines.push_back(line);
+            start = end + 1;
+        }
+    }
+    std::string out;
+    for (const auto& l : lines) out += (out.empty() ? "" : "; ") + l;
+    return out.empty() ? "no reason given" : out;
+}
+
+}  // namespace
+
 Result<HostImage> readImage(const std::string& path) {
+    std::error_code ec;
+    if (fs::is_directory(path, ec)) return badInput(path + ": is a folder, not an image");
+    StderrCapture capture;
     auto in = ImageInput::open(path);
-    if (!in) return badInput(path + ": cannot read image (" + OIIO::geterror() + ")");
+    if (!in) {
+        const std::string err = OIIO::geterror();
+        return badInput(path + ": cannot read image (" + oneLine({capture.release(), err}) + ")");
+    }
     const ImageSpec& spec = in->spec();
     HostImage img(spec.width, spec.height, spec.nchannels);
-    if (!in->read_image(0, 0, 0, spec.nchannels, TypeDesc::FLOAT, img.pixels.data()))
-        return badInput(path + ": corrupt image (" + in->geterror() + ")");
+    if (!in->read_image(0, 0, 0, spec.nchannels, TypeDesc::FLOAT, img.pixels.data())) {
+        const std::string err = in->geterror();
+        return badInput(path + ": corrupt image (" + oneLine({capture.release(), err}) + ")");
+    }
     in->close();
     return img;
 }

@@ -20,7 +20,7 @@ bool nonFiniteWord(std::string w) {
 // nlohmann's what() reads "[json.exception.parse_error.101] parse error at
 // line 3, column 7: syntax error ..."; the line comes from the byte offset,
 // so keep only what it says after the position.
-std::string reason(const nlohmann::json::parse_error& e) {
+std::string reason(const nlohmann::json::exception& e) {
     const std::string what = e.what();
     const size_t column = what.find(", column ");
     const size_t colon = column == std::string::npos ? column : what.find(": ", column);
@@ -85,6 +85,17 @@ Result<nlohmann::json> readJsonFile(const std::string& path) {
         const size_t upTo = std::min(e.byte > 0 ? e.byte - 1 : 0, text.size());
         const auto line = 1 + std::count(text.begin(), text.begin() + std::ptrdiff_t(upTo), '\n');
         return badInput(path + ": does not parse: line " + std::to_string(line) + ": " + reason(e));
+    } catch (const nlohmann::json::out_of_range& e) {
+        // 406: "number overflow parsing '1e999'", a number no double holds.
+        const std::string what = e.what();
+        const size_t open = what.find('\''), close = what.rfind('\'');
+        const std::string number = open != std::string::npos && close > open ? what.substr(open + 1, close - open - 1) : "";
+        const size_t at = number.empty() ? std::string::npos : text.find(number);
+        const auto line = at == std::string::npos ? 0 : 1 + std::count(text.begin(), text.begin() + std::ptrdiff_t(at), '\n');
+        return badInput(path + ": does not parse: " + (line ? "line " + std::to_string(line) + ": " : "") + number +
+                        " is not a finite number (every number must fit a double)");
+    } catch (const nlohmann::json::exception& e) {
+        return badInput(path + ": does not parse: " + reason(e));
     }
 }
 

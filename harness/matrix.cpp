@@ -39,23 +39,6 @@ std::string shapeText(const ImageShape& s) {
     return std::to_string(s.width) + "x" + std::to_string(s.height) + "x" + std::to_string(s.channels);
 }
 
-namespace {
-
-template <class T>
-Result<std::vector<T>> list(const std::string& path, const std::string& where, const json& j) {
-    if (!j.is_array()) return badInput(path + ": " + where + " must be a list");
-    std::vector<T> out;
-    for (const auto& e : j) {
-        try {
-            out.push_back(e.get<T>());
-        } catch (const json::exception&) {
-            return badInput(path + ": " + where + " has a value of the wrong type: " + e.dump());
-        }
-    }
-    return out;
-}
-
-}  // namespace
 
 std::vector<RunConfig> Matrix::expand() const {
     std::vector<RunConfig> out;
@@ -103,8 +86,10 @@ Result<Matrix> loadMatrix(const std::string& path, const std::string& name) {
     matrix.name = name;
     const std::string text = m.dump();
     matrix.hash = digestText(fnv1a64(text.data(), text.size()));
-    if (m.contains("frames")) matrix.frames = m["frames"].get<int>();
-    if (m.contains("warmup")) matrix.warmup = m["warmup"].get<int>();
+    // The same ranges as cavity run's --frames and --warmup.
+    CAVITY_ASSIGN(const JsonObject fields, JsonObject::of(path, where, m));
+    CAVITY_ASSIGN(matrix.frames, fields.integer("frames", 1, 100000, matrix.frames));
+    CAVITY_ASSIGN(matrix.warmup, fields.integer("warmup", 0, 10000, matrix.warmup));
     if (!m.contains("groups") || !m["groups"].is_array()) return badInput(path + ": " + where + ".groups must be a list");
     int gi = 0;
     for (const auto& g : m["groups"]) {
@@ -114,26 +99,28 @@ Result<Matrix> loadMatrix(const std::string& path, const std::string& name) {
         for (const char* key : {"scenes", "kernels", "samples", "blurs", "resolutions", "sizes", "apis", "stages"})
             if (!g.contains(key)) return badInput(path + ": " + gw + " lacks '" + key + "'");
         MatrixGroup grp;
-        CAVITY_ASSIGN(grp.scenes, list<std::string>(path, gw + ".scenes", g["scenes"]));
-        CAVITY_ASSIGN(grp.kernels, list<std::string>(path, gw + ".kernels", g["kernels"]));
-        CAVITY_ASSIGN(grp.samples, list<int>(path, gw + ".samples", g["samples"]));
-        CAVITY_ASSIGN(grp.blurs, list<int>(path, gw + ".blurs", g["blurs"]));
-        CAVITY_ASSIGN(auto res, list<std::string>(path, gw + ".resolutions", g["resolutions"]));
+        CAVITY_ASSIGN(const JsonObject gf, JsonObject::of(path, gw, g));
+        CAVITY_ASSIGN(grp.scenes, gf.strings("scenes"));
+        CAVITY_ASSIGN(grp.kernels, gf.strings("kernels"));
+        // Ranges are the declarations' (validate() below checks each configuration again).
+        CAVITY_ASSIGN(grp.samples, gf.integers("samples", 1, 1 << 20));
+        CAVITY_ASSIGN(grp.blurs, gf.integers("blurs", 0, 1 << 20));
+        CAVITY_ASSIGN(auto res, gf.strings("resolutions"));
         for (const auto& r : res) {
             if (r != "full" && r != "half") return badInput(path + ": " + gw + ".resolutions has '" + r + "' (full or half)");
             grp.half.push_back(r == "half");
         }
-        CAVITY_ASSIGN(auto sizes, list<std::string>(path, gw + ".sizes", g["sizes"]));
+        CAVITY_ASSIGN(auto sizes, gf.strings("sizes"));
         for (const auto& s : sizes) {
             CAVITY_ASSIGN(auto wh, parseResolution(path + ": " + gw + ".sizes", s));
             grp.sizes.push_back(wh);
         }
-        CAVITY_ASSIGN(auto apis, list<std::string>(path, gw + ".apis", g["apis"]));
+        CAVITY_ASSIGN(auto apis, gf.strings("apis"));
         for (const auto& a : apis) {
             if (a != "gl" && a != "vk") return badInput(path + ": " + gw + ".apis has '" + a + "' (gl or vk)");
             grp.apis.push_back(a == "gl" ? gpu::Api::OpenGL : gpu::Api::Vulkan);
         }
-        CAVITY_ASSIGN(auto stages, list<std::string>(path, gw + ".stages", g["stages"]));
+        CAVITY_ASSIGN(auto stages, gf.strings("stages"));
         for (const auto& s : stages) {
             if (s != "compute" && s != "fragment") return badInput(path + ": " + gw + ".stages has '" + s + "'");
             grp.stages.push_back(s == "compute" ? gpu::Stage::Compute : gpu::Stage::Fragment);
@@ -162,9 +149,18 @@ Result<std::vector<MatrixEntry>> selectEntries(const Matrix& m, int shardIndex, 
     }
     std::vector<MatrixEntry> out;
     const auto all = m.expand();
-    for (size_t i = 0; i < all.size(); ++i)
-        if (inShard(i, shardIndex, shardCount) && (!re || std::regex_search(configId(all[i]), *re)))
-            out.push_back({i, all[i]});
+    size_t matches = 0;
+    for (size_t i = 0; i < all.size(); ++i) {
+        if (re && !std::regex_search(configId(all[i]), *re)) continue;
+        ++matches;
+        if (inShard(i, shardIndex, shardCount)) out.push_back({i, all[i]});
+    }
+    // A filter that selects nothing would pass as "all 0 configurations
+    // passed"; an empty shard of a larger matrix is fine.
+    if (re && matches == 0)
+        return badInput("--filter " + filter + ": matches none of the " + std::to_string(all.size()) +
+                        " configurations of matrix " + m.name + " (ids read like " +
+                        (all.empty() ? std::string("?") : configId(all.front())) + ")");
     return out;
 }
 

@@ -46,20 +46,26 @@ int qualityCommand(const std::vector<std::string>& argv, const std::string& prog
             if (*v != "gl" && *v != "vk") return fail(badInput("--backend " + *v + ": must be gl or vk"));
             api = *v == "gl" ? gpu::Api::OpenGL : gpu::Api::Vulkan;
         } else if (flag == "--scene") {
-            o.scenes = splitList(*v);
+            auto items = splitList(flag, *v);
+            if (!items) return fail(items.error());
+            o.scenes = *items;
             for (const auto& s : o.scenes) {
                 RunConfig probe;
                 if (auto st = setParam(probe, "scene", s); !st) return fail(st.error());
             }
         } else if (flag == "--kernel") {
-            o.kernels = splitList(*v);
+            auto items = splitList(flag, *v);
+            if (!items) return fail(items.error());
+            o.kernels = *items;
             for (const auto& k : o.kernels) {
                 const auto* d = kernels::find(k);
                 if (!d || d->role != "ao") return fail(badInput("--kernel " + k + ": not an AO kernel (see cavity run --help)"));
             }
         } else if (flag == "--samples") {
             o.samples.clear();
-            for (const auto& s : splitList(*v)) {
+            auto items = splitList(flag, *v);
+            if (!items) return fail(items.error());
+            for (const auto& s : *items) {
                 auto n = parseInt("--samples", s, 1, 256);
                 if (!n) return fail(n.error());
                 o.samples.push_back(*n);

@@ -47,32 +47,35 @@ Result<Sweep> parse(const std::vector<std::string>& argv) {
         const std::string flag = a.next();
         if (flag == "--validation") { s.backend.validation = true; continue; }
         if (flag == "--help" || flag == "-h") return badInput(kRunUsage);
-        if (flag.rfind("--", 0) != 0) return badInput(std::string("cavity run: unexpected argument '") + flag + "'");
+        if (flag.rfind("--", 0) != 0) return badInput("'" + flag + "': unexpected argument (flags start with --; see cavity run --help)");
         CAVITY_ASSIGN(const std::string v, a.value(flag));
         if (flag == "--backend") {
-            s.backends = splitList(v);
+            CAVITY_ASSIGN(s.backends, splitList(flag, v));
             for (const auto& b : s.backends)
                 if (b != "gl" && b != "vk" && b != "all") return badInput("--backend " + b + ": must be gl, vk or all");
-        } else if (flag == "--kernel") s.kernels = splitList(v);
-        else if (flag == "--scene") {
-            s.scenes = splitList(v);
+        } else if (flag == "--kernel") {
+            CAVITY_ASSIGN(s.kernels, splitList(flag, v));
+        } else if (flag == "--scene") {
+            CAVITY_ASSIGN(s.scenes, splitList(flag, v));
             s.sceneGiven = true;
-        }
-        else if (flag == "--samples") s.samples = splitList(v);
-        else if (flag == "--blur") s.blurs = splitList(v);
-        else if (flag == "--resolution") {
-            s.resolutions = splitList(v);
+        } else if (flag == "--samples") {
+            CAVITY_ASSIGN(s.samples, splitList(flag, v));
+        } else if (flag == "--blur") {
+            CAVITY_ASSIGN(s.blurs, splitList(flag, v));
+        } else if (flag == "--resolution") {
+            CAVITY_ASSIGN(s.resolutions, splitList(flag, v));
             for (const auto& r : s.resolutions)
                 if (r != "full" && r != "half") return badInput("--resolution " + r + ": must be full or half");
         } else if (flag == "--res") {
             s.sizeGiven = true;
             s.sizes.clear();
-            for (const auto& r : splitList(v)) {
+            CAVITY_ASSIGN(const auto items, splitList(flag, v));
+            for (const auto& r : items) {
                 CAVITY_ASSIGN(auto wh, parseResolution("--res", r));
                 s.sizes.push_back(wh);
             }
         } else if (flag == "--gbuffer") {
-            s.gbuffers = splitList(v);
+            CAVITY_ASSIGN(s.gbuffers, splitList(flag, v));
             for (const auto& g : s.gbuffers)
                 if (g != "sdf" && g != "raster" && g != "import")
                     return badInput("--gbuffer " + g + ": must be sdf, raster or import");
@@ -81,7 +84,8 @@ Result<Sweep> parse(const std::vector<std::string>& argv) {
             s.gbufferFile = v;
         } else if (flag == "--stage") {
             s.stages.clear();
-            for (const auto& st : splitList(v)) {
+            CAVITY_ASSIGN(const auto items, splitList(flag, v));
+            for (const auto& st : items) {
                 if (st == "compute") s.stages.push_back(gpu::Stage::Compute);
                 else if (st == "fragment") s.stages.push_back(gpu::Stage::Fragment);
                 else return badInput("--stage " + st + ": must be compute or fragment");
@@ -267,7 +271,7 @@ int runCommand(const std::vector<std::string>& argv) {
             runs.push_back(std::move(*r));
         }
     }
-    printTable(runs);
+    if (!runs.empty()) printTable(runs);
     if (!runs.empty() || !errors.empty()) {
         std::error_code ec;
         std::filesystem::create_directories(s.out, ec);

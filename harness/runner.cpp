@@ -3,6 +3,9 @@
 #include "gbuffer_import.h"
 #include "image_io.h"
 
+#include <cerrno>
+#include <cstdlib>
+#include <cstring>
 #include <filesystem>
 
 #include <unistd.h>
@@ -11,14 +14,34 @@ namespace cavity {
 
 namespace fs = std::filesystem;
 
-Status checkWritableDir(const std::string& flag, const std::string& dir) {
+Status checkWritableDir(const std::string& flag, const std::string& dir, size_t longestInside) {
+    if (dir.empty()) return badInput(flag + " '': empty value (name an output folder)");
     std::error_code ec;
-    fs::path p = fs::absolute(dir, ec);
+    const fs::path p = fs::absolute(dir, ec);
+    if (ec) return badInput(flag + " " + dir + ": not a usable path (" + ec.message() + ")");
     if (fs::exists(p, ec) && !fs::is_directory(p, ec))
-        return badInput(flag + " " + dir + ": exists and is not a directory");
-    while (!p.empty() && !fs::exists(p, ec)) p = p.parent_path();
-    if (p.empty() || !fs::is_directory(p, ec) || ::access(p.c_str(), W_OK | X_OK) != 0)
-        return badInput(flag + " " + dir + ": cannot be written (" + p.string() + " is not writable)");
+        return badInput(flag + " " + dir + ": exists and is not a folder");
+    fs::path existing = p;
+    while (!existing.empty() && !fs::exists(existing, ec)) existing = existing.parent_path();
+    if (existing.empty() || !fs::is_directory(existing, ec))
+        return badInput(flag + " " + dir + ": cannot be created (" + existing.string() + " is not a folder)");
+    // Every file goes to dir/<configuration id>/<image>: the whole path and
+    // each name in it must fit the file system's limits before anything renders.
+    const long nameMax = ::pathconf(existing.c_str(), _PC_NAME_MAX), pathMax = ::pathconf(existing.c_str(), _PC_PATH_MAX);
+    for (const auto& part : p)
+        if (nameMax > 0 && long(part.string().size()) > nameMax)
+            return badInput(flag + " " + dir.substr(0, 60) + "...: too long: a folder name of " +
+                            std::to_string(part.string().size()) + " characters (at most " + std::to_string(nameMax) + ")");
+    if (pathMax > 0 && long(p.string().size() + longestInside) >= pathMax)
+        return badInput(flag + " " + dir.substr(0, 60) + "...: too long: " + std::to_string(p.string().size()) +
+                        " characters, and the files inside need " + std::to_string(longestInside) + " more (at most " +
+                        std::to_string(pathMax - 1) + " in all)");
+    // Permission bits do not tell (root passes access(); /proc refuses
+    // mkdir), so make and remove a probe folder where dir would be created.
+    std::string probe = (existing / ".cavity-probe-XXXXXX").string();
+    if (::mkdtemp(probe.data()) == nullptr)
+        return badInput(flag + " " + dir + ": cannot be written (" + existing.string() + ": " + std::strerror(errno) + ")");
+    ::rmdir(probe.c_str());
     return {};
 }
 

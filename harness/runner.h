@@ -32,7 +32,9 @@ TimingOptions timingOptions(const gpu::DeviceInfo& device, const RunOptions& o);
 
 Result<RunRecord> runConfig(gpu::Backend& gpu, const RunConfig& c, const RunOptions& o);
 
-// Checks that `dir` can be created and written without creating anything.
-Status checkWritableDir(const std::string& flag, const std::string& dir);
+// Checks, before any rendering, that `dir` can be created and written, with
+// room for paths of `longestInside` characters under it (a configuration id
+// and an image name); a probe folder is made and removed, nothing else.
+Status checkWritableDir(const std::string& flag, const std::string& dir, size_t longestInside = 160);
 
 }  // namespace cavity

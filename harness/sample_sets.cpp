@@ -1,7 +1,9 @@
 #include "sample_sets.h"
 
-#include "json_file.h"
+#include "json_input.h"
 #include "results.h"
+
+#include <cmath>
 
 namespace cavity {
 
@@ -29,10 +31,18 @@ SampleSet& SampleSets::at(const std::string& id, const std::string& pass) {
 namespace {
 
 // Numbers only: results.json writes a sample that was NaN as null, and a
-// sample that was never a time tells nothing about the change.
-void addSamples(SampleSet& s, const json& samples, const std::string& clock) {
-    for (const auto& v : samples)
-        if (v.is_number()) s.add(v.get<double>(), clock);
+// sample that was never a time tells nothing about the change. A series with
+// no time at all would compare as "-100%", so it is bad input.
+Status addSamples(SampleSet& s, const JsonObject& owner, const std::string& clock) {
+    CAVITY_ASSIGN(const auto samples, owner.numbers("samples_ms", 0, 1e12, true));
+    size_t added = 0;
+    for (double v : samples)
+        if (std::isfinite(v)) {
+            s.add(v, clock);
+            ++added;
+        }
+    if (!added) return owner.bad("samples_ms", "holds no time (a run needs at least one finite sample)");
+    return {};
 }
 
 }  // namespace
@@ -41,20 +51,18 @@ Result<SampleSets> readResultsJson(const json& doc, const std::string& path) {
     SampleSets out;
     out.path = path;
     out.format = "cavity-results";
-    const json& runs = doc.contains("runs") ? doc["runs"] : json();
-    if (!runs.is_array()) return badInput(path + ": runs: must be an array (schema cavity.results/1)");
-    for (size_t i = 0; i < runs.size(); ++i) {
-        const std::string where = path + ": runs[" + std::to_string(i) + "]";
-        try {
-            const json& r = runs[i];
-            const std::string id = r.at("id");
-            const std::string clock = r.at("clock");
-            // The frame first, as a table reads best whole before parts.
-            addSamples(out.at(id, kFramePass), r.at("frame").at("samples_ms"), clock);
-            for (const auto& p : r.at("passes"))
-                addSamples(out.at(id, p.at("name").get<std::string>()), p.at("samples_ms"), clock);
-        } catch (const json::exception& e) {
-            return badInput(where + ": malformed run: " + e.what());
+    CAVITY_ASSIGN(const JsonObject top, JsonObject::of(path, "", doc));
+    CAVITY_ASSIGN(const auto runs, top.objects("runs"));
+    for (const auto& r : runs) {
+        CAVITY_ASSIGN(const std::string id, r.str("id"));
+        CAVITY_ASSIGN(const std::string clock, r.str("clock"));
+        // The frame first, as a table reads best whole before parts.
+        CAVITY_ASSIGN(const JsonObject frame, r.object("frame"));
+        CAVITY_TRY(addSamples(out.at(id, kFramePass), frame, clock));
+        CAVITY_ASSIGN(const auto passes, r.objects("passes"));
+        for (const auto& p : passes) {
+            CAVITY_ASSIGN(const std::string name, p.str("name"));
+            CAVITY_TRY(addSamples(out.at(id, name), p, clock));
         }
     }
     return out;

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstring>
 #include <set>
+#include <limits>
 #include <sstream>
 
 namespace cavity::kernels {
@@ -62,15 +63,27 @@ Status validate(const KernelDecl& k, const ParamValues& values) {
         }
         const bool integral = isIntegral(p.type);
         const bool lowOk = p.minExclusive ? x > p.min : x >= p.min;
-        if (!std::isfinite(x) || (integral && x != std::floor(x)) || !lowOk || x > p.max) {
-            std::string what = integral ? "an integer in " + number(p.min) + ".." + number(p.max)
-                             : p.minExclusive ? "a number > " + number(p.min) + " and <= " + number(p.max)
-                                              : "a number in " + number(p.min) + ".." + number(p.max);
-            if (p.type == ParamType::Bool) what = "0 or 1";
-            return badInput(flag + ": must be " + what + (p.unit.empty() ? "" : " (" + p.unit + ")"));
-        }
+        // The shader reads a float: a value below the smallest normal float
+        // would arrive as 0 or a denormal (a radius of 1e-300 is a radius of 0).
+        const bool floatOk = integral || x == 0 || std::fabs(x) >= std::numeric_limits<float>::min();
+        if (!std::isfinite(x) || (integral && x != std::floor(x)) || !lowOk || x > p.max || !floatOk)
+            return badInput(flag + ": must be " + allowedValues(p));
     }
     return {};
+}
+
+std::string allowedValues(const ParamDecl& p) {
+    const bool integral = isIntegral(p.type);
+    std::string what = integral ? "an integer in " + number(p.min) + ".." + number(p.max)
+                     : p.minExclusive ? "a number > " + number(p.min) + " and <= " + number(p.max)
+                                      : "a number in " + number(p.min) + ".." + number(p.max);
+    if (p.type == ParamType::Bool) what = "0 or 1";
+    if (p.type == ParamType::Enum) {
+        what = "one of ";
+        for (size_t i = 0; i < p.choices.size(); ++i) what += (i ? ", " : "") + p.choices[i];
+    }
+    if (p.type == ParamType::Float) what += ", and 0 or at least " + number(std::numeric_limits<float>::min()) + " in magnitude (a 32-bit float)";
+    return what + (p.unit.empty() ? "" : " (" + p.unit + ")");
 }
 
 std::vector<std::byte> packParams(const KernelDecl& k, const ParamValues& values) {

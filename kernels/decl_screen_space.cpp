@@ -392,7 +392,7 @@ KernelDecl blurBilateralSsdo() {
     k.role = "blur";
     k.params = {
         makeParam("blur", ParamType::Int, 4, 0, 32, "px", "blur radius r: (2r+1)^2 taps, sigma = r/2; 0 passes through"),
-        makeParam("depth_sigma", ParamType::Float, 0.1, 0, 10, "world units",
+        makeParam("depth_sigma", ParamType::Float, 0.1, 1e-4, 10, "world units",
               "sigma of the depth weight exp(-dd^2 / (2 sigma^2)) between a tap and the centre", true),
     };
     k.inputs = {{"visibility", {}}, {"radiance", {}}, {"position", {}}, {"normal", {}}};

@@ -137,6 +137,8 @@ ParamValues withDefaults(const KernelDecl& k, const ParamValues& given = {});
 // Checks every value against its declared range. The message names the flag,
 // the value and what is allowed: "--samples 300: must be an integer in 1..256".
 Status validate(const KernelDecl& k, const ParamValues& values);
+// What a parameter accepts, as the messages say it: "a number > 0 and <= 100 (world units)".
+std::string allowedValues(const ParamDecl& p);
 
 // The std140 bytes of the Params block (binding 1) for these values.
 std::vector<std::byte> packParams(const KernelDecl& k, const ParamValues& values);

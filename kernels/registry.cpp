@@ -119,7 +119,9 @@ KernelDecl blurBilateral() {
     k.role = "blur";
     k.params = {
         intParam("blur", 4, 0, 32, "px", "blur radius r: (2r+1)^2 taps, sigma = r/2; 0 passes AO through"),
-        floatParam("depth_sigma", 0.1, 0, 10, "world units",
+        // Above 1e-4: the weight divides by 2 sigma^2 in 32-bit floats, and a
+        // tinier sigma overflows that to inf and the centre tap to 0 * inf = NaN.
+        floatParam("depth_sigma", 0.1, 1e-4, 10, "world units",
                    "sigma of the depth weight exp(-dd^2 / (2 sigma^2)) between a tap and the centre", true),
     };
     k.inputs = {{"ao", {}}, {"position", {}}, {"normal", {}}};

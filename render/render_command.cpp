@@ -56,7 +56,7 @@ int worst(const RenderManifest& m) {
 
 Result<RenderCommand> parseRenderFlags(const std::vector<std::string>& argv) {
     RenderCommand o;
-    cli::Args a(argv);
+    cli::Args a(argv, {"--kernel-source"});
     while (!a.done()) {
         const std::string flag = a.next();
         if (flag == "--validation") {

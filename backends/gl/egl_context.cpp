@@ -161,6 +161,11 @@ Result<std::unique_ptr<EglContext>> start(Result<NamedDisplay> opened, bool debu
 Result<std::unique_ptr<EglContext>> EglContext::create(int deviceIndex, bool debugContext) {
     auto device = start(deviceDisplay(deviceIndex), debugContext);
     if (device) return device;
+    // Surfaceless has one device: asked for another, running there would
+    // time a GPU the user did not ask for.
+    if (deviceIndex != 0)
+        return unavailable("gl: --device " + std::to_string(deviceIndex) + ": no such EGL device (" +
+                           device.error().message + ")");
     auto surfaceless = start(surfacelessDisplay(), debugContext);
     if (surfaceless) return surfaceless;
     return unavailable("gl: could not start: tried EGL device platform (" + device.error().message +

@@ -1,0 +1,220 @@
+#!/usr/bin/env python3
+"""Every bad input of issue 13 against the real binaries: each must exit with its
+documented code (README "Exit codes"), print exactly one line on stderr that
+names the flag or file and the value, write nothing, and never crash.
+
+    bad_inputs.py CAVITY CAVITY_BENCH SOURCE_DIR [NAME_REGEX]
+
+Each case runs in a fresh temporary folder holding a copy of the small parts of
+baselines/ it edits; a case's `out` folder must not exist afterwards and the
+baselines copy must be unchanged unless the case says otherwise.
+"""
+import hashlib
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+
+
+def tree_digest(root):
+    h = hashlib.sha256()
+    for dirpath, dirnames, filenames in sorted(os.walk(root)):
+        dirnames.sort()
+        for name in sorted(filenames):
+            p = os.path.join(dirpath, name)
+            h.update(os.path.relpath(p, root).encode())
+            with open(p, "rb") as f:
+                h.update(f.read())
+    return h.hexdigest()
+
+
+class Case:
+    def __init__(self, name, tool, args, expect, code=2, setup=None, env=None):
+        self.name, self.tool, self.args, self.expect, self.code = name, tool, args, expect, code
+        self.setup, self.env = setup, env or {}
+
+
+def edit_json(rel, change):
+    """A setup that loads baselines/REL, applies change(doc) and writes it back as text."""
+    def setup(tmp):
+        path = os.path.join(tmp, "baselines", rel)
+        doc = json.load(open(path))
+        text = change(doc)
+        with open(path, "w") as f:
+            f.write(text if isinstance(text, str) else json.dumps(doc, indent=1))
+    return setup
+
+
+def replace_with_folder(rel):
+    def setup(tmp):
+        path = os.path.join(tmp, rel)
+        if os.path.exists(path):
+            os.remove(path)
+        os.makedirs(path)
+    return setup
+
+
+def write(rel, text):
+    def setup(tmp):
+        path = os.path.join(tmp, rel)
+        os.makedirs(os.path.dirname(path), exist_ok=True)
+        with open(path, "w") as f:
+            f.write(text)
+    return setup
+
+
+def truncate_baseline(tmp):
+    folder = os.path.join(tmp, "baselines", "images", "corner", "alchemy", "n16", "b4", "full", "160x90")
+    path = os.path.join(folder, "color.png")
+    data = open(path, "rb").read()
+    with open(path, "wb") as f:
+        f.write(data[: len(data) // 2])
+
+
+def manifest_tolerance_1e999(doc):
+    text = json.dumps(doc, indent=1)
+    return text.replace('"max_abs": 0.5', '"max_abs": 1e999', 1) if '"max_abs": 0.5' in text else \
+        re.sub(r'"max_abs": [0-9.e-]+', '"max_abs": 1e999', text, count=1)
+
+
+def budgets_1e999(doc):
+    text = json.dumps(doc, indent=1)
+    return re.sub(r'("ao": )[0-9.e-]+', r"\g<1>1e999", text, count=1)
+
+
+def frames_as_string(doc):
+    doc["ci"]["frames"] = "3"
+
+
+def frames_negative(doc):
+    doc["ci"]["frames"] = -1
+    doc["ci"]["warmup"] = -5
+
+
+GATE = ["gate", "--matrix", "ci", "--baselines", "baselines", "--filter", "^corner/alchemy/n16/b4/full/160x90/vk/compute$",
+        "--out", "out"]
+RUN = ["run", "--backend", "vk", "--res", "32x18", "--frames", "2", "--warmup", "0", "--out", "out"]
+LONG = "x" * 4200
+FOLDER300 = "y" * 300
+
+CASES = [
+    # Files that crashed (exit 134) on main.
+    Case("manifest-1e999", "cavity", GATE, ["manifest.json", "1e999"], setup=edit_json("manifest.json", manifest_tolerance_1e999)),
+    Case("budgets-1e999", "cavity", GATE, ["budgets.json", "1e999"], setup=edit_json("budgets.json", budgets_1e999)),
+    Case("matrices-frames-string", "cavity", GATE, ["matrices.json", "frames", '"3"'],
+         setup=edit_json("matrices.json", frames_as_string)),
+    Case("manifest-is-folder", "cavity", GATE, ["manifest.json", "folder"], setup=replace_with_folder("baselines/manifest.json")),
+    Case("gate-json-folder-update", "cavity", ["baselines", "update", "--baselines", "baselines", "--from", "prev"],
+         ["gate.json", "folder"], setup=replace_with_folder("prev/gate.json")),
+    Case("gate-json-folder-merge", "cavity", ["gate", "merge", "prev", "--out", "out"], ["gate.json", "folder"],
+         setup=replace_with_folder("prev/gate.json")),
+    Case("compare-folder", "cavity", ["compare", "prev", "x.json"], ["prev", "folder"], setup=replace_with_folder("prev")),
+    Case("gate-json-wrong-type", "cavity", ["gate", "merge", "prev", "--out", "out"], ["gate.json", "seconds"],
+         setup=write("prev/gate.json", '{"schema": "cavity.gate/1", "matrix": "ci", "shard": [0, 1], "seconds": "3", "backend_errors": [], "results": []}')),
+    # Bad values that were accepted.
+    Case("samples-empty", "cavity", RUN + ["--samples", ""], ["--samples", "empty"]),
+    Case("samples-empty-item", "cavity", RUN + ["--samples", "8,,16"], ["--samples", "empty"]),
+    Case("samples-duplicate-item", "cavity", RUN + ["--samples", "8,8"], ["--samples", "8", "twice"]),
+    Case("flag-twice", "cavity", RUN + ["--samples", "8", "--samples", "16"], ["--samples", "twice"]),
+    Case("gate-filter-nomatch", "cavity", GATE[:-4] + ["--filter", "nomatch", "--out", "out"], ["--filter", "nomatch", "matches none"]),
+    Case("matrices-negative-frames", "cavity", GATE, ["matrices.json", "frames", "-1"], setup=edit_json("matrices.json", frames_negative)),
+    Case("bench-iterations-0", "cavity_bench", ["--iterations", "0"], ["--iterations", "0"]),
+    Case("bench-iterations-abc", "cavity_bench", ["--iterations", "abc"], ["--iterations", "abc"]),
+    Case("bench-iterations-neg", "cavity_bench", ["--iterations", "-3"], ["--iterations", "-3"]),
+    Case("bench-warmup-abc", "cavity_bench", ["--warmup", "abc"], ["--warmup", "abc"]),
+    Case("bench-device-abc", "cavity_bench", ["--device", "abc"], ["--device", "abc"]),
+    Case("bench-filter-bad-regex", "cavity_bench", ["--benchmark_filter=("], ["--benchmark_filter", "("]),
+    Case("radius-underflow", "cavity", RUN + ["--radius", "1e-300"], ["--radius", "1e-300"]),
+    Case("depth-sigma-underflow", "cavity", RUN + ["--blur", "4", "--depth_sigma", "1e-30"], ["--depth_sigma", "1e-30"]),
+    Case("compare-empty-samples", "cavity", ["compare", "a.json", "b.json"], ["a.json", "samples_ms"],
+         setup=lambda tmp: [write(n, json.dumps({"schema": "cavity.results/1", "runs": [{"id": "x", "clock": "gpu-timestamp", "frame": {"samples_ms": []},
+                                                           "passes": []}]}))(tmp) for n in ("a.json", "b.json")]),
+    # Late or multi-line.
+    Case("out-proc", "cavity", RUN[:-2] + ["--out", "/proc/x"], ["--out", "/proc/x"]),
+    Case("out-too-long", "cavity", RUN[:-2] + ["--out", LONG], ["--out", "too long"]),
+    Case("out-long-component", "cavity", RUN[:-2] + ["--out", FOLDER300], ["--out", "too long"]),
+    Case("truncated-baseline", "cavity", GATE, ["color.png"], setup=truncate_baseline),
+    Case("gl-device-out-of-range", "cavity", ["run", "--backend", "gl", "--device", "5", "--res", "32x18", "--out", "out"],
+         ["--device", "5"], code=3),
+    # Weak messages.
+    Case("not-a-number-says-range", "cavity", RUN + ["--radius", "abc"], ["--radius", "abc", "in"]),
+    Case("nan", "cavity", RUN + ["--radius", "nan"], ["--radius", "nan", "in"]),
+    Case("inf", "cavity", RUN + ["--radius", "inf"], ["--radius", "inf", "in"]),
+    Case("hexfloat", "cavity", RUN + ["--radius", "0x1p-2"], ["--radius", "0x1p-2", "in"]),
+    Case("out-empty", "cavity", RUN[:-2] + ["--out", ""], ["--out", "empty"]),
+    Case("stray-argument", "cavity", ["run", "stray"], ["stray"]),
+    # More of the same families.
+    Case("budgets-is-folder", "cavity", GATE, ["budgets.json", "folder"], setup=replace_with_folder("baselines/budgets.json")),
+    Case("matrices-missing", "cavity", GATE, ["matrices.json"], setup=lambda tmp: os.remove(os.path.join(tmp, "baselines", "matrices.json"))),
+    Case("matrices-samples-fraction", "cavity", GATE, ["matrices.json", "samples", "16.5"],
+         setup=edit_json("matrices.json", lambda d: d["ci"]["groups"][0].__setitem__("samples", [16.5]))),
+    Case("manifest-not-json", "cavity", GATE, ["manifest.json", "line 1"], setup=write("baselines/manifest.json", "{oops")),
+    Case("compare-missing", "cavity", ["compare", "a.json", "b.json"], ["a.json", "no such file"]),
+    Case("gbuffer-file-folder", "cavity", RUN + ["--gbuffer", "import", "--gbuffer-file", "prev"], ["prev"],
+         setup=replace_with_folder("prev")),
+    Case("res-zero", "cavity", RUN[:3] + ["--res", "0x0", "--out", "out"], ["--res", "0x0"]),
+    Case("frames-1e999", "cavity", RUN[:5] + ["--frames", "1e999", "--out", "out"], ["--frames", "1e999"]),
+    Case("max-noise-nan", "cavity", RUN + ["--max-noise", "nan"], ["--max-noise", "nan"]),
+    Case("unknown-flag", "cavity", RUN + ["--radiuss", "1"], ["--radiuss", "unknown"]),
+    Case("gate-out-is-file", "cavity", GATE[:-1] + ["prev"], ["--out", "prev", "not a folder"], setup=write("prev", "x")),
+    Case("bench-plant-file-folder", "cavity_bench", ["--plant-file", "prev"], ["--plant-file", "prev"],
+         setup=replace_with_folder("prev")),
+    Case("bench-frames-1e999", "cavity_bench", ["--frames", "1e999"], ["--frames", "1e999"]),
+]
+
+
+def run_case(c, tools, source):
+    with tempfile.TemporaryDirectory() as tmp:
+        shutil.copytree(os.path.join(source, "baselines"), os.path.join(tmp, "baselines"),
+                        ignore=lambda d, names: [n for n in names if n == "images" and d.endswith("baselines")])
+        # One baseline folder (the one the gate cases judge) is enough.
+        sub = os.path.join("images", "corner", "alchemy", "n16", "b4", "full", "160x90")
+        shutil.copytree(os.path.join(source, "baselines", sub), os.path.join(tmp, "baselines", sub))
+        if c.setup:
+            c.setup(tmp)
+        before = tree_digest(os.path.join(tmp, "baselines")) if os.path.isdir(os.path.join(tmp, "baselines")) else None
+        env = dict(os.environ, **c.env)
+        try:
+            r = subprocess.run([tools[c.tool]] + c.args, cwd=tmp, capture_output=True, text=True, env=env, timeout=300)
+        except subprocess.TimeoutExpired:
+            return "timed out"
+        lines = [l for l in r.stderr.splitlines() if l.strip()]
+        problems = []
+        if r.returncode != c.code:
+            problems.append(f"exit {r.returncode}, expected {c.code}")
+        if len(lines) != 1:
+            problems.append(f"{len(lines)} lines on stderr")
+        missing = [e for e in c.expect if e not in r.stderr]
+        if missing:
+            problems.append(f"message lacks {missing}")
+        # Exit 3 still records the error in out/results.json (README "Exit codes").
+        if c.code == 2 and os.path.exists(os.path.join(tmp, "out")):
+            problems.append("wrote out/")
+        if before is not None and os.path.isdir(os.path.join(tmp, "baselines")) and \
+                tree_digest(os.path.join(tmp, "baselines")) != before:
+            problems.append("changed baselines/")
+        if problems:
+            return "; ".join(problems) + f"\n      stderr: {r.stderr.strip()[:600]!r}"
+        return None
+
+
+def main():
+    tools = {"cavity": os.path.abspath(sys.argv[1]), "cavity_bench": os.path.abspath(sys.argv[2])}
+    source = os.path.abspath(sys.argv[3])
+    only = re.compile(sys.argv[4]) if len(sys.argv) > 4 else None
+    failed = 0
+    for c in CASES:
+        if only and not only.search(c.name):
+            continue
+        problem = run_case(c, tools, source)
+        print(f"{'FAIL' if problem else 'ok  '} {c.name}" + (f": {problem}" if problem else ""))
+        failed += bool(problem)
+    print(f"{failed} of {len(CASES)} cases failed")
+    sys.exit(1 if failed else 0)
+
+
+if __name__ == "__main__":
+    main()
