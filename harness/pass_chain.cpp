@@ -2,6 +2,8 @@
 #include "meshes.h"
 #include "pipeline.h"
 
+#include <cmath>
+
 namespace cavity {
 
 struct PassChain::Pass {
@@ -208,6 +210,36 @@ Result<HostImage> PassChain::read(const std::string& image) const {
     if (px.size() != img.pixels.size()) return internal("readback of '" + image + "' returned the wrong size");
     img.pixels = std::move(px);
     return img;
+}
+
+std::string NonFinite::message() const {
+    return "pass " + pass + " wrote " + std::to_string(count) + " pixel" + (count == 1 ? "" : "s") +
+           " of NaN or infinity to " + image + " (first at pixel " + std::to_string(x) + "," + std::to_string(y) + ")";
+}
+
+Result<std::vector<NonFinite>> PassChain::findNonFinite() const {
+    std::vector<NonFinite> found;
+    for (const auto& spec : specs_)
+        for (const auto& name : spec.outputs) {
+            auto it = images_.find(name);
+            if (it == images_.end()) continue;
+            const gpu::Format f = it->second.format;
+            if (f == gpu::Format::R8 || f == gpu::Format::RGBA8) continue;
+            CAVITY_ASSIGN(const HostImage img, read(name));
+            NonFinite n{spec.name, name};
+            const size_t channels = size_t(img.channels);
+            for (size_t pixel = 0; pixel * channels < img.pixels.size(); ++pixel) {
+                bool finite = true;
+                for (size_t c = 0; c < channels; ++c) finite &= std::isfinite(img.pixels[pixel * channels + c]);
+                if (finite) continue;
+                if (n.count++ == 0) {
+                    n.x = int(pixel % size_t(img.width));
+                    n.y = int(pixel / size_t(img.width));
+                }
+            }
+            if (n.count) found.push_back(std::move(n));
+        }
+    return found;
 }
 
 std::map<std::string, std::string> PassChain::shaderPaths() const {

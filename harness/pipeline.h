@@ -41,6 +41,14 @@ using SourceOverrides = std::map<std::string, std::string>;
 // A planted slowdown: dependent FMAs per pixel by pass name (kernels::assemble).
 using PlantedSlowdown = std::map<std::string, int>;
 
+// Non-finite values a pass wrote into one of its images.
+struct NonFinite {
+    std::string pass, image;
+    long long count = 0;        // pixels with a NaN or infinite channel
+    int x = -1, y = -1;         // the first pixel, in row order
+    std::string message() const;
+};
+
 class PassChain {
 public:
     // With an imported G-buffer (c.imported()), c.gbufferImages must be set:
@@ -61,6 +69,11 @@ public:
     const std::vector<PassSpec>& passes() const { return specs_; }
 
     Result<HostImage> read(const std::string& image) const;
+    // Every image a pass of this chain wrote in a float format (positions,
+    // normals, depth, raw and blurred AO, radiance...), read back and
+    // scanned: one finding per image that holds a NaN or an infinity. An
+    // 8-bit image cannot hold one; its inputs are all scanned here.
+    Result<std::vector<NonFinite>> findNonFinite() const;
     // How each pass's shader reached the driver ("spirv" or "glsl-fallback").
     std::map<std::string, std::string> shaderPaths() const;
     // Pixels each pass writes (for throughput counters).

@@ -68,6 +68,17 @@ json clocksJson(const GpuClockSummary& c) {
 
 }  // namespace
 
+namespace {
+
+json nonFiniteJson(const std::vector<NonFinite>& found) {
+    json out = json::array();
+    for (const auto& n : found)
+        out.push_back({{"pass", n.pass}, {"image", n.image}, {"count", n.count}, {"first", {n.x, n.y}}});
+    return out;
+}
+
+}  // namespace
+
 json toJson(const RunRecord& r) {
     json params = json::object();
     for (const auto& [k, v] : r.config.params) params[k] = v;
@@ -113,6 +124,7 @@ json toJson(const RunRecord& r) {
         {"frame_gpu_timestamps", series(r.timing.frameGpu)},
         {"images", r.images},
         {"debug_messages", r.debugMessages},
+        {"non_finite", nonFiniteJson(r.nonFinite)},
     };
 }
 

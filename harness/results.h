@@ -32,6 +32,9 @@ struct RunRecord {
     // With RunOptions::checkDeterminism: the outputs of a second frame were
     // bit-identical to the first.
     bool deterministic = true;
+    // PassChain::findNonFinite after the measurement: empty when every float
+    // image of every pass is finite.
+    std::vector<NonFinite> nonFinite;
 };
 
 struct RunError {

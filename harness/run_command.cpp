@@ -268,6 +268,12 @@ int runCommand(const std::vector<std::string>& argv) {
                 continue;
             }
             for (const auto& m : r->debugMessages) std::cerr << "cavity run: " << gpu::apiName(api) << " debug: " << m << "\n";
+            // Exit 1: the run finished, but a pass wrote NaN or infinity
+            // (README, Exit codes); its images and results are still written.
+            for (const auto& n : r->nonFinite) {
+                std::cerr << "cavity run: " << configId(c) << ": " << n.message() << "\n";
+                worst = std::max(worst, int(ErrorCode::Regression));
+            }
             runs.push_back(std::move(*r));
         }
     }

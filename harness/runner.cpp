@@ -74,6 +74,7 @@ Result<RunRecord> runConfig(gpu::Backend& gpu, const RunConfig& given, const Run
     r.timingOptions = timingOptions(gpu.info(), o);
     CAVITY_ASSIGN(r.timing, measure(gpu, *chain, r.timingOptions, GpuClocks::forDevice(gpu.info())));
     r.debugMessages = gpu.takeDebugMessages();
+    CAVITY_ASSIGN(r.nonFinite, chain->findNonFinite());
     if (o.keepImages || o.checkDeterminism) {
         for (const auto& out : userOutputs(c)) {
             CAVITY_ASSIGN(HostImage img, chain->read(out.image));

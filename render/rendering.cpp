@@ -60,6 +60,11 @@ Status renderEntries(const gate::Matrix& m, const std::vector<gate::MatrixEntry>
                 if (!rec) {
                     r.error = rec.error().message;
                     r.errorCode = int(rec.error().code);
+                } else if (!rec->nonFinite.empty()) {
+                    // A NaN anywhere fails the configuration, whatever its
+                    // checked images show (an 8-bit composite clamps it away).
+                    for (const auto& n : rec->nonFinite) r.error += (r.error.empty() ? "" : "; ") + n.message();
+                    r.errorCode = int(ErrorCode::Regression);
                 } else {
                     r.deterministic = rec->deterministic;
                     for (const auto& p : rec->timing.passes) r.timings.push_back({p.name, p.stats.median, rec->timing.clock});

@@ -145,6 +145,57 @@ INSTANTIATE_TEST_SUITE_P(Defects, PlantedBug, ::testing::Range<size_t>(0, defect
                              return n;
                          });
 
+// A NaN written anywhere fails the configuration and is named where it was
+// produced, even where no checked image shows it: the composite is 8-bit and
+// clamps it away, and a blur's max() may squash it.
+struct PlantedNaN {
+    std::string name, file, find, replace;
+    std::string pass, image;   // what the failure must name
+};
+
+std::vector<PlantedNaN> plantedNaNs() {
+    // A quiet NaN at one pixel, from its bit pattern.
+    return {
+        {"normal", "gbuffer_sdf.glsl", "write_normal(pixel, vec4(dot(n, right), dot(n, up), -dot(n, forward), 0.0));",
+         "write_normal(pixel, vec4(dot(n, right), dot(n, up), -dot(n, forward), 0.0) * (pixel == ivec2(37, 21) ? "
+         "uintBitsToFloat(0x7fc00000u) : 1.0));",
+         "gbuffer", "normal"},
+        {"raw_ao", "ssao_alchemy.glsl", "write_ao(pixel, vec4(A, 0.0, 0.0, 0.0));",
+         "write_ao(pixel, vec4(pixel == ivec2(37, 21) ? uintBitsToFloat(0x7fc00000u) : A, 0.0, 0.0, 0.0));", "ao", "ao"},
+    };
+}
+
+class PlantedNonFinite : public ::testing::TestWithParam<size_t> {};
+
+TEST_P(PlantedNonFinite, FailsTheGateNamingThePassAndImage) {
+    REQUIRE_BACKENDS();
+    const PlantedNaN d = plantedNaNs()[GetParam()];
+    const std::string* text = kernels::sourceFile(d.file);
+    ASSERT_NE(text, nullptr) << d.file;
+    const auto at = text->find(d.find);
+    ASSERT_NE(at, std::string::npos) << d.name << ": '" << d.find << "' not in kernels/" << d.file;
+    std::string broken = *text;
+    broken.replace(at, d.find.size(), d.replace);
+    gate::GateOptions o;
+    o.baselines = kBaselines;
+    o.out = tempDir("nan" + std::to_string(GetParam())).string();
+    o.filter = "^corner/alchemy/n16/b4/full/160x90/(gl|vk)/compute$";
+    o.overrides[d.file] = broken;
+    const auto run = runOrDie(o);
+    EXPECT_EQ(run.exitCode(), 1) << d.name;
+    ASSERT_EQ(run.results.size(), 2u);
+    for (const auto& r : run.results) {
+        EXPECT_FALSE(r.passed()) << r.id;
+        EXPECT_EQ(r.errorCode, 1) << r.id;
+        const std::string expect = "pass " + d.pass + " wrote 1 pixel of NaN or infinity to " + d.image + " (first at pixel 37,21)";
+        EXPECT_NE(r.error.find(expect), std::string::npos) << r.id << ": " << r.error;
+    }
+    fs::remove_all(o.out);
+}
+
+INSTANTIATE_TEST_SUITE_P(Planted, PlantedNonFinite, ::testing::Range<size_t>(0, plantedNaNs().size()),
+                         [](const auto& info) { return plantedNaNs()[info.param].name; });
+
 TEST(Gate, UnchangedBuildPassesTwiceOnBothApis) {
     REQUIRE_BACKENDS();
     for (int round = 0; round < 2; ++round) {
