@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <cctype>
 #include <fstream>
 #include <set>
@@ -34,6 +35,8 @@ const std::map<std::string, double Tolerance::*>& toleranceFields() {
         {"over_threshold_share", &Tolerance::overThresholdShare},
         {"ssim_min", &Tolerance::ssimMin},
         {"flip_mean_max", &Tolerance::flipMeanMax},
+        {"differing_delta", &Tolerance::differingDelta},
+        {"differing_share_max", &Tolerance::differingShareMax},
     };
     return f;
 }
@@ -47,6 +50,10 @@ Result<std::map<std::string, double>> readTolerances(const std::string& path, co
         if (!v.is_number()) return badInput(path + ": " + where + "." + k + " must be a number");
         const double x = v.get<double>();
         if (!(x >= 0)) return badInput(path + ": " + where + "." + k + " is " + v.dump() + ": tolerances must be >= 0");
+        if (k == "differing_delta" && (x != std::floor(x) || x > 255))
+            return badInput(path + ": " + where + "." + k + " is " + v.dump() + ": must be an integer in 0..255 (8-bit steps)");
+        if ((k == "differing_share_max" || k == "over_threshold_share") && x > 1)
+            return badInput(path + ": " + where + "." + k + " is " + v.dump() + ": must be a share in 0..1");
         out[k] = x;
     }
     return out;

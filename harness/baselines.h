@@ -26,6 +26,10 @@ struct Tolerance {
     double overThresholdShare = 0.01;
     double ssimMin = 0.98;
     double flipMeanMax = 0.02;
+    // 8-bit images: at most this share of pixels may differ by more than
+    // differingDelta steps in any colour channel (1 allows every pixel).
+    double differingDelta = 0;
+    double differingShareMax = 1;
 };
 struct Manifest {
     std::map<std::string, Tolerance> pipelines;   // by AO kernel name; "*" is the default

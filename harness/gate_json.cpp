@@ -14,7 +14,8 @@ namespace {
 json toJson(const Tolerance& t) {
     return {{"max_abs", t.maxAbs}, {"mean_abs", t.meanAbs}, {"rmse", t.rmse}, {"psnr_min", t.psnrMin},
             {"pixel_threshold", t.pixelThreshold}, {"over_threshold_share", t.overThresholdShare},
-            {"ssim_min", t.ssimMin}, {"flip_mean_max", t.flipMeanMax}};
+            {"ssim_min", t.ssimMin}, {"flip_mean_max", t.flipMeanMax}, {"differing_delta", t.differingDelta},
+            {"differing_share_max", t.differingShareMax}};
 }
 
 double num(double x) { return std::isfinite(x) ? x : (x > 0 ? 1e300 : -1e300); }
@@ -31,7 +32,8 @@ json toJson(const GateRun& run) {
                 m = {{"max_abs", num(i.metrics->maxAbs)}, {"mean_abs", num(i.metrics->meanAbs)}, {"rmse", num(i.metrics->rmse)},
                      {"psnr", num(i.metrics->psnr)}, {"over_threshold_share", i.metrics->overThresholdShare},
                      {"ssim", i.metrics->ssim}, {"flip_mean", i.metrics->flipMean},
-                     {"non_finite", i.metrics->nonFinite}};
+                     {"non_finite", i.metrics->nonFinite}, {"differing_pixels", i.metrics->differingPixels},
+                     {"differing_share", i.metrics->differingShare}, {"channels_compared", i.metrics->channelsCompared}};
             images.push_back({{"image", i.image}, {"digest", i.digest}, {"baseline", i.baseline}, {"new", i.newExact}, {"new_png", i.newPng},
                               {"baseline_png", i.baselinePng}, {"diff_png", i.diffPng}, {"metrics", m},
                               {"tolerance", toJson(i.tolerance)}, {"failures", i.failures}, {"passed", i.passed()}});
@@ -63,6 +65,9 @@ Result<Tolerance> readTolerance(const JsonObject& t) {
     CAVITY_ASSIGN(out.overThresholdShare, t.number("over_threshold_share", 0, kAny));
     CAVITY_ASSIGN(out.ssimMin, t.number("ssim_min", -kAny, kAny));
     CAVITY_ASSIGN(out.flipMeanMax, t.number("flip_mean_max", 0, kAny));
+    // Absent from gate.json files written before the differing-pixel count.
+    CAVITY_ASSIGN(out.differingDelta, t.number("differing_delta", 0, 255, 0));
+    CAVITY_ASSIGN(out.differingShareMax, t.number("differing_share_max", 0, 1, 1));
     return out;
 }
 
@@ -77,6 +82,10 @@ Result<metrics::Report> readMetrics(const JsonObject& m) {
     CAVITY_ASSIGN(rep.flipMean, m.number("flip_mean", -1, kAny));
     CAVITY_ASSIGN(const double nonFinite, m.number("non_finite", 0, 1e18));
     rep.nonFinite = (long long)nonFinite;
+    CAVITY_ASSIGN(const double differing, m.number("differing_pixels", 0, 1e18, 0));
+    rep.differingPixels = (long long)differing;
+    CAVITY_ASSIGN(rep.differingShare, m.number("differing_share", 0, 1, 0));
+    CAVITY_ASSIGN(rep.channelsCompared, m.integer("channels_compared", 0, 4, 0));
     return rep;
 }
 

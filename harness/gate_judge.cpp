@@ -34,6 +34,9 @@ std::vector<std::string> verdict(const metrics::Report& m, const Tolerance& t, b
                     fmt(100 * t.overThresholdShare) + "%");
     if (m.ssim < t.ssimMin) f.push_back("SSIM " + fmt(m.ssim) + " < " + fmt(t.ssimMin));
     if (perceptual && m.flipMean > t.flipMeanMax) f.push_back("FLIP mean " + fmt(m.flipMean) + " > " + fmt(t.flipMeanMax));
+    if (perceptual && m.differingShare > t.differingShareMax)
+        f.push_back(fmt(100 * m.differingShare) + "% of pixels (" + std::to_string(m.differingPixels) + ") differ by more than " +
+                    fmt(t.differingDelta) + " steps > " + fmt(100 * t.differingShareMax) + "%");
     return f;
 }
 
@@ -116,6 +119,8 @@ Result<ConfigResult> judgeRendering(const render::Rendering& rend, const Judge& 
             metrics::Options mo;
             mo.threshold = tol.pixelThreshold;
             mo.flip = ci.perceptual;
+            mo.eightBit = ci.extension == ".png";
+            mo.differingDelta = int(tol.differingDelta);
             CAVITY_ASSIGN(check.metrics, metrics::compare(base, now, mo));
             check.failures = verdict(*check.metrics, tol, ci.perceptual);
             check.baselinePng = (dir / (ci.name + ".baseline.png")).string();

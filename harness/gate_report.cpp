@@ -306,6 +306,9 @@ td.l,th.l{text-align:left} .bad{color:#ff6b6b;font-weight:bold}
                 row("pixels over threshold", 100 * m.overThresholdShare, 100 * t.overThresholdShare, true, "%");
                 row("SSIM", m.ssim, t.ssimMin, false);
                 if (m.flipMean >= 0) row("FLIP mean", m.flipMean, t.flipMeanMax, true);
+                if (m.flipMean >= 0)
+                    row(("pixels differing by > " + num(t.differingDelta) + " steps").c_str(), 100 * m.differingShare,
+                        100 * t.differingShareMax, true, "%");
                 if (m.nonFinite) h << "<tr><td class=l>non-finite</td><td class=bad>" << m.nonFinite << "</td><td>0</td></tr>";
             }
             h << "</table></div>\n";

@@ -202,16 +202,64 @@ double ssim(const HostImage& a, const HostImage& b) {
     return total / ch;
 }
 
-Result<Report> compare(const HostImage& baseline, const HostImage& candidate, const Options& options) {
-    if (!baseline.sameShape(candidate))
-        return badInput("baseline is " + shape(baseline) + ", new image is " + shape(candidate));
-    for (const HostImage* img : {&baseline, &candidate})
+namespace {
+
+// RGBA whose alpha holds one value in both images: the RGB channels alone.
+bool constantAlpha(const HostImage& a, const HostImage& b) {
+    if (a.channels != 4) return false;
+    const float alpha = a.pixels[3];
+    for (const HostImage* img : {&a, &b})
+        for (size_t i = 3; i < img->pixels.size(); i += 4)
+            if (!(img->pixels[i] == alpha)) return false;
+    return true;
+}
+
+HostImage colourOnly(const HostImage& img) {
+    HostImage out(img.width, img.height, 3);
+    for (size_t p = 0; p < size_t(img.width) * size_t(img.height); ++p)
+        for (int c = 0; c < 3; ++c) out.pixels[p * 3 + size_t(c)] = img.pixels[p * 4 + size_t(c)];
+    return out;
+}
+
+long long differing(const HostImage& a, const HostImage& b, int delta) {
+    long long n = 0;
+    const size_t channels = size_t(a.channels);
+    for (size_t p = 0; p * channels < a.pixels.size(); ++p)
+        for (size_t c = 0; c < channels; ++c) {
+            const float x = a.pixels[p * channels + c], y = b.pixels[p * channels + c];
+            // Both were stored as 8-bit codes; a non-finite value differs.
+            const bool differs = !std::isfinite(x) || !std::isfinite(y) ||
+                                 std::abs(std::lround(x * 255.0f) - std::lround(y * 255.0f)) > delta;
+            if (differs) {
+                ++n;
+                break;
+            }
+        }
+    return n;
+}
+
+}  // namespace
+
+Result<Report> compare(const HostImage& baselineIn, const HostImage& candidateIn, const Options& options) {
+    if (!baselineIn.sameShape(candidateIn))
+        return badInput("baseline is " + shape(baselineIn) + ", new image is " + shape(candidateIn));
+    for (const HostImage* img : {&baselineIn, &candidateIn})
         if (img->pixels.size() != size_t(img->width) * img->height * img->channels)
             return internal("image " + shape(*img) + " holds " + std::to_string(img->pixels.size()) + " floats");
-    if (baseline.width <= 0 || baseline.height <= 0 || baseline.channels <= 0)
-        return badInput("cannot compare empty images (" + shape(baseline) + ")");
+    if (baselineIn.width <= 0 || baselineIn.height <= 0 || baselineIn.channels <= 0)
+        return badInput("cannot compare empty images (" + shape(baselineIn) + ")");
+    const bool dropAlpha = constantAlpha(baselineIn, candidateIn);
+    const HostImage rgbBaseline = dropAlpha ? colourOnly(baselineIn) : HostImage{};
+    const HostImage rgbCandidate = dropAlpha ? colourOnly(candidateIn) : HostImage{};
+    const HostImage& baseline = dropAlpha ? rgbBaseline : baselineIn;
+    const HostImage& candidate = dropAlpha ? rgbCandidate : candidateIn;
 
     Report r{};
+    r.channelsCompared = candidate.channels;
+    if (options.eightBit) {
+        r.differingPixels = differing(baseline, candidate, options.differingDelta);
+        r.differingShare = double(r.differingPixels) / (double(baseline.width) * baseline.height);
+    }
     r.nonFinite = nonFinitePixels(candidate);
     if (r.nonFinite > 0) {
         const size_t at = size_t(std::find_if(candidate.pixels.begin(), candidate.pixels.end(),

@@ -17,11 +17,21 @@ struct Report {
     long long nonFinite = 0;              // count of NaN/Inf pixels in the NEW image
     int firstNonFiniteX = -1, firstNonFiniteY = -1;
     int worstX, worstY;                   // pixel of maxAbs
+    // Options::eightBit only: pixels whose colour differs by more than
+    // Options::differingDelta 8-bit steps in any channel, and their share.
+    // A change of one step over many pixels (a dither removed) moves the
+    // means and SSIM too little to see; this count sees it (Skia Gold's
+    // fuzzy matcher counts pixels the same way).
+    long long differingPixels = 0;
+    double differingShare = 0;
+    int channelsCompared = 0;             // 3 for RGBA with a constant alpha (see compare)
 };
 
 struct Options {
     double threshold = 1.0 / 255.0;   // per-channel error counted by overThresholdShare
     bool flip = false;                // also compute flipMean (1, 3 or 4 channels, sRGB-encoded [0,1])
+    bool eightBit = false;            // the images are 8-bit: count differingPixels
+    int differingDelta = 0;           // 8-bit steps a pixel may move and still count as equal
 };
 
 // a = baseline, b = new; same shape required, else a BadInput error naming
@@ -33,6 +43,10 @@ struct Options {
 // and is left out of meanAbs/rmse/psnr, which would otherwise all be NaN and
 // so pass every "<=" check of the gate. SSIM and FLIP see non-finite values
 // as 0. nonFinite counts the new image's pixels with any non-finite channel.
+//
+// Colour images are compared on their colour channels: an RGBA image whose
+// alpha is one constant in both images is compared as RGB, since a constant
+// channel that always matches would dilute every mean (by 1/4) and SSIM.
 Result<Report> compare(const HostImage& baseline, const HostImage& candidate, const Options& = {});
 
 // Mean SSIM over channels (Wang et al. 2004); exposed for the tests.

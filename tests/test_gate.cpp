@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -195,6 +196,38 @@ TEST_P(PlantedNonFinite, FailsTheGateNamingThePassAndImage) {
 
 INSTANTIATE_TEST_SUITE_P(Planted, PlantedNonFinite, ::testing::Range<size_t>(0, plantedNaNs().size()),
                          [](const auto& info) { return plantedNaNs()[info.param].name; });
+
+// The composite's dither removed moves every other pixel by one 8-bit step:
+// too little for the means, SSIM or FLIP to see with a margin, but half the
+// pixels differ, far over the differing-pixel tolerance.
+TEST(Gate, DitherRemovedFailsOnDifferingPixelsWithAMargin) {
+    REQUIRE_BACKENDS();
+    const std::string find = "if (P.dither != 0) {";
+    std::string broken = *kernels::sourceFile("composite.glsl");
+    ASSERT_NE(broken.find(find), std::string::npos);
+    broken.replace(broken.find(find), find.size(), "if (P.dither == 2) {");
+    gate::GateOptions o;
+    o.baselines = kBaselines;
+    o.out = tempDir("dither").string();
+    o.filter = "^corner/alchemy/n16/b4/full/160x90/vk/compute$";
+    o.overrides["composite.glsl"] = broken;
+    const auto run = runOrDie(o);
+    ASSERT_EQ(run.results.size(), 1u);
+    EXPECT_EQ(run.exitCode(), 1);
+    bool seen = false;
+    for (const auto& i : run.results[0].images) {
+        if (i.image != "color") continue;
+        seen = true;
+        ASSERT_TRUE(i.metrics);
+        EXPECT_EQ(i.metrics->channelsCompared, 3) << "the constant alpha is not a colour channel";
+        EXPECT_GT(i.metrics->differingShare, 10 * i.tolerance.differingShareMax);
+        EXPECT_TRUE(std::any_of(i.failures.begin(), i.failures.end(),
+                                [](const std::string& f) { return f.find("differ by more than 0 steps") != std::string::npos; }))
+            << ::testing::PrintToString(i.failures);
+    }
+    EXPECT_TRUE(seen);
+    fs::remove_all(o.out);
+}
 
 TEST(Gate, UnchangedBuildPassesTwiceOnBothApis) {
     REQUIRE_BACKENDS();

@@ -90,6 +90,48 @@ TEST(Metrics, MeanIsOverAllChannelValues) {
     EXPECT_DOUBLE_EQ(r->overThresholdShare, 0.5);
 }
 
+// A constant alpha is not a colour channel: RGBA with alpha 1 in both images
+// scores as its RGB would (the mean of 1/3 values off, not 1/4), and SSIM too.
+TEST(Metrics, ConstantAlphaIsLeftOutButVaryingAlphaCounts) {
+    HostImage rgb(8, 8, 3, 0.5f), rgbNew = rgb;
+    for (int y = 0; y < 8; ++y)
+        for (int x = 0; x < 8; ++x) rgbNew.at(x, y, 0) = 0.5f + 0.0625f * float((x + y) % 2);
+    HostImage rgba(8, 8, 4, 1.0f), rgbaNew = rgba;
+    for (size_t p = 0; p < 64; ++p)
+        for (size_t c = 0; c < 3; ++c) {
+            rgba.pixels[p * 4 + c] = rgb.pixels[p * 3 + c];
+            rgbaNew.pixels[p * 4 + c] = rgbNew.pixels[p * 3 + c];
+        }
+    auto a = metrics::compare(rgb, rgbNew), b = metrics::compare(rgba, rgbaNew);
+    ASSERT_TRUE(a.ok() && b.ok());
+    EXPECT_EQ(b->channelsCompared, 3);
+    EXPECT_DOUBLE_EQ(b->meanAbs, a->meanAbs);
+    EXPECT_DOUBLE_EQ(b->rmse, a->rmse);
+    EXPECT_DOUBLE_EQ(b->ssim, a->ssim);
+    rgbaNew.at(0, 0, 3) = 0.5f;   // alpha that varies is compared
+    auto c = metrics::compare(rgba, rgbaNew);
+    ASSERT_TRUE(c.ok());
+    EXPECT_EQ(c->channelsCompared, 4);
+}
+
+// 8-bit images count the pixels that differ at all, or by more than a delta.
+TEST(Metrics, DifferingPixelsCountOneStepChanges) {
+    HostImage a(10, 10, 3, 100.0f / 255), b = a;
+    for (int x = 0; x < 10; ++x) b.at(x, 0, 1) = 101.0f / 255;   // row 0: one step
+    b.at(3, 5, 2) = 103.0f / 255;                                // one pixel: three steps
+    metrics::Options o;
+    o.eightBit = true;
+    auto r = metrics::compare(a, b, o);
+    ASSERT_TRUE(r.ok());
+    EXPECT_EQ(r->differingPixels, 11);
+    EXPECT_DOUBLE_EQ(r->differingShare, 0.11);
+    o.differingDelta = 1;
+    EXPECT_EQ(metrics::compare(a, b, o)->differingPixels, 1);
+    o.differingDelta = 3;
+    EXPECT_EQ(metrics::compare(a, b, o)->differingPixels, 0);
+    EXPECT_EQ(metrics::compare(a, b)->differingPixels, 0) << "float images do not count";
+}
+
 // PSNR is for a signal range of 1.0 even when values exceed 1 (OIIO's own
 // PSNR would use the largest value as the peak: 20 log10(2.5 / 0.5) = 14 dB).
 TEST(Metrics, PsnrUsesUnitRange) {
