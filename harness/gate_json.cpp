@@ -40,11 +40,14 @@ json toJson(const GateRun& run) {
             timings.push_back({{"pass", t.pass}, {"median_ms", t.medianMs}, {"clock", t.clock},
                                {"budget_ms", t.budgetMs ? json(*t.budgetMs) : json(nullptr)}, {"passed", t.passed()}});
         results.push_back({{"id", r.id}, {"repetition", r.repetition}, {"baseline_key", r.key}, {"device", r.device}, {"kernel", r.config.kernel},
-                           {"passed", r.passed()}, {"deterministic", r.deterministic}, {"error", r.error},
+                           {"passed", r.passed()}, {"verdict", r.verdict()}, {"fatal", r.fatal()}, {"attempts", r.attempts},
+                           {"first_failures", r.firstFailures}, {"expected", r.expected}, {"expected_reason", r.expectedWhy},
+                           {"deterministic", r.deterministic}, {"error", r.error},
                            {"error_code", r.errorCode}, {"images", images}, {"timings", timings}});
     }
     return {{"schema", "cavity.gate/1"}, {"matrix", run.matrix}, {"shard", {run.shardIndex, run.shardCount}},
-            {"seconds", run.seconds}, {"exit_code", run.exitCode()}, {"backend_errors", run.backendErrors},
+            {"seconds", run.seconds}, {"exit_code", run.exitCode()}, {"counts", run.counts()},
+            {"backend_errors", run.backendErrors},
             {"results", results}};
 }
 
@@ -68,6 +71,11 @@ Result<GateRun> fromJson(const json& j, const std::string& path) {
             r.deterministic = rj.at("deterministic");
             r.error = rj.at("error");
             r.errorCode = rj.at("error_code");
+            // Absent before retries and expectations: one attempt, none listed.
+            r.attempts = rj.value("attempts", 1);
+            r.firstFailures = rj.value("first_failures", std::vector<std::string>{});
+            r.expected = rj.value("expected", "");
+            r.expectedWhy = rj.value("expected_reason", "");
             for (const auto& ij : rj.at("images")) {
                 ImageCheck i;
                 i.image = ij.at("image");
