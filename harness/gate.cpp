@@ -122,7 +122,9 @@ Result<GateRun> runGate(const GateOptions& o) {
         if (attempt == 0 && flaky && std::regex_search(rendering.id, *flaky)) perturbForTest(rendering);
         CAVITY_ASSIGN(ConfigResult r, judgeRendering(rendering, judge));
         if (attempt == 0) {
-            if (r.error.empty()) std::fprintf(stderr, "gate: %-56s %s\n", r.id.c_str(), r.passed() ? "pass" : "FAIL");
+            const bool retry = !r.passed() && r.errorCode == 0 && o.retries > 0;
+            if (r.error.empty())
+                std::fprintf(stderr, "gate: %-56s %s\n", r.id.c_str(), r.passed() ? "pass" : retry ? "FAIL (retrying)" : "FAIL");
             where[r.id] = run.results.size();
             run.results.push_back(std::move(r));
             return {};

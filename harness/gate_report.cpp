@@ -243,6 +243,8 @@ std::string summaryMarkdown(const GateRun& run) {
     m << "## Cavity gate `" << run.matrix << "`"
       << (run.shardCount > 1 ? " (shard " + std::to_string(run.shardIndex) + "/" + std::to_string(run.shardCount) + ")" : "")
       << ": " << (failed ? "**" + std::to_string(failed) + " of " + std::to_string(run.results.size()) + " configurations failed**"
+                  : noted ? "no regression in " + std::to_string(run.results.size()) + " configurations, " + std::to_string(noted) +
+                                " reported"
                          : "all " + std::to_string(run.results.size()) + " configurations passed")
       << " (" << num(run.seconds, 3) << " s)\n\n" << countsText(run) << "\n\n";
     for (const auto& e : run.backendErrors) m << "- backend could not start: " << e << "\n";

@@ -36,6 +36,7 @@ shard)
         device=${BASH_REMATCH[1]}
     fi
     mkdir -p "$root/$i"
+    echo "${CTEST_RESOURCE_GROUP_0_GPUS:-none}" >"$root/$i/resource.txt"
     args=(gate --matrix "$matrix" --baselines "$baselines" --shard "$i/$n" --device "$device" --out "$root/$i")
     [ -n "$filter" ] && args+=(--filter "$filter")
     echo "shard $i/$n on device $device (${CTEST_RESOURCE_GROUP_0_GPUS:-no resource spec}): $cavity ${args[*]}"
