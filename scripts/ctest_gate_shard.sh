@@ -27,6 +27,11 @@ shard)
             echo "ctest_gate_shard.sh: CTEST_RESOURCE_GROUP_COUNT=$CTEST_RESOURCE_GROUP_COUNT: a shard asks for one group (gpus:1)" >&2
             exit 2
         fi
+        # CTEST_RESOURCE_GROUP_0 lists the group's resource types.
+        if [[ ",${CTEST_RESOURCE_GROUP_0:-}," != *,gpus,* ]]; then
+            echo "ctest_gate_shard.sh: CTEST_RESOURCE_GROUP_0='${CTEST_RESOURCE_GROUP_0:-}': the group has no gpus (RESOURCE_GROUPS gpus:1)" >&2
+            exit 2
+        fi
         gpus=${CTEST_RESOURCE_GROUP_0_GPUS:-}
         # "id:3_1,slots:1" -> 3
         if [[ ! $gpus =~ ^id:([0-9]+)(_[0-9]+)?,slots:[0-9]+$ ]]; then

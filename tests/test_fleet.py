@@ -83,8 +83,12 @@ class CtestResources(Base):
 
     def test_bad_resource_group_is_refused(self):
         p = run(["scripts/ctest_gate_shard.sh", "shard", CAVITY, "0", "2", "ci", "baselines", self.tmp, TWO],
-                env={"CTEST_RESOURCE_GROUP_COUNT": "1", "CTEST_RESOURCE_GROUP_0_GPUS": "id:gpu0,slots:1"})
+                env={"CTEST_RESOURCE_GROUP_COUNT": "1", "CTEST_RESOURCE_GROUP_0": "gpus",
+                     "CTEST_RESOURCE_GROUP_0_GPUS": "id:gpu0,slots:1"})
         one_line_error(self, p, "id:gpu0,slots:1", "id:K,slots:M")
+        p = run(["scripts/ctest_gate_shard.sh", "shard", CAVITY, "0", "2", "ci", "baselines", self.tmp, TWO],
+                env={"CTEST_RESOURCE_GROUP_COUNT": "2"})
+        one_line_error(self, p, "CTEST_RESOURCE_GROUP_COUNT=2", "one group")
 
     def test_inner_ctest_over_two_gpus_equals_the_unsharded_gate(self):
         spec = os.path.join(self.tmp, "two.json")
@@ -299,7 +303,7 @@ class Bisect(Base):
         with open(os.path.join(self.repo, "value"), "w") as f:
             f.write(f"{value}\n")
         with open(os.path.join(self.repo, "build.sh"), "w") as f:
-            f.write('set -e\nmkdir -p "$1"\ncp value fake_gate.py "$1/"\n' if builds else
+            f.write('set -e\nmkdir -p "$1"\ncp value fake_gate.py fake_run.py "$1/"\n' if builds else
                     'echo "build.sh: a syntax error in this commit" >&2\nexit 1\n')
         self.git("add", "-A")
         self.git("commit", "-qm", message)
@@ -327,6 +331,17 @@ gate = {"schema": "cavity.gate/1", "matrix": "ci", "exit_code": 0 if ok else 1,
 json.dump(gate, open(os.path.join(out, "gate.json"), "w"))
 sys.exit(0 if ok else 1)
 ''')
+        # And a run that writes a cavity.results/1 file whose ao pass takes
+        # (1 + value) ms, give or take 0.05: judged by the real cavity compare.
+        with open(os.path.join(self.repo, "fake_run.py"), "w") as f:
+            f.write('''import json, os, sys
+build, out, cid = sys.argv[1:4]
+v = 1 + float(open(os.path.join(build, "value")).read())
+samples = [v + 0.005 * k for k in range(10)]
+run = {"id": cid, "clock": "gpu-timestamp", "frame": {"samples_ms": [2 + x for x in samples]},
+       "passes": [{"name": "ao", "samples_ms": samples}, {"name": "blur", "samples_ms": [0.5 + 0.001 * k for k in range(10)]}]}
+json.dump({"schema": "cavity.results/1", "runs": [run]}, open(os.path.join(out, "results.json"), "w"))
+''')
         self.git("init", "-q")
         self.git("config", "user.email", "test@example.com")
         self.git("config", "user.name", "test")
@@ -351,6 +366,17 @@ sys.exit(0 if ok else 1)
         self.assertEqual(self.git("rev-parse", "HEAD"), self.shas[4])
         self.assertEqual(len(self.git("worktree", "list").splitlines()), 1)
         self.assertFalse(os.path.exists(os.path.join(self.repo, ".git", "BISECT_LOG")))
+
+    def test_pass_mode_names_the_third_commit_by_cavity_compare(self):
+        env = dict(self.env, CAVITY_BISECT_RUN='python3 "$BUILD/fake_run.py" "$BUILD" "$OUT" "$ID"',
+                   CAVITY_BISECT_COMPARE=CAVITY)
+        p = run([os.path.join(SOURCE, "scripts", "bisect.sh"), self.shas[0], self.shas[4], "--id", self.ID,
+                 "--pass", "ao"], env=env, cwd=self.repo)
+        print(p.stdout, p.stderr)
+        self.assertEqual(p.returncode, 0, p.stdout + p.stderr)
+        self.assertIn(f"first bad commit: {self.shas[2]} three: the planted bug", p.stdout)
+        self.assertRegex(p.stdout, re.escape(self.shas[2][:12]) + r" bad +ao: 1.0\d+ -> 1.5\d+ ms, change \+4\d\.\d+%, p [0-9.e-]+, slower")
+        self.assertRegex(p.stdout, re.escape(self.shas[1][:12]) + r" good .* same")
 
     def test_a_commit_that_does_not_build_is_skipped(self):
         self.git("checkout", "-q", self.shas[3])
