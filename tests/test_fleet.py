@@ -123,6 +123,29 @@ class CtestResources(Base):
         self.assertEqual(len(ids), 4)
 
 
+    def test_inner_ctest_spreads_the_bench_sweep(self):
+        spec = os.path.join(self.tmp, "two.json")
+        p = run([sys.executable, "scripts/ctest_resources.py", "--devices", "0", "--per-device", "2", "--out", spec])
+        self.assertEqual(p.returncode, 0, p.stderr)
+        shards = os.path.join(self.tmp, "bench")
+        wanted = r"^corner/alchemy/n(4|16|64)/b4/full/320x180/gl/compute/"
+        p = run(["ctest", "--test-dir", os.path.join(BUILD, "tests"), "-L", "^bench$", "-j", "2",
+                 "--resource-spec-file", spec, "--output-on-failure"],
+                env={"CAVITY_GATE_OUT": shards, "CAVITY_BENCH_FILTER": wanted})
+        print(p.stdout)
+        self.assertEqual(p.returncode, 0, p.stdout + p.stderr)
+        self.assertIn("100% tests passed, 0 tests failed out of 3", p.stdout)
+        names = []
+        for k in range(2):
+            part = [b["name"] for b in load(os.path.join(shards, f"bench-{k}.json"))["benchmarks"] if "@" not in b["name"]]
+            self.assertTrue(part, f"bench shard {k} ran nothing")
+            names += part
+        self.assertEqual(len(names), len(set(names)), "bench shards overlap")
+        merged = [b["name"] for b in load(os.path.join(shards, "bench.json"))["benchmarks"] if "@" not in b["name"]]
+        self.assertEqual(sorted(merged), sorted(names))
+        self.assertEqual(sorted(n.split("/")[2] for n in merged), ["n16", "n4", "n64"])
+
+
 class ShardProtocols(Base):
     def listing(self, args=(), env=None):
         p = gate("--list", *args, env=env)
