@@ -9,6 +9,7 @@ software renderers with a few configurations of the `ci` matrix."""
 import json
 import os
 import re
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -281,6 +282,19 @@ class Expectations(Base):
         p = gate("--filter", TWO, "--retries", "0", "--expectations", d, "--out", out,
                  env={"CAVITY_TEST_FLAKY": "/vk/compute$"})
         self.assertEqual(p.returncode, 0, p.stderr)
+        # `baselines update` does not accept an expected failure's image by
+        # default; the same failure unlisted is accepted.
+        base = os.path.join(self.tmp, "baselines")
+        shutil.copytree(os.path.join(SOURCE, "baselines"), base)
+        p = run([CAVITY, "baselines", "update", "--from", out, "--baselines", base])
+        self.assertEqual(p.returncode, 0, p.stderr)
+        self.assertIn("0 baseline files updated", p.stdout)
+        plain = os.path.join(self.tmp, "plain")
+        p = gate("--filter", TWO, "--retries", "0", "--out", plain, env={"CAVITY_TEST_FLAKY": "/vk/compute$"})
+        self.assertEqual(p.returncode, 1, p.stderr)
+        p = run([CAVITY, "baselines", "update", "--from", plain, "--baselines", base])
+        self.assertEqual(p.returncode, 0, p.stderr)
+        self.assertIn("1 baseline files updated", p.stdout)
         # A known flake that fails every attempt: reported, not fatal.
         d = self.write(f"device .\nflake /vk/compute$ the test hook breaks it\n")
         p = gate("--filter", TWO, "--retries", "0", "--expectations", d, "--out", out,
