@@ -13,6 +13,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -48,9 +49,25 @@ struct ConfigResult {
     bool deterministic = true;
     std::string error;                 // the configuration could not run (its message)
     int errorCode = 0;
+    // Retries (GateOptions::retries): how many times it was rendered and
+    // judged, and what the first failing attempt said when a later one
+    // passed. The checks above are the last attempt's.
+    int attempts = 1;
+    std::vector<std::string> firstFailures;
+    // Listed in the device's expectations file (expectations.h): "fail" or
+    // "flake", and "FILE:LINE: reason".
+    std::string expected, expectedWhy;
     bool imagesPassed() const;
     bool timingPassed() const;
     bool passed() const { return error.empty() && imagesPassed() && timingPassed(); }
+    // pass, fail, error, flaky (failed, then passed on a retry),
+    // expected-fail, known-flake (listed as a flake and failed every
+    // attempt) or unexpected-pass (listed as an expected failure, passed).
+    std::string verdict() const;
+    // Whether the verdict fails the gate: fail, error and unexpected-pass.
+    bool fatal() const;
+    // Every failure line of the checks above, for the report of a retry.
+    std::vector<std::string> failureLines() const;
     // The id, and "(repetition K)" after it for a later repetition.
     std::string label() const;
 };
@@ -63,7 +80,13 @@ struct GateOptions {
     int device = 0;
     bool validation = false;
     std::string filter;                    // regex on configuration ids; empty: all
+    int retries = 2;                       // renders of a failing configuration after the first
+    std::string expectations;              // folder of expectation files; empty: <baselines>/expectations
     SourceOverrides overrides;             // planted-bug tests
+    // Test hook (CAVITY_TEST_FLAKY): configurations whose id this regex
+    // finds have their first attempt's AO perturbed, so they fail once and
+    // pass on a retry. Empty: none.
+    std::string flakyForTest;
 };
 
 struct GateRun {
@@ -72,8 +95,12 @@ struct GateRun {
     std::vector<ConfigResult> results;
     std::vector<std::string> backendErrors;   // backends that could not start
     double seconds = 0;
-    // 0 all pass, 1 a regression, 2 bad input (a baseline missing or unreadable), 3 a backend could not start.
+    // 0 all pass (flaky, expected-fail and known-flake included), 1 a
+    // regression or an unexpected pass, 2 bad input (a baseline missing or
+    // unreadable), 3 a backend could not start.
     int exitCode() const;
+    // Configurations per verdict().
+    std::map<std::string, int> counts() const;
 };
 
 // Validates every input file first (exit 2 before any GPU work), then

@@ -1,17 +1,20 @@
 // `cavity gate`, `cavity gate judge`, `cavity gate merge` and `cavity baselines update`.
 #include "baseline_update.h"
 #include "cli.h"
+#include "expectations.h"
 #include "json_file.h"
 #include "gate_report.h"
 #include "image_io.h"
 #include "judge_folders.h"
 #include "results.h"
 #include "runner.h"
+#include "shard_sources.h"
 
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <optional>
 #include <regex>
 #include <set>
 #include <sstream>
@@ -75,23 +78,27 @@ int merge(const std::vector<std::string>& argv) {
 // Nothing is written unless every folder is whole (judge_folders.h).
 int judge(const std::vector<std::string>& argv) {
     std::vector<std::string> dirs;
-    std::string out = "out/gate", baselines = "baselines";
+    std::string out = "out/gate", baselines = "baselines", expectationsDir;
     Args a(argv);
     while (!a.done()) {
         const std::string flag = a.next();
-        if (flag == "--out" || flag == "--baselines") {
+        if (flag == "--out" || flag == "--baselines" || flag == "--expectations") {
             auto v = a.value(flag);
             if (!v) return fail("cavity gate judge", v.error());
-            (flag == "--out" ? out : baselines) = *v;
+            (flag == "--out" ? out : flag == "--baselines" ? baselines : expectationsDir) = *v;
         } else if (flag.rfind("--", 0) == 0) {
-            return fail("cavity gate judge", badInput(flag + ": unknown flag (cavity gate judge RENDER_DIR... [--baselines DIR] [--out DIR])"));
+            return fail("cavity gate judge", badInput(flag + ": unknown flag (cavity gate judge RENDER_DIR... [--baselines DIR] [--expectations DIR] [--out DIR])"));
         } else {
             dirs.push_back(flag);
         }
     }
     if (auto st = gate::recoverBaselineUpdate(baselines); !st) return fail("cavity gate judge", st.error());
+    auto expectations =
+        gate::loadExpectations(expectationsDir.empty() ? (fs::path(baselines) / "expectations").string() : expectationsDir);
+    if (!expectations) return fail("cavity gate judge", expectations.error());
     auto run = gate::judgeFolders(dirs, baselines, out);
     if (!run) return fail("cavity gate judge", run.error());
+    gate::applyExpectations(*run, *expectations);
     if (auto st = gate::writeReports(*run, out); !st) return fail("cavity gate judge", st.error());
     std::cout << gate::summaryMarkdown(*run);
     std::cout << "\nreport: " << (fs::path(out) / "index.html").string() << "\n";
@@ -104,12 +111,13 @@ int gateCommand(const std::vector<std::string>& argv) {
     if (!argv.empty() && argv[0] == "merge") return merge({argv.begin() + 1, argv.end()});
     if (!argv.empty() && argv[0] == "judge") return judge({argv.begin() + 1, argv.end()});
     gate::GateOptions o;
-    bool shardGiven = false;
+    std::optional<std::string> shardFlag;
+    bool list = false;
     Args a(argv);
     while (!a.done()) {
         const std::string flag = a.next();
-        if (flag == "--validation") {
-            o.validation = true;
+        if (flag == "--validation" || flag == "--list") {
+            (flag == "--list" ? list : o.validation) = true;
             continue;
         }
         auto v = a.value(flag);
@@ -123,17 +131,29 @@ int gateCommand(const std::vector<std::string>& argv) {
             if (!d) return fail("cavity gate", d.error());
             o.device = *d;
         } else if (flag == "--shard") {
-            auto s = parseShard(*v);
-            if (!s) return fail("cavity gate", s.error());
-            std::tie(o.shardIndex, o.shardCount) = *s;
-            shardGiven = true;
+            shardFlag = *v;
+        } else if (flag == "--retries") {
+            auto n = parseInt(flag, *v, 0, 100);
+            if (!n) return fail("cavity gate", n.error());
+            o.retries = *n;
+        } else if (flag == "--expectations") {
+            o.expectations = *v;
         } else return fail("cavity gate", badInput(flag + ": unknown flag"));
     }
-    // GoogleTest's sharding variables, as a CI job matrix sets them.
-    if (!shardGiven && std::getenv("GTEST_TOTAL_SHARDS") && std::getenv("GTEST_SHARD_INDEX")) {
-        auto s = parseShard(std::string(std::getenv("GTEST_SHARD_INDEX")) + "/" + std::getenv("GTEST_TOTAL_SHARDS"));
-        if (!s) return fail("cavity gate", badInput("GTEST_SHARD_INDEX/GTEST_TOTAL_SHARDS: " + s.error().message));
-        std::tie(o.shardIndex, o.shardCount) = *s;
+    // --shard, GoogleTest's and Bazel's variables (shard_sources.h).
+    auto shard = resolveShard(shardFlag);
+    if (!shard) return fail("cavity gate", shard.error());
+    std::tie(o.shardIndex, o.shardCount) = std::pair{shard->index, shard->count};
+    if (auto st = touchShardStatusFiles(); !st) return fail("cavity gate", st.error());
+    if (const char* hook = std::getenv("CAVITY_TEST_FLAKY")) o.flakyForTest = hook;
+    if (list) {
+        // The selection, one id a line, nothing rendered: what a shard holds.
+        auto m = gate::loadMatrix((fs::path(o.baselines) / "matrices.json").string(), o.matrix);
+        if (!m) return fail("cavity gate", m.error());
+        auto entries = gate::selectEntries(*m, o.shardIndex, o.shardCount, o.filter);
+        if (!entries) return fail("cavity gate", entries.error());
+        for (const auto& e : *entries) std::cout << configId(e.config) << "\n";
+        return 0;
     }
     if (auto st = gate::recoverBaselineUpdate(o.baselines); !st) return fail("cavity gate", st.error());
     auto run = gate::runGate(o);
@@ -175,7 +195,9 @@ int baselinesCommand(const std::vector<std::string>& argv) {
     std::vector<gate::BaselineWrite> writes;
     std::vector<std::string> said;
     for (const auto& r : run->results) {
-        const bool selected = filter ? std::regex_search(r.id, *filter) : !r.passed();
+        // Without a filter, what failed the gate: an expected failure or a
+        // known flake is not accepted as the new baseline by default.
+        const bool selected = filter ? std::regex_search(r.id, *filter) : r.verdict() == "fail";
         if (!selected || !r.error.empty() || done.count(r.key)) continue;
         done.insert(r.key);
         for (const auto& i : r.images) {

@@ -43,11 +43,14 @@ json toJson(const GateRun& run) {
             timings.push_back({{"pass", t.pass}, {"median_ms", t.medianMs}, {"clock", t.clock},
                                {"budget_ms", t.budgetMs ? json(*t.budgetMs) : json(nullptr)}, {"passed", t.passed()}});
         results.push_back({{"id", r.id}, {"repetition", r.repetition}, {"baseline_key", r.key}, {"device", r.device}, {"kernel", r.config.kernel},
-                           {"passed", r.passed()}, {"deterministic", r.deterministic}, {"error", r.error},
+                           {"passed", r.passed()}, {"verdict", r.verdict()}, {"fatal", r.fatal()}, {"attempts", r.attempts},
+                           {"first_failures", r.firstFailures}, {"expected", r.expected}, {"expected_reason", r.expectedWhy},
+                           {"deterministic", r.deterministic}, {"error", r.error},
                            {"error_code", r.errorCode}, {"images", images}, {"timings", timings}});
     }
     return {{"schema", "cavity.gate/1"}, {"matrix", run.matrix}, {"shard", {run.shardIndex, run.shardCount}},
-            {"seconds", run.seconds}, {"exit_code", run.exitCode()}, {"backend_errors", run.backendErrors},
+            {"seconds", run.seconds}, {"exit_code", run.exitCode()}, {"counts", run.counts()},
+            {"backend_errors", run.backendErrors},
             {"results", results}};
 }
 
@@ -119,6 +122,13 @@ Result<ConfigResult> readResult(const JsonObject& rj) {
     CAVITY_ASSIGN(r.deterministic, rj.boolean("deterministic"));
     CAVITY_ASSIGN(r.error, rj.str("error"));
     CAVITY_ASSIGN(r.errorCode, rj.integer("error_code", 0, 255));
+    // Absent before retries and expectations: one attempt, none listed.
+    CAVITY_ASSIGN(r.attempts, rj.integer("attempts", 1, 1000, 1));
+    if (rj.has("first_failures")) {
+        CAVITY_ASSIGN(r.firstFailures, rj.strings("first_failures"));
+    }
+    CAVITY_ASSIGN(r.expected, rj.str("expected", ""));
+    CAVITY_ASSIGN(r.expectedWhy, rj.str("expected_reason", ""));
     CAVITY_ASSIGN(const auto images, rj.objects("images"));
     for (const auto& ij : images) {
         CAVITY_ASSIGN(auto i, readImage(ij));

@@ -6,6 +6,7 @@
 #include "render_folder.h"
 #include "results.h"
 #include "runner.h"
+#include "shard_sources.h"
 
 #include <chrono>
 #include <cstdio>
@@ -13,6 +14,7 @@
 #include <fstream>
 #include <iostream>
 #include <iterator>
+#include <optional>
 
 namespace cavity::render {
 
@@ -55,6 +57,7 @@ int worst(const RenderManifest& m) {
 }  // namespace
 
 Result<RenderCommand> parseRenderFlags(const std::vector<std::string>& argv) {
+    std::optional<std::string> shardFlag;
     RenderCommand o;
     cli::Args a(argv, {"--kernel-source"});
     while (!a.done()) {
@@ -74,7 +77,7 @@ Result<RenderCommand> parseRenderFlags(const std::vector<std::string>& argv) {
             else if (v == "all") o.render.apis = {gpu::Api::OpenGL, gpu::Api::Vulkan};
             else return badInput("--backend " + v + ": must be gl, vk or all");
         } else if (flag == "--shard") {
-            CAVITY_ASSIGN(std::tie(o.shardIndex, o.shardCount), cli::parseShard(v));
+            shardFlag = v;
         } else if (flag == "--device") {
             CAVITY_ASSIGN(o.render.device, cli::parseInt(flag, v, 0, 64));
         } else if (flag == "--repeat") {
@@ -106,6 +109,11 @@ Result<RenderCommand> parseRenderFlags(const std::vector<std::string>& argv) {
     }
     if (o.matrix.empty()) return badInput("--matrix: missing (name a matrix of " + o.baselines + "/matrices.json)");
     if (o.out.empty()) return badInput("--out: missing (the render folder to write)");
+    // --shard, GoogleTest's and Bazel's variables: one partition (shard_sources.h).
+    CAVITY_ASSIGN(const cli::Shard shard, cli::resolveShard(shardFlag));
+    o.shardIndex = shard.index;
+    o.shardCount = shard.count;
+    CAVITY_TRY(cli::touchShardStatusFiles());
     return o;
 }
 
