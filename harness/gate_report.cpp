@@ -31,6 +31,11 @@ std::string esc(const std::string& s) {
     return o;
 }
 
+std::string hostName() {
+    char name[256] = {};
+    return ::gethostname(name, sizeof name - 1) == 0 && name[0] ? name : "localhost";
+}
+
 // Seconds as JUnit readers take them: fixed, three decimals.
 std::string seconds3(double x) {
     char b[32];
@@ -224,9 +229,13 @@ std::string junitXml(const GateRun& run) {
     x << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
       << "<testsuites tests=\"" << tests << "\" failures=\"" << failures << "\" errors=\"" << errors << "\" time=\""
       << seconds3(run.seconds) << "\">\n"
-      << "  <testsuite name=\"cavity.gate." << esc(run.matrix) << "\" tests=\"" << tests << "\" failures=\"" << failures
-      << "\" errors=\"" << errors << "\" skipped=\"" << skipped << "\" time=\"" << seconds3(run.seconds) << "\">\n"
-      << cases.str() << "  </testsuite>\n</testsuites>\n";
+      // Ant's schema requires package, id, timestamp, hostname and the
+      // properties, system-out and system-err elements; Jenkins' allows them.
+      << "  <testsuite name=\"cavity.gate." << esc(run.matrix) << "\" package=\"cavity.gate\" id=\"0\" timestamp=\""
+      << utcTimestamp().substr(0, 19) << "\" hostname=\"" << esc(hostName()) << "\" tests=\"" << tests << "\" failures=\""
+      << failures << "\" errors=\"" << errors << "\" skipped=\"" << skipped << "\" time=\"" << seconds3(run.seconds)
+      << "\">\n    <properties/>\n"
+      << cases.str() << "    <system-out/>\n    <system-err/>\n  </testsuite>\n</testsuites>\n";
     return x.str();
 }
 

@@ -15,6 +15,7 @@ packages=(
   nlohmann-json3-dev                                            # results.json
   zlib1g-dev                                                    # render folders (cavity_render)
   python3 python3-matplotlib python3-jsonschema                 # scripts/charts.py; tests/validate_results.py
+  python3-xmlschema python3-junitparser                         # tests/validate_junit.py: junit.xml as CI readers take it
   chromium                                                      # the HTML report test (headless screenshot)
 )
 missing=()
