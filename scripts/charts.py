@@ -35,7 +35,7 @@ and what is wrong; nothing is written); 3 matplotlib is missing.
 
 Subcommand: quality against cost
 
-    python3 scripts/charts.py quality-cost --quality Q.json [Q.json ...] --bench BENCH.json --out DIR
+    python3 scripts/charts.py quality-cost --quality Q.json [Q.json ...] --bench BENCH.json [...] --out DIR
                               [--api vk|gl] [--size WxH] [--note TEXT]
 
 plots each AO kernel x sample count x full/half as one point: the error
@@ -930,7 +930,7 @@ def quality_cost_main(argv):
 
     p = P(prog="charts quality-cost")
     p.add_argument("--quality", nargs="+", required=True, metavar="Q.json")
-    p.add_argument("--bench", required=True, metavar="BENCH.json")
+    p.add_argument("--bench", nargs="+", required=True, metavar="BENCH.json")
     p.add_argument("--out", required=True, metavar="DIR")
     p.add_argument("--api", default="vk", choices=("vk", "gl"))
     p.add_argument("--size", default="1920x1080", metavar="WxH")
@@ -945,7 +945,11 @@ def quality_cost_main(argv):
             h, r = load_quality(q)
             headers.append(h)
             rows += r
-        context, times = load_pass_times(args.bench)
+        context, times = {}, {}
+        for b in args.bench:
+            c, t = load_pass_times(b)
+            context = context or c
+            times.update(t)
         if os.path.exists(args.out) and not os.path.isdir(args.out):
             raise BadInput(f"charts: {args.out}: --out exists and is not a folder")
         points, unmatched = join_quality_cost(rows, times, args.api, size)
@@ -1002,9 +1006,8 @@ def quality_cost_main(argv):
     sub = (f"time: {device}, {args.api}, {args.size}, b4, compute; quality: {qh.get('device', '?')} "
            f"{qh.get('backend', '?')} at {qh.get('width', '?')}x{qh.get('height', '?')}, {qh.get('rays', '?')} rays, "
            f"{reach_text}, scenes {', '.join(scenes)}")
-    if args.note:
-        sub += "\n" + args.note
-    ax.set_title(title + "\n" + "\n".join(textwrap.wrap(sub, 120)), fontsize=9)
+    lines = textwrap.wrap(sub, 120) + (textwrap.wrap(args.note, 120) if args.note else [])
+    ax.set_title(title + "\n" + "\n".join(lines), fontsize=9)
     ax.grid(True, which="both", alpha=0.25)
     ax.legend(fontsize=7, ncol=2, loc="upper right")
     fig.tight_layout()
