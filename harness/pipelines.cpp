@@ -38,7 +38,13 @@ std::vector<PassSpec> buildPasses(const RunConfig& c) {
         p.push_back({"ao", k->name, in, {"ao", "radiance"}, false});
         p.push_back({"blur", "blur_bilateral_ssdo", {"ao", "radiance", "position", "normal"}, {"ao_blur", "radiance_blur"}, false});
         p.push_back({"indirect", "ssdo_indirect", {"position", "normal", "albedo", "radiance_blur"}, {"indirect"}, false});
-        p.push_back({"composite", "composite_ssdo", {"ao_blur", "radiance_blur", "indirect", "normal", "albedo"}, {"color"}, false});
+        // The bounce is filtered too, as seed 003's lighting pass reads a
+        // blurred indirect map: one sample meeting a sender at the distance
+        // clamp carries up to (R / clamp)^2 times the others' weight, a
+        // single-pixel firefly along every crease when left raw. The same
+        // bilateral, edge for edge; its visibility output is not used.
+        p.push_back({"indirect_blur", "blur_bilateral_ssdo", {"ao_blur", "indirect", "position", "normal"}, {"indirect_vis", "indirect_blur"}, false});
+        p.push_back({"composite", "composite_ssdo", {"ao_blur", "radiance_blur", "indirect_blur", "normal", "albedo"}, {"color"}, false});
         return p;
     }
 

@@ -22,10 +22,12 @@ RunConfig baseConfig(gpu::Backend& gpu, const std::string& kernel, int width, in
 
 }  // namespace
 
-Result<GroundTruth> groundTruth(gpu::Backend& gpu, const std::string& scene, int width, int height, int rays) {
+Result<GroundTruth> groundTruth(gpu::Backend& gpu, const std::string& scene, int width, int height, int rays,
+                                double radius) {
     RunConfig c = baseConfig(gpu, "ground_truth", width, height);
     CAVITY_TRY(setParam(c, "scene", scene));
     c.params["rays"] = rays;
+    if (radius > 0) c.params["radius"] = radius;
     CAVITY_ASSIGN(auto images, renderImages(gpu, c, {"ao", "position"}));
     GroundTruth t;
     t.ao = std::move(images["ao"]);
@@ -65,12 +67,13 @@ Result<std::vector<QualityRow>> measureQuality(gpu::Backend& gpu, const QualityO
             if (k.role == "ao") names.push_back(k.name);
     std::vector<QualityRow> rows;
     for (const auto& scene : o.scenes) {
-        CAVITY_ASSIGN(const GroundTruth truth, groundTruth(gpu, scene, o.width, o.height, o.rays));
+        CAVITY_ASSIGN(const GroundTruth truth, groundTruth(gpu, scene, o.width, o.height, o.rays, o.sharedReach ? o.radius : 0));
         for (const auto& kernel : names)
             for (int n : o.samples) {
                 RunConfig c = baseConfig(gpu, kernel, o.width, o.height);
                 CAVITY_TRY(setParam(c, "scene", scene));
                 c.params["samples"] = n;
+                if (o.sharedReach) c.params["radius"] = o.radius;
                 c.half = o.half && supportsHalf(kernel);
                 c.stage = o.stage;
                 CAVITY_ASSIGN(auto images, renderImages(gpu, c, {"ao_blur"}));

@@ -26,6 +26,13 @@ struct QualityOptions {
     int rays = 1024;                         // the ground truth's
     bool half = false;
     gpu::Stage stage = gpu::Stage::Compute;
+    // The reach every kernel and the truth use. "seed": each kernel at its
+    // own declared default (the screen-space kernels' R = 0.5, the SDF
+    // kernels' seed constants, e.g. sdf_multiscale's 6.4), the truth at
+    // 0.5. "shared": every kernel and the truth at `radius`, which compares
+    // estimators of one quantity rather than of each seed's.
+    bool sharedReach = false;
+    double radius = 0.5;
 };
 
 struct QualityRow {
@@ -42,7 +49,9 @@ struct QualityRow {
 struct GroundTruth {
     HostImage ao, surface;
 };
-Result<GroundTruth> groundTruth(gpu::Backend& gpu, const std::string& scene, int width, int height, int rays);
+// radius <= 0: the ground truth's declared default reach.
+Result<GroundTruth> groundTruth(gpu::Backend& gpu, const std::string& scene, int width, int height, int rays,
+                                double radius = 0);
 
 // MAE of one AO image against the truth over its surface pixels.
 QualityRow compareToTruth(const HostImage& ao, const GroundTruth& truth);

@@ -16,8 +16,11 @@ namespace {
 std::string usage(const std::string& program) {
     const std::string pad(program.size(), ' ');
     return "usage: " + program + " [--backend gl|vk] [--scene S[,S..]] [--kernel K[,K..]] [--samples N[,N..]]\n" +
-           "       " + pad + " [--res WxH] [--rays N] [--resolution full|half] [--device K] [--out DIR]\n" +
-           "mean absolute error of each AO kernel (raw AO, no bilateral blur) against the ground truth\n";
+           "       " + pad + " [--res WxH] [--rays N] [--resolution full|half] [--reach seed|shared] [--radius R]\n" +
+           "       " + pad + " [--device K] [--out DIR]\n" +
+           "mean absolute error of each AO kernel (raw AO, no bilateral blur) against the ground truth\n" +
+           "--reach seed (default): each kernel at its own default reach, the truth at 0.5;\n" +
+           "--reach shared: every kernel and the truth at --radius (default 0.5; --radius implies shared)\n";
 }
 
 }  // namespace
@@ -33,6 +36,7 @@ int qualityCommand(const std::vector<std::string>& argv, const std::string& prog
     gpu::Api api = gpu::Api::Vulkan;
     gpu::BackendOptions backend;
     std::string out;
+    bool reachGiven = false, radiusGiven = false;
     Args a(argv);
     while (!a.done()) {
         const std::string flag = a.next();
@@ -81,6 +85,15 @@ int qualityCommand(const std::vector<std::string>& argv, const std::string& prog
         } else if (flag == "--resolution") {
             if (*v != "full" && *v != "half") return fail(badInput("--resolution " + *v + ": must be full or half"));
             o.half = *v == "half";
+        } else if (flag == "--reach") {
+            if (*v != "seed" && *v != "shared") return fail(badInput("--reach " + *v + ": must be seed or shared"));
+            o.sharedReach = *v == "shared";
+            reachGiven = true;
+        } else if (flag == "--radius") {
+            auto r = parseNumber("--radius", *v, 1e-6, 100);
+            if (!r) return fail(r.error());
+            o.radius = *r;
+            radiusGiven = true;
         } else if (flag == "--device") {
             auto n = parseInt("--device", *v, 0, 64);
             if (!n) return fail(n.error());
@@ -91,6 +104,11 @@ int qualityCommand(const std::vector<std::string>& argv, const std::string& prog
             return fail(badInput(flag + ": unknown flag (see " + program + " --help)"));
         }
     }
+    if (radiusGiven) {
+        if (reachGiven && !o.sharedReach)
+            return fail(badInput("--radius " + std::to_string(o.radius) + ": only with --reach shared"));
+        o.sharedReach = true;
+    }
     if (!out.empty())
         if (auto st = checkWritableDir("--out", out); !st) return fail(st.error());
 
@@ -100,6 +118,11 @@ int qualityCommand(const std::vector<std::string>& argv, const std::string& prog
     auto rows = measureQuality(**gpu, o);
     if (!rows) return fail(rows.error());
 
+    const std::string reach = o.sharedReach ? "shared" : "seed";
+    if (o.sharedReach)
+        std::printf("reach: shared, every kernel and the truth at R = %g\n", o.radius);
+    else
+        std::printf("reach: seed, each kernel at its own default reach, the truth at R = 0.5\n");
     std::printf("%-8s %-20s %7s %8s %8s %8s %8s\n", "scene", "kernel", "samples", "MAE", "max", "mean AO", "truth");
     nlohmann::json doc = {{"schema", "cavity-quality/1"},
                           {"backend", gpu::apiName(api)},
@@ -108,6 +131,8 @@ int qualityCommand(const std::vector<std::string>& argv, const std::string& prog
                           {"height", o.height},
                           {"rays", o.rays},
                           {"resolution", o.half ? "half" : "full"},
+                          {"reach", reach},
+                          {"radius", o.sharedReach ? nlohmann::json(o.radius) : nlohmann::json(nullptr)},
                           {"rows", nlohmann::json::array()}};
     for (const auto& r : *rows) {
         std::printf("%-8s %-20s %7d %8.4f %8.4f %8.4f %8.4f\n", r.scene.c_str(), r.kernel.c_str(), r.samples,

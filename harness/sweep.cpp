@@ -75,6 +75,16 @@ std::vector<RunConfig> benchmarkSweep(const SweepAxes& axes, const std::vector<g
                     c.height = h;
                     add(c);
                 }
+                // The SDF family shares the blur, so its product is samples x
+                // full/half at the default blur: enough for the quality-cost
+                // chart's every kernel x sample count x full/half.
+                if (axes.product && stage == gpu::Stage::Compute && sdfFamily(kernel))
+                    for (int n : axes.samples) {
+                        RunConfig c = base;
+                        c.params["samples"] = n;
+                        c.half = true;
+                        add(c);
+                    }
                 if (axes.product && stage == gpu::Stage::Compute && !sdfFamily(kernel))
                     for (int n : axes.samples)
                         for (int b : axes.blurs)

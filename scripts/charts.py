@@ -33,6 +33,23 @@ repetitions were run, else the mean of the iteration entries.
 Exit codes: 0 written; 2 bad usage or input (one line on stderr names the file
 and what is wrong; nothing is written); 3 matplotlib is missing.
 
+Subcommand: quality against cost
+
+    python3 scripts/charts.py quality-cost --quality Q.json [Q.json ...] --bench BENCH.json [...] --out DIR
+                              [--api vk|gl] [--size WxH] [--note TEXT]
+
+plots each AO kernel x sample count x full/half as one point: the error
+against the ground truth (mean over the scenes of each `cavity quality`
+row's MAE; quality.json, schema cavity-quality/1, one file per resolution)
+against the AO passes' GPU time from cavity_bench JSON (the median over
+repetitions of pass_ao_ms plus the passes that belong to the AO estimate:
+depth, box, downsample, upsample; the bilateral blur and composite are the
+same for every kernel and left out) of corner/<kernel>/n<N>/b4/<res>/<size>/
+<api>/compute. The Pareto front (no other point both faster and closer to
+the truth) is drawn and its points ringed. Writes DIR/quality_cost.png,
+.svg and quality_cost.json (the joined points, front marked). A quality row
+with no benchmark (or the reverse) is listed on stderr and left out.
+
 Uses only the Python standard library and matplotlib (Debian's python3-matplotlib).
 """
 
@@ -809,6 +826,211 @@ class Charts:
 
 
 # --------------------------------------------------------------------------
+# quality-cost: error against the ground truth versus AO GPU time
+
+AO_COST_PASSES = ("ao", "depth", "box", "downsample", "upsample")
+
+
+def load_quality(path):
+    """Rows of one quality.json: [(scene, kernel, samples, res, mae)], plus the header."""
+    try:
+        with open(path, "rb") as f:
+            data = json.loads(f.read().decode("utf-8"))
+    except OSError as e:
+        raise BadInput(f"charts: {path}: cannot read ({e.strerror or e})")
+    except (UnicodeDecodeError, json.JSONDecodeError) as e:
+        raise BadInput(f"charts: {path}: not JSON ({e})")
+    if not isinstance(data, dict) or data.get("schema") != "cavity-quality/1" or not isinstance(data.get("rows"), list):
+        raise BadInput(f"charts: {path}: not a cavity quality.json (schema cavity-quality/1 with rows)")
+    res = data.get("resolution", "full")
+    rows = []
+    for i, r in enumerate(data["rows"]):
+        if not isinstance(r, dict) or not _is_number(r.get("mae")) or not isinstance(r.get("kernel"), str) \
+                or not isinstance(r.get("samples"), int):
+            raise BadInput(f"charts: {path}: rows[{i}] lacks kernel, samples or a numeric mae")
+        rows.append((r.get("scene", "?"), r["kernel"], r["samples"], res, float(r["mae"])))
+    return data, rows
+
+
+def load_pass_times(path):
+    """{config id: {pass: median ms over the iteration entries}} from cavity_bench JSON."""
+    try:
+        with open(path, "rb") as f:
+            data = json.loads(f.read().decode("utf-8"))
+    except OSError as e:
+        raise BadInput(f"charts: {path}: cannot read ({e.strerror or e})")
+    except (UnicodeDecodeError, json.JSONDecodeError) as e:
+        raise BadInput(f"charts: {path}: not JSON ({e})")
+    if not isinstance(data, dict) or not isinstance(data.get("benchmarks"), list):
+        raise BadInput(f"charts: {path}: not Google Benchmark JSON (no 'benchmarks' list)")
+    samples = defaultdict(lambda: defaultdict(list))
+    for e in data["benchmarks"]:
+        if not isinstance(e, dict) or e.get("run_type") == "aggregate" or e.get("error_occurred"):
+            continue
+        cfg = parse_id(e.get("name", ""), e) if isinstance(e.get("name"), str) and "@" not in e["name"] else None
+        if cfg is None:
+            continue
+        for key, v in e.items():
+            m = re.fullmatch(r"pass_(\w+)_ms", key)
+            if m and _is_number(v):
+                samples[config_id(cfg)][m.group(1)].append(float(v))
+    if not samples:
+        raise BadInput(f"charts: {path}: no benchmark entry with pass_<name>_ms counters")
+
+    def median(v):
+        v = sorted(v)
+        n = len(v)
+        return v[n // 2] if n % 2 else 0.5 * (v[n // 2 - 1] + v[n // 2])
+
+    return data.get("context") or {}, {cid: {p: median(v) for p, v in ps.items()} for cid, ps in samples.items()}
+
+
+def pareto_front(points):
+    """Indices of the points no other point beats on both cost and error
+    (ties on both keep the first); sorted by cost."""
+    order = sorted(range(len(points)), key=lambda i: (points[i][0], points[i][1]))
+    front, best = [], math.inf
+    for i in order:
+        if points[i][1] < best:
+            front.append(i)
+            best = points[i][1]
+    return front
+
+
+def join_quality_cost(quality_rows, pass_times, api="vk", size=(1920, 1080), scene="corner", blur=4):
+    """One point per (kernel, samples, res): mean MAE over the scenes and the
+    AO cost. Returns (points, unmatched): points are dicts with kernel,
+    samples, res, mae, scenes, ms, passes, id, pareto."""
+    by_key = defaultdict(dict)
+    for sc, kernel, n, res, mae in quality_rows:
+        by_key[(kernel, n, res)][sc] = mae
+    points, unmatched = [], []
+    for (kernel, n, res), maes in sorted(by_key.items()):
+        cid = config_id({"scene": scene, "kernel": kernel, "samples": n, "blur": blur, "res": res, "size": size,
+                         "api": api, "stage": "compute"})
+        passes = pass_times.get(cid)
+        if not passes or "ao" not in passes:
+            unmatched.append(cid)
+            continue
+        used = {p: passes[p] for p in AO_COST_PASSES if p in passes}
+        points.append({"kernel": kernel, "samples": n, "res": res, "id": cid, "scenes": maes,
+                       "mae": sum(maes.values()) / len(maes), "ms": sum(used.values()), "passes": used})
+    front = set(pareto_front([(p["ms"], p["mae"]) for p in points]))
+    for i, p in enumerate(points):
+        p["pareto"] = i in front
+    return points, unmatched
+
+
+def quality_cost_main(argv):
+    class P(argparse.ArgumentParser):
+        def error(self, message):
+            print(f"charts quality-cost: {message} (usage: charts.py quality-cost --quality Q.json [...] "
+                  "--bench BENCH.json --out DIR)", file=sys.stderr)
+            sys.exit(2)
+
+    p = P(prog="charts quality-cost")
+    p.add_argument("--quality", nargs="+", required=True, metavar="Q.json")
+    p.add_argument("--bench", nargs="+", required=True, metavar="BENCH.json")
+    p.add_argument("--out", required=True, metavar="DIR")
+    p.add_argument("--api", default="vk", choices=("vk", "gl"))
+    p.add_argument("--size", default="1920x1080", metavar="WxH")
+    p.add_argument("--note", default="", metavar="TEXT", help="a line added under the title")
+    args = p.parse_args(argv)
+    try:
+        if not re.fullmatch(r"\d+x\d+", args.size):
+            raise BadInput(f"charts quality-cost: --size {args.size}: must be WxH")
+        size = tuple(int(v) for v in args.size.split("x"))
+        headers, rows = [], []
+        for q in args.quality:
+            h, r = load_quality(q)
+            headers.append(h)
+            rows += r
+        context, times = {}, {}
+        for b in args.bench:
+            c, t = load_pass_times(b)
+            context = context or c
+            times.update(t)
+        if os.path.exists(args.out) and not os.path.isdir(args.out):
+            raise BadInput(f"charts: {args.out}: --out exists and is not a folder")
+        points, unmatched = join_quality_cost(rows, times, args.api, size)
+        if not points:
+            raise BadInput("charts quality-cost: no quality row has a benchmark of the same configuration "
+                           f"(e.g. {unmatched[0] if unmatched else '-'})")
+    except BadInput as e:
+        print(str(e), file=sys.stderr)
+        return 2
+    for cid in unmatched:
+        print(f"charts quality-cost: note: no benchmark for {cid}; left out", file=sys.stderr)
+    os.makedirs(args.out, exist_ok=True)
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    kernels = sorted({pt["kernel"] for pt in points})
+    cmap = plt.get_cmap("tab10" if len(kernels) <= 10 else "tab20")
+    colour = {k: cmap(i % cmap.N) for i, k in enumerate(kernels)}
+    fig, ax = plt.subplots(figsize=(10, 6.4))
+    for k in kernels:
+        for res, face in (("full", None), ("half", "none")):
+            pts = sorted((pt for pt in points if pt["kernel"] == k and pt["res"] == res), key=lambda q: q["samples"])
+            if not pts:
+                continue
+            xs, ys = [q["ms"] for q in pts], [q["mae"] for q in pts]
+            ax.plot(xs, ys, "-" if res == "full" else ":", color=colour[k], lw=1, alpha=0.7)
+            ax.scatter(xs, ys, s=36, color=colour[k], facecolors=face if face else colour[k],
+                       marker="o" if res == "full" else "s", label=f"{k} ({res})", zorder=3)
+            for q in pts:
+                ax.annotate(f"n{q['samples']}", (q["ms"], q["mae"]), textcoords="offset points", xytext=(4, 3),
+                            fontsize=6.5, color=colour[k])
+    front = sorted((pt for pt in points if pt["pareto"]), key=lambda q: q["ms"])
+    fx, fy = [], []
+    for q in front:   # a staircase: each front point holds until the next one is better
+        if fx:
+            fx.append(q["ms"])
+            fy.append(fy[-1])
+        fx.append(q["ms"])
+        fy.append(q["mae"])
+    ax.plot(fx, fy, color="black", lw=1.6, zorder=2, label="Pareto front")
+    ax.scatter([q["ms"] for q in front], [q["mae"] for q in front], s=140, facecolors="none", edgecolors="black",
+               lw=1.3, zorder=4)
+    ax.set_xscale("log")
+    ax.set_xlabel("AO GPU time per frame, ms (log; ao pass + depth/box/downsample/upsample where present)")
+    ax.set_ylabel("mean |AO - ground truth| (mean over scenes)")
+    device = device_line(context) if context else "unknown device"
+    qh = headers[0]
+    scenes = sorted({r[0] for r in rows})
+    reach = qh.get("reach", "seed")
+    radius = qh.get("radius")
+    reach_text = f"shared reach R = {radius}" if reach == "shared" else "each seed's reach (truth at R = 0.5)"
+    title = "Quality against cost: error vs ground truth against AO GPU time"
+    sub = (f"time: {device}, {args.api}, {args.size}, b4, compute; quality: {qh.get('device', '?')} "
+           f"{qh.get('backend', '?')} at {qh.get('width', '?')}x{qh.get('height', '?')}, {qh.get('rays', '?')} rays, "
+           f"{reach_text}, scenes {', '.join(scenes)}")
+    lines = textwrap.wrap(sub, 120) + (textwrap.wrap(args.note, 120) if args.note else [])
+    ax.set_title(title + "\n" + "\n".join(lines), fontsize=9)
+    ax.grid(True, which="both", alpha=0.25)
+    ax.legend(fontsize=7, ncol=2, loc="upper right")
+    fig.tight_layout()
+    written = []
+    for ext in ("png", "svg"):
+        path = os.path.join(args.out, "quality_cost." + ext)
+        fig.savefig(path, dpi=DPI)
+        written.append(path)
+    plt.close(fig)
+    path = os.path.join(args.out, "quality_cost.json")
+    with open(path, "w") as f:
+        json.dump({"schema": "cavity-quality-cost/1", "api": args.api, "size": args.size, "device": device,
+                   "quality": [{"file": q, "header": {k: v for k, v in h.items() if k != "rows"}}
+                               for q, h in zip(args.quality, headers)],
+                   "points": points, "unmatched": unmatched}, f, indent=2)
+        f.write("\n")
+    written.append(path)
+    for w in written:
+        print(w)
+    return 0
+
+
+# --------------------------------------------------------------------------
 
 class _Parser(argparse.ArgumentParser):
     def error(self, message):
@@ -828,6 +1050,8 @@ def parse_args(argv):
 
 def main(argv=None):
     argv = sys.argv[1:] if argv is None else argv
+    if argv and argv[0] == "quality-cost":
+        return quality_cost_main(argv[1:])
     args = parse_args(argv)
     # Validate every input before writing anything.
     try:

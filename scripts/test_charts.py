@@ -226,5 +226,80 @@ class Command(unittest.TestCase):
             self.assertFalse(os.path.exists(out))
 
 
+class QualityCost(unittest.TestCase):
+    """The quality-cost subcommand: quality.json rows joined with the AO
+    passes' time of the same configuration, and the Pareto front."""
+
+    def test_pareto_front(self):
+        # (cost, error): (2, 0.5) is beaten by (1, 0.4); (3, 0.1) and (1, 0.4) are not beaten.
+        pts = [(2.0, 0.5), (1.0, 0.4), (3.0, 0.1), (4.0, 0.1), (0.5, 0.9)]
+        self.assertEqual(charts.pareto_front(pts), [4, 1, 2])
+
+    def write_inputs(self, d):
+        def quality(res, maes):
+            rows = [{"scene": sc, "kernel": k, "samples": n, "mae": m, "max_abs": 1, "mean_ao": 0.9,
+                     "mean_truth": 0.9, "pixels": 10} for (sc, k, n), m in maes.items()]
+            doc = {"schema": "cavity-quality/1", "backend": "vk", "device": "Test GPU", "width": 1920, "height": 1080,
+                   "rays": 1024, "resolution": res, "reach": "shared", "radius": 0.5, "rows": rows}
+            path = os.path.join(d, f"quality_{res}.json")
+            with open(path, "w") as f:
+                json.dump(doc, f)
+            return path
+
+        full = quality("full", {("corner", "alchemy", 16): 0.04, ("slats", "alchemy", 16): 0.10,
+                                ("corner", "hemisphere", 16): 0.30, ("slats", "hemisphere", 16): 0.30,
+                                ("corner", "ssdo", 16): 0.05, ("slats", "ssdo", 16): 0.05})
+        half = quality("half", {("corner", "alchemy", 16): 0.06, ("slats", "alchemy", 16): 0.12,
+                                ("corner", "nobench", 16): 0.01})
+        bench = []
+        for cid, ao, box in (("corner/alchemy/n16/b4/full/1920x1080/vk/compute", 0.20, None),
+                             ("corner/hemisphere/n16/b4/full/1920x1080/vk/compute", 0.10, 0.02),
+                             ("corner/ssdo/n16/b4/full/1920x1080/vk/compute", 0.50, None),
+                             ("corner/alchemy/n16/b4/half/1920x1080/vk/compute", 0.05, None)):
+            for rep in (0.9, 1.0, 1.2):   # three repetitions: the median is the middle one
+                e = {"name": cid + "/manual_time", "run_type": "iteration", "real_time": 1.0, "time_unit": "ms",
+                     "pass_ao_ms": ao * rep}
+                if box is not None:
+                    e["pass_box_ms"] = box
+                bench.append(e)
+            bench.append({"name": cid + "@ao", "run_type": "iteration", "real_time": 9.0, "time_unit": "ms"})
+        bpath = os.path.join(d, "bench.json")
+        with open(bpath, "w") as f:
+            json.dump({"context": {"date": "2026-12-01"}, "benchmarks": bench}, f)
+        return full, half, bpath
+
+    def test_joined_points_and_front(self):
+        with tempfile.TemporaryDirectory() as d:
+            full, half, bench = self.write_inputs(d)
+            out = os.path.join(d, "out")
+            r = run_charts("quality-cost", "--quality", full, half, "--bench", bench, "--out", out)
+            self.assertEqual(r.returncode, 0, r.stderr)
+            self.assertIn("corner/nobench/n16/b4/half/1920x1080/vk/compute", r.stderr)
+            for name in ("quality_cost.png", "quality_cost.svg", "quality_cost.json"):
+                self.assertTrue(os.path.getsize(os.path.join(out, name)) > 0, name)
+            with open(os.path.join(out, "quality_cost.json")) as f:
+                doc = json.load(f)
+            pts = {(p["kernel"], p["res"]): p for p in doc["points"]}
+            self.assertEqual(len(pts), 4)
+            self.assertAlmostEqual(pts[("alchemy", "full")]["mae"], 0.07)      # mean over the two scenes
+            self.assertAlmostEqual(pts[("alchemy", "full")]["ms"], 0.20)       # median of 0.18, 0.20, 0.24
+            self.assertAlmostEqual(pts[("hemisphere", "full")]["ms"], 0.12)    # ao + box
+            # half alchemy (0.05 ms, 0.09) and full alchemy (0.20, 0.07) are on the front; the
+            # hemisphere (0.12 ms, 0.30) is beaten by half alchemy, ssdo (0.5, 0.05) is the most exact.
+            self.assertEqual({k for k, p in pts.items() if p["pareto"]},
+                             {("alchemy", "half"), ("alchemy", "full"), ("ssdo", "full")})
+
+    def test_bad_input(self):
+        with tempfile.TemporaryDirectory() as d:
+            full, half, bench = self.write_inputs(d)
+            r = run_charts("quality-cost", "--quality", bench, "--bench", bench, "--out", os.path.join(d, "o"))
+            self.assertEqual(r.returncode, 2)
+            self.assertIn("not a cavity quality.json", r.stderr)
+            self.assertFalse(os.path.exists(os.path.join(d, "o")))
+            r = run_charts("quality-cost", "--quality", full, "--bench", full, "--out", os.path.join(d, "o"))
+            self.assertEqual(r.returncode, 2)
+            self.assertEqual(len(r.stderr.strip().splitlines()), 1)
+
+
 if __name__ == "__main__":
     unittest.main()

@@ -120,6 +120,30 @@ TEST_P(SdfAo, MoreSamplesDoNotRaiseTheErrorAgainstTheGroundTruth) {
     }
 }
 
+// `cavity quality --reach shared`: every kernel and the truth at one R.
+// The screen-space kernels' own reach is already the truth's 0.5, so their
+// rows must not move at all; sdf_multiscale's seed reach (6.4) counts
+// occluders thirteen times further away than the truth does, so at the
+// shared 0.5 its error must fall, by at least half (measured on lavapipe at
+// 160x90: see the README's quality table).
+TEST_P(SdfAo, SharedReachComparesEveryKernelAtTheTruthsRadius) {
+    QualityOptions o;
+    o.scenes = {"corner"};
+    o.samples = {16};
+    o.kernels = {"alchemy", "sdf_multiscale"};
+    auto seed = measureQuality(gpu(), o);
+    o.sharedReach = true;
+    o.radius = 0.5;
+    auto shared = measureQuality(gpu(), o);
+    ASSERT_TRUE(seed && shared);
+    ASSERT_EQ(seed->size(), 2u);
+    ASSERT_EQ(shared->size(), 2u);
+    EXPECT_EQ((*seed)[0].meanAbsError, (*shared)[0].meanAbsError) << "alchemy";
+    EXPECT_LT((*shared)[1].meanAbsError, 0.5 * (*seed)[1].meanAbsError) << "sdf_multiscale";
+    std::printf("corner sdf_multiscale MAE seed reach %.4f, shared R = 0.5 %.4f\n", (*seed)[1].meanAbsError,
+                (*shared)[1].meanAbsError);
+}
+
 // Contact darkening (001_8103f59163db3ce3.txt; the `contact` scene): the
 // table top within 15 cm of the point where the sphere touches it (the
 // part the sphere does not hide from the camera) is darker

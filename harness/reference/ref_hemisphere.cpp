@@ -17,6 +17,7 @@ Vec3 normalizeExact(Vec3 v);
 std::array<float, 4> mulPoint(const float* m, Vec3 v, float w);
 Vec3 viewFromDepth(const kernels::FrameUniforms& f, int tx, int ty, float depth);
 bool texelOfView(const kernels::FrameUniforms& f, Vec3 p, int& tx, int& ty);
+float sampleHash(int x, int y, int i);
 float smoothstep01(float x);
 Vec3 texel3(const HostImage& img, int x, int y);
 Status requireInput(const Context& ctx, size_t i, int width, int height, int minChannels);
@@ -53,6 +54,7 @@ Result<std::vector<HostImage>> hemisphere(const Context& ctx) {
     const float contrast = floatParam(ctx, "contrast");
     const bool jitter = intParam(ctx, "ign_jitter") != 0;
     const bool rangeCheck = intParam(ctx, "range_check") != 0;
+    const bool stepJitter = intParam(ctx, "step_jitter") != 0;
     const std::vector<float>& kernel = array(ctx, "kernel");
     if (int(kernel.size()) < 4 * n)
         return internal("reference hemisphere: kernel array holds " + std::to_string(kernel.size() / 4) +
@@ -84,27 +86,49 @@ Result<std::vector<HostImage>> hemisphere(const Context& ctx) {
             t = screen::normalizeExact(t);
             const Vec3 b = cross(nrm, t);
 
-            float occlusion = 0.0f;
+            // Points grouped by direction, w = 1 closing a group: a
+            // direction is blocked when any of its points is (see the kernel).
+            float occlusion = 0.0f, directions = 0.0f, blocked = 0.0f;
+            int inGroup = 0;
             for (int i = 0; i < n; ++i) {
                 const float* k = &kernel[size_t(i) * 4];
-                const Vec3 s = p + (t * k[0] + b * k[1] + nrm * k[2]) * radius;
+                float lengthScale = radius;
+                if (stepJitter)
+                    lengthScale = radius * (1.0f - screen::sampleHash(x, y, int(directions)) * portableReciprocal(float(inGroup + 1)));
+                const Vec3 s = p + (t * k[0] + b * k[1] + nrm * k[2]) * lengthScale;
+                float hit = 0.0f;
                 int tx, ty;
-                if (!screen::texelOfView(f, s, tx, ty)) continue;
-                tx = std::clamp(tx, 0, f.size[0] - 1);
-                ty = std::clamp(ty, 0, f.size[1] - 1);
-                const Vec3 q = screen::viewFromDepth(f, tx, ty, depthIn.at(tx, ty));
-                // The stored plane's depth along the sample's ray (see the kernel).
-                const Vec3 nq = screen::texel3(normal, tx, ty);
-                const float ns = dot(nq, s);
-                const float edgeOn = 1e-4f * lengthSquared(nq) * lengthSquared(s);
-                float stored = q.z;
-                if (ns < 0.0f && ns * ns > edgeOn) stored = -dot(nq, q) * portableReciprocal(-ns) * s.z;
-                float rangeWeight = 1.0f;
-                if (rangeCheck) rangeWeight = screen::smoothstep01(radius / std::max(std::fabs(p.z - q.z), 1e-6f));
-                const float threshold = s.z + bias;
-                occlusion += (stored >= threshold ? 1.0f : 0.0f) * rangeWeight;
+                if (screen::texelOfView(f, s, tx, ty)) {
+                    tx = std::clamp(tx, 0, f.size[0] - 1);
+                    ty = std::clamp(ty, 0, f.size[1] - 1);
+                    const Vec3 q = screen::viewFromDepth(f, tx, ty, depthIn.at(tx, ty));
+                    // Behind the stored surface's plane (see the kernel), or
+                    // behind its depth where the normal faces away or is 0.
+                    // Below the receiver's tangent plane: never in front of the sample.
+                    Vec3 nq = screen::texel3(normal, tx, ty);
+                    bool occluded = false;
+                    if (dot(nrm, q - p) <= 0.0f) {
+                        occluded = false;
+                    } else if (lengthSquared(nq) > 0.0f && dot(nq, q) < 0.0f) {
+                        nq = screen::normalizeExact(nq);
+                        occluded = dot(nq, s - q) < -bias;
+                    } else {
+                        occluded = q.z >= s.z + bias;
+                    }
+                    float rangeWeight = 1.0f;
+                    if (rangeCheck) rangeWeight = screen::smoothstep01(radius / std::max(std::fabs(p.z - q.z), 1e-6f));
+                    hit = (occluded ? 1.0f : 0.0f) * rangeWeight;
+                }
+                blocked = std::max(blocked, hit);
+                ++inGroup;
+                if (k[3] > 0.5f || i == n - 1) {
+                    occlusion += blocked;
+                    directions += 1.0f;
+                    blocked = 0.0f;
+                    inGroup = 0;
+                }
             }
-            const float ao = std::max(1.0f - occlusion / float(n), 0.0f);
+            const float ao = std::max(1.0f - occlusion / directions, 0.0f);
             out[0].at(x, y) = std::pow(ao, contrast);
         }
     return out;

@@ -164,6 +164,8 @@ Sample ssdoSample(const kernels::FrameUniforms& fr, const HostImage& position, c
     const Vec3 q = screen::texel3(position, s.tx, s.ty);
     const Vec3 m = screen::texel3(normal, s.tx, s.ty);
     if (isBackground(position.at(s.tx, s.ty, 3)) || lengthSquared(m) == 0.0f) return s;
+    // Only a recorded point above the receiver's tangent plane occludes (see ssdo.glsl).
+    if (dot(f.n, q - p) <= 0.0f) return s;
     if (dot(m, q) < 0.0f) {
         s.visible = dot(m, point - q) >= -bias;
     } else {

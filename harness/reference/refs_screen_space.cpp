@@ -32,6 +32,7 @@ std::vector<RefEntry> screenSpaceRefs() {
     return {
         {"depth_from_position", depthFromPosition},
         {"hemisphere", hemisphere},
+        {"hemisphere_cosine", hemisphere},   // the same shader, another kernel array
         {"blur_box", blurBox},
         {"downsample_depth", downsampleDepth},
         {"upsample_bilateral", upsampleBilateral},

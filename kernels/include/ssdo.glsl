@@ -74,6 +74,15 @@ SsdoSample ssdoSample(SsdoBasis f, vec3 p, ivec2 pixel, int i, int count, float 
     vec4 q = texelFetch(in_position, s.texel, 0);
     vec3 m = texelFetch(in_normal, s.texel, 0).xyz;
     if (isBackground(q.w) || lengthSquared(m) == 0.0) return s;
+    // The camera and the sample both lie above the receiver's tangent plane
+    // (it sees the receiver; the sample is in its hemisphere), so everything
+    // on the segment between them does too: a recorded point below that
+    // plane is not in front of the sample. It still turns up where the
+    // sample's ray and its texel's centre ray part across an edge, a convex
+    // edge most of all (the texel shows the far face, whose plane the sample
+    // is behind): 0.972 on an open convex corner at 160x90. Not an occluder.
+    precise vec3 rise = q.xyz - p;
+    if (orderedDot(f.n, rise) <= 0.0) return s;
     if (orderedDot(m, q.xyz) < 0.0) {
         precise vec3 rel = point - q.xyz;
         s.visible = orderedDot(m, rel) >= -bias;
