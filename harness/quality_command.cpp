@@ -1,6 +1,8 @@
 // `cavity quality`: each AO kernel's error against the ray-traced ground
 // truth, as a table on stdout and quality.json.
 #include "cli.h"
+#include "pipeline.h"
+#include "progress.h"
 #include "quality.h"
 #include "results.h"
 #include "runner.h"
@@ -8,16 +10,32 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <optional>
+#include <regex>
 
 namespace cavity::cli {
 
 namespace {
 
-std::string usage(const std::string& program) {
-    const std::string pad(program.size(), ' ');
-    return "usage: " + program + " [--backend gl|vk] [--scene S[,S..]] [--kernel K[,K..]] [--samples N[,N..]]\n" +
-           "       " + pad + " [--res WxH] [--rays N] [--resolution full|half] [--device K] [--out DIR]\n" +
-           "mean absolute error of each AO kernel (raw AO, no bilateral blur) against the ground truth\n";
+CommandSpec qualitySpec(const std::string& program) {
+    CommandSpec c;
+    c.program = program;
+    c.description = "Mean absolute error of each AO kernel (raw AO, no bilateral blur) against the ray-traced ground truth.";
+    c.flags = {
+        {"--backend", "gl|vk", "the backend (default vk)"},
+        {"--scene", "S[,S..]", "scenes (default corner,slats)"},
+        {"--kernel", "K[,K..]", "AO kernels (default every kernel of role ao; see cavity run --help)"},
+        {"--samples", "N[,N..]", "sample counts (1..256; default 16,64)"},
+        {"--res", "WxH", "image size (default 160x90)"},
+        {"--rays", "N", "the ground truth's rays per pixel (1024..65536; default 1024)"},
+        {"--resolution", "full|half", "AO at full or half resolution (default full)"},
+        {"--device", "K", "device index (0..64)"},
+        {"--out", "DIR", "also write DIR/quality.json"},
+        {"--filter", "REGEX", "only the configurations whose id matches (searched; ids as --list prints them)"},
+        {"--list", "", "print the configuration ids this would measure, one a line, and measure nothing"},
+        {"--quiet", "", "no progress lines on stderr"},
+    };
+    return c;
 }
 
 }  // namespace
@@ -33,15 +51,15 @@ int qualityCommand(const std::vector<std::string>& argv, const std::string& prog
     gpu::Api api = gpu::Api::Vulkan;
     gpu::BackendOptions backend;
     std::string out;
-    Args a(argv);
-    while (!a.done()) {
-        const std::string flag = a.next();
-        if (flag == "--help" || flag == "-h") {
-            std::cout << usage(program);
-            return 0;
-        }
-        auto v = a.value(flag);
-        if (!v) return fail(v.error());
+    std::optional<std::regex> filter;
+    auto parsed = parseFlags(qualitySpec(program), argv);
+    if (!parsed) return fail(parsed.error());
+    if (parsed->help) {
+        std::cout << parsed->helpText;
+        return 0;
+    }
+    for (const auto& [flag, value] : parsed->values) {
+        const std::optional<std::string> v = value;
         if (flag == "--backend") {
             if (*v != "gl" && *v != "vk") return fail(badInput("--backend " + *v + ": must be gl or vk"));
             api = *v == "gl" ? gpu::Api::OpenGL : gpu::Api::Vulkan;
@@ -87,9 +105,64 @@ int qualityCommand(const std::vector<std::string>& argv, const std::string& prog
             backend.deviceIndex = *n;
         } else if (flag == "--out") {
             out = *v;
-        } else {
-            return fail(badInput(flag + ": unknown flag (see " + program + " --help)"));
+        } else if (flag == "--filter") {
+            try {
+                filter.emplace(*v);
+            } catch (const std::regex_error& e) {
+                return fail(badInput("--filter " + *v + ": not a regular expression (" + e.what() + ")"));
+            }
         }
+    }
+    // The configurations measured, as ids: what measureQuality renders for
+    // each (scene, kernel, samples), the raw AO with the bilateral off.
+    std::vector<std::string> names = o.kernels;
+    if (names.empty())
+        for (const auto& k : kernels::all())
+            if (k.role == "ao") names.push_back(k.name);
+    struct Step {
+        QualityOptions options;   // one scene, one kernel or all, the selected sample counts
+        std::vector<std::string> ids;
+    };
+    std::vector<Step> steps;
+    size_t total = 0;
+    for (const auto& scene : o.scenes) {
+        // Without --filter one step a scene (its ground truth is rendered
+        // once); with it one step a kernel, holding the sample counts selected.
+        Step whole{o, {}};
+        whole.options.scenes = {scene};
+        whole.options.kernels = names;
+        for (const auto& kernel : names) {
+            Step step{o, {}};
+            step.options.scenes = {scene};
+            step.options.kernels = {kernel};
+            step.options.samples.clear();
+            for (int n : o.samples) {
+                RunConfig c;
+                c.api = api;
+                c.kernel = kernel;
+                c.width = o.width;
+                c.height = o.height;
+                c.params["blur"] = 0;
+                c.params["samples"] = n;
+                if (auto st = setParam(c, "scene", scene); !st) return fail(st.error());
+                c.half = o.half && supportsHalf(kernel);
+                c.stage = o.stage;
+                const std::string id = configId(c);
+                if (filter && !std::regex_search(id, *filter)) continue;
+                step.options.samples.push_back(n);
+                step.ids.push_back(id);
+                whole.ids.push_back(id);
+            }
+            if (filter && !step.ids.empty()) steps.push_back(step);
+        }
+        if (!filter) steps.push_back(whole);
+        total += whole.ids.size();
+    }
+    if (filter && total == 0) return fail(badInput("--filter: matches none of the configurations (see " + program + " --list)"));
+    if (parsed->has("--list")) {
+        for (const auto& step : steps)
+            for (const auto& id : step.ids) std::cout << id << "\n";
+        return 0;
     }
     if (!out.empty())
         if (auto st = checkWritableDir("--out", out); !st) return fail(st.error());
@@ -97,8 +170,19 @@ int qualityCommand(const std::vector<std::string>& argv, const std::string& prog
     auto gpu = gpu::createBackend(api, backend);
     if (!gpu) return fail(gpu.error());
     std::cerr << program << ": " << gpu::apiName(api) << ": " << (*gpu)->info().deviceName << "\n";
-    auto rows = measureQuality(**gpu, o);
-    if (!rows) return fail(rows.error());
+    std::vector<QualityRow> rows;
+    {
+        Progress progress(steps.size(), parsed->has("--quiet"));
+        for (const auto& step : steps) {
+            progress.start(step.ids.front() + (step.ids.size() > 1 ? " (+" + std::to_string(step.ids.size() - 1) + ")" : ""));
+            auto some = measureQuality(**gpu, step.options);
+            if (!some) {
+                progress.interrupt();
+                return fail(some.error());
+            }
+            rows.insert(rows.end(), some->begin(), some->end());
+        }
+    }
 
     std::printf("%-8s %-20s %7s %8s %8s %8s %8s\n", "scene", "kernel", "samples", "MAE", "max", "mean AO", "truth");
     nlohmann::json doc = {{"schema", "cavity-quality/1"},
@@ -109,7 +193,7 @@ int qualityCommand(const std::vector<std::string>& argv, const std::string& prog
                           {"rays", o.rays},
                           {"resolution", o.half ? "half" : "full"},
                           {"rows", nlohmann::json::array()}};
-    for (const auto& r : *rows) {
+    for (const auto& r : rows) {
         std::printf("%-8s %-20s %7d %8.4f %8.4f %8.4f %8.4f\n", r.scene.c_str(), r.kernel.c_str(), r.samples,
                     r.meanAbsError, r.maxAbsError, r.meanAo, r.meanTruth);
         doc["rows"].push_back({{"scene", r.scene},
