@@ -121,7 +121,15 @@ std::vector<FlagSpec> kernelParamFlags(const std::set<std::string>& skip) {
         FlagSpec f;
         f.name = "--" + name;
         f.valueName = p.type == kernels::ParamType::Enum ? "NAME[,NAME..]" : "V[,V..]";
-        f.help = p.help + "; default " + defaults(u) + "; " + range(p) + "; kernels: " + who;
+        // Kernels that share a name may say in their own words what it does.
+        std::string what = p.help;
+        for (const auto& [k, q] : u)
+            if (q->help != p.help) {
+                what = "";
+                for (const auto& [k2, q2] : u) what += (what.empty() ? "" : "; ") + k2->name + ": " + q2->help;
+                break;
+            }
+        f.help = what + "; default " + defaults(u) + "; " + range(p) + (what == p.help ? "; kernels: " + who : "");
         f.group = "Kernel parameters (each takes a comma list and sweeps it)";
         out.push_back(std::move(f));
     }

@@ -130,7 +130,7 @@ TEST(ConfigId, DistinctInEveryMatrix) {
         // The same matrix with every configuration at a second radius too.
         auto twice = raw;
         for (auto c : raw) {
-            c.params["radius"] = 0.25;
+            c.params["radius"] = 0.37;   // no kernel's default
             twice.push_back(c);
         }
         expectIdsMatchContent(twice);
