@@ -120,7 +120,11 @@ Result<cavity::bench::Options> parse(int argc, char** argv, std::vector<char*>& 
         } else if (flag == "--device") {
             CAVITY_ASSIGN(o.device, parseInt(flag, value, 0, 64));
         } else {
-            return cavity::badInput(flag + ": unknown flag (cavity_bench --help)");
+            const std::string near = cavity::cli::nearest(
+                flag, {"--backend", "--sweep", "--frames", "--iterations", "--warmup", "--timing", "--max-noise",
+                       "--max-time", "--plant", "--plant-file", "--device"});
+            return cavity::badInput(flag + ": unknown flag (" + (near.empty() ? "" : "did you mean " + near + "? ") +
+                                    "see cavity_bench --help)");
         }
     }
     return o;

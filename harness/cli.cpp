@@ -1,8 +1,12 @@
 #include "cli.h"
 
+#include "kernel.h"
+
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <filesystem>
+#include <map>
 #include <sstream>
 
 namespace cavity::cli {
@@ -60,6 +64,105 @@ Result<std::pair<int, int>> parseShard(const std::string& text) {
     auto n = parseInt("--shard", text.substr(slash + 1), 1, 1 << 20);
     if (!i || !n || *i >= *n) return badInput(msg);
     return std::pair{*i, *n};
+}
+
+namespace {
+
+std::string number(double v) {
+    std::ostringstream o;
+    o << v;
+    return o.str();
+}
+
+// "0.5", or "0.5 (alchemy), 1 (hemisphere)" where kernels differ.
+std::string defaults(const std::vector<std::pair<const kernels::KernelDecl*, const kernels::ParamDecl*>>& uses) {
+    auto text = [](const kernels::ParamDecl& p) {
+        return p.type == kernels::ParamType::Enum ? p.choices[size_t(p.def)] : number(p.def);
+    };
+    bool same = true;
+    for (const auto& [k, p] : uses) same = same && p->def == uses.front().second->def;
+    if (same) return text(*uses.front().second);
+    std::string s;
+    for (const auto& [k, p] : uses) s += (s.empty() ? "" : ", ") + text(*p) + " (" + k->name + ")";
+    return s;
+}
+
+std::string range(const kernels::ParamDecl& p) {
+    using kernels::ParamType;
+    if (p.type == ParamType::Enum) {
+        std::string s;
+        for (const auto& c : p.choices) s += (s.empty() ? "" : "|") + c;
+        return s;
+    }
+    if (p.type == ParamType::Bool) return "0|1";
+    const std::string r = p.minExclusive ? "(" + number(p.min) + ", " + number(p.max) + "]"
+                                         : number(p.min) + ".." + number(p.max);
+    return (p.type == ParamType::Int ? "integer " : "") + r + (p.unit.empty() ? "" : " " + p.unit);
+}
+
+}  // namespace
+
+std::vector<FlagSpec> kernelParamFlags(const std::set<std::string>& skip) {
+    // Name order of first declaration; a shared name is one flag for every kernel.
+    std::vector<std::string> names;
+    std::map<std::string, std::vector<std::pair<const kernels::KernelDecl*, const kernels::ParamDecl*>>> uses;
+    for (const auto& k : kernels::all())
+        for (const auto& p : k.params) {
+            if (skip.count(p.name)) continue;
+            if (!uses.count(p.name)) names.push_back(p.name);
+            uses[p.name].push_back({&k, &p});
+        }
+    std::vector<FlagSpec> out;
+    for (const auto& name : names) {
+        const auto& u = uses[name];
+        const auto& p = *u.front().second;
+        std::string who;
+        for (const auto& [k, _] : u) who += (who.empty() ? "" : ", ") + k->name;
+        FlagSpec f;
+        f.name = "--" + name;
+        f.valueName = p.type == kernels::ParamType::Enum ? "NAME[,NAME..]" : "V[,V..]";
+        // Kernels that share a name may say in their own words what it does.
+        std::string what = p.help;
+        for (const auto& [k, q] : u)
+            if (q->help != p.help) {
+                what = "";
+                for (const auto& [k2, q2] : u) what += (what.empty() ? "" : "; ") + k2->name + ": " + q2->help;
+                break;
+            }
+        f.help = what + "; default " + defaults(u) + "; " + range(p) + (what == p.help ? "; kernels: " + who : "");
+        f.group = "Kernel parameters (each takes a comma list and sweeps it)";
+        out.push_back(std::move(f));
+    }
+    return out;
+}
+
+std::string kernelHelp() {
+    std::string s = "Kernels (--kernel):\n";
+    for (const auto& k : kernels::all()) {
+        if (k.role != "ao" && k.role != "reference") continue;
+        std::string name = "  " + k.name;
+        name.resize(std::max<size_t>(name.size() + 1, 24), ' ');
+        s += name + k.summary + (k.role == "reference" ? " [reference: never in an \"every AO kernel\" sweep]" : "") + "\n";
+    }
+    return s;
+}
+
+Result<std::string> defaultBaselines() {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    for (fs::path dir = fs::current_path(ec); !ec && !dir.empty(); dir = dir.parent_path()) {
+        if (fs::is_regular_file(dir / "baselines" / "matrices.json", ec)) return (dir / "baselines").string();
+        if (dir == dir.parent_path()) break;
+    }
+#ifdef CAVITY_SOURCE_DIR
+    const fs::path built = fs::path(CAVITY_SOURCE_DIR) / "baselines";
+    if (fs::is_regular_file(built / "matrices.json", ec)) return built.string();
+#endif
+    return badInput("--baselines: not given, and no baselines/matrices.json in the working directory or above it"
+#ifdef CAVITY_SOURCE_DIR
+                    " nor in " CAVITY_SOURCE_DIR
+#endif
+                    "; give --baselines DIR");
 }
 
 int exitCode(const Error& e) { return static_cast<int>(e.code); }

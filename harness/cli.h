@@ -2,6 +2,7 @@
 // every error names the flag, the value and what is allowed.
 #pragma once
 
+#include "flags.h"
 #include "result.h"
 
 #include <set>
@@ -38,6 +39,20 @@ Result<double> parseNumber(const std::string& flag, const std::string& text, dou
 Result<std::vector<std::string>> splitList(const std::string& flag, const std::string& text);
 // "--shard I/N": (I, N) with 0 <= I < N.
 Result<std::pair<int, int>> parseShard(const std::string& text);
+
+// One flag per kernel parameter name (--samples, --radius, ...), its help
+// read from the declarations (kernels/kernel.h ParamDecl): what it does,
+// default, range and unit, and which kernels take it. `skip`: names the
+// command declares itself (--scene).
+std::vector<FlagSpec> kernelParamFlags(const std::set<std::string>& skip = {});
+// The kernels --kernel accepts, one a line with its summary (KernelDecl::summary).
+std::string kernelHelp();
+
+// The baselines folder when --baselines is not given: baselines/ of the first
+// folder from the working directory up that holds baselines/matrices.json,
+// else the source tree's this binary was built from (CAVITY_SOURCE_DIR);
+// neither: an error that says where it looked and to give --baselines.
+Result<std::string> defaultBaselines();
 
 // Exit code for an error, as documented in README.md ("Exit codes").
 int exitCode(const Error& e);

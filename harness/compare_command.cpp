@@ -15,13 +15,23 @@ namespace cavity::cli {
 
 namespace {
 
-constexpr const char* kCompareUsage =
-    "usage: cavity compare OLD.json NEW.json [--alpha 0.05] [--min-change 2] [--json FILE] [--fail-on-slower]\n"
-    "  OLD, NEW          a results.json (cavity run) or Google Benchmark JSON (cavity_bench --benchmark_out)\n"
-    "  --alpha A         significance of the U test, and 1 - A the confidence of the interval; in (0, 1)\n"
-    "  --min-change P    smallest change, in percent of the old median, called slower or faster; >= 0\n"
-    "  --json FILE       also write the rows as cavity.compare/1 JSON\n"
-    "  --fail-on-slower  exit 1 when any row is slower\n";
+const CommandSpec& compareSpec() {
+    static const CommandSpec spec{
+        "cavity compare",
+        "Compares two runs pass by pass: change of the median, its interval (Hodges-Lehmann) and a verdict "
+        "(Mann-Whitney U test).",
+        {
+            {"--alpha", "A", "significance of the U test, and 1 - A the confidence of the interval; in (0, 1) (default 0.05)"},
+            {"--min-change", "P", "smallest change, in percent of the old median, called slower or faster; >= 0 (default 2)"},
+            {"--json", "FILE", "also write the rows as cavity.compare/1 JSON"},
+            {"--fail-on-slower", "", "exit 1 when any row is slower"},
+        },
+        "OLD.json NEW.json",
+        "a results.json (cavity run) or Google Benchmark JSON (cavity_bench --benchmark_out), each",
+        "\nExit codes: 0 compared, 1 slower with --fail-on-slower, 2 bad usage or input.",
+    };
+    return spec;
+}
 
 int fail(const std::string& message) {
     std::cerr << "cavity compare: " << message << "\n";
@@ -44,32 +54,23 @@ int compareCommand(const std::vector<std::string>& argv) {
     CompareThresholds t;
     std::string jsonPath;
     bool failOnSlower = false;
-    Args a(argv);
-    while (!a.done()) {
-        const std::string flag = a.next();
-        if (flag == "--help" || flag == "-h") {
-            std::cout << kCompareUsage;
-            return 0;
+    auto parsed = parseFlags(compareSpec(), argv);
+    if (!parsed) return fail(parsed.error().message);
+    if (parsed->help) {
+        std::cout << parsed->helpText;
+        return 0;
+    }
+    files = parsed->positionals;
+    failOnSlower = parsed->has("--fail-on-slower");
+    for (const auto& [flag, v] : parsed->values) {
+        if (flag == "--json") {
+            jsonPath = v;
+            continue;
         }
-        if (flag == "--alpha" || flag == "--min-change" || flag == "--json") {
-            auto v = a.value(flag);
-            if (!v) return fail(v.error().message);
-            if (flag == "--json") {
-                if (v->empty()) return fail("--json: missing value");
-                jsonPath = *v;
-                continue;
-            }
-            auto x = flag == "--alpha" ? number(flag, *v, 0, 1, true, "a number in (0, 1)")
-                                       : number(flag, *v, 0, HUGE_VAL, false, "a percentage >= 0");
-            if (!x) return fail(x.error().message);
-            (flag == "--alpha" ? t.alpha : t.minChangePct) = *x;
-        } else if (flag == "--fail-on-slower") {
-            failOnSlower = true;
-        } else if (flag.rfind("-", 0) == 0 && flag.size() > 1) {
-            return fail(flag + ": unknown flag (see cavity compare --help)");
-        } else {
-            files.push_back(flag);
-        }
+        auto x = flag == "--alpha" ? number(flag, v, 0, 1, true, "a number in (0, 1)")
+                                   : number(flag, v, 0, HUGE_VAL, false, "a percentage >= 0");
+        if (!x) return fail(x.error().message);
+        (flag == "--alpha" ? t.alpha : t.minChangePct) = *x;
     }
     if (files.size() != 2)
         return fail("need two files, OLD.json NEW.json (have " + std::to_string(files.size()) +

@@ -123,8 +123,14 @@ Result<GateRun> runGate(const GateOptions& o) {
         CAVITY_ASSIGN(ConfigResult r, judgeRendering(rendering, judge));
         if (attempt == 0) {
             const bool retry = !r.passed() && r.errorCode == 0 && o.retries > 0;
-            if (r.error.empty())
-                std::fprintf(stderr, "gate: %-56s %s\n", r.id.c_str(), r.passed() ? "pass" : retry ? "FAIL (retrying)" : "FAIL");
+            // Progress: one line a configuration, with count and ETA (the
+            // mean time per configuration so far times those left).
+            const size_t done = run.results.size() + 1;
+            const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            const double eta = elapsed / double(done) * double(entries.size() - std::min(done, entries.size()));
+            if (r.error.empty() && !o.quiet)
+                std::fprintf(stderr, "gate: [%zu/%zu] %s %s  elapsed %.1f s  ETA %.1f s\n", done, entries.size(), r.id.c_str(),
+                             r.passed() ? "pass" : retry ? "FAIL (retrying)" : "FAIL", elapsed, eta);
             where[r.id] = run.results.size();
             run.results.push_back(std::move(r));
             return {};
@@ -132,7 +138,8 @@ Result<GateRun> runGate(const GateOptions& o) {
         ConfigResult& before = run.results[where.at(r.id)];
         r.attempts = attempt + 1;
         r.firstFailures = before.firstFailures.empty() ? before.failureLines() : before.firstFailures;
-        std::fprintf(stderr, "gate: %-56s %s\n", r.id.c_str(),
+        if (!o.quiet)
+            std::fprintf(stderr, "gate: %s %s\n", r.id.c_str(),
                      r.passed() ? ("flaky (failed attempt 1, passed attempt " + std::to_string(r.attempts) + ")").c_str()
                                 : ("FAIL (attempt " + std::to_string(r.attempts) + ")").c_str());
         before = std::move(r);

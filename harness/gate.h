@@ -79,6 +79,7 @@ struct GateOptions {
     int shardIndex = 0, shardCount = 1;
     int device = 0;
     bool validation = false;
+    bool quiet = false;                    // no progress lines on stderr
     std::string filter;                    // regex on configuration ids; empty: all
     int retries = 2;                       // renders of a failing configuration after the first
     std::string expectations;              // folder of expectation files; empty: <baselines>/expectations

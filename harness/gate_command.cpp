@@ -27,6 +27,91 @@ namespace fs = std::filesystem;
 
 namespace {
 
+const std::string kBaselinesHelp =
+    "folder with matrices.json, manifest.json, budgets.json, images/ (default: baselines/ of the checkout found "
+    "from the working directory up, else of the source tree this binary was built from)";
+
+const CommandSpec& gateSpec() {
+    static const CommandSpec spec{
+        "cavity gate",
+        "Runs a matrix of baselines/matrices.json against the baselines and budgets; writes junit.xml, summary.md, "
+        "index.html and gate.json under --out. Subcommands: cavity gate judge, cavity gate merge (see their --help).",
+        {
+            {"--matrix", "NAME", "the matrix of matrices.json (default ci)"},
+            {"--baselines", "DIR", kBaselinesHelp},
+            {"--out", "DIR", "report folder (default out/gate)"},
+            {"--filter", "REGEX", "only the configurations whose id matches (searched)"},
+            {"--shard", "I/N", "shard I of N (0 <= I < N); also GTEST_SHARD_INDEX/GTEST_TOTAL_SHARDS, TEST_SHARD_INDEX"},
+            {"--device", "K", "device index (0..64)"},
+            {"--retries", "N", "renders of a failing configuration after the first (0..100; default 2)"},
+            {"--expectations", "DIR", "folder of expectation files (default <baselines>/expectations)"},
+            {"--validation", "", "enable the Vulkan validation layers and the GL debug output"},
+            {"--list", "", "print the ids of the selection, one a line, and render nothing"},
+            {"--quiet", "", "no progress lines on stderr"},
+        },
+        "",
+        "",
+        "\nExit codes: 0 all pass, 1 a regression or an unexpected pass, 2 bad input, 3 a backend could not start.",
+    };
+    return spec;
+}
+
+const CommandSpec& judgeSpec() {
+    static const CommandSpec spec{
+        "cavity gate judge",
+        "Judges render folders written by cavity_render against the baselines (the gate in two steps). Nothing is "
+        "written unless every folder is whole.",
+        {
+            {"--baselines", "DIR", kBaselinesHelp},
+            {"--expectations", "DIR", "folder of expectation files (default <baselines>/expectations)"},
+            {"--out", "DIR", "report folder (default out/gate)"},
+        },
+        "RENDER_DIR...",
+        "folders written by cavity_render",
+        "",
+    };
+    return spec;
+}
+
+const CommandSpec& mergeSpec() {
+    static const CommandSpec spec{
+        "cavity gate merge",
+        "Joins the gate.json of shard outputs into one verdict and report.",
+        {{"--out", "DIR", "report folder (default out/gate)"}},
+        "SHARD_DIR...",
+        "output folders of cavity gate --shard runs",
+        "",
+    };
+    return spec;
+}
+
+const CommandSpec& updateSpec() {
+    static const CommandSpec spec{
+        "cavity baselines update",
+        "Accepts a gate run's new images as baselines: without --filter the configurations that failed, with it "
+        "every image of the configurations it selects. All or nothing.",
+        {
+            {"--from", "DIR", "a gate output folder with gate.json (default out/gate)"},
+            {"--filter", "REGEX", "take the configurations whose id matches"},
+            {"--baselines", "DIR", kBaselinesHelp},
+        },
+        "",
+        "",
+        "",
+    };
+    return spec;
+}
+
+// --help prints and ends the command (exit 0); an error ends it (exit 2).
+#define CAVITY_PARSE(var, spec, argv)                              \
+    auto var##_ = parseFlags(spec, argv);                          \
+    if (!var##_) return fail((spec).program, var##_.error());      \
+    if (var##_->help) {                                            \
+        std::cout << var##_->helpText;                             \
+        return 0;                                                  \
+    }                                                              \
+    const ParsedFlags& var = *var##_;
+
 int fail(const std::string& who, const Error& e) {
     std::cerr << who << ": " << e.message << "\n";
     return exitCode(e);
@@ -42,19 +127,10 @@ Result<gate::GateRun> loadGateJson(const std::string& dir) {
 int merge(const std::vector<std::string>& argv) {
     std::vector<std::string> dirs;
     std::string out = "out/gate";
-    Args a(argv);
-    while (!a.done()) {
-        const std::string flag = a.next();
-        if (flag == "--out") {
-            auto v = a.value(flag);
-            if (!v) return fail("cavity gate merge", v.error());
-            out = *v;
-        } else if (flag.rfind("--", 0) == 0) {
-            return fail("cavity gate merge", badInput(flag + ": unknown flag"));
-        } else {
-            dirs.push_back(flag);
-        }
-    }
+    CAVITY_PARSE(p, mergeSpec(), argv);
+    dirs = p.positionals;
+    for (const auto& [flag, v] : p.values)
+        if (flag == "--out") out = v;
     if (dirs.empty()) return fail("cavity gate merge", badInput("needs one or more shard output folders"));
     gate::GateRun merged;
     std::set<std::pair<std::string, int>> seen;
@@ -78,19 +154,15 @@ int merge(const std::vector<std::string>& argv) {
 // Nothing is written unless every folder is whole (judge_folders.h).
 int judge(const std::vector<std::string>& argv) {
     std::vector<std::string> dirs;
-    std::string out = "out/gate", baselines = "baselines", expectationsDir;
-    Args a(argv);
-    while (!a.done()) {
-        const std::string flag = a.next();
-        if (flag == "--out" || flag == "--baselines" || flag == "--expectations") {
-            auto v = a.value(flag);
-            if (!v) return fail("cavity gate judge", v.error());
-            (flag == "--out" ? out : flag == "--baselines" ? baselines : expectationsDir) = *v;
-        } else if (flag.rfind("--", 0) == 0) {
-            return fail("cavity gate judge", badInput(flag + ": unknown flag (cavity gate judge RENDER_DIR... [--baselines DIR] [--expectations DIR] [--out DIR])"));
-        } else {
-            dirs.push_back(flag);
-        }
+    std::string out = "out/gate", baselines, expectationsDir;
+    CAVITY_PARSE(p, judgeSpec(), argv);
+    dirs = p.positionals;
+    for (const auto& [flag, v] : p.values)
+        (flag == "--out" ? out : flag == "--baselines" ? baselines : expectationsDir) = v;
+    if (baselines.empty()) {
+        auto found = defaultBaselines();
+        if (!found) return fail("cavity gate judge", found.error());
+        baselines = *found;
     }
     if (auto st = gate::recoverBaselineUpdate(baselines); !st) return fail("cavity gate judge", st.error());
     auto expectations =
@@ -112,33 +184,34 @@ int gateCommand(const std::vector<std::string>& argv) {
     if (!argv.empty() && argv[0] == "judge") return judge({argv.begin() + 1, argv.end()});
     gate::GateOptions o;
     std::optional<std::string> shardFlag;
-    bool list = false;
-    Args a(argv);
-    while (!a.done()) {
-        const std::string flag = a.next();
-        if (flag == "--validation" || flag == "--list") {
-            (flag == "--list" ? list : o.validation) = true;
-            continue;
-        }
-        auto v = a.value(flag);
-        if (!v) return fail("cavity gate", v.error());
-        if (flag == "--matrix") o.matrix = *v;
-        else if (flag == "--out") o.out = *v;
-        else if (flag == "--baselines") o.baselines = *v;
-        else if (flag == "--filter") o.filter = *v;
+    CAVITY_PARSE(p, gateSpec(), argv);
+    const bool list = p.has("--list");
+    o.validation = p.has("--validation");
+    o.quiet = p.has("--quiet");
+    o.baselines.clear();
+    for (const auto& [flag, v] : p.values) {
+        if (flag == "--matrix") o.matrix = v;
+        else if (flag == "--out") o.out = v;
+        else if (flag == "--baselines") o.baselines = v;
+        else if (flag == "--filter") o.filter = v;
         else if (flag == "--device") {
-            auto d = parseInt(flag, *v, 0, 64);
+            auto d = parseInt(flag, v, 0, 64);
             if (!d) return fail("cavity gate", d.error());
             o.device = *d;
         } else if (flag == "--shard") {
-            shardFlag = *v;
+            shardFlag = v;
         } else if (flag == "--retries") {
-            auto n = parseInt(flag, *v, 0, 100);
+            auto n = parseInt(flag, v, 0, 100);
             if (!n) return fail("cavity gate", n.error());
             o.retries = *n;
         } else if (flag == "--expectations") {
-            o.expectations = *v;
-        } else return fail("cavity gate", badInput(flag + ": unknown flag"));
+            o.expectations = v;
+        }
+    }
+    if (o.baselines.empty()) {
+        auto found = defaultBaselines();
+        if (!found) return fail("cavity gate", found.error());
+        o.baselines = *found;
     }
     // --shard, GoogleTest's and Bazel's variables (shard_sources.h).
     auto shard = resolveShard(shardFlag);
@@ -165,18 +238,23 @@ int gateCommand(const std::vector<std::string>& argv) {
 }
 
 int baselinesCommand(const std::vector<std::string>& argv) {
+    if (!argv.empty() && (argv[0] == "--help" || argv[0] == "-h")) {
+        std::cout << "usage: cavity baselines update [flags]   (see cavity baselines update --help)\n";
+        return 0;
+    }
     if (argv.empty() || argv[0] != "update")
         return fail("cavity baselines", badInput("usage: cavity baselines update [--from DIR] [--filter REGEX] [--baselines DIR]"));
-    std::string from = "out/gate", filterText, root = "baselines";
-    Args a({argv.begin() + 1, argv.end()});
-    while (!a.done()) {
-        const std::string flag = a.next();
-        auto v = a.value(flag);
-        if (!v) return fail("cavity baselines update", v.error());
-        if (flag == "--from") from = *v;
-        else if (flag == "--filter") filterText = *v;
-        else if (flag == "--baselines") root = *v;
-        else return fail("cavity baselines update", badInput(flag + ": unknown flag"));
+    std::string from = "out/gate", filterText, root;
+    CAVITY_PARSE(p, updateSpec(), std::vector<std::string>(argv.begin() + 1, argv.end()));
+    for (const auto& [flag, v] : p.values) {
+        if (flag == "--from") from = v;
+        else if (flag == "--filter") filterText = v;
+        else if (flag == "--baselines") root = v;
+    }
+    if (root.empty()) {
+        auto found = defaultBaselines();
+        if (!found) return fail("cavity baselines update", found.error());
+        root = *found;
     }
     std::optional<std::regex> filter;
     if (!filterText.empty()) {

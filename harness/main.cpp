@@ -16,7 +16,9 @@ constexpr const char* kUsage =
     "  gate merge join shard outputs into one verdict\n"
     "  baselines update   accept new images as baselines\n"
     "  compare    two runs (results.json or cavity_bench JSON) pass by pass: change, interval, verdict\n"
-    "  quality    each AO kernel's mean absolute error against the ray-traced ground truth\n";
+    "  quality    each AO kernel's mean absolute error against the ray-traced ground truth\n"
+    "`cavity COMMAND --help` lists a command's flags. `cavity` alone prints this and exits 2;\n"
+    "`cavity --help` prints it and exits 0.\n";
 
 }  // namespace
 
@@ -33,6 +35,9 @@ int main(int argc, char** argv) {
     if (command == "baselines") return cavity::cli::baselinesCommand(args);
     if (command == "compare") return cavity::cli::compareCommand(args);
     if (command == "quality") return cavity::cli::qualityCommand(args);
-    std::cerr << "cavity: unknown command '" << command << "'\n" << kUsage;
+    // One line, as every usage error (README "Exit codes").
+    const std::string near = cavity::cli::nearest(command, {"run", "gate", "baselines", "compare", "quality"});
+    std::cerr << "cavity: unknown command '" << command << "'" << (near.empty() ? "" : " (did you mean " + near + "?)")
+              << "; see cavity --help\n";
     return 2;
 }

@@ -1,6 +1,8 @@
 // `cavity quality`: each AO kernel's error against the ray-traced ground
 // truth, as a table on stdout and quality.json.
 #include "cli.h"
+#include "pipeline.h"
+#include "progress.h"
 #include "quality.h"
 #include "results.h"
 #include "runner.h"
@@ -8,19 +10,35 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <optional>
+#include <regex>
 
 namespace cavity::cli {
 
 namespace {
 
-std::string usage(const std::string& program) {
-    const std::string pad(program.size(), ' ');
-    return "usage: " + program + " [--backend gl|vk] [--scene S[,S..]] [--kernel K[,K..]] [--samples N[,N..]]\n" +
-           "       " + pad + " [--res WxH] [--rays N] [--resolution full|half] [--reach seed|shared] [--radius R]\n" +
-           "       " + pad + " [--device K] [--out DIR]\n" +
-           "mean absolute error of each AO kernel (raw AO, no bilateral blur) against the ground truth\n" +
-           "--reach seed (default): each kernel at its own default reach, the truth at 0.5;\n" +
-           "--reach shared: every kernel and the truth at --radius (default 0.5; --radius implies shared)\n";
+CommandSpec qualitySpec(const std::string& program) {
+    CommandSpec c;
+    c.program = program;
+    c.description = "Mean absolute error of each AO kernel (raw AO, no bilateral blur) against the ray-traced ground truth.";
+    c.flags = {
+        {"--backend", "gl|vk", "the backend (default vk)"},
+        {"--scene", "S[,S..]", "scenes (default corner,slats)"},
+        {"--kernel", "K[,K..]", "AO kernels (default every kernel of role ao; see cavity run --help)"},
+        {"--samples", "N[,N..]", "sample counts (1..256; default 16,64)"},
+        {"--res", "WxH", "image size (default 160x90)"},
+        {"--rays", "N", "the ground truth's rays per pixel (1024..65536; default 1024)"},
+        {"--resolution", "full|half", "AO at full or half resolution (default full)"},
+        {"--reach", "seed|shared", "seed (default): each kernel at its own default reach, the truth at 0.5; "
+                                   "shared: every kernel and the truth at --radius"},
+        {"--radius", "R", "the shared reach (default 0.5; implies --reach shared)"},
+        {"--device", "K", "device index (0..64)"},
+        {"--out", "DIR", "also write DIR/quality.json"},
+        {"--filter", "REGEX", "only the configurations whose id matches (searched; ids as --list prints them)"},
+        {"--list", "", "print the configuration ids this would measure, one a line, and measure nothing"},
+        {"--quiet", "", "no progress lines on stderr"},
+    };
+    return c;
 }
 
 }  // namespace
@@ -36,17 +54,26 @@ int qualityCommand(const std::vector<std::string>& argv, const std::string& prog
     gpu::Api api = gpu::Api::Vulkan;
     gpu::BackendOptions backend;
     std::string out;
+    std::optional<std::regex> filter;
+    auto parsed = parseFlags(qualitySpec(program), argv);
+    if (!parsed) return fail(parsed.error());
+    if (parsed->help) {
+        std::cout << parsed->helpText;
+        return 0;
+    }
     bool reachGiven = false, radiusGiven = false;
-    Args a(argv);
-    while (!a.done()) {
-        const std::string flag = a.next();
-        if (flag == "--help" || flag == "-h") {
-            std::cout << usage(program);
-            return 0;
-        }
-        auto v = a.value(flag);
-        if (!v) return fail(v.error());
-        if (flag == "--backend") {
+    for (const auto& [flag, value] : parsed->values) {
+        const std::optional<std::string> v = value;
+        if (flag == "--reach") {
+            if (*v != "seed" && *v != "shared") return fail(badInput("--reach " + *v + ": must be seed or shared"));
+            o.sharedReach = *v == "shared";
+            reachGiven = true;
+        } else if (flag == "--radius") {
+            auto r = parseNumber("--radius", *v, 1e-6, 100);
+            if (!r) return fail(r.error());
+            o.radius = *r;
+            radiusGiven = true;
+        } else if (flag == "--backend") {
             if (*v != "gl" && *v != "vk") return fail(badInput("--backend " + *v + ": must be gl or vk"));
             api = *v == "gl" ? gpu::Api::OpenGL : gpu::Api::Vulkan;
         } else if (flag == "--scene") {
@@ -85,23 +112,18 @@ int qualityCommand(const std::vector<std::string>& argv, const std::string& prog
         } else if (flag == "--resolution") {
             if (*v != "full" && *v != "half") return fail(badInput("--resolution " + *v + ": must be full or half"));
             o.half = *v == "half";
-        } else if (flag == "--reach") {
-            if (*v != "seed" && *v != "shared") return fail(badInput("--reach " + *v + ": must be seed or shared"));
-            o.sharedReach = *v == "shared";
-            reachGiven = true;
-        } else if (flag == "--radius") {
-            auto r = parseNumber("--radius", *v, 1e-6, 100);
-            if (!r) return fail(r.error());
-            o.radius = *r;
-            radiusGiven = true;
         } else if (flag == "--device") {
             auto n = parseInt("--device", *v, 0, 64);
             if (!n) return fail(n.error());
             backend.deviceIndex = *n;
         } else if (flag == "--out") {
             out = *v;
-        } else {
-            return fail(badInput(flag + ": unknown flag (see " + program + " --help)"));
+        } else if (flag == "--filter") {
+            try {
+                filter.emplace(*v);
+            } catch (const std::regex_error& e) {
+                return fail(badInput("--filter " + *v + ": not a regular expression (" + e.what() + ")"));
+            }
         }
     }
     if (radiusGiven) {
@@ -109,14 +131,76 @@ int qualityCommand(const std::vector<std::string>& argv, const std::string& prog
             return fail(badInput("--radius " + std::to_string(o.radius) + ": only with --reach shared"));
         o.sharedReach = true;
     }
+    // The configurations measured, as ids: what measureQuality renders for
+    // each (scene, kernel, samples), the raw AO with the bilateral off.
+    std::vector<std::string> names = o.kernels;
+    if (names.empty())
+        for (const auto& k : kernels::all())
+            if (k.role == "ao") names.push_back(k.name);
+    struct Step {
+        QualityOptions options;   // one scene, one kernel or all, the selected sample counts
+        std::vector<std::string> ids;
+    };
+    std::vector<Step> steps;
+    size_t total = 0;
+    for (const auto& scene : o.scenes) {
+        // Without --filter one step a scene (its ground truth is rendered
+        // once); with it one step a kernel, holding the sample counts selected.
+        Step whole{o, {}};
+        whole.options.scenes = {scene};
+        whole.options.kernels = names;
+        for (const auto& kernel : names) {
+            Step step{o, {}};
+            step.options.scenes = {scene};
+            step.options.kernels = {kernel};
+            step.options.samples.clear();
+            for (int n : o.samples) {
+                RunConfig c;
+                c.api = api;
+                c.kernel = kernel;
+                c.width = o.width;
+                c.height = o.height;
+                c.params["blur"] = 0;
+                c.params["samples"] = n;
+                if (auto st = setParam(c, "scene", scene); !st) return fail(st.error());
+                c.half = o.half && supportsHalf(kernel);
+                c.stage = o.stage;
+                const std::string id = configId(c);
+                if (filter && !std::regex_search(id, *filter)) continue;
+                step.options.samples.push_back(n);
+                step.ids.push_back(id);
+                whole.ids.push_back(id);
+            }
+            if (filter && !step.ids.empty()) steps.push_back(step);
+        }
+        if (!filter) steps.push_back(whole);
+        total += whole.ids.size();
+    }
+    if (filter && total == 0) return fail(badInput("--filter: matches none of the configurations (see " + program + " --list)"));
+    if (parsed->has("--list")) {
+        for (const auto& step : steps)
+            for (const auto& id : step.ids) std::cout << id << "\n";
+        return 0;
+    }
     if (!out.empty())
         if (auto st = checkWritableDir("--out", out); !st) return fail(st.error());
 
     auto gpu = gpu::createBackend(api, backend);
     if (!gpu) return fail(gpu.error());
     std::cerr << program << ": " << gpu::apiName(api) << ": " << (*gpu)->info().deviceName << "\n";
-    auto rows = measureQuality(**gpu, o);
-    if (!rows) return fail(rows.error());
+    std::vector<QualityRow> rows;
+    {
+        Progress progress(steps.size(), parsed->has("--quiet"));
+        for (const auto& step : steps) {
+            progress.start(step.ids.front() + (step.ids.size() > 1 ? " (+" + std::to_string(step.ids.size() - 1) + ")" : ""));
+            auto some = measureQuality(**gpu, step.options);
+            if (!some) {
+                progress.interrupt();
+                return fail(some.error());
+            }
+            rows.insert(rows.end(), some->begin(), some->end());
+        }
+    }
 
     const std::string reach = o.sharedReach ? "shared" : "seed";
     if (o.sharedReach)
@@ -134,7 +218,7 @@ int qualityCommand(const std::vector<std::string>& argv, const std::string& prog
                           {"reach", reach},
                           {"radius", o.sharedReach ? nlohmann::json(o.radius) : nlohmann::json(nullptr)},
                           {"rows", nlohmann::json::array()}};
-    for (const auto& r : *rows) {
+    for (const auto& r : rows) {
         std::printf("%-8s %-20s %7d %8.4f %8.4f %8.4f %8.4f\n", r.scene.c_str(), r.kernel.c_str(), r.samples,
                     r.meanAbsError, r.maxAbsError, r.meanAo, r.meanTruth);
         doc["rows"].push_back({{"scene", r.scene},

@@ -2,6 +2,7 @@
 // images, results.json and a timing table on stdout.
 #include "cli.h"
 #include "gbuffer_import.h"
+#include "progress.h"
 #include "runner.h"
 
 #include <algorithm>
@@ -10,24 +11,65 @@
 #include <iostream>
 #include <map>
 #include <memory>
+#include <optional>
+#include <regex>
 
 namespace cavity::cli {
 
 namespace {
 
-constexpr const char* kRunUsage =
-    "usage: cavity run [--backend gl|vk|all] [--scene S[,S..]] [--kernel K[,K..]] [--samples N[,N..]]\n"
-    "                  [--blur R[,R..]] [--resolution full|half[,..]] [--res WxH[,WxH..]]\n"
-    "                  [--stage compute|fragment[,..]] [--gbuffer sdf|raster|import[,..]] [--gbuffer-file FILE.exr]\n"
-    "                  [--frames N] [--warmup N] [--timing batch|drained] [--max-noise PCT] [--max-time S]\n"
-    "                  [--device K]\n"
-    "                  [--validation] [--out DIR] [--<kernel parameter> VALUE ...]\n";
+// The flags of cavity run, declared once: --help, the parse and the README's
+// flag table (tests/readme_flags.py checks it against --help) read this.
+const CommandSpec& runSpec() {
+    static const CommandSpec spec = [] {
+        CommandSpec c;
+        c.program = "cavity run";
+        c.description =
+            "Runs a sweep of kernel configurations on one or both backends: images under --out/<id>/, "
+            "results.json, a timing table on stdout, progress on stderr. Every list flag takes "
+            "VALUE[,VALUE..] and the sweep is the product of all lists.";
+        const std::string sweep = "Sweep", timing = "Timing", output = "Device and output";
+        std::string scenes;
+        for (const auto& k : kernels::all())
+            for (const auto& p : k.params)
+                if (p.name == "scene" && scenes.empty()) scenes = p.help;
+        c.flags = {
+            {"--backend", "gl|vk|all[,..]", "backends to run on (default all)", sweep},
+            {"--kernel", "K[,K..]", "AO kernels (default alchemy; listed below)", sweep},
+            {"--scene", "S[,S..]", scenes + " (default corner)", sweep},
+            {"--resolution", "full|half[,..]", "AO at full or half resolution with a bilateral upsample (default full)", sweep},
+            {"--res", "WxH[,WxH..]", "image sizes (default 320x180; with --gbuffer import, the capture's)", sweep},
+            {"--stage", "compute|fragment[,..]", "shader stage of every pass (default compute)", sweep},
+            {"--gbuffer", "sdf|raster|import[,..]", "G-buffer source: ray-marched, rasterised meshes, or a capture (default sdf)", sweep},
+            {"--gbuffer-file", "FILE.exr", "the capture for --gbuffer import (multi-channel OpenEXR)", sweep},
+            {"--filter", "REGEX", "run only the configurations whose id matches (searched, as gate and cavity_bench do)", sweep},
+            {"--frames", "N", "measured frames, at least (1..100000; default 50)", timing},
+            {"--warmup", "N", "warm-up frames, at least (0..10000; default 5)", timing},
+            {"--timing", "batch|drained", "batch: back-to-back frames; drained: wait for the GPU after each (default: the device's)", timing},
+            {"--max-noise", "PCT", "stop measuring once the median's noise is under PCT percent (0..100; 0: a fixed count)", timing},
+            {"--max-time", "S", "stop measuring after S seconds (0.001..3600)", timing},
+            {"--device", "K", "device index (0..64; default 0)", output},
+            {"--validation", "", "enable the Vulkan validation layers and the GL debug output", output},
+            {"--out", "DIR", "output folder (default out)", output},
+            {"--list", "", "print the configuration ids this run would measure, one a line, and run nothing", output},
+            {"--quiet", "", "no progress lines on stderr", output},
+        };
+        for (auto& f : kernelParamFlags({"scene"})) c.flags.push_back(std::move(f));
+        c.footer = "\n" + kernelHelp() +
+                   "\nIds read scene/kernel/nSAMPLES/bBLUR[/param=value..]/full|half/WxH/api/stage "
+                   "(README, Configuration ids). Exit codes: 0 ok, 1 NaN written, 2 bad usage, 3 no backend, 4 GPU error.";
+        return c;
+    }();
+    return spec;
+}
 
 struct Sweep {
     std::vector<std::string> backends{"all"};
     std::vector<std::string> kernels{"alchemy"};
     std::vector<std::string> scenes{"corner"};
-    std::vector<std::string> samples, blurs;
+    // Every kernel parameter given (--samples, --blur, --radius, ...): one
+    // axis each, its values in the order given.
+    std::map<std::string, std::vector<std::string>> params;
     std::vector<std::string> resolutions{"full"};
     std::vector<std::pair<int, int>> sizes{{320, 180}};
     std::vector<gpu::Stage> stages{gpu::Stage::Compute};
@@ -38,17 +80,23 @@ struct Sweep {
     RunOptions options;
     gpu::BackendOptions backend;
     std::string out = "out";
+    bool list = false, quiet = false;
+    std::optional<std::regex> filter;   // --filter
+    std::string filterText;
+    std::string helpText;               // --help: print this, run nothing
 };
 
 Result<Sweep> parse(const std::vector<std::string>& argv) {
     Sweep s;
-    Args a(argv);
-    while (!a.done()) {
-        const std::string flag = a.next();
-        if (flag == "--validation") { s.backend.validation = true; continue; }
-        if (flag == "--help" || flag == "-h") return badInput(kRunUsage);
-        if (flag.rfind("--", 0) != 0) return badInput("'" + flag + "': unexpected argument (flags start with --; see cavity run --help)");
-        CAVITY_ASSIGN(const std::string v, a.value(flag));
+    CAVITY_ASSIGN(const ParsedFlags parsed, parseFlags(runSpec(), argv));
+    if (parsed.help) {
+        s.helpText = parsed.helpText;
+        return s;
+    }
+    s.backend.validation = parsed.has("--validation");
+    s.list = parsed.has("--list");
+    s.quiet = parsed.has("--quiet");
+    for (const auto& [flag, v] : parsed.values) {
         if (flag == "--backend") {
             CAVITY_ASSIGN(s.backends, splitList(flag, v));
             for (const auto& b : s.backends)
@@ -58,10 +106,6 @@ Result<Sweep> parse(const std::vector<std::string>& argv) {
         } else if (flag == "--scene") {
             CAVITY_ASSIGN(s.scenes, splitList(flag, v));
             s.sceneGiven = true;
-        } else if (flag == "--samples") {
-            CAVITY_ASSIGN(s.samples, splitList(flag, v));
-        } else if (flag == "--blur") {
-            CAVITY_ASSIGN(s.blurs, splitList(flag, v));
         } else if (flag == "--resolution") {
             CAVITY_ASSIGN(s.resolutions, splitList(flag, v));
             for (const auto& r : s.resolutions)
@@ -105,9 +149,20 @@ Result<Sweep> parse(const std::vector<std::string>& argv) {
         } else if (flag == "--device") {
             CAVITY_ASSIGN(s.backend.deviceIndex, parseInt(flag, v, 0, 64));
         } else if (flag == "--out") s.out = v;
-        else if (isKernelParam(flag.substr(2))) {
-            CAVITY_TRY(setParam(s.base, flag.substr(2), v));
-        } else return badInput(flag + ": unknown flag (see cavity run --help)");
+        else if (flag == "--filter") {
+            try {
+                s.filter.emplace(v);
+            } catch (const std::regex_error& e) {
+                return badInput("--filter " + v + ": not a regular expression (" + e.what() + ")");
+            }
+            s.filterText = v;
+        } else if (isKernelParam(flag.substr(2))) {
+            // Every kernel parameter sweeps: --radius 0.5,1.0 is two configurations.
+            CAVITY_ASSIGN(auto items, splitList(flag, v));
+            RunConfig scratch;
+            for (const auto& item : items) CAVITY_TRY(setParam(scratch, flag.substr(2), item));
+            s.params[flag.substr(2)] = std::move(items);
+        }
     }
     const bool import = std::find(s.gbuffers.begin(), s.gbuffers.end(), "import") != s.gbuffers.end();
     if (import && s.gbufferFile.empty())
@@ -123,15 +178,25 @@ Result<Sweep> parse(const std::vector<std::string>& argv) {
 
 // Expands the sweep axes into validated configurations (API left unset).
 Result<std::vector<RunConfig>> expand(const Sweep& s) {
+    // The kernel parameters' product, each point a set of (name, text) pairs.
+    std::vector<std::vector<std::pair<std::string, std::string>>> points{{}};
+    for (const auto& [name, values] : s.params) {
+        std::vector<std::vector<std::pair<std::string, std::string>>> next;
+        for (const auto& point : points)
+            for (const auto& v : values) {
+                auto p = point;
+                p.emplace_back(name, v);
+                next.push_back(std::move(p));
+            }
+        points = std::move(next);
+    }
     std::vector<RunConfig> out;
-    const std::vector<std::string> none{""};
     for (const auto& scene : s.scenes)
         for (const auto& kernel : s.kernels)
-            for (const auto& n : s.samples.empty() ? none : s.samples)
-                for (const auto& b : s.blurs.empty() ? none : s.blurs)
-                    for (const auto& res : s.resolutions)
-                        for (const auto& [w, h] : s.sizes)
-                            for (auto stage : s.stages)
+            for (const auto& point : points)
+                for (const auto& res : s.resolutions)
+                    for (const auto& [w, h] : s.sizes)
+                        for (auto stage : s.stages)
                             for (const auto& gbuffer : s.gbuffers) {
                                 RunConfig c = s.base;
                                 c.raster = gbuffer == "raster";
@@ -143,8 +208,7 @@ Result<std::vector<RunConfig>> expand(const Sweep& s) {
                                 } else {
                                     CAVITY_TRY(setParam(c, "scene", scene));
                                 }
-                                if (!n.empty()) CAVITY_TRY(setParam(c, "samples", n));
-                                if (!b.empty()) CAVITY_TRY(setParam(c, "blur", b));
+                                for (const auto& [name, v] : point) CAVITY_TRY(setParam(c, name, v));
                                 c.half = res == "half";
                                 c.width = w;
                                 c.height = h;
@@ -159,18 +223,45 @@ Result<std::vector<RunConfig>> expand(const Sweep& s) {
     return out;
 }
 
+// A CV above this is flagged in the table: the timing was noisy enough that
+// the median may move by more than a kernel change one wants to see.
+constexpr double kNoisyCv = 0.10;
+
 void printTable(const std::vector<RunRecord>& runs) {
-    std::printf("\n%-52s %-10s %10s %10s %10s %7s  %s\n", "configuration", "pass", "median ms", "min ms", "p90 ms",
-                "CV", "clock");
+    auto clockOf = [](const RunRecord& r) { return r.timing.clock + "/" + timingModeName(r.timing.mode); };
+    // The clock most configurations used is said once; each that differs is named.
+    std::map<std::string, int> clockCount;
+    for (const auto& r : runs) ++clockCount[clockOf(r)];
+    std::string clock;
+    int most = 0;
+    for (const auto& [c, n] : clockCount)
+        if (n > most) most = n, clock = c;
+    size_t idWidth = std::string("configuration").size(), passWidth = std::string("frame").size();
+    for (const auto& r : runs) {
+        idWidth = std::max(idWidth, configId(r.config).size());
+        for (const auto& p : r.timing.passes) passWidth = std::max(passWidth, p.name.size());
+    }
+    const int iw = int(idWidth), pw = int(passWidth);
+    std::printf("\nclock: %s%s\n", clock.c_str(), clockCount.size() == 1 ? " (every configuration)" : " (except as noted below)");
+    std::printf("%-*s  %-*s %10s %10s %10s %7s\n", iw, "configuration", pw, "pass", "median ms", "min ms", "p90 ms", "CV");
+    std::vector<std::string> noisy;
     for (const auto& r : runs) {
         const std::string id = configId(r.config);
         auto row = [&](const std::string& name, const Stats& st) {
-            std::printf("%-52s %-10s %10.3f %10.3f %10.3f %6.1f%%  %s/%s\n", id.c_str(), name.c_str(), st.median,
-                        st.min, st.p90, 100.0 * st.cv, r.timing.clock.c_str(), timingModeName(r.timing.mode));
+            const bool flag = st.cv > kNoisyCv;
+            std::printf("%-*s  %-*s %10.3f %10.3f %10.3f %6.1f%%%s\n", iw, id.c_str(), pw, name.c_str(), st.median, st.min,
+                        st.p90, 100.0 * st.cv, flag ? " !" : "");
+            if (flag) noisy.push_back(id + " " + name);
         };
         for (const auto& p : r.timing.passes) row(p.name, p.stats);
         row("frame", r.timing.frame.stats);
     }
+    for (const auto& r : runs)
+        if (clockOf(r) != clock)
+            std::printf("note: %s: clock %s (not %s)\n", configId(r.config).c_str(), clockOf(r).c_str(), clock.c_str());
+    if (!noisy.empty())
+        std::printf("note: ! marks a CV over %.0f%%: the median is uncertain (%zu rows; more --frames or a quieter machine)\n",
+                    100 * kNoisyCv, noisy.size());
     for (const auto& r : runs) {
         const auto& t = r.timing;
         const std::string id = configId(r.config);
@@ -187,8 +278,8 @@ void printTable(const std::vector<RunRecord>& runs) {
     }
     for (const auto& r : runs)
         if (!r.timing.clockNote.empty())
-            std::printf("note: %s %s: %s\n", gpu::apiName(r.config.api), r.device.deviceName.c_str(),
-                        r.timing.clockNote.c_str());
+            std::printf("note: %s: %s %s: %s\n", configId(r.config).c_str(), gpu::apiName(r.config.api),
+                        r.device.deviceName.c_str(), r.timing.clockNote.c_str());
 }
 
 }  // namespace
@@ -200,6 +291,10 @@ int runCommand(const std::vector<std::string>& argv) {
         return exitCode(parsed.error());
     }
     Sweep& s = *parsed;
+    if (!s.helpText.empty()) {
+        std::cout << s.helpText;
+        return 0;
+    }
     // An imported G-buffer is read here, before anything runs or is written;
     // without --res the run takes the capture's size.
     std::map<std::pair<int, int>, std::shared_ptr<const GBufferImages>> captures;
@@ -231,42 +326,65 @@ int runCommand(const std::vector<std::string>& argv) {
         }
         c.gbufferImages = images;
     }
-    if (auto st = checkWritableDir("--out", s.out); !st) {
-        std::cerr << "cavity run: " << st.error().message << "\n";
-        return exitCode(st.error());
-    }
     std::vector<gpu::Api> apis;
     for (const auto& b : s.backends) {
         if (b == "gl" || b == "all") apis.push_back(gpu::Api::OpenGL);
         if (b == "vk" || b == "all") apis.push_back(gpu::Api::Vulkan);
     }
-
+    // What runs, in the order it runs: every configuration on each API,
+    // those --filter selects. --list prints exactly these ids.
+    std::vector<std::pair<gpu::Api, RunConfig>> plan;
+    for (auto api : apis)
+        for (auto c : *configs) {
+            c.api = api;
+            if (s.filter && !std::regex_search(configId(c), *s.filter)) continue;
+            plan.emplace_back(api, std::move(c));
+        }
+    if (s.filter && plan.empty()) {
+        std::cerr << "cavity run: --filter " << s.filterText << ": matches none of the " << configs->size() * apis.size()
+                  << " configurations of this sweep\n";
+        return int(ErrorCode::BadInput);
+    }
+    if (s.list) {
+        for (const auto& [api, c] : plan) std::cout << configId(c) << "\n";
+        return 0;
+    }
+    if (auto st = checkWritableDir("--out", s.out); !st) {
+        std::cerr << "cavity run: " << st.error().message << "\n";
+        return exitCode(st.error());
+    }
     std::vector<RunRecord> runs;
     std::vector<RunError> errors;
     int worst = 0;
     std::string command = "cavity run";
     for (const auto& a : argv) command += " " + a;
     s.options.outDir = s.out;
+    Progress progress(plan.size(), s.quiet);
     for (auto api : apis) {
         auto backend = gpu::createBackend(api, s.backend);
         if (!backend) {
+            progress.interrupt();
             std::cerr << "cavity run: " << backend.error().message << "\n";
             errors.push_back({gpu::apiName(api), exitCode(backend.error()), backend.error().message});
             worst = std::max(worst, exitCode(backend.error()));
             continue;
         }
         auto& gpu = **backend;
+        progress.interrupt();
         std::cerr << "cavity run: " << gpu::apiName(api) << ": " << gpu.info().deviceName << " (" << gpu.info().driver
                   << ")\n";
-        for (auto c : *configs) {
-            c.api = api;
+        for (const auto& [planApi, c] : plan) {
+            if (planApi != api) continue;
+            progress.start(configId(c));
             auto r = runConfig(gpu, c, s.options);
             if (!r) {
+                progress.interrupt();
                 std::cerr << "cavity run: " << configId(c) << ": " << r.error().message << "\n";
                 errors.push_back({gpu::apiName(api), exitCode(r.error()), configId(c) + ": " + r.error().message});
                 worst = std::max(worst, exitCode(r.error()));
                 continue;
             }
+            if (!r->debugMessages.empty() || !r->nonFinite.empty()) progress.interrupt();
             for (const auto& m : r->debugMessages) std::cerr << "cavity run: " << gpu::apiName(api) << " debug: " << m << "\n";
             // Exit 1: the run finished, but a pass wrote NaN or infinity
             // (README, Exit codes); its images and results are still written.
@@ -277,6 +395,7 @@ int runCommand(const std::vector<std::string>& argv) {
             runs.push_back(std::move(*r));
         }
     }
+    progress.interrupt();
     if (!runs.empty()) printTable(runs);
     if (!runs.empty() || !errors.empty()) {
         std::error_code ec;

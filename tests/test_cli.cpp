@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
 
 namespace fs = std::filesystem;
@@ -22,8 +23,9 @@ struct Outcome {
     std::string output;   // stdout and stderr
 };
 
-Outcome cavity(const std::string& args, const std::string& env = "") {
-    const std::string cmd = env + " " + CAVITY_EXE + " " + args + " 2>&1";
+// `redirect`: how the shell sends the two streams into the pipe read here.
+Outcome cavity(const std::string& args, const std::string& env = "", const std::string& redirect = "2>&1") {
+    const std::string cmd = env + " " + CAVITY_EXE + " " + args + " " + redirect;
     Outcome o;
     FILE* p = popen(cmd.c_str(), "r");
     if (!p) return o;
@@ -156,6 +158,100 @@ TEST_F(Cli, RunWritesImagesAndResults) {
         for (const auto& p : r["passes"]) EXPECT_GT(p["stats"]["median_ms"].get<double>(), 0.0);
     }
     EXPECT_NE(o.output.find("median ms"), std::string::npos);
+}
+
+// stdout only (stderr to /dev/null), and the exit code.
+Outcome stdoutOf(const std::string& args) { return cavity(args, "", "2>/dev/null"); }
+// stderr only.
+Outcome stderrOf(const std::string& args) { return cavity(args, "", "2>&1 >/dev/null"); }
+
+TEST_F(Cli, HelpOnEveryCommandPrintsToStdoutAndExitsZero) {
+    for (const std::string c : {"--help", "run --help", "run -h", "gate --help", "gate judge --help", "gate merge --help",
+                                "baselines update --help", "compare --help", "quality --help"}) {
+        const Outcome o = stdoutOf(c);
+        EXPECT_EQ(o.code, 0) << c << "\n" << o.output;
+        EXPECT_NE(o.output.find("--"), std::string::npos) << c << "\n" << o.output;
+    }
+    // Help wins wherever it stands, even after a bad value.
+    EXPECT_EQ(stdoutOf("run --samples 0 --help").code, 0);
+    // `cavity` alone: the command list, exit 2 (README, Exit codes).
+    const Outcome bare = stdoutOf("");
+    EXPECT_EQ(bare.code, 2);
+    EXPECT_NE(bare.output.find("quality"), std::string::npos) << bare.output;
+}
+
+TEST_F(Cli, RunHelpNamesEveryKernelAndParameterWithDefaultAndRange) {
+    const Outcome o = stdoutOf("run --help");
+    ASSERT_EQ(o.code, 0);
+    for (const auto& k : cavity::kernels::all()) {
+        if (k.role != "ao" && k.role != "reference") continue;
+        EXPECT_NE(o.output.find(k.name), std::string::npos) << k.name;
+        EXPECT_NE(o.output.find(k.summary), std::string::npos) << k.name << " summary";
+        for (const auto& p : k.params) {
+            EXPECT_NE(o.output.find("--" + p.name + " "), std::string::npos) << "--" << p.name;
+            if (p.name != "scene") {
+                EXPECT_NE(o.output.find(p.help), std::string::npos) << "--" << p.name << " help";
+            }
+        }
+    }
+    EXPECT_NE(o.output.find("default 0.5"), std::string::npos);          // --radius
+    EXPECT_NE(o.output.find("integer 1..256 samples"), std::string::npos);  // --samples
+}
+
+TEST_F(Cli, UnknownFlagNamesItsNearestNeighbour) {
+    const std::vector<BadCase> cases = {
+        {"run --radiuss 1", "cavity run: --radiuss: unknown flag (did you mean --radius? see cavity run --help)"},
+        {"run --samles 8", "cavity run: --samles: unknown flag (did you mean --samples?"},
+        {"run --half", "cavity run: --half: unknown flag"},   // a switch that does not exist: not "missing value"
+        {"gate --matrx ci", "cavity gate: --matrx: unknown flag (did you mean --matrix?"},
+        {"gate merge --outt x", "cavity gate merge: --outt: unknown flag (did you mean --out?"},
+        {"compare a.json b.json --alpah 0.1", "cavity compare: --alpah: unknown flag (did you mean --alpha?"},
+        {"quality --sampls 8", "cavity quality: --sampls: unknown flag (did you mean --samples?"},
+        {"baselines update --form x", "cavity baselines update: --form: unknown flag (did you mean --from?"},
+        {"rnu", "cavity: unknown command 'rnu' (did you mean run?)"},
+    };
+    for (const auto& c : cases) {
+        const Outcome o = cavity(c.args);
+        EXPECT_EQ(o.code, 2) << c.args << "\n" << o.output;
+        EXPECT_EQ(o.output.rfind(c.message, 0), 0u) << c.args << "\n" << o.output;
+        EXPECT_EQ(std::count(o.output.begin(), o.output.end(), '\n'), 1) << c.args << "\n" << o.output;
+    }
+}
+
+TEST_F(Cli, ListPrintsExactlyWhatTheRunRuns) {
+    const std::string sweep = "run --backend vk --samples 4,8 --radius 0.5,1 --res 32x18 --frames 1 --warmup 0 "
+                              "--out " + dir.string();
+    const Outcome list = stdoutOf(sweep + " --filter '/n(4|8)/' --list");
+    ASSERT_EQ(list.code, 0) << list.output;
+    EXPECT_FALSE(fs::exists(dir));
+    std::vector<std::string> listed;
+    std::istringstream lines(list.output);
+    for (std::string l; std::getline(lines, l);) listed.push_back(l);
+    ASSERT_EQ(listed.size(), 4u) << list.output;
+    const Outcome run = cavity(sweep + " --filter '/n(4|8)/' --quiet");
+    ASSERT_EQ(run.code, 0) << run.output;
+    std::ifstream f(dir / "results.json");
+    const auto doc = nlohmann::json::parse(f);
+    std::vector<std::string> ran;
+    for (const auto& r : doc["runs"]) ran.push_back(r["id"]);
+    EXPECT_EQ(ran, listed);
+    // --filter narrows it, with the id syntax of the gate.
+    const Outcome one = stdoutOf(sweep + " --list --filter '^corner/alchemy/n8/b4/radius=1/'");
+    EXPECT_EQ(one.output, "corner/alchemy/n8/b4/radius=1/full/32x18/vk/compute\n");
+    EXPECT_EQ(cavity(sweep + " --list --filter nomatch").code, 2);
+}
+
+TEST_F(Cli, ProgressLinesAppearInAPipe) {
+    const std::string sweep = "run --backend vk --samples 4,8 --res 32x18 --frames 1 --warmup 0 --out " + dir.string();
+    const Outcome o = stderrOf(sweep);
+    ASSERT_EQ(o.code, 0) << o.output;
+    EXPECT_NE(o.output.find("[1/2] corner/alchemy/n4/b4/full/32x18/vk/compute  elapsed "), std::string::npos) << o.output;
+    EXPECT_NE(o.output.find("[2/2] corner/alchemy/n8/b4/full/32x18/vk/compute  elapsed "), std::string::npos) << o.output;
+    EXPECT_NE(o.output.find("ETA"), std::string::npos) << o.output;
+    EXPECT_EQ(o.output.find('\r'), std::string::npos) << "a pipe gets plain lines";
+    fs::remove_all(dir);
+    const Outcome quiet = stderrOf(sweep + " --quiet");
+    EXPECT_EQ(quiet.output.find("[1/2]"), std::string::npos) << quiet.output;
 }
 
 }  // namespace

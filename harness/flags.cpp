@@ -1,0 +1,145 @@
+// CLI11 declares the options, formats --help and does the parse; a pass over
+// the words before it holds the project's error contract (flags.h), which
+// CLI11 alone words differently ("1 required TEXT missing") or lacks (a flag
+// given twice, an empty value, the nearest known flag).
+#include "flags.h"
+
+#include <CLI/CLI.hpp>
+
+#include <algorithm>
+#include <memory>
+
+namespace cavity::cli {
+
+namespace {
+
+size_t editDistance(const std::string& a, const std::string& b) {
+    std::vector<size_t> row(b.size() + 1);
+    for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
+    for (size_t i = 1; i <= a.size(); ++i) {
+        size_t diag = row[0];
+        row[0] = i;
+        for (size_t j = 1; j <= b.size(); ++j) {
+            const size_t up = row[j];
+            row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] == b[j - 1] ? 0 : 1)});
+            diag = up;
+        }
+    }
+    return row[b.size()];
+}
+
+const FlagSpec* findFlag(const CommandSpec& spec, const std::string& name) {
+    for (const auto& f : spec.flags)
+        if (f.name == name) return &f;
+    return nullptr;
+}
+
+// The declaration as a CLI11 app writing into `values` (one vector per
+// value flag) and `positionals`.
+std::unique_ptr<CLI::App> makeApp(const CommandSpec& spec, std::map<std::string, std::vector<std::string>>& values,
+                                  std::vector<std::string>& positionals) {
+    auto app = std::make_unique<CLI::App>(spec.description, spec.program);
+    app->set_help_flag("-h,--help", "print this help on stdout and exit 0");
+    app->footer(spec.footer);
+    app->get_formatter()->column_width(34);
+    for (const auto& f : spec.flags) {
+        if (f.valueName.empty()) {
+            app->add_flag(f.name, f.help)->group(f.group);
+            continue;
+        }
+        app->add_option(f.name, values[f.name], f.help)
+            ->type_name(f.valueName)
+            ->allow_extra_args(false)
+            ->group(f.group);
+    }
+    if (!spec.positional.empty()) app->add_option(spec.positional, positionals, spec.positionalHelp);
+    return app;
+}
+
+}  // namespace
+
+std::string nearest(const std::string& word, const std::vector<std::string>& candidates) {
+    std::string best;
+    size_t bestDistance = std::string::npos;
+    for (const auto& c : candidates) {
+        const size_t d = editDistance(word, c);
+        if (d < bestDistance) bestDistance = d, best = c;
+    }
+    // Close enough to be a typo: at most a third of the word, and at least 2.
+    return bestDistance <= std::max<size_t>(2, word.size() / 3) ? best : "";
+}
+
+std::string helpText(const CommandSpec& spec) {
+    std::map<std::string, std::vector<std::string>> values;
+    std::vector<std::string> positionals;
+    return makeApp(spec, values, positionals)->help();
+}
+
+Result<ParsedFlags> parseFlags(const CommandSpec& spec, const std::vector<std::string>& argv) {
+    ParsedFlags out;
+    std::vector<std::string> words;   // what CLI11 parses: every value as --flag=VALUE
+    std::map<std::string, int> count;
+    std::vector<std::string> known;
+    for (const auto& f : spec.flags) known.push_back(f.name);
+    for (size_t i = 0; i < argv.size(); ++i) {
+        const std::string& w = argv[i];
+        if (w == "--help" || w == "-h") {
+            out.help = true;
+            out.helpText = helpText(spec);
+            return out;
+        }
+        const bool isFlag = w.size() > 2 && w.rfind("--", 0) == 0;
+        if (!isFlag) {
+            if (spec.positional.empty() || (w.size() > 1 && w[0] == '-'))
+                return badInput("'" + w + "': unexpected argument (flags start with --; see " + spec.program + " --help)");
+            out.positionals.push_back(w);
+            continue;
+        }
+        const auto eq = w.find('=');
+        const std::string name = w.substr(0, eq);
+        const FlagSpec* f = findFlag(spec, name);
+        if (!f) {
+            const std::string near = nearest(name, known);
+            return badInput(name + ": unknown flag (" + (near.empty() ? "" : "did you mean " + near + "? ") + "see " +
+                            spec.program + " --help)");
+        }
+        if (++count[name] > 1 && !f->repeatable)
+            return badInput(name + ": given twice (give one value, or one comma-separated list where the flag takes a list)");
+        if (f->valueName.empty()) {
+            if (eq != std::string::npos) return badInput(w + ": " + name + " takes no value");
+            out.switches.insert(name);
+            words.push_back(name);
+            continue;
+        }
+        std::string value;
+        if (eq != std::string::npos) {
+            value = w.substr(eq + 1);
+        } else {
+            if (i + 1 >= argv.size() || (argv[i + 1].size() > 2 && argv[i + 1].rfind("--", 0) == 0))
+                return badInput(name + ": missing value (" + name + " " + f->valueName + ")");
+            value = argv[++i];
+        }
+        if (value.empty()) return badInput(name + " '': empty value (" + name + " " + f->valueName + ")");
+        words.push_back(name + "=" + value);
+    }
+    std::map<std::string, std::vector<std::string>> values;
+    std::vector<std::string> positionals;
+    auto app = makeApp(spec, values, positionals);
+    std::vector<std::string> reversed(words.rbegin(), words.rend());   // CLI11 takes argv reversed
+    try {
+        app->parse(reversed);
+    } catch (const CLI::ParseError& e) {
+        return badInput(spec.program + ": " + e.what());
+    }
+    // Back in command-line order, as the commands read them.
+    std::map<std::string, size_t> next;
+    for (const auto& w : words) {
+        const auto eq = w.find('=');
+        if (eq == std::string::npos) continue;
+        const std::string name = w.substr(0, eq);
+        out.values.emplace_back(name, values[name][next[name]++]);
+    }
+    return out;
+}
+
+}  // namespace cavity::cli

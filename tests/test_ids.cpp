@@ -1,0 +1,179 @@
+// Configuration ids (harness/config.cpp configId): distinct configurations
+// never share one, ids at the defaults read as they always did (baseline
+// paths depend on it), and every kernel parameter sweeps in cavity run.
+#include "config.h"
+#include "matrix.h"
+#include "pipeline.h"
+#include "sweep.h"
+
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <set>
+
+namespace fs = std::filesystem;
+using namespace cavity;
+
+namespace {
+
+// What a configuration runs, independent of its id: every pass's kernel with
+// the values it would read, and the fields that are not parameters.
+std::string contentKey(const RunConfig& c) {
+    std::string key = c.kernel + "|" + c.gbufferSource() + "|" + c.gbufferFile + "|" + std::to_string(c.width) + "x" +
+                      std::to_string(c.height) + "|" + (c.half ? "half" : "full") + "|" + gpu::apiName(c.api) + "|" +
+                      std::to_string(int(c.stage));
+    std::set<std::string> read;
+    for (const auto& spec : buildPasses(c)) {
+        const auto* k = kernels::find(spec.kernel);
+        key += "|" + spec.name + ":" + spec.kernel;
+        if (!k) continue;
+        for (const auto& [name, v] : kernels::withDefaults(*k, c.params)) {
+            key += "," + name + "=" + std::to_string(v);
+            read.insert(name);
+        }
+    }
+    // A parameter no pass reads is still part of what was asked.
+    for (const auto& [name, v] : c.params)
+        if (!read.count(name)) key += ";" + name + "=" + std::to_string(v);
+    return key;
+}
+
+// Every pair of configurations: same id exactly when the same content.
+void expectIdsMatchContent(const std::vector<RunConfig>& configs) {
+    std::map<std::string, std::string> keyOfId, idOfKey;
+    for (const auto& c : configs) {
+        const std::string id = configId(c), key = contentKey(c);
+        auto [it, fresh] = keyOfId.emplace(id, key);
+        EXPECT_TRUE(fresh || it->second == key) << id << " names two configurations";
+        auto [jt, fresh2] = idOfKey.emplace(key, id);
+        EXPECT_TRUE(fresh2 || jt->second == id) << "one configuration has ids " << jt->second << " and " << id;
+    }
+}
+
+RunConfig with(std::initializer_list<std::pair<const char*, const char*>> params, const std::string& kernel = "alchemy") {
+    RunConfig c;
+    c.kernel = kernel;
+    for (const auto& [n, v] : params) EXPECT_TRUE(setParam(c, n, v).ok()) << n << " " << v;
+    return c;
+}
+
+}  // namespace
+
+TEST(ConfigId, DefaultsKeepTheirShortId) {
+    EXPECT_EQ(configId(with({})), "corner/alchemy/n16/b4/full/320x180/vk/compute");
+    // Given at its default, a parameter changes nothing and says nothing.
+    EXPECT_EQ(configId(with({{"radius", "0.5"}, {"bias", "0.01"}})), "corner/alchemy/n16/b4/full/320x180/vk/compute");
+}
+
+TEST(ConfigId, NamesEveryParameterThatDiffersFromItsDefault) {
+    EXPECT_EQ(configId(with({{"radius", "0.3"}})), "corner/alchemy/n16/b4/radius=0.3/full/320x180/vk/compute");
+    EXPECT_EQ(configId(with({{"radius", "0.3"}, {"bias", "0.02"}})),
+              "corner/alchemy/n16/b4/bias=0.02/radius=0.3/full/320x180/vk/compute");
+    EXPECT_NE(configId(with({{"radius", "0.3"}})), configId(with({{"radius", "1"}})));
+    // Every declared numeric parameter of every AO kernel, moved off its default, changes the id.
+    for (const auto& k : kernels::all()) {
+        if (k.role != "ao" && k.role != "reference") continue;
+        RunConfig base;
+        base.kernel = k.name;
+        for (const auto& p : k.params) {
+            if (p.type == kernels::ParamType::Enum) continue;
+            RunConfig c = base;
+            c.params[p.name] = p.def == p.max ? p.min + (p.minExclusive ? (p.max - p.min) / 2 : 0) : p.max;
+            EXPECT_NE(configId(c), configId(base)) << k.name << " --" << p.name;
+        }
+    }
+}
+
+TEST(ConfigId, GroundTruthNamesItsRays) {
+    RunConfig c = with({}, "ground_truth");
+    EXPECT_EQ(configId(c), "corner/ground_truth/rays1024/b4/full/320x180/vk/compute");
+    ASSERT_TRUE(setParam(c, "rays", "2048").ok());
+    EXPECT_EQ(configId(c), "corner/ground_truth/rays2048/b4/full/320x180/vk/compute");
+}
+
+TEST(ConfigId, DistinctInEveryMatrix) {
+    std::ifstream in(std::string(CAVITY_SOURCE_DIR) + "/baselines/matrices.json");
+    const auto doc = nlohmann::json::parse(in);
+    for (const auto& [name, _] : doc.items()) {
+        auto m = gate::loadMatrix(std::string(CAVITY_SOURCE_DIR) + "/baselines/matrices.json", name);
+        ASSERT_TRUE(m) << m.error().message;
+        // The product before expand()'s de-duplication by id.
+        std::vector<RunConfig> raw;
+        for (const auto& g : m->groups) {
+            auto ks = g.kernels;
+            if (ks.size() == 1 && ks[0] == "all") ks = aoKernels();
+            for (const auto& scene : g.scenes)
+                for (const auto& k : ks)
+                    for (int n : g.samples)
+                        for (int b : g.blurs)
+                            for (bool half : g.half)
+                                for (auto [w, h] : g.sizes)
+                                    for (auto api : g.apis)
+                                        for (auto stage : g.stages) {
+                                            if (half && !supportsHalf(k)) continue;
+                                            RunConfig c = with({{"scene", scene.c_str()}}, k);
+                                            c.params["samples"] = n;
+                                            c.params["blur"] = b;
+                                            c.half = half;
+                                            c.width = w, c.height = h, c.api = api, c.stage = stage;
+                                            raw.push_back(c);
+                                        }
+        }
+        SCOPED_TRACE("matrix " + name);
+        expectIdsMatchContent(raw);
+        // The same matrix with every configuration at a second radius too.
+        auto twice = raw;
+        for (auto c : raw) {
+            c.params["radius"] = 0.37;   // no kernel's default
+            twice.push_back(c);
+        }
+        expectIdsMatchContent(twice);
+        std::set<std::string> ids;
+        for (const auto& c : twice) ids.insert(configId(c));
+        EXPECT_EQ(ids.size(), m->expand().size() * 2);
+    }
+}
+
+TEST(ConfigId, DistinctInTheBenchmarkSweep) {
+    for (const auto& axes : {gpuSweep(), cpuSweep()})
+        expectIdsMatchContent(benchmarkSweep(axes, {gpu::Api::OpenGL, gpu::Api::Vulkan}));
+}
+
+namespace {
+
+std::string shell(const std::string& cmd, int* code) {
+    std::string out;
+    FILE* p = popen((cmd + " 2>&1").c_str(), "r");
+    if (!p) return out;
+    std::array<char, 4096> buf;
+    size_t n;
+    while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) out.append(buf.data(), n);
+    const int st = pclose(p);
+    *code = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+    return out;
+}
+
+}  // namespace
+
+TEST(RunSweep, EveryKernelParameterSweeps) {
+    const fs::path dir = fs::temp_directory_path() / ("cavity-ids-" + std::to_string(::getpid()));
+    fs::remove_all(dir);
+    int code = -1;
+    const std::string out = shell(std::string(CAVITY_EXE) + " run --backend vk --res 32x18 --frames 1 --warmup 0"
+                                  " --radius 0.5,1.0 --out " + dir.string(), &code);
+    ASSERT_EQ(code, 0) << out;
+    EXPECT_TRUE(fs::is_directory(dir / "corner/alchemy/n16/b4/full/32x18/vk/compute")) << out;
+    EXPECT_TRUE(fs::is_directory(dir / "corner/alchemy/n16/b4/radius=1/full/32x18/vk/compute")) << out;
+    std::ifstream in(dir / "results.json");
+    const auto doc = nlohmann::json::parse(in);
+    std::set<std::string> ids;
+    for (const auto& r : doc["runs"]) ids.insert(r["id"].get<std::string>());
+    EXPECT_EQ(ids.size(), 2u);
+    fs::remove_all(dir);
+}
