@@ -75,6 +75,10 @@ struct Bind {
     Image image;                // SampledImage, StorageImage
     Buffer buffer;              // UniformBuffer, StorageBuffer
     SamplerState sampler;       // SampledImage
+    // StorageImage: the one level imageStore / imageLoad address. A
+    // SampledImage binding samples every level, so a pass may texelFetch
+    // level k-1 of an image while it writes level k (a depth pyramid).
+    int mipLevel = 0;
 };
 
 // A shader handed to a backend: one fully expanded GLSL 4.50 translation

@@ -102,6 +102,88 @@ TEST_P(Backend, FragmentRowZeroIsFirstRowAndMrtWritesBoth) {
     gpu().destroy(*b);
 }
 
+// Each level holds 100 / its width, so a store to the wrong level shows.
+gpu::ComputePipelineDesc levelMarker() {
+    gpu::ComputePipelineDesc d;
+    d.shader = compute(
+        "layout(binding = 0, r32f) uniform writeonly image2D o;\n"
+        "void main() { ivec2 p = ivec2(gl_GlobalInvocationID.xy);\n"
+        "  if (all(lessThan(p, imageSize(o)))) imageStore(o, p, vec4(100.0 / float(imageSize(o).x))); }\n");
+    d.layout = {{0, gpu::BindingKind::StorageImage, gpu::Format::R32F}};
+    return d;
+}
+
+TEST_P(Backend, StorageImageWritesTheBoundMipLevel) {
+    auto img = gpu().createImage({8, 8, gpu::Format::R32F, 3, "levels"});
+    ASSERT_TRUE(img) << img.error().message;
+    ASSERT_TRUE(gpu().uploadImage(*img, 0, std::vector<float>(64, 7.0f)).ok());
+    auto pipe = gpu().createComputePipeline(levelMarker());
+    ASSERT_TRUE(pipe) << pipe.error().message;
+    gpu::Bind level1{0, *img, {}, {}, 1}, level2{0, *img, {}, {}, 2};
+    gpu().beginFrame();
+    gpu().dispatch(*pipe, std::span(&level1, 1), 1, 1);
+    gpu().dispatch(*pipe, std::span(&level2, 1), 1, 1);
+    ASSERT_TRUE(gpu().endFrame().ok());
+    const float expect[3] = {7.0f, 25.0f, 50.0f};   // level 0 as uploaded; 100/4, 100/2
+    for (int l = 0; l < 3; ++l) {
+        auto px = gpu().readImage(*img, l);
+        ASSERT_TRUE(px) << px.error().message;
+        ASSERT_EQ(px->size(), size_t(64 >> (2 * l)));
+        for (float v : *px) ASSERT_EQ(v, expect[l]) << "level " << l;
+    }
+
+    gpu::Bind level3{0, *img, {}, {}, 3};
+    gpu().beginFrame();
+    gpu().dispatch(*pipe, std::span(&level3, 1), 1, 1);
+    const Status s = gpu().endFrame();
+    ASSERT_FALSE(s.ok());
+    EXPECT_NE(s.error().message.find("no mip level 3 (it has 3)"), std::string::npos) << s.error().message;
+    gpu().destroy(*pipe);
+    gpu().destroy(*img);
+}
+
+// How a depth pyramid is built: each pass texelFetches level k-1 of the image
+// through a sampled binding (every level) and stores level k of the same image.
+TEST_P(Backend, PassReadsLevelBelowWhileWritingNextLevelOfOneImage) {
+    auto img = gpu().createImage({8, 8, gpu::Format::R32F, 3, "pyramid"});
+    ASSERT_TRUE(img) << img.error().message;
+    std::vector<float> base(64);
+    for (int i = 0; i < 64; ++i) base[size_t(i)] = float(i);   // x + 8y
+    ASSERT_TRUE(gpu().uploadImage(*img, 0, base).ok());
+    gpu::ComputePipelineDesc d;
+    d.shader = compute(
+        "layout(binding = 0) uniform sampler2D src;\n"
+        "layout(binding = 1, r32f) uniform writeonly image2D dst;\n"
+        "void main() { ivec2 p = ivec2(gl_GlobalInvocationID.xy);\n"
+        "  if (any(greaterThanEqual(p, imageSize(dst)))) return;\n"
+        "  int lod = findMSB(textureSize(src, 0).x / imageSize(dst).x) - 1;\n"
+        "  float m = 0.0;\n"
+        "  for (int i = 0; i < 4; ++i) m = max(m, texelFetch(src, 2 * p + ivec2(i & 1, i >> 1), lod).r);\n"
+        "  imageStore(dst, p, vec4(m)); }\n");
+    d.layout = {{0, gpu::BindingKind::SampledImage, {}}, {1, gpu::BindingKind::StorageImage, gpu::Format::R32F}};
+    auto pipe = gpu().createComputePipeline(d);
+    ASSERT_TRUE(pipe) << pipe.error().message;
+    const gpu::Bind to1[2] = {{0, *img, {}, {}}, {1, *img, {}, {}, 1}};
+    const gpu::Bind to2[2] = {{0, *img, {}, {}}, {1, *img, {}, {}, 2}};
+    gpu().beginFrame();
+    gpu().dispatch(*pipe, to1, 1, 1);
+    gpu().barrier();
+    gpu().dispatch(*pipe, to2, 1, 1);
+    ASSERT_TRUE(gpu().endFrame().ok());
+    auto l1 = gpu().readImage(*img, 1);
+    auto l2 = gpu().readImage(*img, 2);
+    ASSERT_TRUE(l1 && l2);
+    for (int y = 0; y < 4; ++y)
+        for (int x = 0; x < 4; ++x) ASSERT_EQ((*l1)[size_t(y * 4 + x)], float(2 * x + 1 + 8 * (2 * y + 1))) << x << "," << y;
+    for (int y = 0; y < 2; ++y)
+        for (int x = 0; x < 2; ++x) ASSERT_EQ((*l2)[size_t(y * 2 + x)], float(4 * x + 3 + 8 * (4 * y + 3))) << x << "," << y;
+    auto l0 = gpu().readImage(*img, 0);
+    ASSERT_TRUE(l0);
+    EXPECT_EQ(*l0, base);
+    gpu().destroy(*pipe);
+    gpu().destroy(*img);
+}
+
 TEST_P(Backend, TimestampScopesComeBackInOrderWithPositiveTimes) {
     auto out = gpu().createImage({256, 256, gpu::Format::R32F, 1, "spin"});
     ASSERT_TRUE(out);

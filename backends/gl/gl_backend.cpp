@@ -430,7 +430,10 @@ Status GlBackend::bindResources(const PipelineRecord& pipe, std::span<const Bind
             CAVITY_ASSIGN(const ImageRecord* img, image(bind->image, at));
             if (img->desc.format != slot.format)
                 return internal("gl: " + at + ": the layout says " + formatName(slot.format) + ", image is " + describe(*img));
-            glBindImageTexture(slot.binding, img->texture, 0, GL_FALSE, 0, GL_READ_WRITE,
+            if (bind->mipLevel < 0 || bind->mipLevel >= img->levels)
+                return internal("gl: " + at + ": " + describe(*img) + " has no mip level " +
+                                std::to_string(bind->mipLevel) + " (it has " + std::to_string(img->levels) + ")");
+            glBindImageTexture(slot.binding, img->texture, bind->mipLevel, GL_FALSE, 0, GL_READ_WRITE,
                                glFormat(slot.format).internalFormat);
             break;
         }

@@ -91,7 +91,10 @@ Status VulkanBackend::bindResources(const PipelineRes& pipe, std::span<const Bin
             if (img->desc.format != s.format)
                 return internal(slot() + ": " + img->describe() + " is bound where the layout declares " +
                                 formatName(s.format));
-            imageInfos[i] = {VK_NULL_HANDLE, img->levelView, VK_IMAGE_LAYOUT_GENERAL};
+            if (b->mipLevel < 0 || b->mipLevel >= img->levels)
+                return internal(slot() + ": " + img->describe() + " has no mip level " + std::to_string(b->mipLevel) +
+                                " (it has " + std::to_string(img->levels) + ")");
+            imageInfos[i] = {VK_NULL_HANDLE, img->levelViews[size_t(b->mipLevel)], VK_IMAGE_LAYOUT_GENERAL};
         }
         writes[i].pImageInfo = &imageInfos[i];
     }
@@ -159,7 +162,7 @@ Status VulkanBackend::recordDraw(const PipelineRes& pipe, std::span<const Bind> 
         if (img->desc.format != pipe.colorFormats[i])
             return internal(who + ": color target " + std::to_string(i) + " is " + img->describe() +
                             ", the pipeline writes " + formatName(pipe.colorFormats[i]));
-        colors[i].imageView = img->levelView;
+        colors[i].imageView = img->levelViews[0];
         colors[i].imageLayout = VK_IMAGE_LAYOUT_GENERAL;
         colors[i].loadOp = t.clear ? VK_ATTACHMENT_LOAD_OP_CLEAR : VK_ATTACHMENT_LOAD_OP_LOAD;
         colors[i].storeOp = VK_ATTACHMENT_STORE_OP_STORE;
@@ -172,7 +175,7 @@ Status VulkanBackend::recordDraw(const PipelineRes& pipe, std::span<const Bind> 
         if (!t.depth) return internal(who + ": the pipeline tests depth but no depth target was given");
         CAVITY_ASSIGN(const ImageRes* img,
                       target(t.depth, "depth target", VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT));
-        depth.imageView = img->levelView;
+        depth.imageView = img->levelViews[0];
         depth.imageLayout = VK_IMAGE_LAYOUT_GENERAL;
         depth.loadOp = t.clear ? VK_ATTACHMENT_LOAD_OP_CLEAR : VK_ATTACHMENT_LOAD_OP_LOAD;
         depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;

@@ -66,14 +66,15 @@ Result<BufferRes> hostBuffer(Device& d, size_t size, VkBufferUsageFlags usage, V
     return b;
 }
 
-Status createView(Device& d, const ImageRes& img, int levels, VkImageView& out) {
+Status createView(Device& d, const ImageRes& img, int first, int levels, VkImageView& out) {
     auto ci = vkStruct<VkImageViewCreateInfo>(VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO);
     ci.image = img.image;
     ci.viewType = VK_IMAGE_VIEW_TYPE_2D;
     ci.format = toVkFormat(img.desc.format);
-    ci.subresourceRange = {aspectOf(img.desc.format), 0, uint32_t(levels), 0, 1};
+    ci.subresourceRange = {aspectOf(img.desc.format), uint32_t(first), uint32_t(levels), 0, 1};
     CAVITY_VK(vkCreateImageView(d.device, &ci, nullptr, &out),
-              "vkCreateImageView " + img.describe() + " levels 0.." + std::to_string(levels - 1));
+              "vkCreateImageView " + img.describe() + " levels " + std::to_string(first) + ".." +
+                  std::to_string(first + levels - 1));
     return {};
 }
 
@@ -117,9 +118,14 @@ Status initImage(Device& d, ImageRes& img) {
     vkGetImageMemoryRequirements(d.device, img.image, &req);
     CAVITY_TRY(allocate(d, req, 0, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, img.memory, img.describe()));
     CAVITY_VK(vkBindImageMemory(d.device, img.image, img.memory, 0), "vkBindImageMemory " + img.describe());
-    CAVITY_TRY(createView(d, img, img.levels, img.view));
-    if (img.levels == 1) img.levelView = img.view;
-    else CAVITY_TRY(createView(d, img, 1, img.levelView));
+    CAVITY_TRY(createView(d, img, 0, img.levels, img.view));
+    if (img.levels == 1) {
+        img.levelViews = {img.view};
+    } else {
+        // A storage descriptor names exactly one level; one view per level.
+        img.levelViews.assign(size_t(img.levels), VK_NULL_HANDLE);
+        for (int l = 0; l < img.levels; ++l) CAVITY_TRY(createView(d, img, l, 1, img.levelViews[size_t(l)]));
+    }
 
     // The image's one and only layout change.
     return d.submitOnce("creating " + img.describe(), [&](VkCommandBuffer cmd) {
@@ -193,7 +199,8 @@ Result<ImageRes> createImage(Device& d, const ImageDesc& desc) {
 }
 
 void destroyImage(Device& d, ImageRes& img) {
-    if (img.levelView && img.levelView != img.view) vkDestroyImageView(d.device, img.levelView, nullptr);
+    for (VkImageView v : img.levelViews)
+        if (v && v != img.view) vkDestroyImageView(d.device, v, nullptr);
     if (img.view) vkDestroyImageView(d.device, img.view, nullptr);
     if (img.image) vkDestroyImage(d.device, img.image, nullptr);
     if (img.memory) vkFreeMemory(d.device, img.memory, nullptr);

@@ -21,7 +21,9 @@ struct ImageRes {
     VkImage image = VK_NULL_HANDLE;
     VkDeviceMemory memory = VK_NULL_HANDLE;
     VkImageView view = VK_NULL_HANDLE;        // every level, for sampling
-    VkImageView levelView = VK_NULL_HANDLE;   // level 0, for storage and attachments (== view with one level)
+    // levelViews[k]: level k alone, for storage writes to that level and (k = 0)
+    // attachments. With one level, levelViews[0] == view.
+    std::vector<VkImageView> levelViews;
 
     int width(int level = 0) const { return std::max(1, desc.width >> level); }
     int height(int level = 0) const { return std::max(1, desc.height >> level); }
