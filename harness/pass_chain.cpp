@@ -2,11 +2,19 @@
 #include "meshes.h"
 #include "pipeline.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace cavity {
 
 struct PassChain::Pass {
+    // A dispatch after the first of a pass that writes a mip chain
+    // (kernels::OutputDecl::mipLevels): its level's frame and bindings.
+    struct Level {
+        gpu::Buffer frameUbo;
+        std::vector<gpu::Bind> binds;
+        int width = 0, height = 0;
+    };
     const kernels::KernelDecl* kernel = nullptr;
     gpu::Stage stage = gpu::Stage::Compute;
     gpu::Pipeline pipeline;
@@ -17,6 +25,7 @@ struct PassChain::Pass {
     gpu::Image depth;                    // raster
     int vertexCount = 3;
     int width = 0, height = 0;
+    std::vector<Level> levels;           // levels 1.. of a mip-chain pass
 };
 
 // The rasterised G-buffer: a graphics pass over the scene mesh with a depth
@@ -103,13 +112,14 @@ Result<std::unique_ptr<PassChain>> PassChain::create(gpu::Backend& gpu, const Ru
         const auto& k = *pass->kernel;
         if (k.inputs.size() != spec.inputs.size() || k.outputs.size() != spec.outputs.size())
             return internal("pass '" + spec.name + "' wires the wrong number of images for kernel " + k.name);
-        pass->stage = c.stage;
+        const int mipLevels = k.outputs.empty() ? 1 : k.outputs[0].mipLevels;
+        pass->stage = mipLevels > 1 ? gpu::Stage::Compute : c.stage;
         pass->width = spec.half ? halfW : c.width;
         pass->height = spec.half ? halfH : c.height;
 
         // Outputs are created by the pass that writes them.
         for (size_t o = 0; o < spec.outputs.size(); ++o) {
-            gpu::ImageDesc d{pass->width, pass->height, k.outputs[o].format, 1, spec.outputs[o]};
+            gpu::ImageDesc d{pass->width, pass->height, k.outputs[o].format, k.outputs[o].mipLevels, spec.outputs[o]};
             CAVITY_ASSIGN(gpu::Image img, gpu.createImage(d));
             chain->images_[spec.outputs[o]] = {img, d.width, d.height, d.format};
         }
@@ -133,13 +143,29 @@ Result<std::unique_ptr<PassChain>> PassChain::create(gpu::Backend& gpu, const Ru
             pass->binds.push_back({b++, it->second.image, {}, k.inputs[i].sampler});
         }
         const auto planted = plant.find(spec.name);
-        CAVITY_ASSIGN(auto body, kernels::assemble(k, c.stage, overrides, &c.params,
+        CAVITY_ASSIGN(auto body, kernels::assemble(k, pass->stage, overrides, &c.params,
                                                    planted == plant.end() ? 0 : planted->second));
-        const auto layout = kernels::bindingLayout(k, c.stage);
-        if (c.stage == gpu::Stage::Compute) {
+        const auto layout = kernels::bindingLayout(k, pass->stage);
+        if (pass->stage == gpu::Stage::Compute) {
             for (const auto& out : spec.outputs) pass->binds.push_back({b++, chain->images_[out].image, {}, {}});
             gpu::ComputePipelineDesc d{std::move(body), layout, 8, 8, spec.name};
             CAVITY_ASSIGN(pass->pipeline, gpu.createComputePipeline(d));
+            // Levels 1..: the same pipeline, each with its level's size in
+            // the frame block and its first output bound at that level.
+            for (int l = 1; l < mipLevels; ++l) {
+                Pass::Level level;
+                level.width = std::max(1, pass->width >> l);
+                level.height = std::max(1, pass->height >> l);
+                auto lf = frameUniforms(level.width, level.height, c.width, c.height);
+                lf.level = l;
+                CAVITY_ASSIGN(level.frameUbo, gpu.createBuffer({sizeof(lf), gpu::BufferUsage::Uniform,
+                                                                spec.name + ".frame" + std::to_string(l)}));
+                CAVITY_TRY(gpu.updateBuffer(level.frameUbo, std::as_bytes(std::span(&lf, 1))));
+                level.binds = pass->binds;
+                level.binds[0].buffer = level.frameUbo;
+                level.binds[level.binds.size() - spec.outputs.size()].mipLevel = l;
+                pass->levels.push_back(std::move(level));
+            }
         } else {
             gpu::GraphicsPipelineDesc d;
             d.vertex = kernels::fullscreenVertex();
@@ -178,6 +204,7 @@ PassChain::~PassChain() {
         if (p->paramsUbo) gpu_.destroy(p->paramsUbo);
         if (p->mesh) gpu_.destroy(p->mesh);
         if (p->depth) gpu_.destroy(p->depth);
+        for (auto& l : p->levels) gpu_.destroy(l.frameUbo);
     }
     for (auto& [name, t] : images_) gpu_.destroy(t.image);
 }
@@ -185,9 +212,14 @@ PassChain::~PassChain() {
 void PassChain::recordPass(size_t i) {
     auto& p = *passes_[i];
     gpu_.beginScope(specs_[i].name);
-    if (p.stage == gpu::Stage::Compute)
+    if (p.stage == gpu::Stage::Compute) {
         gpu_.dispatch(p.pipeline, p.binds, (p.width + 7) / 8, (p.height + 7) / 8);
-    else
+        // A mip chain's level l reads level l - 1: one scope, a barrier apart.
+        for (const auto& l : p.levels) {
+            gpu_.barrier();
+            gpu_.dispatch(p.pipeline, l.binds, (l.width + 7) / 8, (l.height + 7) / 8);
+        }
+    } else
         gpu_.draw(p.pipeline, p.binds, p.targets, p.vertexCount);
     gpu_.endScope();
 }
@@ -201,12 +233,12 @@ void PassChain::record() {
     }
 }
 
-Result<HostImage> PassChain::read(const std::string& image) const {
+Result<HostImage> PassChain::read(const std::string& image, int level) const {
     auto it = images_.find(image);
     if (it == images_.end()) return internal("no image '" + image + "' in this pipeline");
     const auto& t = it->second;
-    CAVITY_ASSIGN(auto px, gpu_.readImage(t.image));
-    HostImage img(t.width, t.height, gpu::channelCount(t.format));
+    CAVITY_ASSIGN(auto px, gpu_.readImage(t.image, level));
+    HostImage img(std::max(1, t.width >> level), std::max(1, t.height >> level), gpu::channelCount(t.format));
     if (px.size() != img.pixels.size()) return internal("readback of '" + image + "' returned the wrong size");
     img.pixels = std::move(px);
     return img;

@@ -68,7 +68,8 @@ public:
     size_t passCount() const { return passes_.size(); }
     const std::vector<PassSpec>& passes() const { return specs_; }
 
-    Result<HostImage> read(const std::string& image) const;
+    // An image's pixels; `level` > 0 for a level of a mip-chain output.
+    Result<HostImage> read(const std::string& image, int level = 0) const;
     // Every image a pass of this chain wrote in a float format (positions,
     // normals, depth, raw and blurred AO, radiance...), read back and
     // scanned: one finding per image that holds a NaN or an infinity. An

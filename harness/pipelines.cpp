@@ -60,11 +60,31 @@ std::vector<PassSpec> buildPasses(const RunConfig& c) {
         if (i.name == "position") in.push_back(position);
         else if (i.name == "normal") in.push_back(normal);
         else if (i.name == "depth") in.push_back("depth" + suffix);
+        else if (i.name == "zmip") in.push_back("zmip" + suffix);
         else if (isConstant(i.name)) in.push_back("const:" + i.name);
         else in.push_back(i.name);
     }
-    for (const auto& i : k->inputs)
+    for (const auto& i : k->inputs) {
         if (i.name == "depth") p.push_back({"depth", "depth_from_position", {position}, {"depth" + suffix}, half});
+        // The linear-depth pyramid of the fast kernels, all its levels in one pass.
+        if (i.name == "zmip")
+            p.push_back({"pyramid", "depth_pyramid", {position, "zmip" + suffix}, {"zmip" + suffix}, half});
+    }
+    // A kernel that packs AO with its depth key ("ao_key") is blurred by the
+    // separable pair, which reads only that; the others by the 2-D bilateral.
+    const bool packed = k->outputs.size() == 2 && k->outputs[1].name == "ao_key";
+    if (packed) {
+        p.push_back({"ao", k->name, in, {"ao", "ao_key"}, half});
+        p.push_back({"blur_x", "blur_separable_x", {"ao_key"}, {"ao_key_x"}, half});
+        if (half) {
+            p.push_back({"blur_y", "blur_separable_y", {"ao_key_x"}, {"ao_half_blur"}, true});
+            p.push_back({"upsample", "upsample_bilateral", {"ao_half_blur", position, "position", "normal", normal}, {"ao_blur"}, false});
+        } else {
+            p.push_back({"blur_y", "blur_separable_y", {"ao_key_x"}, {"ao_blur"}, false});
+        }
+        p.push_back({"composite", "composite", {"ao_blur", "normal", "albedo"}, {"color"}, false});
+        return p;
+    }
     p.push_back({"ao", k->name, in, {"ao"}, half});
     std::string raw = "ao";
     // The hemisphere kernel's 4x4 rotation tile is cancelled by a box blur of

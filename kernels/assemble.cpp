@@ -198,7 +198,7 @@ Result<gpu::ShaderSource> assemble(const KernelDecl& k, gpu::Stage stage,
     }
     p << "layout(std140, binding = " << kFrameBinding << ") uniform Frame {\n"
          "    mat4 proj;\n    mat4 invProj;\n    vec4 camera;\n"
-         "    ivec2 size;\n    ivec2 srcSize;\n    vec2 invSize;\n    vec2 pad_;\n} frame;\n";
+         "    ivec2 size;\n    ivec2 srcSize;\n    vec2 invSize;\n    int level;\n    int pad_;\n} frame;\n";
     p << "layout(std140, binding = " << kParamsBinding << ") uniform Params {\n";
     for (const auto& prm : k.params) p << "    " << (isIntegral(prm.type) ? "int " : "float ") << prm.name << ";\n";
     if (k.params.empty() && k.arrays.empty()) p << "    int unused_;\n";

@@ -52,6 +52,12 @@ struct InputDecl {
 struct OutputDecl {
     std::string name;                   // GLSL write_<name>(pixel, value)
     gpu::Format format = gpu::Format::R16F;
+    // More than 1: the image has a mip chain of that many levels, and the
+    // pass runs once per level (level 0 first, a barrier between), each run
+    // with frame.level and frame.size set to that level's. Such a pass runs
+    // as compute whatever the configuration's stage: a fragment pass would
+    // need a render target per level, which no kernel's speed depends on.
+    int mipLevels = 1;
 };
 
 struct ArrayDecl {
@@ -102,7 +108,8 @@ struct FrameUniforms {
     int size[2];           // this pass's output size in pixels
     int srcSize[2];        // size of the pass's first input (the G-buffer's, for sources)
     float invSize[2];      // 1 / size
-    float pad[2];
+    int level;             // the mip level a pass writes (OutputDecl::mipLevels); 0 for most
+    int pad;
 };
 static_assert(sizeof(FrameUniforms) == 176);
 

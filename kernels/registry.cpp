@@ -154,6 +154,63 @@ KernelDecl composite() {
     return k;
 }
 
+// --- the fast variants (issue 10): the same estimators on a depth pyramid --
+
+// Levels of the linear-depth pyramid: 1920x1080 down to 120x67. Alchemy's
+// largest sample offsets at R = 0.5 on our cameras are about 250 px, which
+// ssao_alchemy_fast.glsl's level rule puts on level 4.
+constexpr int kPyramidLevels = 5;
+constexpr double kR32f = 4, kRg16f = 4;
+
+KernelDecl depthPyramid() {
+    KernelDecl k;
+    k.name = "depth_pyramid";
+    k.file = "depth_pyramid.glsl";
+    k.summary = "linear-depth mip pyramid (R32F, 5 levels, one real depth of each 2x2 block) for the fast AO kernels";
+    k.role = "pyramid";
+    // Level l reads level l - 1 of its own output: "zmip" is both.
+    k.inputs = {{"position", {}}, {"zmip", {gpu::Filter::Nearest, gpu::Address::ClampToEdge, true}}};
+    k.outputs = {{"zmip", Format::R32F, kPyramidLevels}};
+    // Per level-0 pixel: one RGBA32F fetch and a 4-byte store at level 0,
+    // and a third more of both (1/4 + 1/16 + ...) for the smaller levels.
+    k.cost = [](const ParamValues&) {
+        const double rest = (1 - std::pow(0.25, kPyramidLevels - 1)) / 3;
+        return Cost{1 + rest, kRgba32f + kR32f + rest * 2 * kR32f};
+    };
+    return k;
+}
+
+KernelDecl alchemyFast() {
+    KernelDecl k = alchemy();
+    k.name = "alchemy_fast";
+    k.file = "ssao_alchemy_fast.glsl";
+    k.summary = "Alchemy obscurance on a linear-depth mip pyramid with a separable blur (after SAO, McGuire et al. 2012)";
+    k.inputs = {{"zmip", {gpu::Filter::Nearest, gpu::Address::ClampToEdge, true}}, {"normal", {}}};
+    k.outputs = {{"ao", Format::R16F}, {"ao_key", Format::RG16F}};
+    k.cost = [](const ParamValues& v) {
+        const double n = v.at("samples");
+        return Cost{2 + n, kR32f + kRgba16f + n * kR32f + kR16f + kRg16f};
+    };
+    return k;
+}
+
+KernelDecl blurSeparable(const std::string& axis) {
+    KernelDecl k = blurBilateral();
+    k.name = "blur_separable_" + axis;
+    k.file = "blur_separable_" + axis + ".glsl";
+    k.summary = std::string(axis == "x" ? "horizontal" : "vertical") +
+                " pass of the separable depth-aware blur of packed AO and depth (2r+1 taps)";
+    k.params[0].help = "blur radius r: 2r+1 taps along each axis, sigma = r/2; 0 passes AO through";
+    k.inputs = {{"ao_key", {}}};
+    k.outputs = {{axis == "x" ? "ao_key" : "ao", axis == "x" ? Format::RG16F : Format::R16F}};
+    const double out = axis == "x" ? kRg16f : kR16f;
+    k.cost = [out](const ParamValues& v) {
+        const double taps = 2 * v.at("blur") + 1;
+        return Cost{taps, taps * kRg16f + out};
+    };
+    return k;
+}
+
 }  // namespace
 
 std::vector<KernelDecl>& registryForTests() {
@@ -161,6 +218,7 @@ std::vector<KernelDecl>& registryForTests() {
         std::vector<KernelDecl> k = {gbufferSdf(), alchemy(), blurBilateral(), composite()};
         for (auto& d : screenSpaceKernels()) k.push_back(std::move(d));
         for (auto& d : sdfAoKernels()) k.push_back(std::move(d));
+        for (auto& d : {depthPyramid(), alchemyFast(), blurSeparable("x"), blurSeparable("y")}) k.push_back(d);
         return k;
     }();
     return kernels;

@@ -61,6 +61,7 @@ Result<std::vector<HostImage>> run(const Context& ctx) {
     std::vector<RefEntry> table = firstSliceRefs();
     for (const auto& e : screenSpaceRefs()) table.push_back(e);
     for (const auto& e : sdfAoRefs()) table.push_back(e);
+    for (const auto& e : fastRefs()) table.push_back(e);
     for (const auto& entry : table) {
         if (name != entry.kernel) continue;
         CAVITY_ASSIGN(auto out, entry.fn(ctx));

@@ -26,6 +26,10 @@ struct Context {
 // Fails (Internal) when the kernel has no reference.
 Result<std::vector<HostImage>> run(const Context& ctx);
 
+// The linear-depth pyramid's `levels` levels rebuilt from level 0, as
+// kernels/depth_pyramid.glsl builds them (ref_fast.cpp).
+std::vector<HostImage> pyramidLevels(const HostImage& level0, int levels);
+
 }  // namespace cavity::reference
 
 namespace cavity::reference {
@@ -39,5 +43,6 @@ struct RefEntry {
 };
 std::vector<RefEntry> screenSpaceRefs();   // ref_hemisphere.cpp, ref_ssdo.cpp, ref_halfres.cpp (via refs_screen_space.cpp)
 std::vector<RefEntry> sdfAoRefs();         // ref_sdf_ao.cpp
+std::vector<RefEntry> fastRefs();          // ref_fast.cpp
 
 }  // namespace cavity::reference

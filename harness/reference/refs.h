@@ -27,6 +27,7 @@ Status requireInputs(const Context& ctx, std::initializer_list<int> minChannels)
 // A derived array (kernel.derive), or an empty one.
 const std::vector<float>& array(const Context& ctx, const std::string& name);
 
+
 inline bool isBackground(float linearDepth) { return linearDepth <= 0.0f; }
 
 }  // namespace cavity::reference

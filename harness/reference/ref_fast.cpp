@@ -1,0 +1,171 @@
+// References of the fast variants (issue 10): kernels/depth_pyramid.glsl,
+// ssao_alchemy_fast.glsl and the separable blur pair
+// (include/blur_separable.glsl). The pyramid's levels are rebuilt here from
+// level 0, which is all a pass's readback holds: each level keeps one real
+// texel of the level above, so the rebuild is exact.
+#include "noise.h"
+#include "portable_math.h"
+#include "refs.h"
+
+#include <bit>
+
+namespace cavity::reference {
+
+namespace {
+
+const float kPi = 3.14159265f;
+
+// ssao_alchemy_fast.glsl's LOG_MAX_OFFSET.
+constexpr int kLogMaxOffset = 3;
+
+// positionAt() of ssao_alchemy_fast.glsl, operation for operation.
+Vec3 positionAt(const kernels::FrameUniforms& f, int x, int y, float depth) {
+    const float ndcX = (float(x) + 0.5f) * f.invSize[0] * 2.0f - 1.0f;
+    const float ndcY = (float(y) + 0.5f) * f.invSize[1] * 2.0f - 1.0f;
+    return {ndcX * f.camera[0] * depth, -ndcY * f.camera[1] * depth, -depth};
+}
+
+// GLSL findMSB of a non-negative int: -1 for 0.
+int findMsb(int v) { return int(std::bit_width(unsigned(v))) - 1; }
+
+int pyramidLevelCount() {
+    const auto* k = kernels::find("depth_pyramid");
+    return k && !k->outputs.empty() ? k->outputs[0].mipLevels : 1;
+}
+
+// One axis of the separable blur: (AO, depth) of pixel (x, y).
+Vec2 blurAlong(const Context& ctx, const HostImage& key, int x, int y, int ax, int ay) {
+    const Vec2 centre{key.at(x, y, 0), key.at(x, y, 1)};
+    const int r = intParam(ctx, "blur");
+    if (r == 0 || isBackground(centre.y)) return centre;
+    const float sigma = floatParam(ctx, "depth_sigma");
+    const float twoSigma2 = 2.0f * sigma * sigma;
+    const std::vector<float>& w = array(ctx, "weights");
+    float sum = 0.0f, total = 0.0f;
+    for (int t = -r; t <= r; ++t) {
+        const int qx = x + ax * t, qy = y + ay * t;
+        if (qx < 0 || qy < 0 || qx >= ctx.frame.size[0] || qy >= ctx.frame.size[1]) continue;
+        const float tapDepth = key.at(qx, qy, 1);
+        if (isBackground(tapDepth)) continue;
+        const float dd = centre.y - tapDepth;
+        const float W = w[size_t(std::abs(t))] * std::exp(-dd * dd / twoSigma2);
+        sum += key.at(qx, qy, 0) * W;
+        total += W;
+    }
+    return {sum + (1.0f - total) * centre.x, centre.y};
+}
+
+Result<std::vector<HostImage>> blurSeparable(const Context& ctx, bool horizontal) {
+    CAVITY_TRY(requireInputs(ctx, {2}));
+    const int r = intParam(ctx, "blur");
+    if (r > 0 && int(array(ctx, "weights").size()) <= r)
+        return internal("reference " + ctx.kernel.name + ": too few weights for radius " + std::to_string(r));
+    auto out = makeOutputs(ctx);
+    for (int y = 0; y < ctx.frame.size[1]; ++y)
+        for (int x = 0; x < ctx.frame.size[0]; ++x) {
+            const Vec2 v = blurAlong(ctx, *ctx.inputs[0], x, y, horizontal ? 1 : 0, horizontal ? 0 : 1);
+            out[0].at(x, y, 0) = v.x;
+            if (horizontal) out[0].at(x, y, 1) = v.y;
+        }
+    return out;
+}
+
+}  // namespace
+
+std::vector<HostImage> pyramidLevels(const HostImage& level0, int levels) {
+    std::vector<HostImage> chain;
+    chain.push_back(level0);
+    for (int l = 1; l < levels; ++l) {
+        const HostImage& above = chain.back();
+        HostImage next(std::max(1, level0.width >> l), std::max(1, level0.height >> l), 1);
+        for (int y = 0; y < next.height; ++y)
+            for (int x = 0; x < next.width; ++x)
+                next.at(x, y) = above.at(std::min(2 * x + (y & 1), above.width - 1),
+                                         std::min(2 * y + (x & 1), above.height - 1));
+        chain.push_back(std::move(next));
+    }
+    return chain;
+}
+
+Result<std::vector<HostImage>> depthPyramid(const Context& ctx) {
+    CAVITY_TRY(requireInputs(ctx, {4, 1}));
+    auto out = makeOutputs(ctx);
+    for (int y = 0; y < ctx.frame.size[1]; ++y)
+        for (int x = 0; x < ctx.frame.size[0]; ++x) out[0].at(x, y) = ctx.inputs[0]->at(x, y, 3);
+    return out;
+}
+
+Result<std::vector<HostImage>> alchemyFast(const Context& ctx) {
+    CAVITY_TRY(requireInputs(ctx, {1, 3}));
+    const auto zmip = pyramidLevels(*ctx.inputs[0], pyramidLevelCount());
+    const HostImage& normal = *ctx.inputs[1];
+    const auto& f = ctx.frame;
+    const int n = intParam(ctx, "samples");
+    const float R = floatParam(ctx, "radius");
+    const float bias = floatParam(ctx, "bias");
+    const float scale = floatParam(ctx, "scale");
+    const float contrast = floatParam(ctx, "contrast");
+    const float c = 0.1f * R;
+    const float weight = 2.0f * kPi * c / float(n);
+    const float focal = 0.5f * float(f.size[1]) * portableReciprocal(f.camera[1]);
+    const int maxLevel = int(zmip.size()) - 1;
+
+    auto out = makeOutputs(ctx);
+    for (int y = 0; y < f.size[1]; ++y) {
+        for (int x = 0; x < f.size[0]; ++x) {
+            const float d = zmip[0].at(x, y);
+            if (isBackground(d)) {
+                out[0].at(x, y) = 1.0f;
+                out[1].at(x, y, 0) = 1.0f;
+                continue;
+            }
+            const Vec3 X = positionAt(f, x, y, d);
+            const Vec3 N{normal.at(x, y, 0), normal.at(x, y, 1), normal.at(x, y, 2)};
+            const float discScale = R * focal * portableReciprocal(float(n) * d);
+            const float u = pixelHash(x, y);
+            const float centreX = float(x) + 0.5f, centreY = float(y) + 0.5f;
+            float S = 0.0f;
+            for (int i = 0; i < n; ++i) {
+                const float turns = (float(i) + 0.5f) * 0.7777778f + u;
+                const Vec2 dir = cosSinTurns(turns);
+                const float h = (float(i) + 0.5f) * discScale;
+                const int sx = int(std::floor(centreX + dir.x * h));
+                const int sy = int(std::floor(centreY + dir.y * h));
+                if (sx < 0 || sy < 0 || sx >= f.size[0] || sy >= f.size[1]) continue;
+                const int level = std::clamp(findMsb(int(h)) - kLogMaxOffset, 0, maxLevel);
+                const HostImage& z = zmip[size_t(level)];
+                int tx = std::min(sx >> level, z.width - 1), ty = std::min(sy >> level, z.height - 1);
+                const float zs = z.at(tx, ty);
+                if (isBackground(zs)) continue;
+                // The level-0 pixel that depth came from: the pyramid's picks, undone.
+                for (int k = level; k > 0; --k) {
+                    const HostImage& above = zmip[size_t(k - 1)];
+                    const int px = std::min(2 * tx + (ty & 1), above.width - 1);
+                    ty = std::min(2 * ty + (tx & 1), above.height - 1);
+                    tx = px;
+                }
+                const Vec3 omega = positionAt(f, tx, ty, zs) - X;
+                const float omega2 = lengthSquared(omega);
+                if (omega2 > R * R) continue;
+                S += weight * std::max(0.0f, dot(N, omega) - bias) / std::max(c * c, omega2);
+            }
+            const float A = std::pow(std::max(0.0f, 1.0f - scale * S), contrast);
+            out[0].at(x, y) = A;
+            out[1].at(x, y, 0) = A;
+            out[1].at(x, y, 1) = d;
+        }
+    }
+    return out;
+}
+
+Result<std::vector<HostImage>> blurSeparableX(const Context& ctx) { return blurSeparable(ctx, true); }
+Result<std::vector<HostImage>> blurSeparableY(const Context& ctx) { return blurSeparable(ctx, false); }
+
+std::vector<RefEntry> fastRefs() {
+    return {{"depth_pyramid", depthPyramid},
+            {"alchemy_fast", alchemyFast},
+            {"blur_separable_x", blurSeparableX},
+            {"blur_separable_y", blurSeparableY}};
+}
+
+}  // namespace cavity::reference

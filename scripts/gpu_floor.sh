@@ -1,0 +1,37 @@
+#!/usr/bin/env bash
+# Issue 10's measurement, in one call on the GPU machine (through the device
+# tool, .gl and .bundle carried): the seed and fast Alchemy pipelines and the
+# seed hemisphere at 1920x1080, n16 and n32, full and half, both APIs, both
+# stages, 10 interleaved repetitions each, with the clocks sampled beside
+# them; then the raw AO of alchemy and alchemy_fast against the ground truth
+# at 1920x1080 (cavity quality, the shared reach). Leaves floor.tgz in $OUT;
+# read it here with scripts/floor_table.py.
+#   scripts/gpu_floor.sh [REPS (10)] [MAX_TIME_S (0.25)]
+set -uo pipefail
+cd "$(dirname "$0")/.."
+. scripts/gpu_env.sh
+reps="${1:-10}" maxt="${2:-0.25}"
+work=/tmp/floor
+rm -rf "$work"
+mkdir -p "$work"
+start=$(date +%s)
+run_bench() {   # name, filter, extra flags...
+  local name=$1 filter=$2; shift 2
+  echo "== $name ($(( $(date +%s) - start )) s)"
+  smi_start "$work/$name.clocks.csv"
+  .bundle/run.sh --sweep gpu --benchmark_filter="$filter" --benchmark_repetitions="$reps" \
+    --benchmark_enable_random_interleaving=true --max-time "$maxt" \
+    --benchmark_out="$work/$name.json" --benchmark_out_format=json "$@" > "$work/$name.txt" 2> "$work/$name.err"
+  echo "rc $? $(tail -1 "$work/$name.err")"
+  smi_stop
+}
+run_bench compute '^corner/(alchemy|alchemy_fast)/n(16|32)/b4/(full|half)/1920x1080/(gl|vk)/compute/|^corner/hemisphere/n16/b4/(full|half)/1920x1080/(gl|vk)/compute/'
+run_bench fragment '^corner/(alchemy|alchemy_fast)/n16/b4/(full|half)/1920x1080/(gl|vk)/fragment/'
+for s in corner slats; do
+  timeout 120 .bundle/render.sh quality --backend vk --res 1920x1080 --scene "$s" --kernel alchemy,alchemy_fast \
+    --samples 16,32 --reach shared --out "$work/quality_$s" > "$work/quality_$s.txt" 2>&1
+  echo "quality $s: rc $? $(tail -1 "$work/quality_$s.txt")"
+done
+nvidia-smi -q > "$work/nvidia-smi.txt" 2>&1
+tar -C "$work" -czf "$OUT/floor.tgz" .
+ls -la "$OUT"
