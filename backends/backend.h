@@ -150,7 +150,7 @@ struct ScopeTime {
 struct BackendOptions {
     int deviceIndex = 0;        // EGL device / physical device index
     std::string deviceName;     // Vulkan: physical-device name substring; wins over index
-    bool validation = false;    // Vulkan: Khronos validation layer; GL: KHR_debug output
+    bool validation = false;    // Vulkan: Khronos validation layer with synchronisation validation; GL: KHR_debug output
 };
 
 class Backend {
