@@ -266,6 +266,109 @@ TEST_P(Backend, MissingBarrierIsReportedBySynchronisationValidation) {
     gpu().destroy(*b);
 }
 
+// barrier() is recorded as late as the next command (vk_barriers.h, GL's
+// owedBarrier), narrowed to it; it must still reach every command up to the
+// next barrier(), and a write two barriers back through a barrier() between
+// passes of another stage. Wrong values or a synchronisation-validation
+// message fail the test.
+TEST_P(Backend, BarrierReachesEveryPassUntilTheNextOne) {
+    auto store = gpu().createComputePipeline(levelMarker());
+    gpu::ComputePipelineDesc copy;
+    copy.shader = compute(
+        "layout(binding = 0) uniform sampler2D src;\n"
+        "layout(binding = 1, r32f) uniform writeonly image2D dst;\n"
+        "void main() { ivec2 p = ivec2(gl_GlobalInvocationID.xy);\n"
+        "  imageStore(dst, p, texelFetch(src, p, 0)); }\n");
+    copy.layout = {{0, gpu::BindingKind::SampledImage, {}}, {1, gpu::BindingKind::StorageImage, gpu::Format::R32F}};
+    auto sampleInCompute = gpu().createComputePipeline(copy);
+    auto renderDesc = fullscreen(
+        "layout(binding = 0) uniform sampler2D src; layout(location = 0) out vec4 o;\n"
+        "void main() { o = texelFetch(src, ivec2(gl_FragCoord.xy), 0); }\n",
+        gpu::Format::R32F);
+    renderDesc.layout = {{0, gpu::BindingKind::SampledImage, {}}};
+    auto sampleInFragment = gpu().createGraphicsPipeline(renderDesc);
+    ASSERT_TRUE(store && sampleInCompute && sampleInFragment);
+    std::vector<gpu::Image> images;
+    for (const char* name : {"a", "b", "c", "d"}) {
+        auto img = gpu().createImage({8, 8, gpu::Format::R32F, 1, name});
+        ASSERT_TRUE(img);
+        images.push_back(*img);
+    }
+    const gpu::Image a = images[0], b = images[1], c = images[2], d = images[3];
+    const auto storeTo = [&](gpu::Image img) {
+        const gpu::Bind bind{0, img, {}, {}};
+        gpu().dispatch(*store, std::span(&bind, 1), 1, 1);
+    };
+    const auto copyInCompute = [&](gpu::Image from, gpu::Image to) {
+        const gpu::Bind binds[2] = {{0, from, {}, {}}, {1, to, {}, {}}};
+        gpu().dispatch(*sampleInCompute, binds, 1, 1);
+    };
+    const auto copyInFragment = [&](gpu::Image from, gpu::Image to) {
+        const gpu::Bind bind{0, from, {}, {}};
+        gpu::RenderTargets t;
+        t.colors = {to};
+        gpu().draw(*sampleInFragment, std::span(&bind, 1), t, 3);
+    };
+    const auto expectAll = [&](gpu::Image img, float value, const char* what) {
+        auto px = gpu().readImage(img);
+        ASSERT_TRUE(px) << px.error().message;
+        for (float v : *px) ASSERT_EQ(v, value) << what;
+    };
+
+    // One barrier(), then a compute and a fragment pass that both read what came before it.
+    gpu().beginFrame();
+    storeTo(a);
+    gpu().barrier();
+    copyInCompute(a, b);
+    copyInFragment(a, c);
+    ASSERT_TRUE(gpu().endFrame().ok());
+    expectAll(b, 12.5f, "compute pass after the barrier");
+    expectAll(c, 12.5f, "fragment pass after the same barrier");
+
+    // A fragment pass two barriers after the store it reads, a compute pass between.
+    gpu().beginFrame();
+    storeTo(d);
+    gpu().barrier();
+    copyInCompute(a, b);
+    gpu().barrier();
+    copyInFragment(d, c);
+    ASSERT_TRUE(gpu().endFrame().ok());
+    expectAll(c, 12.5f, "fragment pass two barriers after the store");
+    for (auto img : images) gpu().destroy(img);
+    gpu().destroy(*store);
+    gpu().destroy(*sampleInCompute);
+    gpu().destroy(*sampleInFragment);
+}
+
+TEST_P(Backend, ImageUsageLimitsWhatAnImageIsFor) {
+    auto sampledOnly = gpu().createImage({8, 8, gpu::Format::R32F, 1, "sampled", gpu::ImageSampled | gpu::ImageTransfer});
+    auto storageOnly = gpu().createImage({8, 8, gpu::Format::R32F, 1, "stored", gpu::ImageStorage});
+    auto pipe = gpu().createComputePipeline(levelMarker());
+    ASSERT_TRUE(sampledOnly && storageOnly && pipe);
+    ASSERT_TRUE(gpu().uploadImage(*sampledOnly, 0, std::vector<float>(64, 1.0f)).ok());
+    EXPECT_TRUE(gpu().readImage(*sampledOnly));
+
+    gpu::Bind bind{0, *storageOnly, {}, {}};
+    gpu().beginFrame();
+    gpu().dispatch(*pipe, std::span(&bind, 1), 1, 1);
+    EXPECT_TRUE(gpu().endFrame().ok());
+    auto back = gpu().readImage(*storageOnly);
+    ASSERT_FALSE(back);
+    EXPECT_NE(back.error().message.find("'stored' was created without ImageTransfer"), std::string::npos)
+        << back.error().message;
+
+    bind.image = *sampledOnly;
+    gpu().beginFrame();
+    gpu().dispatch(*pipe, std::span(&bind, 1), 1, 1);
+    const Status s = gpu().endFrame();
+    ASSERT_FALSE(s.ok());
+    EXPECT_NE(s.error().message.find("'sampled' was created without ImageStorage"), std::string::npos)
+        << s.error().message;
+    gpu().destroy(*pipe);
+    gpu().destroy(*sampledOnly);
+    gpu().destroy(*storageOnly);
+}
+
 TEST_P(Backend, TimestampScopesComeBackInOrderWithPositiveTimes) {
     auto out = gpu().createImage({256, 256, gpu::Format::R32F, 1, "spin"});
     ASSERT_TRUE(out);

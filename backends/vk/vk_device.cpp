@@ -196,8 +196,12 @@ Status createLogicalDevice(Device& d, uint32_t instanceVersion) {
                                ") lacks " VK_KHR_DYNAMIC_RENDERING_EXTENSION_NAME);
         extensions.push_back(VK_KHR_DYNAMIC_RENDERING_EXTENSION_NAME);
     }
+    // synchronization2 is queried (and so enabled) only on 1.3, where it is core.
+    auto sync2 = vkStruct<VkPhysicalDeviceSynchronization2Features>(
+        VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SYNCHRONIZATION_2_FEATURES);
     using DynamicRendering = VkPhysicalDeviceDynamicRenderingFeatures;
-    auto dynamicRendering = vkStruct<DynamicRendering>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DYNAMIC_RENDERING_FEATURES);
+    auto dynamicRendering = vkStruct<DynamicRendering>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DYNAMIC_RENDERING_FEATURES,
+                                                       core13 ? &sync2 : nullptr);
     auto have = vkStruct<VkPhysicalDeviceFeatures2>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &dynamicRendering);
     vkGetPhysicalDeviceFeatures2(d.physical, &have);
     if (!dynamicRendering.dynamicRendering)
@@ -234,6 +238,9 @@ Status createLogicalDevice(Device& d, uint32_t instanceVersion) {
         vkGetDeviceProcAddr(d.device, core13 ? "vkCmdEndRendering" : "vkCmdEndRenderingKHR"));
     if (!d.cmdBeginRendering || !d.cmdEndRendering)
         return unavailable("vk: '" + name + "' exposes no vkCmdBeginRendering entry point");
+    if (sync2.synchronization2)
+        d.cmdPipelineBarrier2 =
+            reinterpret_cast<PFN_vkCmdPipelineBarrier2>(vkGetDeviceProcAddr(d.device, "vkCmdPipelineBarrier2"));
     return {};
 }
 
