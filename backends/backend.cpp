@@ -8,6 +8,16 @@ Result<std::unique_ptr<Backend>> createVkBackend(const BackendOptions&);
 
 const char* apiName(Api api) { return api == Api::OpenGL ? "gl" : "vk"; }
 
+std::string missingUsage(const ImageDesc& desc, ImageUsage use) {
+    if (!desc.usage || (desc.usage & use)) return {};
+    const char* name = use == ImageSampled       ? "ImageSampled"
+                       : use == ImageStorage     ? "ImageStorage"
+                       : use == ImageColorTarget ? "ImageColorTarget"
+                       : use == ImageDepthTarget ? "ImageDepthTarget"
+                                                 : "ImageTransfer";
+    return "'" + desc.label + "' was created without " + name;
+}
+
 std::string hexUuid(const unsigned char (&bytes)[16]) {
     static const char digits[] = "0123456789abcdef";
     std::string s;

@@ -10,8 +10,13 @@
 //    gl_GlobalInvocationID.xy both address (column, row) of that layout.
 //  * Clip space: NDC y = -1 maps to row 0, depth range is [0, 1]
 //    (the GL backend sets glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE)).
-//  * Between passes the caller issues barrier(); a backend may make it a
-//    full memory barrier. Vulkan images live in VK_IMAGE_LAYOUT_GENERAL.
+//  * Between passes the caller issues barrier(): the commands recorded after
+//    it see the writes of those before it, and their writes land after the
+//    earlier reads. Without one, passes may overlap. A backend makes it no
+//    wider than the commands on either side need (Vulkan: their stages and
+//    accesses, recorded before the next command; GL: the glMemoryBarrier
+//    bits for how later commands read earlier shader stores).
+//  * Vulkan images live in VK_IMAGE_LAYOUT_GENERAL (vk_resources.cpp says why).
 #pragma once
 
 #include "result.h"
@@ -38,13 +43,30 @@ struct Image    { uint32_t id = 0; explicit operator bool() const { return id !=
 struct Buffer   { uint32_t id = 0; explicit operator bool() const { return id != 0; } };
 struct Pipeline { uint32_t id = 0; explicit operator bool() const { return id != 0; } };
 
+// What an image is used for; ImageDesc::usage is a mask of these. Vulkan
+// creates the image with just these usages (a driver may lay out or compress
+// an image by them); a use its description left out is an error at the call
+// that needs it, on every backend.
+enum ImageUsage : uint32_t {
+    ImageSampled = 1u << 0,       // SampledImage bindings
+    ImageStorage = 1u << 1,       // StorageImage bindings
+    ImageColorTarget = 1u << 2,   // RenderTargets::colors
+    ImageDepthTarget = 1u << 3,   // RenderTargets::depth
+    ImageTransfer = 1u << 4,      // uploadImage, readImage
+};
+
 struct ImageDesc {
     int width = 0;
     int height = 0;
     Format format = Format::RGBA8;
     int mipLevels = 1;          // 0 or 1: a single level
     std::string label;          // shows up in error messages
+    uint32_t usage = 0;         // ImageUsage bits; 0: every use the format allows
 };
+
+// Empty when `desc` allows `use`; otherwise why not, for an error message:
+// "'ao' was created without ImageStorage".
+std::string missingUsage(const ImageDesc& desc, ImageUsage use);
 
 enum class BufferUsage { Uniform, Storage };
 struct BufferDesc {
@@ -150,7 +172,7 @@ struct ScopeTime {
 struct BackendOptions {
     int deviceIndex = 0;        // EGL device / physical device index
     std::string deviceName;     // Vulkan: physical-device name substring; wins over index
-    bool validation = false;    // Vulkan: Khronos validation layer; GL: KHR_debug output
+    bool validation = false;    // Vulkan: Khronos validation layer with synchronisation validation; GL: KHR_debug output
 };
 
 class Backend {
@@ -161,7 +183,7 @@ public:
     virtual const DeviceInfo& info() const = 0;
 
     // Resources. Images are usable as sampled, storage, color/depth attachment,
-    // upload and readback target.
+    // upload and readback target, or as few of these as ImageDesc::usage says.
     virtual Result<Image> createImage(const ImageDesc&) = 0;
     virtual Result<Buffer> createBuffer(const BufferDesc&) = 0;
     virtual void destroy(Image) = 0;

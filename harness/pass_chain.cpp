@@ -7,6 +7,22 @@
 
 namespace cavity {
 
+namespace {
+
+// Each image asks for what the chain does with it (ImageDesc::usage): the use
+// of the pass that writes it, sampling when a later pass reads it, and
+// transfers for uploads and readbacks (read, findNonFinite, the tests).
+uint32_t outputUsage(const std::vector<PassSpec>& specs, const std::string& image, uint32_t written) {
+    uint32_t usage = written | gpu::ImageTransfer;
+    for (const auto& spec : specs)
+        if (std::find(spec.inputs.begin(), spec.inputs.end(), image) != spec.inputs.end()) usage |= gpu::ImageSampled;
+    return usage;
+}
+
+constexpr uint32_t kUploaded = gpu::ImageSampled | gpu::ImageTransfer;
+
+}  // namespace
+
 struct PassChain::Pass {
     // A dispatch after the first of a pass that writes a mip chain
     // (kernels::OutputDecl::mipLevels): its level's frame and bindings.
@@ -59,9 +75,11 @@ Status PassChain::createRaster(const PassSpec& spec, const RunConfig& c) {
     d.depthTest = true;
     d.label = spec.name;
     CAVITY_ASSIGN(pass->pipeline, gpu_.createGraphicsPipeline(d));
-    CAVITY_ASSIGN(pass->depth, gpu_.createImage({c.width, c.height, gpu::Format::D32, 1, "hardware depth"}));
+    CAVITY_ASSIGN(pass->depth,
+                  gpu_.createImage({c.width, c.height, gpu::Format::D32, 1, "hardware depth", gpu::ImageDepthTarget}));
     for (size_t o = 0; o < 3; ++o) {
-        CAVITY_ASSIGN(gpu::Image img, gpu_.createImage({c.width, c.height, formats[o], 1, spec.outputs[o]}));
+        const uint32_t usage = outputUsage(specs_, spec.outputs[o], gpu::ImageColorTarget);
+        CAVITY_ASSIGN(gpu::Image img, gpu_.createImage({c.width, c.height, formats[o], 1, spec.outputs[o], usage}));
         images_[spec.outputs[o]] = {img, c.width, c.height, formats[o]};
         pass->targets.colors.push_back(img);
     }
@@ -88,7 +106,7 @@ Status PassChain::uploadGBuffer(const RunConfig& c) {
                             "x" + std::to_string(img.height) + "x" + std::to_string(img.channels) + ": must be " +
                             std::to_string(c.width) + "x" + std::to_string(c.height) + "x" +
                             std::to_string(gpu::channelCount(out.format)));
-        CAVITY_ASSIGN(gpu::Image image, gpu_.createImage({c.width, c.height, out.format, 1, out.name}));
+        CAVITY_ASSIGN(gpu::Image image, gpu_.createImage({c.width, c.height, out.format, 1, out.name, kUploaded}));
         images_[out.name] = {image, c.width, c.height, out.format};
         CAVITY_TRY(gpu_.uploadImage(image, 0, img.pixels));
     }
@@ -119,7 +137,9 @@ Result<std::unique_ptr<PassChain>> PassChain::create(gpu::Backend& gpu, const Ru
 
         // Outputs are created by the pass that writes them.
         for (size_t o = 0; o < spec.outputs.size(); ++o) {
-            gpu::ImageDesc d{pass->width, pass->height, k.outputs[o].format, k.outputs[o].mipLevels, spec.outputs[o]};
+            const uint32_t written = pass->stage == gpu::Stage::Compute ? gpu::ImageStorage : gpu::ImageColorTarget;
+            gpu::ImageDesc d{pass->width, pass->height, k.outputs[o].format, k.outputs[o].mipLevels, spec.outputs[o],
+                             outputUsage(chain->specs_, spec.outputs[o], written)};
             CAVITY_ASSIGN(gpu::Image img, gpu.createImage(d));
             chain->images_[spec.outputs[o]] = {img, d.width, d.height, d.format};
         }
@@ -190,7 +210,7 @@ Status PassChain::createConstant(const std::string& input, const kernels::ParamV
     if (!decl) return internal("no constant image '" + input + "' (kernels/registry.cpp)");
     const auto levels = decl->make(params);
     if (levels.empty()) return internal("constant image '" + input + "' has no levels");
-    gpu::ImageDesc d{levels[0].width, levels[0].height, decl->format, int(levels.size()), input};
+    gpu::ImageDesc d{levels[0].width, levels[0].height, decl->format, int(levels.size()), input, kUploaded};
     CAVITY_ASSIGN(gpu::Image img, gpu_.createImage(d));
     images_[input] = {img, d.width, d.height, d.format};
     for (size_t l = 0; l < levels.size(); ++l) CAVITY_TRY(gpu_.uploadImage(img, int(l), levels[l].pixels));
@@ -226,8 +246,10 @@ void PassChain::recordPass(size_t i) {
 
 void PassChain::record() {
     for (size_t i = 0; i < passes_.size(); ++i) {
-        // The barrier sits between scopes, so each pass's begin timestamp
-        // follows the completion of the pass before it.
+        // A backend records the barrier at the next pass, inside its scope;
+        // the scope's begin timestamp is taken once every earlier command has
+        // finished (BOTTOM_OF_PIPE, GL_TIMESTAMP), so it still follows the
+        // completion of the pass before.
         if (i) gpu_.barrier();
         recordPass(i);
     }

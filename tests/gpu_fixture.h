@@ -1,7 +1,9 @@
 // One test body, every backend (as Filament's backend tests and CTS do):
 // derive from GpuTest, write TEST_P, and CAVITY_ALL_BACKENDS(Suite) makes
 // a gl and a vk instance of each test. Vulkan runs with the Khronos
-// validation layer and GL with KHR_debug; any message fails the test.
+// validation layer, synchronisation validation included (a missing or too
+// narrow barrier is a message), and GL with KHR_debug; any message fails
+// the test.
 // With CI=true a backend that cannot start fails the test instead of skipping.
 #pragma once
 

@@ -139,6 +139,7 @@ private:
     Status barrierNow();
     Status finishFrame();
     Status bindResources(const PipelineRecord& pipe, std::span<const Bind> binds, const std::string& what);
+    Status owedBarrier(const PipelineRecord& pipe, bool draws);
     uint32_t newId() { return nextId_++; }
 
     std::unique_ptr<EglContext> egl_;
@@ -154,6 +155,12 @@ private:
     std::unordered_map<uint32_t, PipelineRecord> pipelines_;
     uint32_t nextId_ = 1;
     bool inFrame_ = false;
+    // barrier() as narrow as what follows it (barrierNow). Only shader image
+    // and buffer stores are incoherent in GL; attachment writes and reads are
+    // ordered with later commands by the API itself.
+    bool storedSinceBarrier_ = false;   // a pass with a storage binding ran since the last barrier()
+    bool barrierOwed_ = false;          // the last barrier() followed such a pass
+    GLbitfield barrierIssued_ = 0;      // the glMemoryBarrier bits already issued for it
     Status sticky_;
     std::vector<ScopeTime> scopes_;
 };
@@ -284,6 +291,7 @@ Status GlBackend::uploadImage(Image handle, int level, std::span<const float> pi
     CAVITY_TRY(egl_->makeCurrent());
     CAVITY_ASSIGN(const ImageRecord* img, image(handle, "uploadImage"));
     const std::string what = "uploadImage " + describe(*img) + " level " + std::to_string(level);
+    if (auto why = missingUsage(img->desc, ImageTransfer); !why.empty()) return internal("gl: " + what + ": " + why);
     if (level < 0 || level >= img->levels)
         return internal("gl: " + what + ": the image has " + std::to_string(img->levels) + " levels");
     const int w = std::max(img->desc.width >> level, 1), h = std::max(img->desc.height >> level, 1);
@@ -304,6 +312,7 @@ Result<std::vector<float>> GlBackend::readImage(Image handle, int level) {
     CAVITY_TRY(egl_->makeCurrent());
     CAVITY_ASSIGN(const ImageRecord* img, image(handle, "readImage"));
     const std::string what = "readImage " + describe(*img) + " level " + std::to_string(level);
+    if (auto why = missingUsage(img->desc, ImageTransfer); !why.empty()) return internal("gl: " + what + ": " + why);
     if (level < 0 || level >= img->levels)
         return internal("gl: " + what + ": the image has " + std::to_string(img->levels) + " levels");
     const int w = std::max(img->desc.width >> level, 1), h = std::max(img->desc.height >> level, 1);
@@ -421,6 +430,7 @@ Status GlBackend::bindResources(const PipelineRecord& pipe, std::span<const Bind
         }
         case BindingKind::SampledImage: {
             CAVITY_ASSIGN(const ImageRecord* img, image(bind->image, at));
+            if (auto why = missingUsage(img->desc, ImageSampled); !why.empty()) return internal("gl: " + at + ": " + why);
             CAVITY_ASSIGN(const GLuint sampler, samplers_.get(bind->sampler));
             glBindTextureUnit(slot.binding, img->texture);
             glBindSampler(slot.binding, sampler);
@@ -428,6 +438,7 @@ Status GlBackend::bindResources(const PipelineRecord& pipe, std::span<const Bind
         }
         case BindingKind::StorageImage: {
             CAVITY_ASSIGN(const ImageRecord* img, image(bind->image, at));
+            if (auto why = missingUsage(img->desc, ImageStorage); !why.empty()) return internal("gl: " + at + ": " + why);
             if (img->desc.format != slot.format)
                 return internal("gl: " + at + ": the layout says " + formatName(slot.format) + ", image is " + describe(*img));
             if (bind->mipLevel < 0 || bind->mipLevel >= img->levels)
@@ -448,6 +459,7 @@ Status GlBackend::dispatchNow(Pipeline p, std::span<const Bind> binds, int group
     const std::string what = "dispatch '" + pipe->label + "' " + std::to_string(groupsX) + "x" + std::to_string(groupsY);
     if (groupsX < 0 || groupsY < 0) return internal("gl: " + what + ": negative group count");
     CAVITY_TRY(bindResources(*pipe, binds, what));
+    CAVITY_TRY(owedBarrier(*pipe, false));
     glUseProgram(pipe->program);
     glDispatchCompute(GLuint(groupsX), GLuint(groupsY), 1);
     return checkGl("glDispatchCompute, " + what);
@@ -464,8 +476,11 @@ Status GlBackend::drawNow(Pipeline p, std::span<const Bind> binds, const RenderT
 
     // Every target must match the pipeline's format and share one size (the viewport).
     int width = -1, height = -1;
-    auto attach = [&](Image handle, Format expected, const std::string& role) -> Result<FramebufferCache::Attachment> {
+    auto attach = [&](Image handle, Format expected, ImageUsage use,
+                      const std::string& role) -> Result<FramebufferCache::Attachment> {
         CAVITY_ASSIGN(const ImageRecord* img, image(handle, what + " " + role));
+        if (auto why = missingUsage(img->desc, use); !why.empty())
+            return internal("gl: " + what + ": " + role + " " + why);
         if (img->desc.format != expected)
             return internal("gl: " + what + ": " + role + " is " + describe(*img) + ", the pipeline says " + formatName(expected));
         if (width >= 0 && (img->desc.width != width || img->desc.height != height))
@@ -477,16 +492,19 @@ Status GlBackend::drawNow(Pipeline p, std::span<const Bind> binds, const RenderT
     };
     std::vector<FramebufferCache::Attachment> colors;
     for (size_t i = 0; i < targets.colors.size(); ++i) {
-        CAVITY_ASSIGN(auto color, attach(targets.colors[i], pipe->colorFormats[i], "color target " + std::to_string(i)));
+        CAVITY_ASSIGN(auto color, attach(targets.colors[i], pipe->colorFormats[i], ImageColorTarget,
+                                           "color target " + std::to_string(i)));
         colors.push_back(color);
     }
     FramebufferCache::Attachment depth;
     if (targets.depth) {
-        CAVITY_ASSIGN(depth, attach(targets.depth, pipe->depthFormat, "depth target"));
+        CAVITY_ASSIGN(depth, attach(targets.depth, pipe->depthFormat, ImageDepthTarget, "depth target"));
     }
     if (width < 0) return internal("gl: " + what + ": no render targets");
     CAVITY_ASSIGN(const GLuint framebuffer, framebuffers_.get(colors, depth, what));
 
+    // Before the clear: it writes the targets too.
+    CAVITY_TRY(owedBarrier(*pipe, true));
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, framebuffer);
     glViewport(0, 0, width, height);
     if (targets.clear) {
@@ -511,8 +529,36 @@ Status GlBackend::drawNow(Pipeline p, std::span<const Bind> binds, const RenderT
 
 Status GlBackend::barrierNow() {
     CAVITY_TRY(startRecording("barrier"));
-    glMemoryBarrier(GL_ALL_BARRIER_BITS);
-    return checkGl("glMemoryBarrier(GL_ALL_BARRIER_BITS)");
+    if (!storedSinceBarrier_) return {};   // two barrier() calls in a row are one
+    storedSinceBarrier_ = false;
+    barrierOwed_ = true;
+    barrierIssued_ = 0;
+    return {};
+}
+
+// The glMemoryBarrier bits name how later commands read what earlier image
+// and buffer stores wrote, so they wait for the pass that reads: sampling
+// needs TEXTURE_FETCH, imageLoad/imageStore SHADER_IMAGE_ACCESS, storage
+// buffers SHADER_STORAGE, render targets FRAMEBUFFER. Every pass until the
+// next barrier() gets the bits it needs, once. A storage binding counts as a
+// store: the layout does not say whether the shader writes it.
+Status GlBackend::owedBarrier(const PipelineRecord& pipe, bool draws) {
+    GLbitfield need = draws ? GL_FRAMEBUFFER_BARRIER_BIT : 0;
+    bool stores = false;
+    for (const BindingSlot& slot : pipe.layout) {
+        switch (slot.kind) {
+        case BindingKind::UniformBuffer: break;   // written by updateBuffer only, which has its own barrier
+        case BindingKind::SampledImage: need |= GL_TEXTURE_FETCH_BARRIER_BIT; break;
+        case BindingKind::StorageImage: need |= GL_SHADER_IMAGE_ACCESS_BARRIER_BIT; stores = true; break;
+        case BindingKind::StorageBuffer: need |= GL_SHADER_STORAGE_BARRIER_BIT; stores = true; break;
+        }
+    }
+    storedSinceBarrier_ |= stores;
+    need &= ~barrierIssued_;
+    if (!barrierOwed_ || !need) return {};
+    barrierIssued_ |= need;
+    glMemoryBarrier(need);
+    return checkGl("glMemoryBarrier before '" + pipe.label + "'");
 }
 
 Status GlBackend::finishFrame() {

@@ -5,6 +5,7 @@
 
 #include "backend.h"
 #include "timestamps.h"
+#include "vk_barriers.h"
 #include "vk_descriptors.h"
 #include "vk_device.h"
 #include "vk_pipelines.h"
@@ -69,6 +70,7 @@ private:
     DescriptorPools descriptors_;
     Timestamps timestamps_;
     SamplerCache samplers_;
+    BarrierTracker barriers_;
     VkCommandPool framePool_ = VK_NULL_HANDLE;
     VkCommandBuffer frameCmd_ = VK_NULL_HANDLE;
     VkFence frameFence_ = VK_NULL_HANDLE;

@@ -13,6 +13,27 @@
 
 namespace cavity::gpu::vk {
 
+namespace {
+
+constexpr VkAccessFlags2 kWrites = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT |
+                                   VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
+
+// What a pipeline's bindings may touch, in `stages`. A storage binding counts
+// as read and written: the layout does not say which the shader does.
+// Uniform buffers are written by the host only, which vkQueueSubmit orders.
+SyncScope shaderScope(const PipelineRes& pipe, VkPipelineStageFlags2 stages) {
+    SyncScope s;
+    for (const BindingSlot& slot : pipe.slots) {
+        if (slot.kind == BindingKind::SampledImage) s.access |= VK_ACCESS_2_SHADER_SAMPLED_READ_BIT;
+        if (slot.kind == BindingKind::StorageImage || slot.kind == BindingKind::StorageBuffer)
+            s.access |= VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
+    }
+    if (s.access) s.stages = stages;
+    return s;
+}
+
+}  // namespace
+
 void VulkanBackend::fail(Error e) {
     if (!error_) error_ = std::move(e);
 }
@@ -37,6 +58,7 @@ void VulkanBackend::beginFrame() {
     const VkResult r = vkBeginCommandBuffer(frameCmd_, &begin);
     if (r != VK_SUCCESS) return fail(vkError("vkBeginCommandBuffer (frame)", r));
     cmdOpen_ = true;
+    barriers_.reset();
 }
 
 Status VulkanBackend::bindResources(const PipelineRes& pipe, std::span<const Bind> binds, VkPipelineBindPoint point,
@@ -80,6 +102,8 @@ Status VulkanBackend::bindResources(const PipelineRes& pipe, std::span<const Bin
         }
         const ImageRes* img = findImage(b->image);
         if (!img) return internal(slot() + ": no image " + std::to_string(b->image.id));
+        const ImageUsage use = s.kind == BindingKind::SampledImage ? ImageSampled : ImageStorage;
+        if (auto why = missingUsage(img->desc, use); !why.empty()) return internal(slot() + ": " + why);
         if (s.kind == BindingKind::SampledImage) {
             CAVITY_ASSIGN(const VkSampler sampler, samplers_.get(*d_, b->sampler));
             imageInfos[i] = {sampler, img->view, VK_IMAGE_LAYOUT_GENERAL};
@@ -118,8 +142,11 @@ void VulkanBackend::dispatch(Pipeline p, std::span<const Bind> binds, int groups
                              " work groups, the device allows up to " + std::to_string(most[0]) + "x" +
                              std::to_string(most[1])));
     if (Status s = bindResources(pipe, binds, VK_PIPELINE_BIND_POINT_COMPUTE, who); !s) return fail(s.error());
+    const SyncScope scope = shaderScope(pipe, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+    barriers_.before(*d_, frameCmd_, scope);
     vkCmdBindPipeline(frameCmd_, VK_PIPELINE_BIND_POINT_COMPUTE, pipe.pipeline);
     vkCmdDispatch(frameCmd_, uint32_t(groupsX), uint32_t(groupsY), 1);
+    barriers_.recorded(scope.stages, scope.access & kWrites);
 }
 
 void VulkanBackend::draw(Pipeline p, std::span<const Bind> binds, const RenderTargets& targets, int vertexCount) {
@@ -138,9 +165,11 @@ Status VulkanBackend::recordDraw(const PipelineRes& pipe, std::span<const Bind> 
         return internal(who + ": " + std::to_string(t.colors.size()) + " color targets for a pipeline with " +
                         std::to_string(pipe.colorFormats.size()));
     int width = 0, height = 0;
-    const auto target = [&](Image handle, const std::string& what, VkImageUsageFlags usage) -> Result<const ImageRes*> {
+    const auto target = [&](Image handle, const std::string& what, ImageUsage use,
+                            VkImageUsageFlags usage) -> Result<const ImageRes*> {
         const ImageRes* img = findImage(handle);
         if (!img) return internal(who + ": " + what + " is not an image (" + std::to_string(handle.id) + ")");
+        if (auto why = missingUsage(img->desc, use); !why.empty()) return internal(who + ": " + what + " " + why);
         if (!(img->usage & usage))
             return internal(who + ": " + img->describe() + " cannot be a " + what + " on '" +
                             d_->info.deviceName + "'");
@@ -158,7 +187,8 @@ Status VulkanBackend::recordDraw(const PipelineRes& pipe, std::span<const Bind> 
         t.colors.size(), vkStruct<VkRenderingAttachmentInfo>(VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO));
     for (size_t i = 0; i < colors.size(); ++i) {
         CAVITY_ASSIGN(const ImageRes* img,
-                      target(t.colors[i], "color target " + std::to_string(i), VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT));
+                      target(t.colors[i], "color target " + std::to_string(i), ImageColorTarget,
+                             VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT));
         if (img->desc.format != pipe.colorFormats[i])
             return internal(who + ": color target " + std::to_string(i) + " is " + img->describe() +
                             ", the pipeline writes " + formatName(pipe.colorFormats[i]));
@@ -174,7 +204,7 @@ Status VulkanBackend::recordDraw(const PipelineRes& pipe, std::span<const Bind> 
     if (pipe.depth) {
         if (!t.depth) return internal(who + ": the pipeline tests depth but no depth target was given");
         CAVITY_ASSIGN(const ImageRes* img,
-                      target(t.depth, "depth target", VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT));
+                      target(t.depth, "depth target", ImageDepthTarget, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT));
         depth.imageView = img->levelViews[0];
         depth.imageLayout = VK_IMAGE_LAYOUT_GENERAL;
         depth.loadOp = t.clear ? VK_ATTACHMENT_LOAD_OP_CLEAR : VK_ATTACHMENT_LOAD_OP_LOAD;
@@ -186,15 +216,21 @@ Status VulkanBackend::recordDraw(const PipelineRes& pipe, std::span<const Bind> 
     if (width == 0) return internal(who + ": no render targets");
 
     CAVITY_TRY(bindResources(pipe, binds, VK_PIPELINE_BIND_POINT_GRAPHICS, who));
+    // Bindings are shared by both stages (backend.h); a load or clear and the
+    // store of an attachment run in its attachment stage.
+    SyncScope scope = shaderScope(pipe, VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT);
+    scope |= {VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+              VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT | (t.clear ? 0 : VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT)};
+    if (pipe.depth)
+        scope |= {VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
+                  VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT};
+    barriers_.before(*d_, frameCmd_, scope);
     auto rendering = vkStruct<VkRenderingInfo>(VK_STRUCTURE_TYPE_RENDERING_INFO);
     rendering.renderArea = {{0, 0}, {uint32_t(width), uint32_t(height)}};
     rendering.layerCount = 1;
     rendering.colorAttachmentCount = uint32_t(colors.size());
     rendering.pColorAttachments = colors.data();
     rendering.pDepthAttachment = pipe.depth ? &depth : nullptr;
-    // No barrier of our own around the pass: attachment reads and writes of
-    // earlier passes are ordered by the caller's barrier(), which covers every
-    // stage and access.
     d_->cmdBeginRendering(frameCmd_, &rendering);
     // Viewport y = 0 at row 0 with positive height: NDC y = -1 lands on row 0,
     // the first row in memory, as backend.h promises.
@@ -204,11 +240,12 @@ Status VulkanBackend::recordDraw(const PipelineRes& pipe, std::span<const Bind> 
     vkCmdBindPipeline(frameCmd_, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe.pipeline);
     vkCmdDraw(frameCmd_, uint32_t(vertexCount), 1, 0, 0);
     d_->cmdEndRendering(frameCmd_);
+    barriers_.recorded(scope.stages, scope.access & kWrites);
     return {};
 }
 
 void VulkanBackend::barrier() {
-    if (recordable("barrier")) fullBarrier(frameCmd_);
+    if (recordable("barrier")) barriers_.barrier();
 }
 
 void VulkanBackend::beginScope(const std::string& name) {

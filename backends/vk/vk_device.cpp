@@ -40,6 +40,15 @@ bool hasLayer(const char* name) {
                        [&](const VkLayerProperties& l) { return std::strcmp(l.layerName, name) == 0; });
 }
 
+bool layerHasExtension(const char* layer, const char* name) {
+    uint32_t n = 0;
+    if (vkEnumerateInstanceExtensionProperties(layer, &n, nullptr) != VK_SUCCESS) return false;
+    std::vector<VkExtensionProperties> exts(n);
+    if (vkEnumerateInstanceExtensionProperties(layer, &n, exts.data()) != VK_SUCCESS) return false;
+    return std::any_of(exts.begin(), exts.begin() + n,
+                       [&](const VkExtensionProperties& e) { return std::strcmp(e.extensionName, name) == 0; });
+}
+
 bool hasDeviceExtension(VkPhysicalDevice pd, const char* name) {
     uint32_t n = 0;
     if (vkEnumerateDeviceExtensionProperties(pd, nullptr, &n, nullptr) != VK_SUCCESS) return false;
@@ -104,8 +113,14 @@ Status createInstance(Device& d, const BackendOptions& o, uint32_t apiVersion) {
     if (o.validation) {
         if (!hasLayer(kValidationLayer))
             return unavailable("vk: validation requested but VK_LAYER_KHRONOS_validation is not installed");
+        // Synchronisation validation is what reports a missing or too narrow
+        // barrier; without it the layer only checks API usage.
+        if (!layerHasExtension(kValidationLayer, VK_EXT_VALIDATION_FEATURES_EXTENSION_NAME))
+            return unavailable("vk: validation requested but VK_LAYER_KHRONOS_validation lacks "
+                               VK_EXT_VALIDATION_FEATURES_EXTENSION_NAME " (synchronisation validation)");
         layers.push_back(kValidationLayer);
         extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+        extensions.push_back(VK_EXT_VALIDATION_FEATURES_EXTENSION_NAME);
     }
     auto app = vkStruct<VkApplicationInfo>(VK_STRUCTURE_TYPE_APPLICATION_INFO);
     app.pApplicationName = "cavity";
@@ -123,10 +138,15 @@ Status createInstance(Device& d, const BackendOptions& o, uint32_t apiVersion) {
     messenger.pfnUserCallback = onDebugMessage;
     messenger.pUserData = &d;
 
+    const VkValidationFeatureEnableEXT enabled[] = {VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT};
+    auto features = vkStruct<VkValidationFeaturesEXT>(VK_STRUCTURE_TYPE_VALIDATION_FEATURES_EXT, &messenger);
+    features.enabledValidationFeatureCount = 1;
+    features.pEnabledValidationFeatures = enabled;
+
     auto ci = vkStruct<VkInstanceCreateInfo>(VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO);
-    // Chained here too, so that messages from vkCreateInstance and
-    // vkDestroyInstance themselves are caught.
-    ci.pNext = o.validation ? &messenger : nullptr;
+    // The messenger is chained here too, so that messages from
+    // vkCreateInstance and vkDestroyInstance themselves are caught.
+    ci.pNext = o.validation ? &features : nullptr;
     ci.pApplicationInfo = &app;
     ci.enabledLayerCount = uint32_t(layers.size());
     ci.ppEnabledLayerNames = layers.data();
@@ -176,8 +196,12 @@ Status createLogicalDevice(Device& d, uint32_t instanceVersion) {
                                ") lacks " VK_KHR_DYNAMIC_RENDERING_EXTENSION_NAME);
         extensions.push_back(VK_KHR_DYNAMIC_RENDERING_EXTENSION_NAME);
     }
+    // synchronization2 is queried (and so enabled) only on 1.3, where it is core.
+    auto sync2 = vkStruct<VkPhysicalDeviceSynchronization2Features>(
+        VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SYNCHRONIZATION_2_FEATURES);
     using DynamicRendering = VkPhysicalDeviceDynamicRenderingFeatures;
-    auto dynamicRendering = vkStruct<DynamicRendering>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DYNAMIC_RENDERING_FEATURES);
+    auto dynamicRendering = vkStruct<DynamicRendering>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DYNAMIC_RENDERING_FEATURES,
+                                                       core13 ? &sync2 : nullptr);
     auto have = vkStruct<VkPhysicalDeviceFeatures2>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &dynamicRendering);
     vkGetPhysicalDeviceFeatures2(d.physical, &have);
     if (!dynamicRendering.dynamicRendering)
@@ -214,6 +238,9 @@ Status createLogicalDevice(Device& d, uint32_t instanceVersion) {
         vkGetDeviceProcAddr(d.device, core13 ? "vkCmdEndRendering" : "vkCmdEndRenderingKHR"));
     if (!d.cmdBeginRendering || !d.cmdEndRendering)
         return unavailable("vk: '" + name + "' exposes no vkCmdBeginRendering entry point");
+    if (sync2.synchronization2)
+        d.cmdPipelineBarrier2 =
+            reinterpret_cast<PFN_vkCmdPipelineBarrier2>(vkGetDeviceProcAddr(d.device, "vkCmdPipelineBarrier2"));
     return {};
 }
 

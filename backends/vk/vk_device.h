@@ -28,6 +28,9 @@ struct Device {
     // Core 1.3 entry points, or the VK_KHR_dynamic_rendering ones on 1.2.
     PFN_vkCmdBeginRendering cmdBeginRendering = nullptr;
     PFN_vkCmdEndRendering cmdEndRendering = nullptr;
+    // synchronization2 (core 1.3, where the device enables the feature);
+    // null: barriers go through vkCmdPipelineBarrier.
+    PFN_vkCmdPipelineBarrier2 cmdPipelineBarrier2 = nullptr;
     DeviceInfo info;
 
     // For submitOnce.
@@ -60,7 +63,8 @@ private:
 Result<std::unique_ptr<Device>> createDevice(const BackendOptions& options);
 
 // A global memory dependency: every earlier write is available and visible to
-// every later command. What barrier() records, and what brackets submitOnce.
+// every later command. What brackets submitOnce; barrier() is narrower
+// (vk_barriers.h).
 void fullBarrier(VkCommandBuffer cmd);
 
 }  // namespace cavity::gpu::vk

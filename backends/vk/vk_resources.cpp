@@ -88,19 +88,39 @@ Status initImage(Device& d, ImageRes& img) {
         return badInput("createImage " + img.describe() + ": " + std::to_string(desc.mipLevels) +
                         " mip levels, at most " + std::to_string(maxLevels));
 
-    // Usage follows the format's features on this device: the interface
-    // promises every use, but e.g. R8 storage is optional in Vulkan. A missing
-    // use fails at the dispatch or draw that needs it, naming the image.
+    // Usage is what the description asks for (every use by default) that the
+    // format's features allow on this device: e.g. R8 storage is optional in
+    // Vulkan. By default a missing use fails at the dispatch or draw that
+    // needs it, naming the image; one asked for fails here. TRANSFER_DST is
+    // always there for the clear below.
     const VkFormat format = toVkFormat(desc.format);
     VkFormatProperties fp;
     vkGetPhysicalDeviceFormatProperties(d.physical, format, &fp);
     const VkFormatFeatureFlags f = fp.optimalTilingFeatures;
-    if (!(f & VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT))
+    const uint32_t want = desc.usage ? desc.usage : ~0u;
+    if ((want & ImageSampled) && !(f & VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT))
         return internal("createImage " + img.describe() + ": the device cannot sample this format");
-    img.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
-    if (f & VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT) img.usage |= VK_IMAGE_USAGE_STORAGE_BIT;
-    if (f & VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT) img.usage |= VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT;
-    if (f & VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT) img.usage |= VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT;
+    img.usage = VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    if (want & ImageSampled) img.usage |= VK_IMAGE_USAGE_SAMPLED_BIT;
+    if (want & ImageTransfer) img.usage |= VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    const struct {
+        ImageUsage use;
+        VkFormatFeatureFlags feature;
+        VkImageUsageFlags flag;
+        const char* what;
+    } optional[] = {
+        {ImageStorage, VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT, VK_IMAGE_USAGE_STORAGE_BIT, "storage image"},
+        {ImageColorTarget, VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT, "colour target"},
+        {ImageDepthTarget, VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
+         "depth target"},
+    };
+    for (const auto& o : optional) {
+        if (!(want & o.use)) continue;
+        if (f & o.feature) img.usage |= o.flag;
+        else if (desc.usage)
+            return internal("createImage " + img.describe() + ": '" + d.props.deviceName + "' cannot use " +
+                            formatName(desc.format) + " as a " + o.what);
+    }
 
     auto ci = vkStruct<VkImageCreateInfo>(VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO);
     ci.imageType = VK_IMAGE_TYPE_2D;
@@ -127,7 +147,13 @@ Status initImage(Device& d, ImageRes& img) {
         for (int l = 0; l < img.levels; ++l) CAVITY_TRY(createView(d, img, l, 1, img.levelViews[size_t(l)]));
     }
 
-    // The image's one and only layout change.
+    // The image's one and only layout change. GENERAL stays for every use:
+    // compute passes store to images that later passes sample, and GENERAL is
+    // the layout for storage. Colour targets of fragment passes could go to
+    // COLOR_ATTACHMENT_OPTIMAL and then SHADER_READ_ONLY_OPTIMAL, which lets a
+    // driver compress them; that takes per-image, per-level layout tracking
+    // through frames, uploads and readbacks, and is left until a GPU run
+    // shows it pays (lavapipe has no compression to show it).
     return d.submitOnce("creating " + img.describe(), [&](VkCommandBuffer cmd) {
         const VkImageSubresourceRange all{aspectOf(desc.format), 0, uint32_t(img.levels), 0, 1};
         auto b = vkStruct<VkImageMemoryBarrier>(VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER);
@@ -208,6 +234,7 @@ void destroyImage(Device& d, ImageRes& img) {
 }
 
 Status uploadImage(Device& d, const ImageRes& img, int level, std::span<const float> pixels) {
+    if (auto why = missingUsage(img.desc, ImageTransfer); !why.empty()) return badInput("uploadImage: " + why);
     CAVITY_TRY(checkLevel(img, level, "uploadImage"));
     const size_t texels = size_t(img.width(level)) * size_t(img.height(level));
     const size_t floats = texels * size_t(channelCount(img.desc.format));
@@ -228,6 +255,7 @@ Status uploadImage(Device& d, const ImageRes& img, int level, std::span<const fl
 }
 
 Result<std::vector<float>> readImage(Device& d, const ImageRes& img, int level) {
+    if (auto why = missingUsage(img.desc, ImageTransfer); !why.empty()) return badInput("readImage: " + why);
     CAVITY_TRY(checkLevel(img, level, "readImage"));
     const size_t texels = size_t(img.width(level)) * size_t(img.height(level));
     // Cached memory makes the host's reads of the copy fast where it exists.

@@ -17,7 +17,7 @@ namespace cavity::gpu::vk {
 struct ImageRes {
     ImageDesc desc;
     int levels = 1;
-    VkImageUsageFlags usage = 0;   // what the format allows on this device (see createImage)
+    VkImageUsageFlags usage = 0;   // what desc.usage asks for and the format allows on this device (see createImage)
     VkImage image = VK_NULL_HANDLE;
     VkDeviceMemory memory = VK_NULL_HANDLE;
     VkImageView view = VK_NULL_HANDLE;        // every level, for sampling
