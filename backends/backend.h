@@ -159,6 +159,10 @@ struct DeviceInfo {
     // NVIDIA's equals the NVML / CUDA UUID, which is how the clocks of the
     // device that ran are found (harness/gpu_clocks.h).
     std::string uuid;
+    // Streaming multiprocessors as the driver reports them
+    // (VK_NV_shader_sm_builtins shaderSMCount, GL_NV_shader_thread_group
+    // GL_SM_COUNT_NV), for the floor (harness/roofline.h); 0: not reported.
+    int smCount = 0;
 };
 
 // 16 bytes as 32 lower-case hex digits.

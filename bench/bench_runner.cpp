@@ -4,6 +4,7 @@
 #include "pipeline.h"
 #include "sweep.h"
 #include "gpu_clocks.h"
+#include "roofline.h"
 #include "timing.h"
 
 #include <benchmark/benchmark.h>
@@ -92,6 +93,16 @@ void run(benchmark::State& state, const Bench& b) {
         state.SetIterationTime(summarize(pipeline).median / 1000.0);
     }
     const RunConfig& c = b.config;
+    // Each pass's floor and its median over it; no counters where the
+    // pass has no floor (results.json's floor_reason says why).
+    const GpuClocks* gpuClocks = GpuClocks::forDevice(gpu.info());
+    const DeviceFloor device = deviceFloor(gpu.info(), gpuClocks ? gpuClocks->maxSmMhz() : std::nullopt);
+    for (size_t i = 0; i < passes.size(); ++i) {
+        const auto f = passFloor(device, passes[i].kernel, c.params, double(chains[0]->passPixels(i)));
+        if (!f.floor) continue;
+        state.counters["floor_" + passes[i].name + "_ms"] = f.floor->ms();
+        state.counters["over_floor_" + passes[i].name] = t.passes[i].stats.median / f.floor->ms();
+    }
     double pixels = 0, samples = 0, bytes = 0;
     for (size_t i = 0; i < passes.size(); ++i) {
         if (passes[i].name == "gbuffer") {
@@ -163,7 +174,7 @@ Result<int> registerSweep(const Options& o) {
         return badInput("--sweep " + o.sweep + ": must be gpu, cpu or auto");
     std::vector<gpu::Api> started;
     bool allSoftware = true;
-    std::string devices, drivers, versions;
+    std::string devices, drivers, versions, floors;
     for (auto api : apis) {
         gpu::BackendOptions bo;
         bo.deviceIndex = o.device;
@@ -175,6 +186,8 @@ Result<int> registerSweep(const Options& o) {
         const auto& info = (*b)->info();
         allSoftware &= info.softwareRenderer;
         const std::string tag = std::string(gpu::apiName(api)) + ": ";
+        const GpuClocks* clocks = GpuClocks::forDevice(info);
+        floors += (floors.empty() ? "" : "; ") + tag + describe(deviceFloor(info, clocks ? clocks->maxSmMhz() : std::nullopt));
         devices += (devices.empty() ? "" : "; ") + tag + info.deviceName;
         drivers += (drivers.empty() ? "" : "; ") + tag + info.driver;
         versions += (versions.empty() ? "" : "; ") + tag + info.apiVersion;
@@ -187,6 +200,7 @@ Result<int> registerSweep(const Options& o) {
     benchmark::AddCustomContext("cavity_driver", drivers);
     benchmark::AddCustomContext("cavity_api_versions", versions);
     benchmark::AddCustomContext("cavity_software_renderer", allSoftware ? "true" : "false");
+    benchmark::AddCustomContext("cavity_floor_device", floors);
     benchmark::AddCustomContext("cavity_sweep", cpu ? "cpu" : "gpu");
     if (const char* clocks = std::getenv("CAVITY_GPU_CLOCKS")) benchmark::AddCustomContext("cavity_gpu_clocks", clocks);
     // The timing options of the first backend's device (both APIs run on one device).

@@ -30,6 +30,9 @@ void PerPassJsonReporter::ReportRuns(const std::vector<Run>& runs) {
             Run p = r;
             p.run_name.function_name += "@" + pass;
             p.counters.clear();
+            for (const auto& [from, to] : {std::pair{"floor_" + pass + "_ms", "floor_ms"},
+                                           std::pair{"over_floor_" + pass, "measured_over_floor"}})
+                if (auto it = r.counters.find(from); it != r.counters.end()) p.counters[to] = it->second;
             // Google Benchmark reports accumulated time x unit / iterations
             // for times, and the bare value for a percentage (the cv
             // aggregate), so a time in ms becomes seconds x iterations.

@@ -5,6 +5,8 @@
 // this reporter also writes a run named `<id>@<p>` whose time is that
 // counter, so `compare.py benchmarks old.json new.json` lists every pass.
 // `cavity compare` skips the `@` entries: it reads the counters themselves.
+// A pass with a floor (counters floor_<p>_ms, over_floor_<p>) keeps them on
+// its entry as floor_ms and measured_over_floor.
 #pragma once
 
 #include <benchmark/benchmark.h>

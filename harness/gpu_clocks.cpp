@@ -44,6 +44,7 @@ public:
         auto byUuid = reinterpret_cast<ByUuidFn>(sym("nvmlDeviceGetHandleByUUID"));
         auto name = reinterpret_cast<NameFn>(sym("nvmlDeviceGetName"));
         c->clock_ = reinterpret_cast<ClockFn>(sym("nvmlDeviceGetClockInfo"));
+        auto maxClock = reinterpret_cast<ClockFn>(sym("nvmlDeviceGetMaxClockInfo"));
         // Renamed "clocks event reasons" in newer drivers; the old name stays.
         c->reasons_ = reinterpret_cast<ReasonsFn>(sym("nvmlDeviceGetCurrentClocksThrottleReasons"));
         if (!init || !count || !byIndex || !c->clock_ || init() != 0) return nullptr;
@@ -61,6 +62,7 @@ public:
         if (!found) return nullptr;
         char buf[96] = {};
         if (name && name(c->device_, buf, sizeof buf) == 0) c->name_ = buf;
+        if (unsigned mhz = 0; maxClock && maxClock(c->device_, kClockSm, &mhz) == 0 && mhz > 0) c->maxSmMhz_ = mhz;
         if (!c->sample()) return nullptr;
         return c;
     }
@@ -75,6 +77,7 @@ public:
     }
     std::string source() const override { return "nvml"; }
     std::string device() const override { return name_; }
+    std::optional<double> maxSmMhz() const override { return maxSmMhz_; }
 
 private:
     NvmlClocks() = default;
@@ -84,6 +87,7 @@ private:
     ReasonsFn reasons_ = nullptr;
     nvmlDevice device_ = nullptr;
     std::string name_;
+    std::optional<double> maxSmMhz_;
 };
 
 }  // namespace

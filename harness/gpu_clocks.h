@@ -46,6 +46,9 @@ public:
     static GpuClocks* forDevice(const gpu::DeviceInfo& device);
     virtual ~GpuClocks() = default;
     virtual std::optional<GpuClockSample> sample() = 0;
+    // The highest SM clock the device can run at (the floor's clock,
+    // harness/roofline.h); empty where not reported.
+    virtual std::optional<double> maxSmMhz() const = 0;
     virtual std::string source() const = 0;
     virtual std::string device() const = 0;
 };

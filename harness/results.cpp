@@ -66,6 +66,35 @@ json clocksJson(const GpuClockSummary& c) {
             {"event_reasons", c.reasonNames()}};
 }
 
+json figureJson(const Figure& f) { return {{"value", f.value}, {"source", f.source}}; }
+
+json floorDeviceJson(const DeviceFloor& d) {
+    if (!d.figures) return nullptr;
+    const DeviceFigures& f = *d.figures;
+    return {{"name", f.name},
+            {"sm_count", figureJson(f.smCount)},
+            {"texture_units_per_sm", figureJson(f.textureUnitsPerSm)},
+            {"sm_clock_mhz", figureJson(f.smClockMhz)},
+            {"dram_gb_per_s", figureJson(f.dramGBps)},
+            {"fetch_slots_per_s", f.slotsPerSecond()},
+            {"table_source", f.tableSource}};
+}
+
+json floorJson(const PassFloorResult& r, double medianMs) {
+    if (!r.floor) return nullptr;
+    const PassFloor& p = *r.floor;
+    return {{"floor_ms", p.ms()},
+            {"fetch_floor_ms", p.fetchMs},
+            {"dram_floor_ms", p.dramMs},
+            {"bound", p.bound()},
+            {"measured_over_floor", medianMs / p.ms()},
+            {"pixels", p.pixels},
+            {"fetches_per_pixel", p.cost.fetchesPerPixel},
+            {"fetch_slots_per_pixel", p.cost.fetchSlotsPerPixel},
+            {"bytes_per_pixel", p.cost.bytesPerPixel},
+            {"dram_bytes_per_pixel", p.cost.dramBytesPerPixel}};
+}
+
 }  // namespace
 
 namespace {
@@ -91,13 +120,17 @@ json toJson(const RunRecord& r) {
     if (r.config.imported()) gbuffer["file"] = r.config.gbufferFile;
     json passes = json::array();
     for (size_t i = 0; i < r.passes.size() && i < r.timing.passes.size(); ++i) {
+        const auto [w, h] = r.passSizes[i];
+        const PassFloorResult floor = passFloor(r.floorDevice, r.passes[i].kernel, r.config.params, double(w) * h);
         passes.push_back({{"name", r.passes[i].name},
                           {"kernel", r.passes[i].kernel},
                           {"width", r.passSizes[i].first},
                           {"height", r.passSizes[i].second},
                           {"shader_path", r.shaderPaths.count(r.passes[i].name) ? r.shaderPaths.at(r.passes[i].name) : ""},
                           {"stats", toJson(r.timing.passes[i].stats)},
-                          {"samples_ms", r.timing.passes[i].ms}});
+                          {"samples_ms", r.timing.passes[i].ms},
+                          {"floor", floorJson(floor, r.timing.passes[i].stats.median)},
+                          {"floor_reason", floor.reason}});
     }
     return {
         {"id", configId(r.config)},
@@ -116,6 +149,8 @@ json toJson(const RunRecord& r) {
         {"frames", {{"warmup", r.timing.warmupFrames}, {"measured", int(r.timing.frame.ms.size())}}},
         {"timing", timingJson(r.timingOptions, r.timing)},
         {"gpu_clocks", clocksJson(r.timing.clocks)},
+        {"floor_device", floorDeviceJson(r.floorDevice)},
+        {"floor_device_reason", r.floorDevice.reason},
         {"clock", r.timing.clock},
         {"clock_note", r.timing.clockNote},
         {"passes", passes},

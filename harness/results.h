@@ -5,6 +5,7 @@
 #include "backend.h"
 #include "config.h"
 #include "image.h"
+#include "roofline.h"
 #include "timing.h"
 
 #include <nlohmann/json.hpp>
@@ -24,6 +25,7 @@ struct RunRecord {
     Timing timing;                    // what was measured
     std::vector<PassSpec> passes;
     std::vector<std::pair<int, int>> passSizes;
+    DeviceFloor floorDevice;          // the figures each pass's floor is computed from
     std::map<std::string, std::string> shaderPaths;
     std::map<std::string, std::map<std::string, std::string>> images;   // image -> {"exr": path, "png": path}
     std::vector<std::string> debugMessages;

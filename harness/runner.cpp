@@ -72,7 +72,9 @@ Result<RunRecord> runConfig(gpu::Backend& gpu, const RunConfig& given, const Run
     }
     r.shaderPaths = chain->shaderPaths();
     r.timingOptions = timingOptions(gpu.info(), o);
-    CAVITY_ASSIGN(r.timing, measure(gpu, *chain, r.timingOptions, GpuClocks::forDevice(gpu.info())));
+    GpuClocks* clocks = GpuClocks::forDevice(gpu.info());
+    r.floorDevice = deviceFloor(gpu.info(), clocks ? clocks->maxSmMhz() : std::nullopt);
+    CAVITY_ASSIGN(r.timing, measure(gpu, *chain, r.timingOptions, clocks));
     r.debugMessages = gpu.takeDebugMessages();
     CAVITY_ASSIGN(r.nonFinite, chain->findNonFinite());
     if (o.keepImages || o.checkDeterminism) {

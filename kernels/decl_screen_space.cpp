@@ -287,7 +287,7 @@ KernelDecl depthFromPosition() {
     k.role = "gbuffer";
     k.inputs = {{"position", {}}};
     k.outputs = {{"depth", Format::R32F}};
-    k.cost = [](const ParamValues&) { return Cost{1, kRgba32f + kR32f}; };
+    k.cost = [](const ParamValues&) { return Cost{1, kRgba32f + kR32f, fetchSlots(kRgba32f), kRgba32f + kR32f}; };
     return k;
 }
 
@@ -322,7 +322,10 @@ KernelDecl hemisphere() {
     };
     k.cost = [](const ParamValues& v) {
         const double n = v.at("samples");
-        return Cost{3 + n, kR32f + kRgba16f + kRgba32f + n * kR32f + kR16f};
+        // The 4x4 noise tile is 256 bytes in all: no DRAM traffic per pixel.
+        return Cost{3 + n, kR32f + kRgba16f + kRgba32f + n * kR32f + kR16f,
+                    fetchSlots(kR32f) + fetchSlots(kRgba16f) + fetchSlots(kRgba32f) + n * fetchSlots(kR32f),
+                    kR32f + kRgba16f + kR16f};
     };
     return k;
 }
@@ -351,7 +354,7 @@ KernelDecl blurBox() {
     k.role = "blur";
     k.inputs = {{"ao", {}}};
     k.outputs = {{"ao", Format::R16F}};
-    k.cost = [](const ParamValues&) { return Cost{16, 16 * kR16f + kR16f}; };
+    k.cost = [](const ParamValues&) { return Cost{16, 16 * kR16f + kR16f, 16 * fetchSlots(kR16f), kR16f + kR16f}; };
     return k;
 }
 
@@ -364,8 +367,14 @@ KernelDecl downsampleDepth() {
     k.inputs = {{"position", {}}, {"normal", {}}};
     k.outputs = {{"position_half", Format::RGBA32F}, {"normal_half", Format::RGBA16F}};
     // Per half texel: 4 positions read, the chosen position and normal
-    // fetched again (a cache hit), both written.
-    k.cost = [](const ParamValues&) { return Cost{6, 4 * kRgba32f + kRgba16f + kRgba32f + kRgba16f}; };
+    // fetched again (a cache hit), both written. DRAM: the 2x2 block of
+    // both full-resolution images (every cache line of the normals is
+    // touched even though one texel in four is used).
+    k.cost = [](const ParamValues&) {
+        return Cost{6, 4 * kRgba32f + kRgba16f + kRgba32f + kRgba16f,
+                    4 * fetchSlots(kRgba32f) + fetchSlots(kRgba32f) + fetchSlots(kRgba16f),
+                    4 * kRgba32f + 4 * kRgba16f + kRgba32f + kRgba16f};
+    };
     return k;
 }
 
@@ -384,7 +393,11 @@ KernelDecl upsampleBilateral() {
     k.inputs = {{"ao_half", {}}, {"position_half", {}}, {"position", {}}, {"normal", {}}, {"normal_half", {}}};
     k.outputs = {{"ao", Format::R16F}};
     k.cost = [](const ParamValues&) {
-        return Cost{14, kRgba32f + kRgba16f + 4 * (kR16f + kRgba32f + kRgba16f) + kR16f};
+        // DRAM: the half-resolution inputs are a quarter texel per pixel.
+        return Cost{14, kRgba32f + kRgba16f + 4 * (kR16f + kRgba32f + kRgba16f) + kR16f,
+                    fetchSlots(kRgba32f) + fetchSlots(kRgba16f) +
+                        4 * (fetchSlots(kR16f) + fetchSlots(kRgba32f) + fetchSlots(kRgba16f)),
+                    kRgba32f + kRgba16f + (kR16f + kRgba32f + kRgba16f) / 4 + kR16f};
     };
     return k;
 }
@@ -433,7 +446,12 @@ KernelDecl ssdo() {
         const double n = v.at("samples");
         const double lod = v.at("sky_lod");
         const double skyTexels = lod == std::floor(lod) ? 4 : 8;   // bilinear, or trilinear
-        return Cost{2 + 3 * n, kRgba32f + kRgba16f + n * (kRgba32f + kRgba16f + skyTexels * kRgba32f) + kR16f + kRgba16f};
+        // The sky panorama (256x128 RGBA32F and its mips, 0.7 MB) stays in
+        // L2: no DRAM traffic per pixel.
+        return Cost{2 + 3 * n, kRgba32f + kRgba16f + n * (kRgba32f + kRgba16f + skyTexels * kRgba32f) + kR16f + kRgba16f,
+                    fetchSlots(kRgba32f) + fetchSlots(kRgba16f) +
+                        n * (fetchSlots(kRgba32f) + fetchSlots(kRgba16f) + skyTexels / 4 * fetchSlots(kRgba32f)),
+                    kRgba32f + kRgba16f + kR16f + kRgba16f};
     };
     return k;
 }
@@ -458,7 +476,9 @@ KernelDecl blurBilateralSsdo() {
     k.cost = [](const ParamValues& v) {
         const double r = v.at("blur");
         const double taps = (2 * r + 1) * (2 * r + 1);
-        return Cost{4 * taps, taps * (kR16f + kRgba16f + kRgba32f + kRgba16f) + kR16f + kRgba16f};
+        return Cost{4 * taps, taps * (kR16f + kRgba16f + kRgba32f + kRgba16f) + kR16f + kRgba16f,
+                    taps * (fetchSlots(kR16f) + fetchSlots(kRgba16f) + fetchSlots(kRgba32f) + fetchSlots(kRgba16f)),
+                    kR16f + kRgba16f + kRgba32f + kRgba16f + kR16f + kRgba16f};
     };
     return k;
 }
@@ -487,7 +507,10 @@ KernelDecl ssdoIndirect() {
     // Upper bound: every sample occluded, so every one reads its sender.
     k.cost = [](const ParamValues& v) {
         const double n = v.at("samples");
-        return Cost{2 + 4 * n, kRgba32f + kRgba16f + n * (kRgba32f + kRgba16f + kRgba16f + kRgba8) + kRgba16f};
+        return Cost{2 + 4 * n, kRgba32f + kRgba16f + n * (kRgba32f + kRgba16f + kRgba16f + kRgba8) + kRgba16f,
+                    fetchSlots(kRgba32f) + fetchSlots(kRgba16f) +
+                        n * (fetchSlots(kRgba32f) + fetchSlots(kRgba16f) + fetchSlots(kRgba16f) + fetchSlots(kRgba8)),
+                    kRgba32f + kRgba16f + kRgba16f + kRgba8 + kRgba16f};
     };
     return k;
 }
@@ -508,7 +531,11 @@ KernelDecl compositeSsdo() {
     k.outputs = {{"color", Format::RGBA8}};
     k.arrays = {{"sky_sh", 9}};
     k.derive = [](const ParamValues&, std::map<std::string, std::vector<float>>& arrays) { arrays["sky_sh"] = skySh(); };
-    k.cost = [](const ParamValues&) { return Cost{5, kR16f + kRgba16f + kRgba16f + kRgba16f + kRgba8 + kRgba8}; };
+    k.cost = [](const ParamValues&) {
+        return Cost{5, kR16f + kRgba16f + kRgba16f + kRgba16f + kRgba8 + kRgba8,
+                    fetchSlots(kR16f) + 3 * fetchSlots(kRgba16f) + fetchSlots(kRgba8),
+                    kR16f + kRgba16f + kRgba16f + kRgba16f + kRgba8 + kRgba8};
+    };
     return k;
 }
 

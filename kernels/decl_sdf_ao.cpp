@@ -20,6 +20,11 @@ using gpu::Format;
 
 constexpr double kRgba32f = 16, kRgba16f = 8, kR16f = 2;
 
+// One position and one normal read, one R16F AO written.
+Cost gbufferPixelCost() {
+    return Cost{2, kRgba32f + kRgba16f + kR16f, fetchSlots(kRgba32f) + fetchSlots(kRgba16f), kRgba32f + kRgba16f + kR16f};
+}
+
 KernelDecl sdfKernel(std::string name, std::string file, std::string summary, double radius, std::string radiusHelp,
                      double strength, std::string strengthHelp) {
     KernelDecl k;
@@ -39,8 +44,8 @@ KernelDecl sdfKernel(std::string name, std::string file, std::string summary, do
     k.outputs = {{"ao", Format::R16F}};
     k.compileTime = {"scene"};
     // Reads its own pixel of the G-buffer; the distance probes are
-    // arithmetic, not memory traffic.
-    k.cost = [](const ParamValues&) { return Cost{2, kRgba32f + kRgba16f + kR16f}; };
+    // arithmetic, not memory traffic, so the floor says nothing of them.
+    k.cost = [](const ParamValues&) { return gbufferPixelCost(); };
     return k;
 }
 
@@ -63,7 +68,7 @@ KernelDecl groundTruth() {
     k.inputs = {{"position", {}}, {"normal", {}}};
     k.outputs = {{"ao", Format::R16F}};
     k.compileTime = {"scene"};
-    k.cost = [](const ParamValues&) { return Cost{2, kRgba32f + kRgba16f + kR16f}; };
+    k.cost = [](const ParamValues&) { return gbufferPixelCost(); };
     return k;
 }
 

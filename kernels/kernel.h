@@ -68,11 +68,25 @@ struct ArrayDecl {
 using ParamValues = std::map<std::string, double>;
 
 // What one output pixel of a kernel costs in memory traffic, for the
-// benchmark's bytes/s counter and the roofline note (bench/ROOFLINE.md).
+// benchmark's bytes/s counter and each pass's floor (harness/roofline.h,
+// bench/ROOFLINE.md). Fill all four: a cost with fetches but no fetch slots,
+// or no DRAM bytes, gives its pass no floor rather than a floor of zero.
 struct Cost {
-    double fetchesPerPixel = 0;   // texel fetches
-    double bytesPerPixel = 0;     // bytes read and written
+    double fetchesPerPixel = 0;      // texel fetches
+    double bytesPerPixel = 0;        // bytes read and written, every fetch counted
+    double fetchSlotsPerPixel = 0;   // texture-unit slots of those fetches: sum of fetchSlots(texel bytes)
+    // DRAM bytes with perfect cache reuse: each input image read once and
+    // each output written once, per output pixel (a half-resolution input
+    // read by a full-resolution pass counts a quarter of its texel).
+    double dramBytesPerPixel = 0;
 };
+
+// Texture-unit slots one fetch of a texel takes: 1 up to 32 bits (R16F,
+// R32F, RGBA8), 2 for 64-bit (RGBA16F), 4 for 128-bit (RGBA32F). An
+// assumption from NVIDIA's texture units filtering 32 bits per slot, not a
+// measurement (bench/ROOFLINE.md); a bilinear fetch is one fetch, a
+// trilinear one two.
+constexpr double fetchSlots(double texelBytes) { return texelBytes <= 4 ? 1 : texelBytes / 4; }
 
 // Fills derived uniform arrays (e.g. Gaussian weights for the blur radius)
 // from the parameter values: arrays[name] gets 4 * vec4Count floats.

@@ -78,7 +78,9 @@ KernelDecl gbufferSdf() {
     };
     k.outputs = {{"position", Format::RGBA32F}, {"normal", Format::RGBA16F}, {"albedo", Format::RGBA8}};
     k.compileTime = {"scene"};
-    k.cost = [](const ParamValues&) { return Cost{0, kRgba32f + kRgba16f + kRgba8}; };
+    k.cost = [](const ParamValues&) {
+        return Cost{0, kRgba32f + kRgba16f + kRgba8, 0, kRgba32f + kRgba16f + kRgba8};
+    };
     return k;
 }
 
@@ -106,7 +108,8 @@ KernelDecl alchemy() {
     k.outputs = {{"ao", Format::R16F}};
     k.cost = [](const ParamValues& v) {
         const double n = v.at("samples");
-        return Cost{2 + n, kRgba32f + kRgba16f + n * kRgba32f + kR16f};
+        return Cost{2 + n, kRgba32f + kRgba16f + n * kRgba32f + kR16f,
+                    fetchSlots(kRgba32f) + fetchSlots(kRgba16f) + n * fetchSlots(kRgba32f), kRgba32f + kRgba16f + kR16f};
     };
     return k;
 }
@@ -134,7 +137,9 @@ KernelDecl blurBilateral() {
     k.cost = [](const ParamValues& v) {
         const double r = v.at("blur");
         const double taps = (2 * r + 1) * (2 * r + 1);
-        return Cost{3 * taps, taps * (kR16f + kRgba32f + kRgba16f) + kR16f};
+        return Cost{3 * taps, taps * (kR16f + kRgba32f + kRgba16f) + kR16f,
+                    taps * (fetchSlots(kR16f) + fetchSlots(kRgba32f) + fetchSlots(kRgba16f)),
+                    kR16f + kRgba32f + kRgba16f + kR16f};
     };
     return k;
 }
@@ -150,7 +155,10 @@ KernelDecl composite() {
     };
     k.inputs = {{"ao", {}}, {"normal", {}}, {"albedo", {}}};
     k.outputs = {{"color", Format::RGBA8}};
-    k.cost = [](const ParamValues&) { return Cost{3, kR16f + kRgba16f + kRgba8 + kRgba8}; };
+    k.cost = [](const ParamValues&) {
+        return Cost{3, kR16f + kRgba16f + kRgba8 + kRgba8, fetchSlots(kR16f) + fetchSlots(kRgba16f) + fetchSlots(kRgba8),
+                    kR16f + kRgba16f + kRgba8 + kRgba8};
+    };
     return k;
 }
 

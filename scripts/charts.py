@@ -50,6 +50,18 @@ the truth) is drawn and its points ringed. Writes DIR/quality_cost.png,
 .svg and quality_cost.json (the joined points, front marked). A quality row
 with no benchmark (or the reverse) is listed on stderr and left out.
 
+Subcommand: measured against floor
+
+    python3 scripts/charts.py floor RESULTS.json [MORE.json ...] --out DIR
+
+reads `cavity run`'s results.json (schema cavity.results/1) and draws, one row
+per pass of every configuration, the measured median (a bar, log scale) and
+the pass's floor (a black tick; bench/ROOFLINE.md), with measured/floor at the
+end of the row. A pass with no floor (a software renderer, a device not in
+the floor table, no cost declared) has its bar in grey and its reason at the
+end of the row; a file with no floor at all says so on stderr and in the
+title, and draws the measured times. Writes DIR/floor.png, DIR/floor.svg.
+
 Uses only the Python standard library and matplotlib (Debian's python3-matplotlib).
 """
 
@@ -1030,6 +1042,115 @@ def quality_cost_main(argv):
     return 0
 
 
+
+# --------------------------------------------------------------------------
+# Measured against floor (results.json)
+
+def load_floor_rows(path):
+    """One row per pass of every run of a cavity results.json: configuration id, pass, measured median
+    (ms), floor (ms, or None), reason (empty with a floor), bound, and the device line of the run."""
+    try:
+        with open(path) as f:
+            doc = json.load(f)
+    except OSError as e:
+        raise BadInput(f"charts floor: {path}: cannot read ({e.strerror})")
+    except ValueError as e:
+        raise BadInput(f"charts floor: {path}: not JSON ({e})")
+    if not isinstance(doc, dict) or doc.get("schema") != "cavity.results/1" or not isinstance(doc.get("runs"), list):
+        raise BadInput(f"charts floor: {path}: not a cavity results.json (schema cavity.results/1)")
+    rows = []
+    for run in doc["runs"]:
+        try:
+            device = run["device"]["name"]
+            for p in run["passes"]:
+                floor = p["floor"]
+                rows.append({"id": run["id"], "pass": p["name"], "ms": float(p["stats"]["median_ms"]),
+                             "floor": float(floor["floor_ms"]) if floor else None,
+                             "bound": floor["bound"] if floor else "", "reason": p["floor_reason"], "device": device})
+        except (KeyError, TypeError, ValueError) as e:
+            raise BadInput(f"charts floor: {path}: run {run.get('id', '?') if isinstance(run, dict) else '?'} "
+                           f"lacks a field the chart needs ({e}); written before floors existed?")
+    if not rows:
+        raise BadInput(f"charts floor: {path}: no runs with passes")
+    return rows
+
+
+def floor_main(argv):
+    class P(argparse.ArgumentParser):
+        def error(self, message):
+            print(f"charts floor: {message} (usage: charts.py floor RESULTS.json [...] --out DIR)", file=sys.stderr)
+            sys.exit(2)
+
+    p = P(prog="charts floor")
+    p.add_argument("results", nargs="+", metavar="RESULTS.json")
+    p.add_argument("--out", required=True, metavar="DIR")
+    args = p.parse_args(argv)
+    try:
+        rows = [r for path in args.results for r in load_floor_rows(path)]
+        if os.path.exists(args.out) and not os.path.isdir(args.out):
+            raise BadInput(f"charts floor: {args.out}: --out exists and is not a folder")
+    except BadInput as e:
+        print(str(e), file=sys.stderr)
+        return 2
+    reasons = sorted({r["reason"] for r in rows if r["floor"] is None})
+    floored = [r for r in rows if r["floor"] is not None]
+    if not floored:
+        print(f"charts floor: note: no pass has a floor ({'; '.join(reasons)}); drawing the measured times only",
+              file=sys.stderr)
+    os.makedirs(args.out, exist_ok=True)
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    n = len(rows)
+    fig, ax = plt.subplots(figsize=(11, 1.6 + 0.28 * n))
+    ys = list(range(n))[::-1]   # the first pass of the first run at the top
+    colour = {"fetch": "tab:blue", "dram": "tab:orange", "": "lightgrey"}
+    positive = [r["ms"] for r in rows if r["ms"] > 0] + [r["floor"] for r in floored]
+    low = min(positive) / 3 if positive else 1e-3
+    for y, r in zip(ys, rows):
+        ax.barh(y, max(r["ms"], low) - low, left=low, height=0.6, color=colour[r["bound"]])
+        if r["floor"] is not None:
+            ax.plot([r["floor"], r["floor"]], [y - 0.4, y + 0.4], color="black", lw=2)
+    right = max(max(positive), low * 10) * 8 if positive else 1   # room for the ratio text
+    ax.set_xscale("log")
+    ax.set_xlim(low, right)
+    # One reason for every pass without a floor goes in the title once, not on each row.
+    for y, r in zip(ys, rows):
+        end = max(r["ms"], r["floor"] or 0, low)
+        text = (f"{r['ms'] / r['floor']:.2f}x floor" if r["floor"] else
+                "no floor" if len(reasons) == 1 else f"no floor: {shorten(r['reason'], 60)}")
+        ax.annotate(text, (end, y), textcoords="offset points", xytext=(4, -3), fontsize=7,
+                    color="black" if r["floor"] else "dimgrey")
+    ax.set_yticks(ys)
+    ax.set_yticklabels([f"{r['id']}  {r['pass']}" for r in rows], fontsize=7)
+    ax.set_xlabel("GPU time per frame, ms (log): bar = measured median, black tick = floor")
+    from matplotlib.patches import Patch
+    from matplotlib.lines import Line2D
+    labels = {"fetch": "measured, fetch-bound floor", "dram": "measured, DRAM-bound floor", "": "measured, no floor"}
+    seen = {r["bound"] for r in rows}
+    handles = [Patch(color=colour[b], label=labels[b]) for b in ("fetch", "dram", "") if b in seen]
+    if floored:
+        handles.append(Line2D([], [], color="black", lw=2, label="floor"))
+    height = fig.get_size_inches()[1]
+    fig.legend(handles=handles, fontsize=7, loc="lower center", ncol=len(handles), frameon=False)
+    devices = sorted({r["device"] for r in rows})
+    title = "Measured against floor, per pass (bench/ROOFLINE.md)"
+    sub = f"{', '.join(args.results)} · device {', '.join(devices)}"
+    if not floored:
+        sub += f" · no pass has a floor: {'; '.join(reasons)}"
+    elif reasons:
+        sub += f" · {n - len(floored)} of {n} passes have no floor"
+    ax.set_title(title + "\n" + "\n".join(textwrap.wrap(sub, 130)), fontsize=9)
+    ax.grid(True, axis="x", which="both", alpha=0.25)
+    fig.tight_layout(rect=(0, 0.3 / height, 1, 1))   # room for the legend below the axis
+    for ext in ("png", "svg"):
+        path = os.path.join(args.out, "floor." + ext)
+        fig.savefig(path, dpi=DPI)
+        print(path)
+    plt.close(fig)
+    return 0
+
 # --------------------------------------------------------------------------
 
 class _Parser(argparse.ArgumentParser):
@@ -1052,6 +1173,8 @@ def main(argv=None):
     argv = sys.argv[1:] if argv is None else argv
     if argv and argv[0] == "quality-cost":
         return quality_cost_main(argv[1:])
+    if argv and argv[0] == "floor":
+        return floor_main(argv[1:])
     args = parse_args(argv)
     # Validate every input before writing anything.
     try:

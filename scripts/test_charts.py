@@ -301,5 +301,65 @@ class QualityCost(unittest.TestCase):
             self.assertEqual(len(r.stderr.strip().splitlines()), 1)
 
 
+class Floor(unittest.TestCase):
+    """The floor subcommand: measured against floor per pass from results.json, null floors included."""
+
+    @staticmethod
+    def write_results(d, floors):
+        def pass_(name, ms, floor, reason):
+            return {"name": name, "kernel": name, "width": 1920, "height": 1080, "shader_path": "spirv",
+                    "stats": {"count": 1, "median_ms": ms, "min_ms": ms, "max_ms": ms, "mean_ms": ms, "p90_ms": ms,
+                              "stddev_ms": 0, "cv": 0}, "samples_ms": [ms],
+                    "floor": None if floor is None else {"floor_ms": floor, "bound": "fetch"}, "floor_reason": reason}
+        passes = [pass_("ao", 0.2, 0.1388 if floors else None, "" if floors else "software renderer (x): no GPU floor"),
+                  pass_("gbuffer", 0.05, None, "no cost declared")]
+        doc = {"schema": "cavity.results/1", "runs": [{"id": "corner/alchemy/n16/b4/full/1920x1080/vk/compute",
+                                                        "device": {"name": "NVIDIA H200"}, "passes": passes}]}
+        path = os.path.join(d, "results.json")
+        with open(path, "w") as f:
+            json.dump(doc, f)
+        return path
+
+    def test_rows(self):
+        with tempfile.TemporaryDirectory() as d:
+            rows = charts.load_floor_rows(self.write_results(d, True))
+        self.assertEqual([(r["pass"], r["ms"], r["floor"], r["reason"]) for r in rows],
+                         [("ao", 0.2, 0.1388, ""), ("gbuffer", 0.05, None, "no cost declared")])
+
+    def test_chart_with_and_without_floors(self):
+        for floors in (True, False):
+            with tempfile.TemporaryDirectory() as d:
+                out = os.path.join(d, "out")
+                r = run_charts("floor", self.write_results(d, floors), "--out", out)
+                self.assertEqual(r.returncode, 0, r.stderr)
+                for name in ("floor.png", "floor.svg"):
+                    self.assertTrue(os.path.getsize(os.path.join(out, name)) > 0, name)
+                with open(os.path.join(out, "floor.svg")) as f:
+                    svg = f.read()
+                if floors:
+                    self.assertEqual(r.stderr, "")
+                    self.assertIn("1.44x floor", svg)   # 0.2 / 0.1388
+                else:
+                    self.assertIn("no pass has a floor (no cost declared; software renderer (x): no GPU floor)", r.stderr)
+
+    def test_bad_input(self):
+        with tempfile.TemporaryDirectory() as d:
+            out = os.path.join(d, "o")
+            r = run_charts("floor", SAMPLE, "--out", out)
+            self.assertEqual(r.returncode, 2)
+            self.assertIn("not a cavity results.json", r.stderr)
+            self.assertFalse(os.path.exists(out))
+            path = self.write_results(d, True)
+            with open(path) as f:
+                doc = json.load(f)
+            del doc["runs"][0]["passes"][0]["floor"]   # a results.json from before floors
+            with open(path, "w") as f:
+                json.dump(doc, f)
+            r = run_charts("floor", path, "--out", out)
+            self.assertEqual(r.returncode, 2)
+            self.assertIn("lacks a field the chart needs", r.stderr)
+            self.assertFalse(os.path.exists(out))
+
+
 if __name__ == "__main__":
     unittest.main()

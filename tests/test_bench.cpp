@@ -1,6 +1,7 @@
 // The benchmark runner: registers exactly the sweep's configurations, runs a
 // filtered subset on both APIs, and reports as manual time exactly the GPU
 // time the backend's timestamps gave for the passes after the G-buffer.
+#include "per_pass_reporter.h"
 #include "sweep.h"
 
 #include <gtest/gtest.h>
@@ -98,6 +99,48 @@ TEST(Bench, SmokeRunOnBothApisWithManualTimeFromTimestamps) {
     }
     EXPECT_EQ(doc["context"]["cavity_sweep"], "cpu");
     EXPECT_TRUE(doc["context"].contains("cavity_timing_mode"));
+    // A software renderer has no floor: the context says why, and no
+    // floor counter stands in for one.
+    const std::string floors = doc["context"]["cavity_floor_device"];
+    EXPECT_NE(floors.find("no floor: software renderer ("), std::string::npos) << floors;
+    for (const auto& b : doc["benchmarks"])
+        for (const auto& [k, v] : b.items())
+            EXPECT_TRUE(k.rfind("floor_", 0) != 0 && k.rfind("over_floor_", 0) != 0 && k != "floor_ms") << b["name"] << " " << k;
+}
+
+// A pass with a floor keeps it on its own entry: <id>@ao carries floor_ms
+// and measured_over_floor from the run's floor_ao_ms and over_floor_ao, and
+// a pass without one (blur here) carries neither.
+TEST(Bench, PassEntriesCarryTheirFloor) {
+    benchmark::BenchmarkReporter::Run run;
+    run.run_name.function_name = "corner/alchemy/n16/b4/full/1920x1080/vk/compute";
+    run.iterations = 1;
+    run.real_accumulated_time = 1e-3;
+    run.time_unit = benchmark::kMillisecond;
+    run.counters["pass_ao_ms"] = 0.2;
+    run.counters["pass_blur_ms"] = 0.6;
+    run.counters["floor_ao_ms"] = 0.1388;
+    run.counters["over_floor_ao"] = 1.44;
+    std::ostringstream out, err;
+    cavity::bench::PerPassJsonReporter reporter;
+    reporter.SetOutputStream(&out);
+    reporter.SetErrorStream(&err);
+    reporter.ReportContext(benchmark::BenchmarkReporter::Context());
+    reporter.ReportRuns({run});
+    reporter.Finalize();
+    const auto doc = nlohmann::json::parse(out.str());
+    std::map<std::string, nlohmann::json> byName;
+    for (const auto& b : doc["benchmarks"]) byName[b["name"]] = b;
+    ASSERT_TRUE(byName.count(run.run_name.function_name + "@ao")) << out.str();
+    const auto& ao = byName[run.run_name.function_name + "@ao"];
+    EXPECT_DOUBLE_EQ(ao["floor_ms"].get<double>(), 0.1388);
+    EXPECT_DOUBLE_EQ(ao["measured_over_floor"].get<double>(), 1.44);
+    EXPECT_FALSE(ao.contains("floor_ao_ms"));
+    const auto& blur = byName[run.run_name.function_name + "@blur"];
+    EXPECT_FALSE(blur.contains("floor_ms")) << blur.dump();
+    EXPECT_FALSE(blur.contains("measured_over_floor"));
+    // The run itself keeps every counter.
+    EXPECT_DOUBLE_EQ(byName[run.run_name.function_name]["floor_ao_ms"].get<double>(), 0.1388);
 }
 
 // Every repetition carries one clock for its configuration, and each pass

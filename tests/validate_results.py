@@ -1,10 +1,15 @@
 #!/usr/bin/env python3
 """A real consumer of results.json: python3-jsonschema validates what `cavity
 run` wrote against harness/results.schema.json, and the timing record is
-checked against the samples it describes.
+checked against the samples it describes. On a software renderer every floor
+is null with its reason; a pass with no declared cost (the rasterised
+G-buffer) says so; and a copy of a run given an H200's figures and floors
+validates, while one with a floor field wrong does not, so the schema's
+floor branch is checked as well as its null one.
 
     validate_results.py CAVITY_EXE SOURCE_DIR
 """
+import copy
 import json
 import os
 import subprocess
@@ -40,7 +45,69 @@ def main():
                     sys.exit(f"{run['id']}: timing mode {t['mode']} (asked {t['mode_requested']}), expected {expected}")
                 if t["stop"] != "frames" or t["rejected_frames"] < 0:
                     sys.exit(f"{run['id']}: stop {t['stop']}, rejected {t['rejected_frames']}")
+                check_floors(run)
             print(f"--timing {timing}: {len(doc['runs'])} runs valid")
+        r = subprocess.run([cavity, "run", "--backend", "vk", "--gbuffer", "raster", "--res", "64x36", "--frames", "2",
+                            "--warmup", "0", "--max-noise", "0", "--out", out], capture_output=True, text=True)
+        if r.returncode != 0:
+            sys.exit(f"cavity run --gbuffer raster exited {r.returncode}: {r.stderr}")
+        doc = json.load(open(os.path.join(out, "results.json")))
+        jsonschema.Draft202012Validator(schema).validate(doc)
+        gbuffer = [p for run in doc["runs"] for p in run["passes"] if p["name"] == "gbuffer"]
+        if not gbuffer or any(p["floor"] is not None or p["floor_reason"] != "no cost declared" for p in gbuffer):
+            sys.exit(f"raster G-buffer: expected floor null, 'no cost declared'; got {[(p['floor'], p['floor_reason']) for p in gbuffer]}")
+        print("--gbuffer raster: the G-buffer pass has no cost declared")
+        check_floor_branch(schema, doc["runs"][0])
+
+
+def check_floors(run):
+    """Every floor is null and says why on a software renderer; a GPU in
+    the floor table has figures, and each pass a floor or a reason."""
+    software = run["device"]["software_renderer"]
+    if software:
+        if run["floor_device"] is not None or "software renderer" not in run["floor_device_reason"]:
+            sys.exit(f"{run['id']}: software renderer, but floor_device {run['floor_device']!r}, "
+                     f"reason {run['floor_device_reason']!r}")
+    for p in run["passes"]:
+        if (p["floor"] is None) == (p["floor_reason"] == ""):
+            sys.exit(f"{run['id']} {p['name']}: floor {p['floor']!r} with reason {p['floor_reason']!r}")
+        if software and p["floor_reason"] != run["floor_device_reason"]:
+            sys.exit(f"{run['id']} {p['name']}: reason {p['floor_reason']!r}, expected the device's")
+
+
+def check_floor_branch(schema, run):
+    """The H200's figures and the alchemy n16 floor at 1920x1080 (tests/test_roofline.cpp) as
+    `cavity run` writes them validate; each of a few wrong ones does not."""
+    table = {"value": 0, "source": "table:NVIDIA H200"}
+    run = copy.deepcopy(run)
+    run["floor_device"] = {"name": "NVIDIA H200", "sm_count": dict(table, value=132, source="driver"),
+                           "texture_units_per_sm": dict(table, value=4), "sm_clock_mhz": dict(table, value=1980, source="nvml"),
+                           "dram_gb_per_s": dict(table, value=4800), "fetch_slots_per_s": 1.04544e12,
+                           "table_source": "NVIDIA H200 data sheet"}
+    run["floor_device_reason"] = ""
+    for p in run["passes"]:
+        p["floor"] = {"floor_ms": 0.138843, "fetch_floor_ms": 0.138843, "dram_floor_ms": 0.011232, "bound": "fetch",
+                      "measured_over_floor": 1.43, "pixels": 2073600, "fetches_per_pixel": 18,
+                      "fetch_slots_per_pixel": 70, "bytes_per_pixel": 282, "dram_bytes_per_pixel": 26}
+        p["floor_reason"] = ""
+    doc = {"schema": "cavity.results/1", "git_commit": "x", "created_utc": "2026-12-01T00:00:00Z", "command": "",
+           "errors": [], "runs": [run]}
+    validator = jsonschema.Draft202012Validator(schema)
+    validator.validate(doc)
+    wrong = {
+        "a bound that is neither fetch nor dram": lambda d: d["runs"][0]["passes"][0]["floor"].update(bound="alu"),
+        "a floor without floor_ms": lambda d: d["runs"][0]["passes"][0]["floor"].pop("floor_ms"),
+        "a zero DRAM floor": lambda d: d["runs"][0]["passes"][0]["floor"].update(dram_floor_ms=0),
+        "a figure of unknown source": lambda d: d["runs"][0]["floor_device"]["sm_count"].update(source="guess"),
+        "a figure without its source": lambda d: d["runs"][0]["floor_device"]["dram_gb_per_s"].pop("source"),
+        "a pass without floor_reason": lambda d: d["runs"][0]["passes"][0].pop("floor_reason"),
+    }
+    for what, spoil in wrong.items():
+        bad = copy.deepcopy(doc)
+        spoil(bad)
+        if validator.is_valid(bad):
+            sys.exit(f"the schema accepts {what}")
+    print(f"floor branch: valid with an H200's figures, {len(wrong)} spoiled copies rejected")
 
 
 if __name__ == "__main__":

@@ -193,6 +193,11 @@ Status GlBackend::init(const BackendOptions& options) {
         glGetUnsignedBytei_vEXT(GL_DEVICE_UUID_EXT, 0, uuid);
         if (glGetError() == GL_NO_ERROR) info_.uuid = hexUuid(uuid);
     }
+    if (epoxy_has_gl_extension("GL_NV_shader_thread_group")) {
+        GLint sms = 0;
+        glGetIntegerv(GL_SM_COUNT_NV, &sms);
+        if (glGetError() == GL_NO_ERROR && sms > 0) info_.smCount = sms;
+    }
 
     // Lets tests and bug reports exercise the GLSL path on a driver with SPIR-V.
     const char* force = std::getenv("CAVITY_GL_FORCE_GLSL");

@@ -245,7 +245,12 @@ Status createLogicalDevice(Device& d, uint32_t instanceVersion) {
 }
 
 void describe(Device& d) {
-    auto id = vkStruct<VkPhysicalDeviceIDProperties>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ID_PROPERTIES);
+    // Chained only where the device has the extension, as the spec requires.
+    auto sm = vkStruct<VkPhysicalDeviceShaderSMBuiltinsPropertiesNV>(
+        VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_SM_BUILTINS_PROPERTIES_NV);
+    const bool hasSm = hasDeviceExtension(d.physical, VK_NV_SHADER_SM_BUILTINS_EXTENSION_NAME);
+    auto id = vkStruct<VkPhysicalDeviceIDProperties>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ID_PROPERTIES,
+                                                     hasSm ? &sm : nullptr);
     auto driver = vkStruct<VkPhysicalDeviceDriverProperties>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES, &id);
     auto props = vkStruct<VkPhysicalDeviceProperties2>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &driver);
     vkGetPhysicalDeviceProperties2(d.physical, &props);
@@ -258,6 +263,7 @@ void describe(Device& d) {
     unsigned char uuid[16];
     std::memcpy(uuid, id.deviceUUID, sizeof uuid);
     d.info.uuid = hexUuid(uuid);
+    if (hasSm) d.info.smCount = int(sm.shaderSMCount);
 }
 
 }  // namespace

@@ -1,0 +1,237 @@
+// Each pass's floor (harness/roofline.h): the arithmetic against numbers
+// worked by hand for the H200's table entry, where each figure comes from,
+// the cases with no floor, every declaration's cost being complete, and
+// bench/ROOFLINE.md's table being what the code computes.
+#include "config.h"
+#include "pipeline.h"
+#include "roofline.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <vector>
+
+namespace cavity {
+namespace {
+
+gpu::DeviceInfo device(const std::string& name, int smCount = 0, bool software = false) {
+    gpu::DeviceInfo d;
+    d.api = "vk";
+    d.deviceName = name;
+    d.smCount = smCount;
+    d.softwareRenderer = software;
+    return d;
+}
+
+constexpr double kPixels1080p = 1920.0 * 1080.0;   // 2 073 600
+
+TEST(Roofline, H200TableEntryGivesEveryFigureWithItsSource) {
+    const DeviceFloor d = deviceFloor(device("NVIDIA H200"), std::nullopt);
+    ASSERT_TRUE(d.figures) << d.reason;
+    EXPECT_EQ(d.reason, "");
+    EXPECT_EQ(d.figures->smCount.value, 132);
+    EXPECT_EQ(d.figures->textureUnitsPerSm.value, 4);
+    EXPECT_EQ(d.figures->smClockMhz.value, 1980);
+    EXPECT_EQ(d.figures->dramGBps.value, 4800);
+    for (const Figure* f : {&d.figures->smCount, &d.figures->textureUnitsPerSm, &d.figures->smClockMhz, &d.figures->dramGBps})
+        EXPECT_EQ(f->source, "table:NVIDIA H200");
+    // 132 x 4 x 1.98 GHz.
+    EXPECT_DOUBLE_EQ(d.figures->slotsPerSecond(), 1.04544e12);
+}
+
+// Alchemy, n = 16, at 1920x1080: 2 + 16 fetches; slots 4 (position) + 2
+// (normal) + 16 x 4 (RGBA32F positions) = 70; DRAM 16 + 8 read + 2 written
+// = 26 bytes. Fetch: 2073600 x 70 / 1.04544e12 s = 0.138843 ms. DRAM:
+// 2073600 x 26 / 4.8e12 s = 0.011232 ms.
+TEST(Roofline, AlchemyN16At1080pOnTheH200) {
+    const DeviceFloor d = deviceFloor(device("NVIDIA H200"), std::nullopt);
+    const PassFloorResult r = passFloor(d, "alchemy", {{"samples", 16}}, kPixels1080p);
+    ASSERT_TRUE(r.floor) << r.reason;
+    EXPECT_EQ(r.floor->cost.fetchesPerPixel, 18);
+    EXPECT_EQ(r.floor->cost.fetchSlotsPerPixel, 70);
+    EXPECT_EQ(r.floor->cost.bytesPerPixel, 282);
+    EXPECT_EQ(r.floor->cost.dramBytesPerPixel, 26);
+    EXPECT_NEAR(r.floor->fetchMs, 0.1388429752, 1e-9);
+    EXPECT_NEAR(r.floor->dramMs, 0.011232, 1e-9);
+    EXPECT_NEAR(r.floor->ms(), 0.1388429752, 1e-9);
+    EXPECT_STREQ(r.floor->bound(), "fetch");
+}
+
+// The bilateral blur at r = 4: 81 taps of R16F + RGBA32F + RGBA16F, 7 slots
+// each = 567; 2073600 x 567 / 1.04544e12 s = 1.124628 ms.
+TEST(Roofline, BlurR4At1080pOnTheH200) {
+    const DeviceFloor d = deviceFloor(device("NVIDIA H200"), std::nullopt);
+    const PassFloorResult r = passFloor(d, "blur_bilateral", {}, kPixels1080p);
+    ASSERT_TRUE(r.floor) << r.reason;
+    EXPECT_EQ(r.floor->cost.fetchSlotsPerPixel, 567);
+    EXPECT_NEAR(r.floor->fetchMs, 1.1246280992, 1e-9);
+}
+
+// The ray-marched G-buffer fetches nothing: only its 28 bytes written, so
+// DRAM-bound at 2073600 x 28 / 4.8e12 s = 0.012096 ms.
+TEST(Roofline, GBufferIsDramBound) {
+    const DeviceFloor d = deviceFloor(device("NVIDIA H200"), std::nullopt);
+    const PassFloorResult r = passFloor(d, "gbuffer_sdf", {}, kPixels1080p);
+    ASSERT_TRUE(r.floor) << r.reason;
+    EXPECT_EQ(r.floor->fetchMs, 0);
+    EXPECT_NEAR(r.floor->dramMs, 0.012096, 1e-9);
+    EXPECT_STREQ(r.floor->bound(), "dram");
+}
+
+// The driver's SM count and NVML's clock win over the table, and GL's
+// renderer string ("NVIDIA H200/PCIe/SSE2") finds the same entry.
+TEST(Roofline, DriverAndNvmlFiguresWinOverTheTable) {
+    gpu::DeviceInfo gl = device("NVIDIA H200/PCIe/SSE2", 66);
+    gl.api = "gl";
+    const DeviceFloor d = deviceFloor(gl, 1755.0);
+    ASSERT_TRUE(d.figures) << d.reason;
+    EXPECT_EQ(d.figures->name, "NVIDIA H200");
+    EXPECT_EQ(d.figures->smCount.value, 66);
+    EXPECT_EQ(d.figures->smCount.source, "driver");
+    EXPECT_EQ(d.figures->smClockMhz.value, 1755);
+    EXPECT_EQ(d.figures->smClockMhz.source, "nvml");
+    EXPECT_EQ(d.figures->textureUnitsPerSm.source, "table:NVIDIA H200");
+    const PassFloorResult r = passFloor(d, "alchemy", {}, kPixels1080p);
+    ASSERT_TRUE(r.floor);
+    EXPECT_NEAR(r.floor->fetchMs, 1e3 * kPixels1080p * 70 / (66 * 4 * 1755e6), 1e-12);
+    EXPECT_EQ(describe(d), "NVIDIA H200: 66 SMs (driver) x 4 texture units/SM (table:NVIDIA H200) x 1755 MHz (nvml); "
+                           "DRAM 4800 GB/s (table:NVIDIA H200)");
+}
+
+TEST(Roofline, SoftwareRendererHasNoFloor) {
+    const DeviceFloor d = deviceFloor(device("llvmpipe (LLVM 15.0.6, 256 bits)", 0, true), std::nullopt);
+    EXPECT_FALSE(d.figures);
+    EXPECT_EQ(d.reason, "software renderer (llvmpipe (LLVM 15.0.6, 256 bits)): no GPU floor");
+    const PassFloorResult r = passFloor(d, "alchemy", {}, kPixels1080p);
+    EXPECT_FALSE(r.floor);
+    EXPECT_EQ(r.reason, d.reason);
+    EXPECT_EQ(describe(d), "no floor: " + d.reason);
+}
+
+TEST(Roofline, UnknownDeviceHasNoFloor) {
+    // A name that merely starts like a table entry is not that entry.
+    for (const std::string name : {"AMD Radeon RX 7900 XTX", "NVIDIA H200 NVL", "NVIDIA H20"}) {
+        const DeviceFloor d = deviceFloor(device(name, 78), 2100.0);
+        EXPECT_FALSE(d.figures) << name;
+        EXPECT_EQ(d.reason, "device '" + name + "' is not in the floor table (harness/roofline.cpp)");
+        EXPECT_FALSE(passFloor(d, "alchemy", {}, kPixels1080p).floor);
+    }
+}
+
+TEST(Roofline, NoCostDeclaredHasNoFloor) {
+    const DeviceFloor d = deviceFloor(device("NVIDIA H200"), std::nullopt);
+    // The rasterised G-buffer is a graphics pass with no declaration.
+    EXPECT_EQ(passFloor(d, "gbuffer_raster", {}, kPixels1080p).reason, "no cost declared");
+    auto& registry = kernels::registryForTests();
+    auto it = std::find_if(registry.begin(), registry.end(), [](const auto& k) { return k.name == "composite"; });
+    ASSERT_NE(it, registry.end());
+    const auto saved = it->cost;
+    it->cost = nullptr;
+    const PassFloorResult none = passFloor(d, "composite", {}, kPixels1080p);
+    // A cost written before the floor existed: fetches and bytes only.
+    it->cost = [](const kernels::ParamValues&) { return kernels::Cost{3, 18}; };
+    const PassFloorResult partial = passFloor(d, "composite", {}, kPixels1080p);
+    it->cost = saved;
+    EXPECT_FALSE(none.floor);
+    EXPECT_EQ(none.reason, "no cost declared");
+    EXPECT_FALSE(partial.floor);
+    EXPECT_EQ(partial.reason, "cost declares no fetch slots or no DRAM bytes (kernels/kernel.h Cost)");
+    EXPECT_TRUE(passFloor(d, "composite", {}, kPixels1080p).floor);
+}
+
+// Every declaration's cost fills the floor's fields: a kernel added with
+// only fetches and bytes fails here, not silently in results.json.
+TEST(Roofline, EveryDeclaredCostIsComplete) {
+    const DeviceFloor d = deviceFloor(device("NVIDIA H200"), std::nullopt);
+    for (const auto& k : kernels::all()) {
+        ASSERT_TRUE(k.cost) << k.name << ": no cost declared";
+        const PassFloorResult r = passFloor(d, k.name, {}, kPixels1080p);
+        ASSERT_TRUE(r.floor) << k.name << ": " << r.reason;
+        const kernels::Cost& c = r.floor->cost;
+        EXPECT_EQ(c.fetchesPerPixel > 0, c.fetchSlotsPerPixel > 0) << k.name;
+        // At least one slot per fetch, at most four (RGBA32F) or eight (trilinear).
+        EXPECT_GE(c.fetchSlotsPerPixel, c.fetchesPerPixel) << k.name;
+        EXPECT_LE(c.fetchSlotsPerPixel, 8 * c.fetchesPerPixel) << k.name;
+        EXPECT_GT(c.bytesPerPixel, 0) << k.name;
+    }
+}
+
+// --- bench/ROOFLINE.md -------------------------------------------------------
+
+std::string fixed(double v, int digits) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.*f", digits, v);
+    return buf;
+}
+
+std::string number(double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%g", v);
+    return buf;
+}
+
+// The default configuration of each screen-space kernel and of one SDF
+// kernel (the six share one cost), full and (where it exists) half
+// resolution, at 1920x1080 on the H200's table entry: one row per distinct
+// pass (kernel and size), naming the pipelines it is part of.
+std::string floorTable() {
+    const DeviceFloor d = deviceFloor(device("NVIDIA H200"), std::nullopt);
+    struct Row { std::string pass, kernel; double pixels; PassFloor floor; std::vector<std::string> in; };
+    std::vector<Row> rows;
+    int pipelines = 0;
+    for (const std::string kernel : {"alchemy", "hemisphere", "hemisphere_cosine", "ssdo", "sdf_classic"})
+        for (const bool half : {false, true}) {
+            if (half && !supportsHalf(kernel)) continue;
+            RunConfig c;
+            c.kernel = kernel;
+            c.width = 1920;
+            c.height = 1080;
+            c.half = half;
+            ++pipelines;
+            for (const PassSpec& p : buildPasses(c)) {
+                const double pixels = p.half ? double((c.width + 1) / 2) * ((c.height + 1) / 2) : double(c.width) * c.height;
+                const PassFloorResult r = passFloor(d, p.kernel, c.params, pixels);
+                if (!r.floor) return "no floor for " + configId(c) + " " + p.name + ": " + r.reason;
+                auto it = std::find_if(rows.begin(), rows.end(),
+                                       [&](const Row& x) { return x.pass == p.name && x.kernel == p.kernel && x.pixels == pixels; });
+                if (it == rows.end()) it = rows.insert(rows.end(), Row{p.name, p.kernel, pixels, *r.floor, {}});
+                it->in.push_back(kernel + (half ? " half" : ""));
+            }
+        }
+    std::string out = "| pass | kernel | pixels | fetches / px | slots / px | DRAM bytes / px | fetch floor | "
+                      "DRAM floor | floor | bound | in |\n"
+                      "| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | --- | --- |\n";
+    for (const Row& r : rows) {
+        std::string in;
+        for (const auto& x : r.in) in += (in.empty() ? "" : ", ") + x;
+        if (int(r.in.size()) == pipelines) in = "every pipeline";
+        const PassFloor& f = r.floor;
+        out += "| " + r.pass + " | `" + r.kernel + "` | " + fixed(r.pixels, 0) + " | " + number(f.cost.fetchesPerPixel) +
+               " | " + number(f.cost.fetchSlotsPerPixel) + " | " + number(f.cost.dramBytesPerPixel) + " | " +
+               fixed(f.fetchMs, 4) + " ms | " + fixed(f.dramMs, 4) + " ms | **" + fixed(f.ms(), 4) + " ms** | " +
+               f.bound() + " | " + in + " |\n";
+    }
+    return out;
+}
+
+TEST(Roofline, RooflineDocumentHoldsTheComputedTable) {
+    const std::string path = std::string(CAVITY_SOURCE_DIR) + "/bench/ROOFLINE.md";
+    std::ifstream f(path);
+    ASSERT_TRUE(f) << path;
+    std::stringstream text;
+    text << f.rdbuf();
+    const std::string doc = text.str();
+    const std::string begin = "<!-- floor table: tests/test_roofline.cpp writes it -->\n", end = "<!-- end floor table -->";
+    const auto b = doc.find(begin), e = doc.find(end);
+    ASSERT_NE(b, std::string::npos) << path << " lacks " << begin;
+    ASSERT_NE(e, std::string::npos) << path << " lacks " << end;
+    const std::string table = floorTable();
+    EXPECT_EQ(doc.substr(b + begin.size(), e - b - begin.size()), table)
+        << path << ": the floor table is not what the code computes; put this between the markers:\n" << table;
+}
+
+}  // namespace
+}  // namespace cavity
