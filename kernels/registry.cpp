@@ -183,7 +183,8 @@ KernelDecl depthPyramid() {
     // and a third more of both (1/4 + 1/16 + ...) for the smaller levels.
     k.cost = [](const ParamValues&) {
         const double rest = (1 - std::pow(0.25, kPyramidLevels - 1)) / 3;
-        return Cost{1 + rest, kRgba32f + kR32f + rest * 2 * kR32f};
+        return Cost{1 + rest, kRgba32f + kR32f + rest * 2 * kR32f, fetchSlots(kRgba32f) + rest * fetchSlots(kR32f),
+                    kRgba32f + kR32f + rest * 2 * kR32f};
     };
     return k;
 }
@@ -197,7 +198,10 @@ KernelDecl alchemyFast() {
     k.outputs = {{"ao", Format::R16F}, {"ao_key", Format::RG16F}};
     k.cost = [](const ParamValues& v) {
         const double n = v.at("samples");
-        return Cost{2 + n, kR32f + kRgba16f + n * kR32f + kR16f + kRg16f};
+        return Cost{2 + n, kR32f + kRgba16f + n * kR32f + kR16f + kRg16f,
+                    fetchSlots(kR32f) + fetchSlots(kRgba16f) + n * fetchSlots(kR32f),
+                    // the pyramid's smaller levels are a third of level 0
+                    kR32f * 4 / 3 + kRgba16f + kR16f + kRg16f};
     };
     return k;
 }
@@ -214,7 +218,7 @@ KernelDecl blurSeparable(const std::string& axis) {
     const double out = axis == "x" ? kRg16f : kR16f;
     k.cost = [out](const ParamValues& v) {
         const double taps = 2 * v.at("blur") + 1;
-        return Cost{taps, taps * kRg16f + out};
+        return Cost{taps, taps * kRg16f + out, taps * fetchSlots(kRg16f), kRg16f + out};
     };
     return k;
 }
