@@ -1,0 +1,49 @@
+#!/usr/bin/env python3
+"""Medians per configuration and pass, with each pass's floor and
+measured/floor, from cavity_bench JSON files with repetitions (what
+scripts/gpu_floor.sh leaves). Markdown on stdout.
+  scripts/floor_table.py BENCH.json [BENCH.json ...]"""
+import collections
+import json
+import statistics
+import sys
+
+
+def main(paths):
+    rows = collections.defaultdict(lambda: collections.defaultdict(list))
+    for path in paths:
+        try:
+            with open(path) as f:
+                data = json.load(f)
+        except (OSError, ValueError) as e:
+            sys.exit(f"floor_table.py: {path}: {e}")
+        for b in data.get("benchmarks", []):
+            if b.get("run_type") != "iteration" or "@" in b["name"]:
+                continue
+            name = b["name"].split("/iterations")[0]
+            for k, v in b.items():
+                if k.startswith("pass_") and k.endswith("_ms"):
+                    rows[name]["ms:" + k[5:-3]].append(v)
+                elif k.startswith("floor_") and k.endswith("_ms"):
+                    rows[name]["floor:" + k[6:-3]].append(v)
+            rows[name]["frame"].append(b["real_time"])
+            rows[name]["sm_mhz"].append(b.get("sm_mhz_median", 0))
+    print("| configuration | pass | median ms | floor ms | measured / floor |")
+    print("| --- | --- | ---: | ---: | ---: |")
+    for name, r in sorted(rows.items()):
+        for key in r:
+            if not key.startswith("ms:"):
+                continue
+            p = key[3:]
+            ms = statistics.median(r[key])
+            fl = r.get("floor:" + p)
+            f = statistics.median(fl) if fl else None
+            print(f"| {name} | {p} | {ms:.4f} | {f'{f:.4f}' if f else '-'} | {f'{ms / f:.2f}x' if f else '-'} |")
+        print(f"| {name} | frame (n={len(r['frame'])}, SM {statistics.median(r['sm_mhz']):.0f} MHz) | "
+              f"{statistics.median(r['frame']):.4f} | | |")
+
+
+if __name__ == "__main__":
+    if len(sys.argv) < 2:
+        sys.exit(__doc__)
+    main(sys.argv[1:])
