@@ -73,6 +73,7 @@ Result<std::vector<QualityRow>> measureQuality(gpu::Backend& gpu, const QualityO
                 RunConfig c = baseConfig(gpu, kernel, o.width, o.height);
                 CAVITY_TRY(setParam(c, "scene", scene));
                 c.params["samples"] = n;
+                c.params["blur"] = o.blur;
                 if (o.sharedReach) c.params["radius"] = o.radius;
                 c.half = o.half && supportsHalf(kernel);
                 c.stage = o.stage;

@@ -3,7 +3,7 @@
 // G-buffer, the measure the issues quote and `cavity quality` prints.
 //
 // The compared image is what the AO pipeline hands to the bilateral blur,
-// with the bilateral off (--blur 0): the raw AO, after the 4x4 box blur for
+// with the bilateral off (--blur 0, unless QualityOptions::blur says else): the raw AO, after the 4x4 box blur for
 // the hemisphere kernel (that blur is part of the method, seed 004), after
 // the bilateral upsample at half resolution. Background pixels (no
 // surface) are left out.
@@ -33,6 +33,11 @@ struct QualityOptions {
     // estimators of one quantity rather than of each seed's.
     bool sharedReach = false;
     double radius = 0.5;
+    // The pipeline's blur radius before the comparison (--blur): 0, the
+    // default, compares the raw AO; r > 0 the AO after the kernel's own blur
+    // (the 2-D bilateral, or alchemy_fast's separable pair), against the same
+    // unblurred truth, which is how a blur's cost in accuracy shows.
+    int blur = 0;
 };
 
 struct QualityRow {

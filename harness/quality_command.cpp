@@ -20,7 +20,7 @@ namespace {
 CommandSpec qualitySpec(const std::string& program) {
     CommandSpec c;
     c.program = program;
-    c.description = "Mean absolute error of each AO kernel (raw AO, no bilateral blur) against the ray-traced ground truth.";
+    c.description = "Mean absolute error of each AO kernel (raw AO unless --blur) against the ray-traced ground truth.";
     c.flags = {
         {"--backend", "gl|vk", "the backend (default vk)"},
         {"--scene", "S[,S..]", "scenes (default corner,slats)"},
@@ -32,6 +32,7 @@ CommandSpec qualitySpec(const std::string& program) {
         {"--reach", "seed|shared", "seed (default): each kernel at its own default reach, the truth at 0.5; "
                                    "shared: every kernel and the truth at --radius"},
         {"--radius", "R", "the shared reach (default 0.5; implies --reach shared)"},
+        {"--blur", "R", "compare the AO after the pipeline's blur of radius R (0..32; default 0, the raw AO)"},
         {"--device", "K", "device index (0..64)"},
         {"--out", "DIR", "also write DIR/quality.json"},
         {"--filter", "REGEX", "only the configurations whose id matches (searched; ids as --list prints them)"},
@@ -105,6 +106,10 @@ int qualityCommand(const std::vector<std::string>& argv, const std::string& prog
             auto wh = parseResolution("--res", *v);
             if (!wh) return fail(wh.error());
             std::tie(o.width, o.height) = *wh;
+        } else if (flag == "--blur") {
+            auto r = parseInt("--blur", *v, 0, 32);
+            if (!r) return fail(r.error());
+            o.blur = *r;
         } else if (flag == "--rays") {
             auto n = parseInt("--rays", *v, 1024, 65536);
             if (!n) return fail(n.error());
@@ -160,7 +165,7 @@ int qualityCommand(const std::vector<std::string>& argv, const std::string& prog
                 c.kernel = kernel;
                 c.width = o.width;
                 c.height = o.height;
-                c.params["blur"] = 0;
+                c.params["blur"] = o.blur;
                 c.params["samples"] = n;
                 if (auto st = setParam(c, "scene", scene); !st) return fail(st.error());
                 c.half = o.half && supportsHalf(kernel);
@@ -214,6 +219,7 @@ int qualityCommand(const std::vector<std::string>& argv, const std::string& prog
                           {"width", o.width},
                           {"height", o.height},
                           {"rays", o.rays},
+                          {"blur", o.blur},
                           {"resolution", o.half ? "half" : "full"},
                           {"reach", reach},
                           {"radius", o.sharedReach ? nlohmann::json(o.radius) : nlohmann::json(nullptr)},
