@@ -3,5 +3,5 @@
 #include "include/blur_separable.glsl"
 
 void cavity_main(ivec2 pixel) {
-    write_ao_key(pixel, vec4(blurAlong(pixel, ivec2(1, 0)), 0.0, 0.0));
+    write_ao_key(pixel, blurAlong(pixel, ivec2(1, 0)));
 }

@@ -168,7 +168,7 @@ KernelDecl composite() {
 // largest sample offsets at R = 0.5 on our cameras are about 250 px, which
 // ssao_alchemy_fast.glsl's level rule puts on level 4.
 constexpr int kPyramidLevels = 5;
-constexpr double kR32f = 4, kRg16f = 4;
+constexpr double kR32f = 4;
 
 KernelDecl depthPyramid() {
     KernelDecl k;
@@ -195,13 +195,13 @@ KernelDecl alchemyFast() {
     k.file = "ssao_alchemy_fast.glsl";
     k.summary = "Alchemy obscurance on a linear-depth mip pyramid with a separable blur (after SAO, McGuire et al. 2012)";
     k.inputs = {{"zmip", {gpu::Filter::Nearest, gpu::Address::ClampToEdge, true}}, {"normal", {}}};
-    k.outputs = {{"ao", Format::R16F}, {"ao_key", Format::RG16F}};
+    k.outputs = {{"ao", Format::R16F}, {"ao_key", Format::RGBA16F}};
     k.cost = [](const ParamValues& v) {
         const double n = v.at("samples");
-        return Cost{2 + n, kR32f + kRgba16f + n * kR32f + kR16f + kRg16f,
+        return Cost{2 + n, kR32f + kRgba16f + n * kR32f + kR16f + kRgba16f,
                     fetchSlots(kR32f) + fetchSlots(kRgba16f) + n * fetchSlots(kR32f),
                     // the pyramid's smaller levels are a third of level 0
-                    kR32f * 4 / 3 + kRgba16f + kR16f + kRg16f};
+                    kR32f * 4 / 3 + kRgba16f + kR16f + kRgba16f};
     };
     return k;
 }
@@ -211,14 +211,14 @@ KernelDecl blurSeparable(const std::string& axis) {
     k.name = "blur_separable_" + axis;
     k.file = "blur_separable_" + axis + ".glsl";
     k.summary = std::string(axis == "x" ? "horizontal" : "vertical") +
-                " pass of the separable depth-aware blur of packed AO and depth (2r+1 taps)";
+                " pass of the separable depth- and normal-aware blur of packed AO, depth and normal (2r+1 taps)";
     k.params[0].help = "blur radius r: 2r+1 taps along each axis, sigma = r/2; 0 passes AO through";
     k.inputs = {{"ao_key", {}}};
-    k.outputs = {{axis == "x" ? "ao_key" : "ao", axis == "x" ? Format::RG16F : Format::R16F}};
-    const double out = axis == "x" ? kRg16f : kR16f;
+    k.outputs = {{axis == "x" ? "ao_key" : "ao", axis == "x" ? Format::RGBA16F : Format::R16F}};
+    const double out = axis == "x" ? kRgba16f : kR16f;
     k.cost = [out](const ParamValues& v) {
         const double taps = 2 * v.at("blur") + 1;
-        return Cost{taps, taps * kRg16f + out, taps * fetchSlots(kRg16f), kRg16f + out};
+        return Cost{taps, taps * kRgba16f + out, taps * fetchSlots(kRgba16f), kRgba16f + out};
     };
     return k;
 }

@@ -16,10 +16,11 @@
 // change across 2^l px, which on a wall seen at a grazing angle is far over
 // the bias: streaks of missing and false occlusion showed there.
 //
-// A second output packs AO with the pixel's linear depth (RG16F) for the
-// separable blur, which then reads one 32-bit texel per tap.
+// A second output packs AO with the pixel's linear depth and its normal
+// (octahedral) in one RGBA16F texel, all the separable blur reads per tap.
 #include "include/common.glsl"
 #include "include/noise.glsl"
+#include "include/octahedral.glsl"
 
 // Samples up to 2^(3 + 1) = 16 px away read level 0.
 const int LOG_MAX_OFFSET = 3;
@@ -88,5 +89,5 @@ void cavity_main(ivec2 pixel) {
     }
     float A = pow(max(0.0, 1.0 - P.scale * S), P.contrast);
     write_ao(pixel, vec4(A, 0.0, 0.0, 0.0));
-    write_ao_key(pixel, vec4(A, d, 0.0, 0.0));
+    write_ao_key(pixel, vec4(A, d, octEncode(N)));
 }

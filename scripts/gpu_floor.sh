@@ -3,8 +3,8 @@
 # tool, .gl and .bundle carried): the seed and fast Alchemy pipelines and the
 # seed hemisphere at 1920x1080, n16 and n32, full and half, both APIs, both
 # stages, 10 interleaved repetitions each, with the clocks sampled beside
-# them; then the raw AO of alchemy and alchemy_fast against the ground truth
-# at 1920x1080 (cavity quality, the shared reach). Leaves floor.tgz in $OUT;
+# them; then the AO of alchemy and alchemy_fast against the ground truth at
+# 1920x1080, raw and after the blur (cavity quality --blur 0 and 4, the shared reach). Leaves floor.tgz in $OUT;
 # read it here with scripts/floor_table.py.
 #   scripts/gpu_floor.sh [REPS (10)] [MAX_TIME_S (0.25)]
 set -uo pipefail
@@ -27,10 +27,12 @@ run_bench() {   # name, filter, extra flags...
 }
 run_bench compute '^corner/(alchemy|alchemy_fast)/n(16|32)/b4/(full|half)/1920x1080/(gl|vk)/compute/|^corner/hemisphere/n16/b4/(full|half)/1920x1080/(gl|vk)/compute/'
 run_bench fragment '^corner/(alchemy|alchemy_fast)/n16/b4/(full|half)/1920x1080/(gl|vk)/fragment/'
-for s in corner slats; do
-  timeout 120 .bundle/render.sh quality --backend vk --res 1920x1080 --scene "$s" --kernel alchemy,alchemy_fast \
-    --samples 16,32 --reach shared --out "$work/quality_$s" > "$work/quality_$s.txt" 2>&1
-  echo "quality $s: rc $? $(tail -1 "$work/quality_$s.txt")"
+for b in 0 4; do
+  for s in corner slats; do
+    timeout 120 .bundle/render.sh quality --backend vk --res 1920x1080 --scene "$s" --kernel alchemy,alchemy_fast \
+      --samples 16,32 --reach shared --blur "$b" --out "$work/quality_${s}_b$b" > "$work/quality_${s}_b$b.txt" 2>&1
+    echo "quality $s blur $b: rc $? $(tail -1 "$work/quality_${s}_b$b.txt")"
+  done
 done
 nvidia-smi -q > "$work/nvidia-smi.txt" 2>&1
 tar -C "$work" -czf "$OUT/floor.tgz" .

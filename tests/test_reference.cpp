@@ -94,7 +94,7 @@ void checkChain(gpu::Backend& gpu, gpu::Api api, const Case& cs) {
             Tolerance tol = toleranceFor(k->name);
             if (k->outputs[o].format == gpu::Format::RGBA8 || k->outputs[o].format == gpu::Format::R8)
                 tol.maxAbs = std::max(tol.maxAbs, 1.0 / 255.0 + 1e-6);
-            // The packed key (AO, linear depth) in RG16F: a driver may round
+            // The packed key (AO, linear depth, normal) in RGBA16F: a driver may round
             // the depth either way to half (lavapipe and the CPU differ on a
             // third of the pixels), one step of 2^-6 at depths 16-32. Its AO
             // channel is held to 1e-3 through the kernel's "ao" output and

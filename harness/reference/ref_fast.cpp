@@ -7,6 +7,7 @@
 #include "portable_math.h"
 #include "refs.h"
 
+#include <array>
 #include <bit>
 
 namespace cavity::reference {
@@ -33,11 +34,32 @@ int pyramidLevelCount() {
     return k && !k->outputs.empty() ? k->outputs[0].mipLevels : 1;
 }
 
-// One axis of the separable blur: (AO, depth) of pixel (x, y).
-Vec2 blurAlong(const Context& ctx, const HostImage& key, int x, int y, int ax, int ay) {
-    const Vec2 centre{key.at(x, y, 0), key.at(x, y, 1)};
+// include/octahedral.glsl.
+float signNotNegative(float v) { return v >= 0.0f ? 1.0f : -1.0f; }
+
+Vec2 octEncode(Vec3 n) {
+    const float l1 = std::fabs(n.x) + std::fabs(n.y) + std::fabs(n.z);
+    Vec2 p{n.x / l1, n.y / l1};
+    if (n.z < 0.0f) p = {(1.0f - std::fabs(p.y)) * signNotNegative(p.x), (1.0f - std::fabs(p.x)) * signNotNegative(p.y)};
+    return p;
+}
+
+Vec3 octDecode(float px, float py) {
+    Vec3 n{px, py, 1.0f - std::fabs(px) - std::fabs(py)};
+    if (n.z < 0.0f) {
+        const float x = (1.0f - std::fabs(n.y)) * signNotNegative(n.x);
+        n.y = (1.0f - std::fabs(n.x)) * signNotNegative(n.y);
+        n.x = x;
+    }
+    return normalize(n);
+}
+
+// One axis of the separable blur at pixel (x, y): the key with its AO blurred.
+std::array<float, 4> blurAlong(const Context& ctx, const HostImage& key, int x, int y, int ax, int ay) {
+    const std::array<float, 4> centre{key.at(x, y, 0), key.at(x, y, 1), key.at(x, y, 2), key.at(x, y, 3)};
     const int r = intParam(ctx, "blur");
-    if (r == 0 || isBackground(centre.y)) return centre;
+    if (r == 0 || isBackground(centre[1])) return centre;
+    const Vec3 N = octDecode(centre[2], centre[3]);
     const float sigma = floatParam(ctx, "depth_sigma");
     const float twoSigma2 = 2.0f * sigma * sigma;
     const std::vector<float>& w = array(ctx, "weights");
@@ -47,25 +69,27 @@ Vec2 blurAlong(const Context& ctx, const HostImage& key, int x, int y, int ax, i
         if (qx < 0 || qy < 0 || qx >= ctx.frame.size[0] || qy >= ctx.frame.size[1]) continue;
         const float tapDepth = key.at(qx, qy, 1);
         if (isBackground(tapDepth)) continue;
-        const float dd = centre.y - tapDepth;
-        const float W = w[size_t(std::abs(t))] * std::exp(-dd * dd / twoSigma2);
+        const float dd = centre[1] - tapDepth;
+        const float normalWeight = std::max(0.0f, dot(N, octDecode(key.at(qx, qy, 2), key.at(qx, qy, 3))));
+        const float W = w[size_t(std::abs(t))] * normalWeight * std::exp(-dd * dd / twoSigma2);
         sum += key.at(qx, qy, 0) * W;
         total += W;
     }
-    return {sum + (1.0f - total) * centre.x, centre.y};
+    return {sum + (1.0f - total) * centre[0], centre[1], centre[2], centre[3]};
 }
 
 Result<std::vector<HostImage>> blurSeparable(const Context& ctx, bool horizontal) {
-    CAVITY_TRY(requireInputs(ctx, {2}));
+    CAVITY_TRY(requireInputs(ctx, {4}));
     const int r = intParam(ctx, "blur");
     if (r > 0 && int(array(ctx, "weights").size()) <= r)
         return internal("reference " + ctx.kernel.name + ": too few weights for radius " + std::to_string(r));
     auto out = makeOutputs(ctx);
     for (int y = 0; y < ctx.frame.size[1]; ++y)
         for (int x = 0; x < ctx.frame.size[0]; ++x) {
-            const Vec2 v = blurAlong(ctx, *ctx.inputs[0], x, y, horizontal ? 1 : 0, horizontal ? 0 : 1);
-            out[0].at(x, y, 0) = v.x;
-            if (horizontal) out[0].at(x, y, 1) = v.y;
+            const auto v = blurAlong(ctx, *ctx.inputs[0], x, y, horizontal ? 1 : 0, horizontal ? 0 : 1);
+            out[0].at(x, y, 0) = v[0];
+            if (horizontal)
+                for (int c = 1; c < 4; ++c) out[0].at(x, y, c) = v[size_t(c)];
         }
     return out;
 }
@@ -151,8 +175,11 @@ Result<std::vector<HostImage>> alchemyFast(const Context& ctx) {
             }
             const float A = std::pow(std::max(0.0f, 1.0f - scale * S), contrast);
             out[0].at(x, y) = A;
+            const Vec2 oct = octEncode(N);
             out[1].at(x, y, 0) = A;
             out[1].at(x, y, 1) = d;
+            out[1].at(x, y, 2) = oct.x;
+            out[1].at(x, y, 3) = oct.y;
         }
     }
     return out;
