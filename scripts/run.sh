@@ -6,5 +6,5 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh
 build="${BUILD_DIR:-build}"
-exec "$build/harness/cavity" run --backend all --scene corner,slats --kernel alchemy,hemisphere,ssdo \
+exec "$build/harness/cavity" run --backend all --scene corner,slats --kernel alchemy,alchemy_fast,hemisphere,ssdo \
   --samples 16 --blur 0,4 --resolution full,half --res 320x180 --frames 10 --out out "$@"
