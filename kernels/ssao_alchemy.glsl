@@ -6,6 +6,7 @@
 // falloff. Output: AO in [0, 1], 1 = fully open.
 #include "include/common.glsl"
 #include "include/noise.glsl"
+#include "include/alchemy_spiral.glsl"
 
 void cavity_main(ivec2 pixel) {
     vec4 centre = texelFetch(in_position, pixel, 0);
@@ -24,14 +25,7 @@ void cavity_main(ivec2 pixel) {
     float c = 0.1 * R;
     float weight = 2.0 * PI * c / float(n);
 
-    // h = alpha R / d in the seed is in units of the image plane at unit
-    // distance; a pixel is 1 / f of that, with f = 0.5 H / tan(fovY / 2)
-    // the focal length in pixels. So the disc radius of sample i is
-    // h_px = alpha R f / d = (i + 0.5) * discScale, discScale = R f / (n d).
-    // portableReciprocal keeps discScale identical on CPU and GPU, because
-    // floor() below turns any difference into a different sample pixel.
-    precise float focal = 0.5 * float(frame.size.y) * portableReciprocal(frame.camera.y);
-    precise float discScale = R * focal * portableReciprocal(float(n) * d);
+    float discScale = spiralDiscScale(R, n, d);
     // Per-pixel phase phi = 2 pi u of the spiral, so that neighbouring pixels
     // sample different offsets and the blur can average the pattern away.
     float u = pixelHash(pixel);
@@ -39,14 +33,8 @@ void cavity_main(ivec2 pixel) {
 
     float S = 0.0;
     for (int i = 0; i < n; ++i) {
-        // theta = 2 pi alpha (7n/9) + phi; with alpha = (i + 0.5) / n the
-        // angle in turns is (i + 0.5) 7/9 + u, whatever n is. 7/9 of a turn
-        // per sample spreads successive samples evenly around the disc.
-        precise float turns = (float(i) + 0.5) * 0.7777778 + u;
-        vec2 dirCS = cosSinTurns(turns);
-        precise float h = (float(i) + 0.5) * discScale;
-        precise vec2 samplePos = fragCentre + dirCS * h;
-        ivec2 s = ivec2(floor(samplePos));
+        float h;
+        ivec2 s = spiralSample(i, u, discScale, fragCentre, h);
         if (any(lessThan(s, ivec2(0))) || any(greaterThanEqual(s, frame.size))) continue;
         vec4 Pi = texelFetch(in_position, s, 0);
         if (isBackground(Pi.w)) continue;

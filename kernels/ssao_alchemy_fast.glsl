@@ -21,6 +21,7 @@
 #include "include/common.glsl"
 #include "include/noise.glsl"
 #include "include/octahedral.glsl"
+#include "include/alchemy_spiral.glsl"
 
 // Samples up to 2^(3 + 1) = 16 px away read level 0.
 const int LOG_MAX_OFFSET = 3;
@@ -63,18 +64,14 @@ void cavity_main(ivec2 pixel) {
     float R = P.radius;
     float c = 0.1 * R;
     float weight = 2.0 * PI * c / float(n);
-    precise float focal = 0.5 * float(frame.size.y) * portableReciprocal(frame.camera.y);
-    precise float discScale = R * focal * portableReciprocal(float(n) * d);
+    float discScale = spiralDiscScale(R, n, d);
     float u = pixelHash(pixel);
     vec2 fragCentre = vec2(pixel) + 0.5;
 
     float S = 0.0;
     for (int i = 0; i < n; ++i) {
-        precise float turns = (float(i) + 0.5) * 0.7777778 + u;
-        vec2 dirCS = cosSinTurns(turns);
-        precise float h = (float(i) + 0.5) * discScale;
-        precise vec2 samplePos = fragCentre + dirCS * h;
-        ivec2 s = ivec2(floor(samplePos));
+        float h;
+        ivec2 s = spiralSample(i, u, discScale, fragCentre, h);
         if (any(lessThan(s, ivec2(0))) || any(greaterThanEqual(s, frame.size))) continue;
         // h < 2^31 here: the sample is inside the image.
         int level = clamp(findMSB(int(h)) - LOG_MAX_OFFSET, 0, maxLevel);

@@ -3,6 +3,7 @@
 // scale and the sample position use only correctly rounded operations
 // (portable_math.h, noise.h). What remains, pow() and the sums, differs by
 // float rounding only.
+#include "alchemy_spiral.h"
 #include "noise.h"
 #include "portable_math.h"
 #include "refs.h"
@@ -29,7 +30,6 @@ Result<std::vector<HostImage>> alchemy(const Context& ctx) {
     const float contrast = floatParam(ctx, "contrast");
     const float c = 0.1f * R;
     const float weight = 2.0f * kPi * c / float(n);
-    const float focal = 0.5f * float(f.size[1]) * portableReciprocal(f.camera[1]);
 
     auto out = makeOutputs(ctx);
     HostImage& ao = out[0];
@@ -42,19 +42,12 @@ Result<std::vector<HostImage>> alchemy(const Context& ctx) {
             }
             const Vec3 X = xyz(position, x, y);
             const Vec3 N = xyz(normal, x, y);
-            // Disc radius of sample i in pixels: alpha R f / d = (i + 0.5) R f / (n d).
-            const float discScale = R * focal * portableReciprocal(float(n) * d);
+            const float discScale = spiralDiscScale(f, R, n, d);
             const float u = pixelHash(x, y);
-            const float centreX = float(x) + 0.5f, centreY = float(y) + 0.5f;
 
             float S = 0.0f;
             for (int i = 0; i < n; ++i) {
-                // Spiral angle in turns: alpha (7n/9) + phi / (2 pi).
-                const float turns = (float(i) + 0.5f) * 0.7777778f + u;
-                const Vec2 dir = cosSinTurns(turns);
-                const float h = (float(i) + 0.5f) * discScale;
-                const int sx = int(std::floor(centreX + dir.x * h));
-                const int sy = int(std::floor(centreY + dir.y * h));
+                const auto [sx, sy, h] = spiralSample(i, u, discScale, x, y);
                 if (sx < 0 || sy < 0 || sx >= f.size[0] || sy >= f.size[1]) continue;
                 if (isBackground(position.at(sx, sy, 3))) continue;
                 const Vec3 omega = xyz(position, sx, sy) - X;

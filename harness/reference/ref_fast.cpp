@@ -3,6 +3,7 @@
 // (include/blur_separable.glsl). The pyramid's levels are rebuilt here from
 // level 0, which is all a pass's readback holds: each level keeps one real
 // texel of the level above, so the rebuild is exact.
+#include "alchemy_spiral.h"
 #include "noise.h"
 #include "portable_math.h"
 #include "refs.h"
@@ -131,7 +132,6 @@ Result<std::vector<HostImage>> alchemyFast(const Context& ctx) {
     const float contrast = floatParam(ctx, "contrast");
     const float c = 0.1f * R;
     const float weight = 2.0f * kPi * c / float(n);
-    const float focal = 0.5f * float(f.size[1]) * portableReciprocal(f.camera[1]);
     const int maxLevel = int(zmip.size()) - 1;
 
     auto out = makeOutputs(ctx);
@@ -145,16 +145,11 @@ Result<std::vector<HostImage>> alchemyFast(const Context& ctx) {
             }
             const Vec3 X = positionAt(f, x, y, d);
             const Vec3 N{normal.at(x, y, 0), normal.at(x, y, 1), normal.at(x, y, 2)};
-            const float discScale = R * focal * portableReciprocal(float(n) * d);
+            const float discScale = spiralDiscScale(f, R, n, d);
             const float u = pixelHash(x, y);
-            const float centreX = float(x) + 0.5f, centreY = float(y) + 0.5f;
             float S = 0.0f;
             for (int i = 0; i < n; ++i) {
-                const float turns = (float(i) + 0.5f) * 0.7777778f + u;
-                const Vec2 dir = cosSinTurns(turns);
-                const float h = (float(i) + 0.5f) * discScale;
-                const int sx = int(std::floor(centreX + dir.x * h));
-                const int sy = int(std::floor(centreY + dir.y * h));
+                const auto [sx, sy, h] = spiralSample(i, u, discScale, x, y);
                 if (sx < 0 || sy < 0 || sx >= f.size[0] || sy >= f.size[1]) continue;
                 const int level = std::clamp(findMsb(int(h)) - kLogMaxOffset, 0, maxLevel);
                 const HostImage& z = zmip[size_t(level)];
