@@ -196,6 +196,21 @@ KernelDecl alchemyFast() {
     k.summary = "Alchemy obscurance on a linear-depth mip pyramid with a separable blur (after SAO, McGuire et al. 2012)";
     k.inputs = {{"zmip", {gpu::Filter::Nearest, gpu::Address::ClampToEdge, true}}, {"normal", {}}};
     k.outputs = {{"ao", Format::R16F}, {"ao_key", Format::RGBA16F}};
+    // Sample i's spiral direction at phase 0, (cos, sin) of (i + 0.5) 7/9
+    // turns, one vec4 each for samples up to 256: the kernel turns it by the
+    // pixel's phase once computed, where evaluating cos and sin per sample
+    // was a sixth of the pass on the H200 (bench/ROOFLINE.md). Whatever the
+    // table's last bits, the shader and the CPU reference read the same ones.
+    k.arrays = {{"spiral", 256}};
+    k.derive = [](const ParamValues&, std::map<std::string, std::vector<float>>& arrays) {
+        std::vector<float> table(256 * 4, 0.0f);
+        for (int i = 0; i < 256; ++i) {
+            const double angle = 2 * 3.14159265358979323846 * std::fmod((i + 0.5) * 7.0 / 9.0, 1.0);
+            table[size_t(i) * 4] = float(std::cos(angle));
+            table[size_t(i) * 4 + 1] = float(std::sin(angle));
+        }
+        arrays["spiral"] = std::move(table);
+    };
     k.cost = [](const ParamValues& v) {
         const double n = v.at("samples");
         return Cost{2 + n, kR32f + kRgba16f + n * kR32f + kR16f + kRgba16f,

@@ -42,11 +42,37 @@ ivec2 levelSize(int l) {
     return max(frame.size >> l, ivec2(1));
 }
 
-// The level-0 pixel whose depth texel t of `level` holds: depth_pyramid.glsl's
-// pick, (2x + (y & 1), 2y + (x & 1)) clamped into the level above, once per level.
+// The level-0 pixel whose depth texel t of `level` holds: undoes
+// depth_pyramid.glsl's pick (2x + (y & 1), 2y + (x & 1)) once per level. The
+// pick appends one bit to each coordinate per level, and the bits it appends
+// alternate: to x the parity of y, then of x, then of y...; to y the other
+// way round. So the whole chain is a shift and two masks, where a loop over
+// the levels cost a sixth of the pass on the H200 (bench/ROOFLINE.md). The
+// clamp into a level above never acts while that level is at least 2 texels
+// across (t < floor(s / 2) gives 2t + 1 < s); the loop stays for the 1-texel
+// levels of tiny images, the only ones where it does.
 ivec2 sourcePixel(ivec2 t, int level) {
-    for (int k = level; k > 0; --k) t = min(t * 2 + ivec2(t.y & 1, t.x & 1), levelSize(k - 1) - 1);
-    return t;
+    if (level == 0) return t;
+    if (any(lessThanEqual(frame.size >> (level - 1), ivec2(1)))) {
+        for (int k = level; k > 0; --k) t = min(t * 2 + ivec2(t.y & 1, t.x & 1), levelSize(k - 1) - 1);
+        return t;
+    }
+    int high = int(0xAAAAAAAAu >> uint(32 - level));   // bits level-1, level-3, ...
+    int low = ((1 << level) - 1) ^ high;                // bits level-2, level-4, ...
+    ivec2 parity = t & 1;
+    return (t << level) | ivec2(parity.y * high | parity.x * low, parity.x * high | parity.y * low);
+}
+
+// Sample i of the seed's spiral (include/alchemy_spiral.glsl), its
+// direction read from P.spiral and turned by the pixel's phase: (cos, sin)
+// of the phase once per pixel instead of once per sample.
+ivec2 spiralSampleTurned(int i, vec2 phase, float discScale, vec2 fragCentre, out float h) {
+    vec2 d = P.spiral[i].xy;
+    precise vec2 dirCS = vec2(d.x * phase.x - d.y * phase.y, d.x * phase.y + d.y * phase.x);
+    precise float radius = (float(i) + 0.5) * discScale;
+    precise vec2 samplePos = fragCentre + dirCS * radius;
+    h = radius;
+    return ivec2(floor(samplePos));
 }
 
 void cavity_main(ivec2 pixel) {
@@ -65,13 +91,13 @@ void cavity_main(ivec2 pixel) {
     float c = 0.1 * R;
     float weight = 2.0 * PI * c / float(n);
     float discScale = spiralDiscScale(R, n, d);
-    float u = pixelHash(pixel);
+    vec2 phase = cosSinTurns(pixelHash(pixel));
     vec2 fragCentre = vec2(pixel) + 0.5;
 
     float S = 0.0;
     for (int i = 0; i < n; ++i) {
         float h;
-        ivec2 s = spiralSample(i, u, discScale, fragCentre, h);
+        ivec2 s = spiralSampleTurned(i, phase, discScale, fragCentre, h);
         if (any(lessThan(s, ivec2(0))) || any(greaterThanEqual(s, frame.size))) continue;
         // h < 2^31 here: the sample is inside the image.
         int level = clamp(findMSB(int(h)) - LOG_MAX_OFFSET, 0, maxLevel);

@@ -133,6 +133,8 @@ Result<std::vector<HostImage>> alchemyFast(const Context& ctx) {
     const float c = 0.1f * R;
     const float weight = 2.0f * kPi * c / float(n);
     const int maxLevel = int(zmip.size()) - 1;
+    const std::vector<float>& spiral = array(ctx, "spiral");
+    if (int(spiral.size()) < 4 * n) return internal("reference alchemy_fast: spiral table shorter than " + std::to_string(n));
 
     auto out = makeOutputs(ctx);
     for (int y = 0; y < f.size[1]; ++y) {
@@ -146,10 +148,15 @@ Result<std::vector<HostImage>> alchemyFast(const Context& ctx) {
             const Vec3 X = positionAt(f, x, y, d);
             const Vec3 N{normal.at(x, y, 0), normal.at(x, y, 1), normal.at(x, y, 2)};
             const float discScale = spiralDiscScale(f, R, n, d);
-            const float u = pixelHash(x, y);
+            const Vec2 phase = cosSinTurns(pixelHash(x, y));
             float S = 0.0f;
             for (int i = 0; i < n; ++i) {
-                const auto [sx, sy, h] = spiralSample(i, u, discScale, x, y);
+                // spiralSampleTurned() of the kernel: the table's direction turned by the phase.
+                const float dx = spiral[size_t(i) * 4], dy = spiral[size_t(i) * 4 + 1];
+                const float dirX = dx * phase.x - dy * phase.y, dirY = dx * phase.y + dy * phase.x;
+                const float h = (float(i) + 0.5f) * discScale;
+                const int sx = int(std::floor(float(x) + 0.5f + dirX * h));
+                const int sy = int(std::floor(float(y) + 0.5f + dirY * h));
                 if (sx < 0 || sy < 0 || sx >= f.size[0] || sy >= f.size[1]) continue;
                 const int level = std::clamp(findMsb(int(h)) - kLogMaxOffset, 0, maxLevel);
                 const HostImage& z = zmip[size_t(level)];
