@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages Cavity needs (when missing) and builds it.
 # Used by scripts/run.sh and scripts/test.sh; safe to run again.
-#   BUILD_DIR (default build), CAVITY_WERROR=ON to treat warnings as errors.
+#   BUILD_DIR (default build, or build-asan with CAVITY_SANITIZE=ON),
+#   CAVITY_WERROR=ON to treat warnings as errors, CAVITY_SANITIZE=ON for an
+#   AddressSanitizer + UndefinedBehaviorSanitizer build.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -31,6 +33,10 @@ if ((${#missing[@]})); then
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 fi
 
-build="${BUILD_DIR:-build}"
-cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DCAVITY_WERROR="${CAVITY_WERROR:-OFF}" >/dev/null
+# CAVITY_SANITIZE=ON builds with ASan + UBSan, into build-asan/ unless
+# BUILD_DIR says otherwise (CI does this: .ci/run).
+sanitize="${CAVITY_SANITIZE:-OFF}"
+build="${BUILD_DIR:-$([ "$sanitize" = ON ] && echo build-asan || echo build)}"
+cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DCAVITY_WERROR="${CAVITY_WERROR:-OFF}" \
+  -DCAVITY_SANITIZE="$sanitize" >/dev/null
 cmake --build "$build" -j "$(nproc)"
