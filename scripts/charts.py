@@ -52,9 +52,10 @@ with no benchmark (or the reverse) is listed on stderr and left out.
 
 Subcommand: measured against floor
 
-    python3 scripts/charts.py floor RESULTS.json [MORE.json ...] --out DIR
+    python3 scripts/charts.py floor RESULTS.json [MORE.json ...] --out DIR [--filter REGEX]
 
-reads `cavity run`'s results.json (schema cavity.results/1) and draws, one row
+reads `cavity run`'s results.json (schema cavity.results/1), or cavity_bench's
+JSON (each `<id>@<pass>` entry's median over the repetitions), and draws, one row
 per pass of every configuration, the measured median (a bar, log scale) and
 the pass's floor (a black tick; bench/ROOFLINE.md), with measured/floor at the
 end of the row. A pass with no floor (a software renderer, a device not in
@@ -71,6 +72,7 @@ import json
 import math
 import os
 import re
+import statistics
 import sys
 import textwrap
 from collections import Counter, OrderedDict, defaultdict
@@ -973,6 +975,9 @@ def quality_cost_main(argv):
         return 2
     for cid in unmatched:
         print(f"charts quality-cost: note: no benchmark for {cid}; left out", file=sys.stderr)
+    if importlib.util.find_spec("matplotlib") is None:
+        print("charts quality-cost: matplotlib is not installed (apt-get install python3-matplotlib)", file=sys.stderr)
+        return 3
     os.makedirs(args.out, exist_ok=True)
     import matplotlib
     matplotlib.use("Agg")
@@ -1056,8 +1061,11 @@ def load_floor_rows(path):
         raise BadInput(f"charts floor: {path}: cannot read ({e.strerror})")
     except ValueError as e:
         raise BadInput(f"charts floor: {path}: not JSON ({e})")
+    if isinstance(doc, dict) and isinstance(doc.get("benchmarks"), list):
+        return bench_floor_rows(path, doc)
     if not isinstance(doc, dict) or doc.get("schema") != "cavity.results/1" or not isinstance(doc.get("runs"), list):
-        raise BadInput(f"charts floor: {path}: not a cavity results.json (schema cavity.results/1)")
+        raise BadInput(f"charts floor: {path}: neither a cavity results.json (schema cavity.results/1) "
+                       "nor cavity_bench JSON")
     rows = []
     for run in doc["runs"]:
         try:
@@ -1075,6 +1083,38 @@ def load_floor_rows(path):
     return rows
 
 
+def bench_floor_rows(path, doc):
+    """The same rows from cavity_bench's JSON: each `<id>@<pass>` entry's median over the
+    repetitions (the "median" aggregate, else the median of the iterations) and its floor_ms,
+    which the runner writes where the device has a floor (bench/ROOFLINE.md)."""
+    device = (doc.get("context") or {}).get("cavity_device", "")
+    per = {}
+    for b in doc["benchmarks"]:
+        name = b.get("run_name") or b.get("name", "")
+        if "@" not in name:
+            continue
+        cid, rest = name.split("@", 1)
+        key = (cid, rest.split("/")[0])
+        e = per.setdefault(key, {"iter": [], "median": None, "floor": None})
+        if b.get("run_type") == "aggregate":   # its floor_ms is the aggregate's (a stddev of 0 ...)
+            if b.get("aggregate_name") == "median":
+                e["median"] = float(b["real_time"])
+            continue
+        e["iter"].append(float(b["real_time"]))
+        if b.get("floor_ms") is not None:
+            e["floor"] = float(b["floor_ms"])
+    rows = []
+    for (cid, pas), e in per.items():
+        ms = e["median"] if e["median"] is not None else (statistics.median(e["iter"]) if e["iter"] else None)
+        if ms is None:
+            continue
+        rows.append({"id": cid, "pass": pas, "ms": ms, "floor": e["floor"], "bound": "floor" if e["floor"] else "",
+                     "reason": "" if e["floor"] else "no floor_ms in the benchmark JSON", "device": device})
+    if not rows:
+        raise BadInput(f"charts floor: {path}: no <id>@<pass> entries (cavity_bench JSON with per-pass entries)")
+    return rows
+
+
 def floor_main(argv):
     class P(argparse.ArgumentParser):
         def error(self, message):
@@ -1084,9 +1124,16 @@ def floor_main(argv):
     p = P(prog="charts floor")
     p.add_argument("results", nargs="+", metavar="RESULTS.json")
     p.add_argument("--out", required=True, metavar="DIR")
+    p.add_argument("--filter", default="", metavar="REGEX", help="only configuration ids this regex finds")
     args = p.parse_args(argv)
     try:
-        rows = [r for path in args.results for r in load_floor_rows(path)]
+        try:
+            keep = re.compile(args.filter)
+        except re.error as e:
+            raise BadInput(f"charts floor: --filter {args.filter!r}: not a regular expression ({e})")
+        rows = [r for path in args.results for r in load_floor_rows(path) if keep.search(r["id"])]
+        if not rows:
+            raise BadInput(f"charts floor: --filter {args.filter!r} matches no configuration")
         if os.path.exists(args.out) and not os.path.isdir(args.out):
             raise BadInput(f"charts floor: {args.out}: --out exists and is not a folder")
     except BadInput as e:
@@ -1097,6 +1144,9 @@ def floor_main(argv):
     if not floored:
         print(f"charts floor: note: no pass has a floor ({'; '.join(reasons)}); drawing the measured times only",
               file=sys.stderr)
+    if importlib.util.find_spec("matplotlib") is None:
+        print("charts floor: matplotlib is not installed (apt-get install python3-matplotlib)", file=sys.stderr)
+        return 3
     os.makedirs(args.out, exist_ok=True)
     import matplotlib
     matplotlib.use("Agg")
@@ -1105,7 +1155,7 @@ def floor_main(argv):
     n = len(rows)
     fig, ax = plt.subplots(figsize=(11, 1.6 + 0.28 * n))
     ys = list(range(n))[::-1]   # the first pass of the first run at the top
-    colour = {"fetch": "tab:blue", "dram": "tab:orange", "": "lightgrey"}
+    colour = {"fetch": "tab:blue", "dram": "tab:orange", "floor": "tab:green", "": "lightgrey"}
     positive = [r["ms"] for r in rows if r["ms"] > 0] + [r["floor"] for r in floored]
     low = min(positive) / 3 if positive else 1e-3
     for y, r in zip(ys, rows):
@@ -1127,9 +1177,10 @@ def floor_main(argv):
     ax.set_xlabel("GPU time per frame, ms (log): bar = measured median, black tick = floor")
     from matplotlib.patches import Patch
     from matplotlib.lines import Line2D
-    labels = {"fetch": "measured, fetch-bound floor", "dram": "measured, DRAM-bound floor", "": "measured, no floor"}
+    labels = {"fetch": "measured, fetch-bound floor", "dram": "measured, DRAM-bound floor",
+              "floor": "measured (bound not in the benchmark JSON)", "": "measured, no floor"}
     seen = {r["bound"] for r in rows}
-    handles = [Patch(color=colour[b], label=labels[b]) for b in ("fetch", "dram", "") if b in seen]
+    handles = [Patch(color=colour[b], label=labels[b]) for b in ("fetch", "dram", "floor", "") if b in seen]
     if floored:
         handles.append(Line2D([], [], color="black", lw=2, label="floor"))
     height = fig.get_size_inches()[1]
@@ -1169,8 +1220,22 @@ def parse_args(argv):
     return p.parse_args(argv)
 
 
+def run_with_system_python(argv):
+    """pyenv or a venv without matplotlib: Debian's python3-matplotlib lives with /usr/bin/python3,
+    so every subcommand runs again there (once)."""
+    if importlib.util.find_spec("matplotlib") is not None:
+        return
+    system = "/usr/bin/python3"
+    if os.path.exists(system) and os.path.realpath(sys.executable) != os.path.realpath(system) \
+            and not os.environ.get("CAVITY_CHARTS_REEXEC"):
+        os.environ["CAVITY_CHARTS_REEXEC"] = "1"
+        sys.stdout.flush()
+        os.execv(system, [system, os.path.abspath(__file__)] + argv)
+
+
 def main(argv=None):
     argv = sys.argv[1:] if argv is None else argv
+    run_with_system_python(argv)
     if argv and argv[0] == "quality-cost":
         return quality_cost_main(argv[1:])
     if argv and argv[0] == "floor":
@@ -1185,13 +1250,6 @@ def main(argv=None):
         print(str(e), file=sys.stderr)
         return 2
     if importlib.util.find_spec("matplotlib") is None:
-        # pyenv or a venv without it: Debian's python3-matplotlib lives with /usr/bin/python3.
-        system = "/usr/bin/python3"
-        if os.path.exists(system) and os.path.realpath(sys.executable) != os.path.realpath(system) \
-                and not os.environ.get("CAVITY_CHARTS_REEXEC"):
-            os.environ["CAVITY_CHARTS_REEXEC"] = "1"
-            sys.stdout.flush()
-            os.execv(system, [system, os.path.abspath(__file__)] + argv)
         print("charts: matplotlib is not installed (apt-get install python3-matplotlib)", file=sys.stderr)
         return 3
     for f in files:

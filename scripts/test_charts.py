@@ -342,12 +342,51 @@ class Floor(unittest.TestCase):
                 else:
                     self.assertIn("no pass has a floor (no cost declared; software renderer (x): no GPU floor)", r.stderr)
 
+    def test_benchmark_json(self):
+        """cavity_bench's per-pass entries: the median aggregate is the measurement, and the floor
+        comes from the repetitions, never from an aggregate (whose floor_ms is a stddev or a cv)."""
+        cid = "corner/alchemy_fast/n16/b4/full/1920x1080/vk/compute"
+        def entry(kind, ms, floor, agg=None):
+            e = {"name": f"{cid}@ao/iterations:1/manual_time", "run_name": f"{cid}@ao/iterations:1/manual_time",
+                 "run_type": kind, "real_time": ms, "time_unit": "ms", "floor_ms": floor}
+            if agg:
+                e["aggregate_name"] = agg
+            return e
+        doc = {"context": {"cavity_device": "vk: NVIDIA H200"},
+               "benchmarks": [entry("iteration", 0.14, 0.0377), entry("iteration", 0.15, 0.0377),
+                              entry("iteration", 0.13, 0.0377), entry("aggregate", 0.142, 0.0377, "median"),
+                              entry("aggregate", 0.01, 0.0, "stddev"), entry("aggregate", 0.0, 0.0, "cv"),
+                              {"name": cid + "/iterations:1/manual_time", "run_type": "iteration", "real_time": 0.3}]}
+        with tempfile.TemporaryDirectory() as d:
+            path = os.path.join(d, "bench.json")
+            with open(path, "w") as f:
+                json.dump(doc, f)
+            rows = charts.load_floor_rows(path)
+            self.assertEqual([(r["id"], r["pass"], r["ms"], r["floor"]) for r in rows], [(cid, "ao", 0.142, 0.0377)])
+            r = run_charts("floor", path, "--filter", "alchemy_fast", "--out", os.path.join(d, "out"))
+            self.assertEqual(r.returncode, 0, r.stderr)
+            with open(os.path.join(d, "out", "floor.svg")) as f:
+                self.assertIn("3.77x floor", f.read())   # 0.142 / 0.0377
+            r = run_charts("floor", path, "--filter", "hemisphere", "--out", os.path.join(d, "none"))
+            self.assertEqual(r.returncode, 2)
+            self.assertIn("matches no configuration", r.stderr)
+
     def test_bad_input(self):
         with tempfile.TemporaryDirectory() as d:
             out = os.path.join(d, "o")
-            r = run_charts("floor", SAMPLE, "--out", out)
+            r = run_charts("floor", SAMPLE, "--out", out)   # benchmark JSON without per-pass entries
             self.assertEqual(r.returncode, 2)
-            self.assertIn("not a cavity results.json", r.stderr)
+            self.assertIn("no <id>@<pass> entries", r.stderr)
+            self.assertFalse(os.path.exists(out))
+            other = os.path.join(d, "other.json")
+            with open(other, "w") as f:
+                json.dump({"schema": "something/1"}, f)
+            r = run_charts("floor", other, "--out", out)
+            self.assertEqual(r.returncode, 2)
+            self.assertIn("neither a cavity results.json", r.stderr)
+            r = run_charts("floor", self.write_results(d, True), "--filter", "(", "--out", out)
+            self.assertEqual(r.returncode, 2)
+            self.assertIn("--filter '(': not a regular expression", r.stderr)
             self.assertFalse(os.path.exists(out))
             path = self.write_results(d, True)
             with open(path) as f:
