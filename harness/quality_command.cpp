@@ -25,14 +25,14 @@ CommandSpec qualitySpec(const std::string& program) {
         {"--backend", "gl|vk", "the backend (default vk)"},
         {"--scene", "S[,S..]", "scenes (default corner,slats)"},
         {"--kernel", "K[,K..]", "AO kernels (default every kernel of role ao; see cavity run --help)"},
-        {"--samples", "N[,N..]", "sample counts (1..256; default 16,64)"},
+        {"--samples", "N[,N..]", "sample counts, each " + kernels::allowedValues(*kernels::findParam("samples")) + " (default 16,64)"},
         {"--res", "WxH", "image size (default 160x90)"},
-        {"--rays", "N", "the ground truth's rays per pixel (1024..65536; default 1024)"},
+        {"--rays", "N", "the ground truth's rays per pixel, " + kernels::allowedValues(*kernels::findParam("rays")) + " (default 1024)"},
         {"--resolution", "full|half", "AO at full or half resolution (default full)"},
         {"--reach", "seed|shared", "seed (default): each kernel at its own default reach, the truth at 0.5; "
                                    "shared: every kernel and the truth at --radius"},
         {"--radius", "R", "the shared reach (default 0.5; implies --reach shared)"},
-        {"--blur", "R", "compare the AO after the pipeline's blur of radius R (0..32; default 0, the raw AO)"},
+        {"--blur", "R", "compare the AO after the pipeline's blur of radius R, " + kernels::allowedValues(*kernels::findParam("blur")) + " (default 0, the raw AO)"},
         {"--device", "K", "device index (0..64)"},
         {"--out", "DIR", "also write DIR/quality.json"},
         {"--filter", "REGEX", "only the configurations whose id matches (searched; ids as --list prints them)"},
@@ -70,7 +70,7 @@ int qualityCommand(const std::vector<std::string>& argv, const std::string& prog
             o.sharedReach = *v == "shared";
             reachGiven = true;
         } else if (flag == "--radius") {
-            auto r = parseNumber("--radius", *v, 1e-6, 100);
+            auto r = kernels::parseValue(*kernels::findParam("radius"), *v);
             if (!r) return fail(r.error());
             o.radius = *r;
             radiusGiven = true;
@@ -98,22 +98,22 @@ int qualityCommand(const std::vector<std::string>& argv, const std::string& prog
             auto items = splitList(flag, *v);
             if (!items) return fail(items.error());
             for (const auto& s : *items) {
-                auto n = parseInt("--samples", s, 1, 256);
+                auto n = kernels::parseValue(*kernels::findParam("samples"), s);
                 if (!n) return fail(n.error());
-                o.samples.push_back(*n);
+                o.samples.push_back(kernels::asInt(*n));
             }
         } else if (flag == "--res") {
             auto wh = parseResolution("--res", *v);
             if (!wh) return fail(wh.error());
             std::tie(o.width, o.height) = *wh;
         } else if (flag == "--blur") {
-            auto r = parseInt("--blur", *v, 0, 32);
+            auto r = kernels::parseValue(*kernels::findParam("blur"), *v);
             if (!r) return fail(r.error());
-            o.blur = *r;
+            o.blur = kernels::asInt(*r);
         } else if (flag == "--rays") {
-            auto n = parseInt("--rays", *v, 1024, 65536);
+            auto n = kernels::parseValue(*kernels::findParam("rays"), *v);
             if (!n) return fail(n.error());
-            o.rays = *n;
+            o.rays = kernels::asInt(*n);
         } else if (flag == "--resolution") {
             if (*v != "full" && *v != "half") return fail(badInput("--resolution " + *v + ": must be full or half"));
             o.half = *v == "half";

@@ -29,10 +29,7 @@ const CommandSpec& runSpec() {
             "results.json, a timing table on stdout, progress on stderr. Every list flag takes "
             "VALUE[,VALUE..] and the sweep is the product of all lists.";
         const std::string sweep = "Sweep", timing = "Timing", output = "Device and output";
-        std::string scenes;
-        for (const auto& k : kernels::all())
-            for (const auto& p : k.params)
-                if (p.name == "scene" && scenes.empty()) scenes = p.help;
+        const std::string scenes = kernels::findParam("scene")->help;
         c.flags = {
             {"--backend", "gl|vk|all[,..]", "backends to run on (default all)", sweep},
             {"--kernel", "K[,K..]", "AO kernels (default alchemy; listed below)", sweep},
@@ -69,7 +66,7 @@ struct Sweep {
     std::vector<std::string> scenes{"corner"};
     // Every kernel parameter given (--samples, --blur, --radius, ...): one
     // axis each, its values in the order given.
-    std::map<std::string, std::vector<std::string>> params;
+    std::map<std::string, std::vector<double>> params;
     std::vector<std::string> resolutions{"full"};
     std::vector<std::pair<int, int>> sizes{{320, 180}};
     std::vector<gpu::Stage> stages{gpu::Stage::Compute};
@@ -158,10 +155,17 @@ Result<Sweep> parse(const std::vector<std::string>& argv) {
             s.filterText = v;
         } else if (isKernelParam(flag.substr(2))) {
             // Every kernel parameter sweeps: --radius 0.5,1.0 is two configurations.
+            // Each value is parsed and checked once, here (kernels/params.h).
             CAVITY_ASSIGN(auto items, splitList(flag, v));
-            RunConfig scratch;
-            for (const auto& item : items) CAVITY_TRY(setParam(scratch, flag.substr(2), item));
-            s.params[flag.substr(2)] = std::move(items);
+            const auto& decl = *kernels::findParam(flag.substr(2));
+            std::vector<double> values;
+            for (const auto& item : items) {
+                CAVITY_ASSIGN(double x, kernels::parseValue(decl, item));
+                if (std::find(values.begin(), values.end(), x) != values.end())
+                    return badInput(flag + " '" + v + "': " + item + " is a value given twice");
+                values.push_back(x);
+            }
+            s.params[flag.substr(2)] = std::move(values);
         }
     }
     const bool import = std::find(s.gbuffers.begin(), s.gbuffers.end(), "import") != s.gbuffers.end();
@@ -178,10 +182,10 @@ Result<Sweep> parse(const std::vector<std::string>& argv) {
 
 // Expands the sweep axes into validated configurations (API left unset).
 Result<std::vector<RunConfig>> expand(const Sweep& s) {
-    // The kernel parameters' product, each point a set of (name, text) pairs.
-    std::vector<std::vector<std::pair<std::string, std::string>>> points{{}};
+    // The kernel parameters' product, each point a set of (name, value) pairs.
+    std::vector<std::vector<std::pair<std::string, double>>> points{{}};
     for (const auto& [name, values] : s.params) {
-        std::vector<std::vector<std::pair<std::string, std::string>>> next;
+        std::vector<std::vector<std::pair<std::string, double>>> next;
         for (const auto& point : points)
             for (const auto& v : values) {
                 auto p = point;
@@ -208,7 +212,7 @@ Result<std::vector<RunConfig>> expand(const Sweep& s) {
                                 } else {
                                     CAVITY_TRY(setParam(c, "scene", scene));
                                 }
-                                for (const auto& [name, v] : point) CAVITY_TRY(setParam(c, name, v));
+                                for (const auto& [name, v] : point) c.params[name] = v;
                                 c.half = res == "half";
                                 c.width = w;
                                 c.height = h;

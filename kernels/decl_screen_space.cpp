@@ -4,10 +4,8 @@
 // composite (003_9aa4a2c3c5c6ee23.txt); and the images they read that the
 // CPU makes: the 4x4 rotation-noise tile and the sky panorama with its mips.
 //
-// Parameters shared with the first slice (samples, radius, bias, contrast,
-// blur, depth_sigma, dither) keep registry.cpp's ranges and units: one name
-// is one flag with one value for every kernel of a pipeline. Defaults match
-// too, except contrast (1 here, 1.5 for Alchemy; see hemisphere()).
+// Parameters are declared once in params.cpp; a kernel here says what it does
+// with each (its note) and, where its seed needs it, its own default.
 #include "blur_weights.h"
 #include "families.h"
 
@@ -24,23 +22,10 @@ using gpu::Format;
 constexpr double kRgba32f = 16, kRgba16f = 8, kRgba8 = 4, kR32f = 4, kR16f = 2;
 constexpr double kPi = 3.14159265358979323846;
 
-// The hemisphere kernel array has room for the largest `samples` (256), so
-// every allowed sample count is honoured as given, none clamped: 4 KiB of
+// The hemisphere kernel array has room for the largest `samples`, so every
+// allowed sample count is honoured as given, none clamped: 4 KiB of
 // uniforms, well inside the 16 KiB every GL and Vulkan device offers.
-constexpr int kMaxSamples = 256;
-
-ParamDecl samplesParam(const std::string& help) {
-    return makeParam("samples", ParamType::Int, 16, 1, kMaxSamples, "samples", help);
-}
-ParamDecl radiusParam(const std::string& help) {
-    return makeParam("radius", ParamType::Float, 0.5, 0, 100, "world units", help, true);
-}
-ParamDecl biasParam(const std::string& help) {
-    return makeParam("bias", ParamType::Float, 0.01, 0, 1, "world units", help);
-}
-ParamDecl contrastParam(double def, const std::string& help) {
-    return makeParam("contrast", ParamType::Float, def, 0.1, 10, "", help);
-}
+const int kMaxSamples = int(findParam("samples")->max);
 
 // --- deterministic random numbers for the CPU-made tables ------------------
 
@@ -296,21 +281,19 @@ KernelDecl hemisphere() {
     k.name = "hemisphere";
     k.file = "ssao_hemisphere.glsl";
     k.summary = "hemisphere-kernel SSAO (Crytek / Chapman): n points in the normal hemisphere tested against depth";
+    k.seeds = {"004_94976db8e6612027.txt", "002_fea56af43bca7c1b.txt"};
     k.role = "ao";
     k.params = {
-        samplesParam("kernel points per pixel (n)"),
-        radiusParam("world-space hemisphere radius R"),
-        biasParam("distance a sample must lie behind the stored surface's plane to be occluded (no self-shadowing)"),
+        use("samples", "kernel points in the normal hemisphere"),
+        use("radius"),
+        use("bias"),
         // 1 keeps seed 004's plain 1 - occluded / n; the curve is there for
         // seed 004's exercise 4 and for matching Alchemy's look (1.5 in
         // registry.cpp) in comparisons.
-        contrastParam(1.0, "power curve on the result: AO = (1 - occluded / n)^k"),
-        makeParam("ign_jitter", ParamType::Bool, 1, 0, 1, "",
-              "rotate the 4x4 noise vector by interleaved gradient noise, hiding the tile's grid"),
-        makeParam("range_check", ParamType::Bool, 1, 0, 1, "",
-              "fade out occluders far from the surface in depth (smoothstep(0, 1, R / |dz|))"),
-        makeParam("step_jitter", ParamType::Bool, 0, 0, 1, "",
-              "move each direction's steps in by a random share of a step per pixel (hemisphere_cosine: 1)"),
+        use("contrast", "AO = (1 - occluded / n)^k"),
+        use("ign_jitter"),
+        use("range_check"),
+        use("step_jitter"),
     };
     gpu::SamplerState repeat;
     repeat.address = gpu::Address::Repeat;
@@ -318,7 +301,7 @@ KernelDecl hemisphere() {
     k.outputs = {{"ao", Format::R16F}};
     k.arrays = {{"kernel", kMaxSamples}};
     k.derive = [](const ParamValues& v, std::map<std::string, std::vector<float>>& arrays) {
-        arrays["kernel"] = hemisphereKernel(int(std::lround(v.at("samples"))));
+        arrays["kernel"] = hemisphereKernel(intValue(v, "samples"));
     };
     k.cost = [](const ParamValues& v) {
         const double n = v.at("samples");
@@ -336,12 +319,13 @@ KernelDecl hemisphereCosine() {
     KernelDecl k = hemisphere();
     k.name = "hemisphere_cosine";
     k.summary = "hemisphere-kernel SSAO walking n/4 cosine-weighted rays in 4 steps to R (blocked if any step is)";
+    k.seeds = {"004_94976db8e6612027.txt", "001_8103f59163db3ce3.txt"};
     for (auto& p : k.params) {
-        if (p.name == "samples") p.help = "kernel points per pixel (n): ceil(n / 4) rays of up to 4 steps";
-        if (p.name == "step_jitter") p.def = 1;
+        if (p.name() == "samples") p.note = "ceil(n / 4) cosine-weighted rays of up to 4 steps";
+        if (p.name() == "step_jitter") p.def = 1;
     }
     k.derive = [](const ParamValues& v, std::map<std::string, std::vector<float>>& arrays) {
-        arrays["kernel"] = cosineKernel(int(std::lround(v.at("samples"))));
+        arrays["kernel"] = cosineKernel(intValue(v, "samples"));
     };
     return k;
 }
@@ -384,12 +368,7 @@ KernelDecl upsampleBilateral() {
     k.file = "upsample_bilateral.glsl";
     k.summary = "joint bilateral upsample of half-resolution AO: bilinear x tangent-plane distance x normal weights";
     k.role = "upsample";
-    k.params = {
-        makeParam("upsample_depth_tolerance", ParamType::Float, 0.01, 0, 1, "fraction of depth",
-              "distance of a half texel from the pixel's tangent plane, relative to depth, at which its "
-              "weight falls to exp(-1/2)",
-              true),
-    };
+    k.params = {use("upsample_depth_tolerance")};
     k.inputs = {{"ao_half", {}}, {"position_half", {}}, {"position", {}}, {"normal", {}}, {"normal_half", {}}};
     k.outputs = {{"ao", Format::R16F}};
     k.cost = [](const ParamValues&) {
@@ -414,31 +393,19 @@ gpu::SamplerState skySampler() {
     return s;
 }
 
-ParamDecl skyLodParam() {
-    // Level 5 of the 256x128 panorama is 8x4 texels of 45 degrees, about
-    // 0.5 sr each: the 0.4 sr that each of the default 16 samples stands
-    // for (2 pi / n). At level 4 or lower the sun is a lobe that only a
-    // sample or two per pixel hit, and the direct radiance shows the sample
-    // pattern as rings on curved surfaces; at 6 the sky is 4x2 texels and
-    // the sun's direction is mostly lost. Seed 003's "8 to 10" is the same
-    // choice for a panorama 8-32 times wider. An integer level also keeps
-    // the GPU's quantised mip blend out of the reference comparison.
-    return makeParam("sky_lod", ParamType::Float, 5, 0, 8, "mip level",
-                 "level of the sky panorama the SSDO samples read (0: 256x128, 8: 1x1)");
-}
-
 KernelDecl ssdo() {
     KernelDecl k;
     k.name = "ssdo";
     k.file = "ssdo_direct.glsl";
     k.summary = "screen-space directional occlusion (Ritschel et al. 2009): sky visibility and direct sky radiance";
+    k.seeds = {"003_9aa4a2c3c5c6ee23.txt"};
     k.role = "ao";
     k.params = {
-        samplesParam("hemisphere directions per pixel (n)"),
-        radiusParam("world-space hemisphere radius R (sample lengths are drawn in (0, R])"),
-        biasParam("distance a sample must lie behind the recorded surface's plane to be occluded"),
-        contrastParam(1.0, "power curve on the visibility fraction: V^k (seed 003's contrast)"),
-        skyLodParam(),
+        use("samples", "hemisphere directions"),
+        use("radius", "world-space hemisphere radius R (sample lengths are drawn in (0, R])"),
+        use("bias"),
+        use("contrast", "power curve on the visibility fraction: V^k (seed 003's contrast)"),
+        use("sky_lod"),
     };
     k.inputs = {{"position", {}}, {"normal", {}}, {"sky", skySampler()}};
     k.outputs = {{"visibility", Format::R16F}, {"radiance", Format::RGBA16F}};
@@ -463,15 +430,14 @@ KernelDecl blurBilateralSsdo() {
     k.summary = "bilateral blur of SSDO visibility and radiance together (the weights of blur_bilateral)";
     k.role = "blur";
     k.params = {
-        makeParam("blur", ParamType::Int, 4, 0, 32, "px", "blur radius r: (2r+1)^2 taps, sigma = r/2; 0 passes through"),
-        makeParam("depth_sigma", ParamType::Float, 0.1, 1e-4, 10, "world units",
-              "sigma of the depth weight exp(-dd^2 / (2 sigma^2)) between a tap and the centre", true),
+        use("blur", "(2r+1)^2 taps"),
+        use("depth_sigma"),
     };
     k.inputs = {{"visibility", {}}, {"radiance", {}}, {"position", {}}, {"normal", {}}};
     k.outputs = {{"visibility", Format::R16F}, {"radiance", Format::RGBA16F}};
     k.arrays = {{"weights", 9}};
     k.derive = [](const ParamValues& v, std::map<std::string, std::vector<float>>& arrays) {
-        arrays["weights"] = gaussianWeights(int(std::lround(v.at("blur"))));
+        arrays["weights"] = gaussianWeights(intValue(v, "blur"));
     };
     k.cost = [](const ParamValues& v) {
         const double r = v.at("blur");
@@ -490,17 +456,11 @@ KernelDecl ssdoIndirect() {
     k.summary = "SSDO one-bounce indirect light from the occluded samples' blurred radiance and albedo";
     k.role = "indirect";
     k.params = {
-        samplesParam("hemisphere directions per pixel (n); the same as the direct pass"),
-        radiusParam("world-space hemisphere radius R; the same as the direct pass"),
-        biasParam("distance a sample must lie behind the recorded surface's plane to be occluded"),
-        makeParam("bounce_strength", ParamType::Float, 1, 0, 100, "", "scale of the indirect bounce (seed 003's strength)"),
-        // R / 5 at the default R. With Alchemy's 0.1 R, senders almost
-        // touching their receiver at a crease gave single-pixel sparks of
-        // up to 2.6 on the corner and slats scenes (direct radiance is about
-        // 1 there); R / 5 caps 1/d^2 at 25 / R^2, and the bounce still grows
-        // smoothly towards the crease.
-        makeParam("distance_clamp", ParamType::Float, 0.1, 0, 10, "world units",
-              "lower bound of the sender-receiver distance in the form factor's 1/d^2", true),
+        use("samples", "hemisphere directions, the same as the direct pass"),
+        use("radius", "the same as the direct pass"),
+        use("bias"),
+        use("bounce_strength"),
+        use("distance_clamp"),
     };
     k.inputs = {{"position", {}}, {"normal", {}}, {"albedo", {}}, {"radiance", {}}};
     k.outputs = {{"indirect", Format::RGBA16F}};
@@ -521,12 +481,7 @@ KernelDecl compositeSsdo() {
     k.file = "composite_ssdo.glsl";
     k.summary = "SSDO lit image: SH sky ambient x visibility, or the direct radiance, plus the bounce, on albedo";
     k.role = "composite";
-    k.params = {
-        makeParam("ssdo_mode", ParamType::Enum, 0, 0, 1, "",
-              "visibility: SH sky ambient x visibility + bounce; radiance: direct sky radiance + bounce"),
-        makeParam("dither", ParamType::Bool, 1, 0, 1, "", "add +-0.5/255 of interleaved gradient noise against 8-bit banding"),
-    };
-    k.params[0].choices = {"visibility", "radiance"};
+    k.params = {use("ssdo_mode"), use("dither")};
     k.inputs = {{"visibility", {}}, {"radiance", {}}, {"indirect", {}}, {"normal", {}}, {"albedo", {}}};
     k.outputs = {{"color", Format::RGBA8}};
     k.arrays = {{"sky_sh", 9}};
@@ -540,20 +495,6 @@ KernelDecl compositeSsdo() {
 }
 
 }  // namespace
-
-ParamDecl makeParam(std::string name, ParamType type, double def, double min, double max, std::string unit,
-                    std::string help, bool minExclusive) {
-    ParamDecl p;
-    p.name = std::move(name);
-    p.type = type;
-    p.def = def;
-    p.min = min;
-    p.max = max;
-    p.unit = std::move(unit);
-    p.help = std::move(help);
-    p.minExclusive = minExclusive;
-    return p;
-}
 
 std::vector<KernelDecl> screenSpaceKernels() {
     return {depthFromPosition(), hemisphere(),        hemisphereCosine(), blurBox(),      downsampleDepth(), upsampleBilateral(),

@@ -187,14 +187,22 @@ TEST_F(Cli, RunHelpNamesEveryKernelAndParameterWithDefaultAndRange) {
         if (k.role != "ao" && k.role != "reference") continue;
         EXPECT_NE(o.output.find(k.name), std::string::npos) << k.name;
         EXPECT_NE(o.output.find(k.summary), std::string::npos) << k.name << " summary";
+        // The kernel's line: its summary, then its seed files.
+        const size_t line = o.output.find(k.summary);
+        const std::string kernelLine = line == std::string::npos ? "" : o.output.substr(line, o.output.find('\n', line) - line);
+        if (!k.seeds.empty()) {
+            EXPECT_NE(kernelLine.find(" [seed " + k.seeds[0]), std::string::npos) << kernelLine;
+        }
+        for (const auto& seed : k.seeds) EXPECT_NE(kernelLine.find(seed), std::string::npos) << k.name << " " << seed;
         for (const auto& p : k.params) {
-            EXPECT_NE(o.output.find("--" + p.name + " "), std::string::npos) << "--" << p.name;
-            if (p.name != "scene") {
-                EXPECT_NE(o.output.find(p.help), std::string::npos) << "--" << p.name << " help";
+            EXPECT_NE(o.output.find("--" + p.name() + " "), std::string::npos) << "--" << p.name();
+            EXPECT_NE(o.output.find(p.decl->help), std::string::npos) << "--" << p.name() << " help";
+            if (!p.note.empty()) {
+                EXPECT_NE(o.output.find(p.note), std::string::npos) << k.name << " --" << p.name();
             }
         }
     }
-    EXPECT_NE(o.output.find("default 0.5"), std::string::npos);          // --radius
+    EXPECT_NE(o.output.find("default 0.5, 0.13 (sdf_classic)"), std::string::npos);   // --radius: a kernel's own default
     EXPECT_NE(o.output.find("integer 1..256 samples"), std::string::npos);  // --samples
 }
 

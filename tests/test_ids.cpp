@@ -81,10 +81,11 @@ TEST(ConfigId, NamesEveryParameterThatDiffersFromItsDefault) {
         if (k.role != "ao" && k.role != "reference") continue;
         RunConfig base;
         base.kernel = k.name;
-        for (const auto& p : k.params) {
+        for (const auto& u : k.params) {
+            const auto& p = *u.decl;
             if (p.type == kernels::ParamType::Enum) continue;
             RunConfig c = base;
-            c.params[p.name] = p.def == p.max ? p.min + (p.minExclusive ? (p.max - p.min) / 2 : 0) : p.max;
+            c.params[p.name] = u.def == p.max ? p.min + (p.minExclusive ? (p.max - p.min) / 2 : 0) : p.max;
             EXPECT_NE(configId(c), configId(base)) << k.name << " --" << p.name;
         }
     }

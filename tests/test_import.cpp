@@ -147,7 +147,7 @@ TEST_P(ImportRoundTrip, EveryScreenSpacePipelineMatchesTheGeneratedGBuffer) {
     int pipelines = 0;
     for (const auto& kernel : aoKernels()) {
         bool scene = false;
-        for (const auto& p : kernels::find(kernel)->params) scene |= p.name == "scene";
+        for (const auto& p : kernels::find(kernel)->params) scene |= p.name() == "scene";
         if (scene) continue;
         for (bool half : {false, true}) {
             if (half && !supportsHalf(kernel)) continue;
