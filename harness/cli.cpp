@@ -11,15 +11,6 @@
 
 namespace cavity::cli {
 
-Result<std::string> Args::value(const std::string& flag) {
-    if (done() || (a_[i_].rfind("--", 0) == 0 && a_[i_].size() > 2))
-        return badInput(flag + ": missing value");
-    if (!seen_.insert(flag).second && !repeatable_.count(flag))
-        return badInput(flag + ": given twice (give one value, or one comma-separated list where the flag takes a list)");
-    if (a_[i_].empty()) return badInput(flag + " '': empty value");
-    return next();
-}
-
 Result<int> parseInt(const std::string& flag, const std::string& text, int lo, int hi) {
     int v = 0;
     auto r = std::from_chars(text.data(), text.data() + text.size(), v);
@@ -127,8 +118,8 @@ std::vector<FlagSpec> kernelParamFlags(const std::set<std::string>& skip) {
     return out;
 }
 
-std::string kernelHelp() {
-    std::string s = "Kernels (--kernel), each with its one-line summary and the seed files it follows:\n";
+std::string kernelHelp(const std::string& heading) {
+    std::string s = heading + ", each with its one-line summary and the seed files it follows:\n";
     for (const auto& k : kernels::all()) {
         if (k.role != "ao" && k.role != "reference") continue;
         std::string name = "  " + k.name;

@@ -1,0 +1,94 @@
+// cavity_bench's and cavity_render's own flags, declared once and parsed by
+// CLI11 as cavity's are (harness/flags.h): --help on stdout with exit 0, an
+// unknown flag named with its nearest neighbour, one-line errors with exit 2.
+#include "kernel.h"
+#include "run_binary.h"
+
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+namespace {
+
+using cavity::test::runBinary;
+
+struct Tool {
+    std::string name, path;
+};
+
+const std::vector<Tool>& tools() {
+    static const std::vector<Tool> t = {{"cavity_bench", CAVITY_BENCH_EXE}, {"cavity_render", CAVITY_RENDER_EXE}};
+    return t;
+}
+
+TEST(ToolFlags, HelpPrintsOnStdoutAndExitsZero) {
+    for (const auto& t : tools()) {
+        for (const char* h : {"--help", "-h"}) {
+            const auto o = runBinary(t.path, h, "", "2>/dev/null");
+            EXPECT_EQ(o.code, 0) << t.name << " " << h << "\n" << o.output;
+            EXPECT_NE(o.output.find("Usage: " + t.name), std::string::npos) << t.name << "\n" << o.output;
+        }
+        // Help wins wherever it stands, even after a bad value.
+        EXPECT_EQ(runBinary(t.path, "--device abc --help").code, 0) << t.name;
+    }
+}
+
+TEST(ToolFlags, BenchHelpNamesEveryFlagAndEveryKernelWithItsSummary) {
+    const auto o = runBinary(CAVITY_BENCH_EXE, "--help", "", "2>/dev/null");
+    ASSERT_EQ(o.code, 0);
+    for (const char* f : {"--backend", "--sweep", "--frames", "--warmup", "--timing", "--max-noise", "--max-time",
+                          "--plant", "--plant-file", "--device", "--benchmark_filter"})
+        EXPECT_NE(o.output.find(f), std::string::npos) << f;
+    for (const auto& k : cavity::kernels::all()) {
+        if (k.role != "ao" && k.role != "reference") continue;
+        EXPECT_NE(o.output.find(k.summary), std::string::npos) << k.name;
+    }
+}
+
+TEST(ToolFlags, RenderHelpNamesEveryFlag) {
+    const auto o = runBinary(CAVITY_RENDER_EXE, "--help", "", "2>/dev/null");
+    ASSERT_EQ(o.code, 0);
+    for (const char* f : {"--matrix", "--out", "--baselines", "--backend", "--shard", "--device", "--filter", "--repeat",
+                          "--validation", "--timing", "--max-noise", "--max-time", "--kernel-source"})
+        EXPECT_NE(o.output.find(f), std::string::npos) << f;
+}
+
+struct BadCase {
+    std::string tool, args, line;   // the one line expected, whole
+};
+
+TEST(ToolFlags, BadInputIsOneLineNamingTheFlagAndExitsTwo) {
+    const std::string bench = CAVITY_BENCH_EXE, render = CAVITY_RENDER_EXE;
+    const std::vector<BadCase> cases = {
+        {bench, "--framse 3", "cavity_bench: --framse: unknown flag (did you mean --frames? see cavity_bench --help)"},
+        {bench, "--sweeep cpu", "cavity_bench: --sweeep: unknown flag (did you mean --sweep? see cavity_bench --help)"},
+        {bench, "--half", "cavity_bench: --half: unknown flag (see cavity_bench --help)"},
+        {bench, "--frames", "cavity_bench: --frames: missing value (--frames N)"},
+        {bench, "--frames 3 --frames 4",
+         "cavity_bench: --frames: given twice (give one value, or one comma-separated list where the flag takes a list)"},
+        {bench, "--device ''", "cavity_bench: --device '': empty value (--device K)"},
+        {bench, "--iterations 0", "cavity_bench: --iterations 0: must be an integer in 1..1000000"},
+        {bench, "--sweep moon", "cavity_bench: --sweep 'moon': must be gpu, cpu or auto"},
+        {render, "--matirx ci --out x", "cavity_render: --matirx: unknown flag (did you mean --matrix? see cavity_render --help)"},
+        {render, "--repeat 0 --matrix ci --out x", "cavity_render: --repeat 0: must be an integer in 1..1000"},
+        {render, "--matrix", "cavity_render: --matrix: missing value (--matrix NAME)"},
+        {render, "--out x", "cavity_render: --matrix: missing (name a matrix of baselines/matrices.json)"},
+        {render, "stray --matrix ci --out x", "cavity_render: 'stray': unexpected argument (flags start with --; see cavity_render --help)"},
+    };
+    for (const auto& c : cases) {
+        const auto o = runBinary(c.tool, c.args);
+        EXPECT_EQ(o.code, 2) << c.tool << " " << c.args << "\n" << o.output;
+        EXPECT_EQ(o.output, c.line + "\n") << c.tool << " " << c.args;
+    }
+}
+
+TEST(ToolFlags, RenderTakesKernelSourceMoreThanOnce) {
+    // Repeatable: both are read (the second names no kernel source, and says so).
+    const auto o = runBinary(CAVITY_RENDER_EXE,
+                             "--matrix ci --out x --kernel-source ssao_alchemy.glsl=/dev/null --kernel-source nope.glsl=/dev/null");
+    EXPECT_EQ(o.code, 2) << o.output;
+    EXPECT_EQ(o.output, "cavity_render: --kernel-source nope.glsl: no kernel source of that name (kernels/*.glsl)\n");
+}
+
+}  // namespace
