@@ -1,6 +1,7 @@
 #include "cli.h"
 
 #include "kernel.h"
+#include "text_table.h"
 
 #include <algorithm>
 #include <charconv>
@@ -119,22 +120,19 @@ std::vector<FlagSpec> kernelParamFlags(const std::set<std::string>& skip) {
 }
 
 std::string kernelHelp(const std::string& heading) {
-    std::string s = heading + ", each with its one-line summary and the seed files it follows:\n";
+    TextTable table({{"", TextTable::Align::Left}, {"", TextTable::Align::Left}}, "  ");
     for (const auto& k : kernels::all()) {
         if (k.role != "ao" && k.role != "reference") continue;
-        std::string name = "  " + k.name;
-        name.resize(std::max<size_t>(name.size() + 1, 24), ' ');
-        s += name;
-        s += k.summary;
+        std::string text = k.summary;
         for (size_t i = 0; i < k.seeds.size(); ++i) {
-            s += i == 0 ? " [seed " : ", ";
-            s += k.seeds[i];
+            text += i == 0 ? " [seed " : ", ";
+            text += k.seeds[i];
         }
-        if (!k.seeds.empty()) s += "]";
-        if (k.role == "reference") s += " [reference: never in an \"every AO kernel\" sweep]";
-        s += "\n";
+        if (!k.seeds.empty()) text += "]";
+        if (k.role == "reference") text += " [reference: never in an \"every AO kernel\" sweep]";
+        table.add({"  " + k.name, text});
     }
-    return s;
+    return heading + ", each with its one-line summary and the seed files it follows:\n" + table.str();
 }
 
 Result<std::string> defaultBaselines() {

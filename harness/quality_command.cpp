@@ -6,6 +6,7 @@
 #include "quality.h"
 #include "results.h"
 #include "runner.h"
+#include "text_table.h"
 
 #include <cstdio>
 #include <filesystem>
@@ -212,7 +213,9 @@ int qualityCommand(const std::vector<std::string>& argv, const std::string& prog
         std::printf("reach: shared, every kernel and the truth at R = %g\n", o.radius);
     else
         std::printf("reach: seed, each kernel at its own default reach, the truth at R = 0.5\n");
-    std::printf("%-8s %-20s %7s %8s %8s %8s %8s\n", "scene", "kernel", "samples", "MAE", "max", "mean AO", "truth");
+    using A = TextTable::Align;
+    TextTable table({{"scene", A::Left}, {"kernel", A::Left}, {"samples", A::Right}, {"MAE", A::Right}, {"max", A::Right},
+                     {"mean AO", A::Right}, {"truth", A::Right}});
     nlohmann::json doc = {{"schema", "cavity-quality/1"},
                           {"backend", gpu::apiName(api)},
                           {"device", (*gpu)->info().deviceName},
@@ -225,8 +228,8 @@ int qualityCommand(const std::vector<std::string>& argv, const std::string& prog
                           {"radius", o.sharedReach ? nlohmann::json(o.radius) : nlohmann::json(nullptr)},
                           {"rows", nlohmann::json::array()}};
     for (const auto& r : rows) {
-        std::printf("%-8s %-20s %7d %8.4f %8.4f %8.4f %8.4f\n", r.scene.c_str(), r.kernel.c_str(), r.samples,
-                    r.meanAbsError, r.maxAbsError, r.meanAo, r.meanTruth);
+        table.add({r.scene, r.kernel, std::to_string(r.samples), TextTable::number(r.meanAbsError, 4),
+                   TextTable::number(r.maxAbsError, 4), TextTable::number(r.meanAo, 4), TextTable::number(r.meanTruth, 4)});
         doc["rows"].push_back({{"scene", r.scene},
                                {"kernel", r.kernel},
                                {"samples", r.samples},
@@ -236,6 +239,7 @@ int qualityCommand(const std::vector<std::string>& argv, const std::string& prog
                                {"mean_truth", r.meanTruth},
                                {"pixels", r.pixels}});
     }
+    table.print();
     if (!out.empty()) {
         std::error_code ec;
         std::filesystem::create_directories(out, ec);

@@ -4,6 +4,7 @@
 #include "gbuffer_import.h"
 #include "progress.h"
 #include "runner.h"
+#include "text_table.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -240,26 +241,25 @@ void printTable(const std::vector<RunRecord>& runs) {
     int most = 0;
     for (const auto& [c, n] : clockCount)
         if (n > most) most = n, clock = c;
-    size_t idWidth = std::string("configuration").size(), passWidth = std::string("frame").size();
-    for (const auto& r : runs) {
-        idWidth = std::max(idWidth, configId(r.config).size());
-        for (const auto& p : r.timing.passes) passWidth = std::max(passWidth, p.name.size());
-    }
-    const int iw = int(idWidth), pw = int(passWidth);
     std::printf("\nclock: %s%s\n", clock.c_str(), clockCount.size() == 1 ? " (every configuration)" : " (except as noted below)");
-    std::printf("%-*s  %-*s %10s %10s %10s %7s\n", iw, "configuration", pw, "pass", "median ms", "min ms", "p90 ms", "CV");
+    using A = TextTable::Align;
+    TextTable table({{"configuration", A::Left}, {"pass", A::Left}, {"median ms", A::Right}, {"min ms", A::Right},
+                     {"p90 ms", A::Right}, {"CV", A::Right}},
+                    "  ");
     std::vector<std::string> noisy;
     for (const auto& r : runs) {
         const std::string id = configId(r.config);
         auto row = [&](const std::string& name, const Stats& st) {
             const bool flag = st.cv > kNoisyCv;
-            std::printf("%-*s  %-*s %10.3f %10.3f %10.3f %6.1f%%%s\n", iw, id.c_str(), pw, name.c_str(), st.median, st.min,
-                        st.p90, 100.0 * st.cv, flag ? " !" : "");
+            table.add({id, name, TextTable::number(st.median, 3), TextTable::number(st.min, 3), TextTable::number(st.p90, 3),
+                       TextTable::number(100.0 * st.cv, 1) + "%"},
+                      flag ? " !" : "");
             if (flag) noisy.push_back(id + " " + name);
         };
         for (const auto& p : r.timing.passes) row(p.name, p.stats);
         row("frame", r.timing.frame.stats);
     }
+    table.print();
     for (const auto& r : runs)
         if (clockOf(r) != clock)
             std::printf("note: %s: clock %s (not %s)\n", configId(r.config).c_str(), clockOf(r).c_str(), clock.c_str());
