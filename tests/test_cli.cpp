@@ -1,5 +1,6 @@
 // The cavity command as a user meets it: exit codes, one-line errors that
 // name the flag, the value and what is allowed, and nothing written on bad input.
+#include "run_binary.h"
 #include "kernel.h"
 #include "sweep.h"
 
@@ -18,23 +19,11 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct Outcome {
-    int code = -1;
-    std::string output;   // stdout and stderr
-};
+using ::cavity::test::Outcome;
 
 // `redirect`: how the shell sends the two streams into the pipe read here.
 Outcome cavity(const std::string& args, const std::string& env = "", const std::string& redirect = "2>&1") {
-    const std::string cmd = env + " " + CAVITY_EXE + " " + args + " " + redirect;
-    Outcome o;
-    FILE* p = popen(cmd.c_str(), "r");
-    if (!p) return o;
-    std::array<char, 4096> buf;
-    size_t n;
-    while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) o.output.append(buf.data(), n);
-    const int status = pclose(p);
-    o.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return o;
+    return ::cavity::test::runBinary(CAVITY_EXE, args, env, redirect);
 }
 
 // The kernels --kernel accepts as the registry lists them, the way the
