@@ -122,14 +122,14 @@ std::vector<FlagSpec> kernelParamFlags(const std::set<std::string>& skip) {
 std::string kernelHelp(const std::string& heading) {
     TextTable table({{"", TextTable::Align::Left}, {"", TextTable::Align::Left}}, "  ");
     for (const auto& k : kernels::all()) {
-        if (k.role != "ao" && k.role != "reference") continue;
+        if (k.role != kernels::Role::Ao && k.role != kernels::Role::Reference) continue;
         std::string text = k.summary;
         for (size_t i = 0; i < k.seeds.size(); ++i) {
             text += i == 0 ? " [seed " : ", ";
             text += k.seeds[i];
         }
         if (!k.seeds.empty()) text += "]";
-        if (k.role == "reference") text += " [reference: never in an \"every AO kernel\" sweep]";
+        if (k.role == kernels::Role::Reference) text += " [reference: never in an \"every AO kernel\" sweep]";
         table.add({"  " + k.name, text});
     }
     return heading + ", each with its one-line summary and the seed files it follows:\n" + table.str();

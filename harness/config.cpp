@@ -28,7 +28,7 @@ double paramOr(const RunConfig& c, const std::string& name) {
 std::string aoKernelNames() {
     std::string s;
     for (const auto& k : kernels::all())
-        if (k.role == "ao" || k.role == "reference") s += (s.empty() ? "" : ", ") + k.name;
+        if (k.role == kernels::Role::Ao || k.role == kernels::Role::Reference) s += (s.empty() ? "" : ", ") + k.name;
     return s;
 }
 
@@ -36,7 +36,7 @@ std::string aoKernelNames() {
 std::string screenSpaceAoNames() {
     std::string s;
     for (const auto& k : kernels::all())
-        if (k.role == "ao" && !kernels::evaluatesScene(k)) s += (s.empty() ? "" : ", ") + k.name;
+        if (k.role == kernels::Role::Ao && !kernels::evaluatesScene(k)) s += (s.empty() ? "" : ", ") + k.name;
     return s;
 }
 
@@ -145,7 +145,7 @@ Status validate(const RunConfig& c) {
     const auto* k = kernels::find(c.kernel);
     // "reference" kernels (the ground truth) run in the AO slot when named;
     // sweeps over "every AO kernel" leave them out (they are slow by design).
-    if (!k || (k->role != "ao" && k->role != "reference")) return badInput("--kernel " + c.kernel + ": unknown kernel (have: " + aoKernelNames() + ")");
+    if (!k || (k->role != kernels::Role::Ao && k->role != kernels::Role::Reference)) return badInput("--kernel " + c.kernel + ": unknown kernel (have: " + aoKernelNames() + ")");
     if (c.width < 1 || c.height < 1 || c.width > kMaxResolution || c.height > kMaxResolution)
         return badInput("--res " + std::to_string(c.width) + "x" + std::to_string(c.height) +
                         ": must be WIDTHxHEIGHT with each in 1.." + std::to_string(kMaxResolution));

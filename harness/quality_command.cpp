@@ -92,7 +92,7 @@ int qualityCommand(const std::vector<std::string>& argv, const std::string& prog
             o.kernels = *items;
             for (const auto& k : o.kernels) {
                 const auto* d = kernels::find(k);
-                if (!d || d->role != "ao") return fail(badInput("--kernel " + k + ": not an AO kernel (see cavity run --help)"));
+                if (!d || d->role != kernels::Role::Ao) return fail(badInput("--kernel " + k + ": not an AO kernel (see cavity run --help)"));
             }
         } else if (flag == "--samples") {
             o.samples.clear();
@@ -142,7 +142,7 @@ int qualityCommand(const std::vector<std::string>& argv, const std::string& prog
     std::vector<std::string> names = o.kernels;
     if (names.empty())
         for (const auto& k : kernels::all())
-            if (k.role == "ao") names.push_back(k.name);
+            if (k.role == kernels::Role::Ao) names.push_back(k.name);
     struct Step {
         QualityOptions options;   // one scene, one kernel or all, the selected sample counts
         std::vector<std::string> ids;

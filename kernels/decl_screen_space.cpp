@@ -32,7 +32,7 @@ KernelDecl depthFromPosition() {
     k.name = "depth_from_position";
     k.file = "depth_from_position.glsl";
     k.summary = "hardware depth (proj p).z / w from the G-buffer position, 1 on background";
-    k.role = "gbuffer";
+    k.role = Role::GBuffer;
     k.inputs = {{"position", {}}};
     k.outputs = {{"depth", Format::R32F}};
     k.cost = [](const ParamValues&) { return Cost{1, kRgba32f + kR32f, fetchSlots(kRgba32f), kRgba32f + kR32f}; };
@@ -45,7 +45,7 @@ KernelDecl hemisphere() {
     k.file = "ssao_hemisphere.glsl";
     k.summary = "hemisphere-kernel SSAO (Crytek / Chapman): n points in the normal hemisphere tested against depth";
     k.seeds = {"004_94976db8e6612027.txt", "002_fea56af43bca7c1b.txt"};
-    k.role = "ao";
+    k.role = Role::Ao;
     k.params = {
         use("samples", "kernel points in the normal hemisphere"),
         use("radius"),
@@ -98,7 +98,7 @@ KernelDecl blurBox() {
     k.name = "blur_box";
     k.file = "blur_box.glsl";
     k.summary = "4x4 box blur: averages exactly one period of the 4x4 noise tile";
-    k.role = "blur";
+    k.role = Role::Blur;
     k.inputs = {{"ao", {}}};
     k.outputs = {{"ao", Format::R16F}};
     k.cost = [](const ParamValues&) { return Cost{16, 16 * kR16f + kR16f, 16 * fetchSlots(kR16f), kR16f + kR16f}; };
@@ -110,7 +110,7 @@ KernelDecl downsampleDepth() {
     k.name = "downsample_depth";
     k.file = "downsample_depth.glsl";
     k.summary = "half-resolution G-buffer: one real texel of each 2x2 block, nearest and farthest in a checkerboard";
-    k.role = "downsample";
+    k.role = Role::Downsample;
     k.inputs = {{"position", {}}, {"normal", {}}};
     k.outputs = {{"position_half", Format::RGBA32F}, {"normal_half", Format::RGBA16F}};
     // Per half texel: 4 positions read, the chosen position and normal
@@ -130,7 +130,7 @@ KernelDecl upsampleBilateral() {
     k.name = "upsample_bilateral";
     k.file = "upsample_bilateral.glsl";
     k.summary = "joint bilateral upsample of half-resolution AO: bilinear x tangent-plane distance x normal weights";
-    k.role = "upsample";
+    k.role = Role::Upsample;
     k.params = {use("upsample_depth_tolerance")};
     k.inputs = {{"ao_half", {}}, {"position_half", {}}, {"position", {}}, {"normal", {}}, {"normal_half", {}}};
     k.outputs = {{"ao", Format::R16F}};
@@ -162,7 +162,7 @@ KernelDecl ssdo() {
     k.file = "ssdo_direct.glsl";
     k.summary = "screen-space directional occlusion (Ritschel et al. 2009): sky visibility and direct sky radiance";
     k.seeds = {"003_9aa4a2c3c5c6ee23.txt"};
-    k.role = "ao";
+    k.role = Role::Ao;
     k.params = {
         use("samples", "hemisphere directions"),
         use("radius", "world-space hemisphere radius R (sample lengths are drawn in (0, R])"),
@@ -191,7 +191,7 @@ KernelDecl blurBilateralSsdo() {
     k.name = "blur_bilateral_ssdo";
     k.file = "blur_bilateral_ssdo.glsl";
     k.summary = "bilateral blur of SSDO visibility and radiance together (the weights of blur_bilateral)";
-    k.role = "blur";
+    k.role = Role::Blur;
     k.params = {
         use("blur", "(2r+1)^2 taps"),
         use("depth_sigma"),
@@ -217,7 +217,7 @@ KernelDecl ssdoIndirect() {
     k.name = "ssdo_indirect";
     k.file = "ssdo_indirect.glsl";
     k.summary = "SSDO one-bounce indirect light from the occluded samples' blurred radiance and albedo";
-    k.role = "indirect";
+    k.role = Role::Indirect;
     k.params = {
         use("samples", "hemisphere directions, the same as the direct pass"),
         use("radius", "the same as the direct pass"),
@@ -243,7 +243,7 @@ KernelDecl compositeSsdo() {
     k.name = "composite_ssdo";
     k.file = "composite_ssdo.glsl";
     k.summary = "SSDO lit image: SH sky ambient x visibility, or the direct radiance, plus the bounce, on albedo";
-    k.role = "composite";
+    k.role = Role::Composite;
     k.params = {use("ssdo_mode"), use("dither")};
     k.inputs = {{"visibility", {}}, {"radiance", {}}, {"indirect", {}}, {"normal", {}}, {"albedo", {}}};
     k.outputs = {{"color", Format::RGBA8}};

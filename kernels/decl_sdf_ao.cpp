@@ -31,7 +31,7 @@ KernelDecl sdfKernel(std::string name, std::string file, std::string summary, do
     k.name = std::move(name);
     k.file = std::move(file);
     k.summary = std::move(summary);
-    k.role = "ao";
+    k.role = Role::Ao;
     k.seeds = {"001_8103f59163db3ce3.txt"};
     k.params = {
         use("scene"),
@@ -56,7 +56,7 @@ KernelDecl groundTruth() {
     k.summary = "reference AO: cosine-weighted hemisphere visibility within R, 1024+ rays traced against the scene";
     // Named with --kernel it runs in the AO slot; sweeps over every AO
     // kernel leave it out (seconds per frame at 320x180 on a CPU renderer).
-    k.role = "reference";
+    k.role = Role::Reference;
     k.seeds = {"001_8103f59163db3ce3.txt"};
     k.params = {
         use("scene"),

@@ -78,6 +78,19 @@ constexpr double fetchSlots(double texelBytes) { return texelBytes <= 4 ? 1 : te
 // from the parameter values: arrays[name] gets 4 * vec4Count floats.
 using DeriveFn = std::function<void(const ParamValues&, std::map<std::string, std::vector<float>>& arrays)>;
 
+// What the harness may use a kernel for.
+enum class Role {
+    GBuffer,      // writes the G-buffer (or a view of it: hardware depth)
+    Ao,           // an AO estimator: selectable with --kernel, in "every AO kernel" sweeps
+    Reference,    // the ground truth: selectable with --kernel, never in a sweep (slow by design)
+    Pyramid,      // the linear-depth mip pyramid of the fast kernels
+    Downsample,   // the half-resolution G-buffer
+    Upsample,     // half-resolution AO back to full
+    Blur,         // filters AO (or SSDO's visibility and radiance)
+    Indirect,     // SSDO's one-bounce indirect light
+    Composite,    // the lit 8-bit image
+};
+
 struct KernelDecl {
     std::string name;                   // "alchemy"
     std::string file;                   // "ssao_alchemy.glsl", relative to kernels/
@@ -90,9 +103,7 @@ struct KernelDecl {
     std::vector<OutputDecl> outputs;
     std::vector<ArrayDecl> arrays;
     DeriveFn derive;                    // may be empty
-    // What the harness may use it for: "gbuffer", "ao" (selectable with
-    // --kernel), "blur", "upsample", "composite", "reference".
-    std::string role = "ao";
+    Role role = Role::Ao;
     std::function<Cost(const ParamValues&)> cost;   // may be empty
     // Parameters whose value is compiled into the shader as well as passed
     // in the uniform block: assemble() defines CAVITY_CONST_<name> when it
@@ -117,8 +128,8 @@ struct FrameUniforms {
 static_assert(sizeof(FrameUniforms) == 176);
 
 // An image the harness makes on the CPU rather than a pass: the 4x4 rotation
-// noise tile, the sky panorama with its mip chain. A pass reads one by naming
-// "const:<name>" among its inputs; the kernel's InputDecl gives the sampler.
+// noise tile, the sky panorama with its mip chain. A kernel input of that name
+// reads it (harness/pipeline.h ImageSource::Constant); the InputDecl gives the sampler.
 struct ConstantImageDecl {
     std::string name;
     gpu::Format format = gpu::Format::RGBA32F;

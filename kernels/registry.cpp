@@ -22,7 +22,7 @@ KernelDecl gbufferSdf() {
     k.name = "gbuffer_sdf";
     k.file = "gbuffer_sdf.glsl";
     k.summary = "G-buffer (view position and depth, normal, albedo) by sphere tracing a signed-distance scene";
-    k.role = "gbuffer";
+    k.role = Role::GBuffer;
     k.params = {use("scene"), use("view")};
     k.outputs = {{"position", Format::RGBA32F}, {"normal", Format::RGBA16F}, {"albedo", Format::RGBA8}};
     k.compileTime = {"scene"};
@@ -38,7 +38,7 @@ KernelDecl alchemy() {
     k.file = "ssao_alchemy.glsl";
     k.summary = "Alchemy screen-space ambient obscurance (McGuire et al. 2011): spiral samples in a world-radius disc";
     k.seeds = {"000_79d41de70034b569.txt"};
-    k.role = "ao";
+    k.role = Role::Ao;
     // scale and contrast: the seed (000_79d41de70034b569.txt) tunes them per
     // camera distance (s = 2.0, k = 3.0 for a room seen from afar, 1.7 and
     // 2.2 close up) and says to expect to retune. Our cameras sit 1.5-4.5
@@ -67,7 +67,7 @@ KernelDecl blurBilateral() {
     k.name = "blur_bilateral";
     k.file = "blur_bilateral.glsl";
     k.summary = "bilateral blur of AO: Gaussian taps weighted by normal agreement and linear-depth difference";
-    k.role = "blur";
+    k.role = Role::Blur;
     k.params = {
         use("blur", "(2r+1)^2 taps"),
         use("depth_sigma"),
@@ -94,7 +94,7 @@ KernelDecl composite() {
     k.name = "composite";
     k.file = "composite.glsl";
     k.summary = "albedo times sky/ground ambient times AO, with IGN dither before the 8-bit store";
-    k.role = "composite";
+    k.role = Role::Composite;
     k.params = {use("dither")};
     k.inputs = {{"ao", {}}, {"normal", {}}, {"albedo", {}}};
     k.outputs = {{"color", Format::RGBA8}};
@@ -118,7 +118,7 @@ KernelDecl depthPyramid() {
     k.name = "depth_pyramid";
     k.file = "depth_pyramid.glsl";
     k.summary = "linear-depth mip pyramid (R32F, 5 levels, one real depth of each 2x2 block) for the fast AO kernels";
-    k.role = "pyramid";
+    k.role = Role::Pyramid;
     // Level l reads level l - 1 of its own output: "zmip" is both.
     k.inputs = {{"position", {}}, {"zmip", {gpu::Filter::Nearest, gpu::Address::ClampToEdge, true}}};
     k.outputs = {{"zmip", Format::R32F, kPyramidLevels}};
@@ -183,7 +183,7 @@ std::vector<KernelDecl>& registryForTests() {
 const std::vector<KernelDecl>& all() { return registryForTests(); }
 
 bool evaluatesScene(const KernelDecl& k) {
-    if (k.role == "gbuffer") return false;
+    if (k.role == Role::GBuffer) return false;
     for (const auto& p : k.params)
         if (p.name() == "scene") return true;
     return false;

@@ -33,7 +33,7 @@ std::string aoList() {
     std::string s;
     for (const auto& k : cavity::aoKernels()) s += (s.empty() ? "" : ", ") + k;
     for (const auto& k : cavity::kernels::all())
-        if (k.role == "reference") s += ", " + k.name;
+        if (k.role == cavity::kernels::Role::Reference) s += ", " + k.name;
     return s;
 }
 
@@ -173,7 +173,7 @@ TEST_F(Cli, RunHelpNamesEveryKernelAndParameterWithDefaultAndRange) {
     const Outcome o = stdoutOf("run --help");
     ASSERT_EQ(o.code, 0);
     for (const auto& k : cavity::kernels::all()) {
-        if (k.role != "ao" && k.role != "reference") continue;
+        if (k.role != cavity::kernels::Role::Ao && k.role != cavity::kernels::Role::Reference) continue;
         EXPECT_NE(o.output.find(k.name), std::string::npos) << k.name;
         EXPECT_NE(o.output.find(k.summary), std::string::npos) << k.name << " summary";
         // The kernel's line: its summary, then its seed files.

@@ -78,7 +78,7 @@ TEST(ConfigId, NamesEveryParameterThatDiffersFromItsDefault) {
     EXPECT_NE(configId(with({{"radius", "0.3"}})), configId(with({{"radius", "1"}})));
     // Every declared numeric parameter of every AO kernel, moved off its default, changes the id.
     for (const auto& k : kernels::all()) {
-        if (k.role != "ao" && k.role != "reference") continue;
+        if (k.role != cavity::kernels::Role::Ao && k.role != cavity::kernels::Role::Reference) continue;
         RunConfig base;
         base.kernel = k.name;
         for (const auto& u : k.params) {

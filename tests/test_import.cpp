@@ -335,7 +335,7 @@ TEST_F(ImportCli, BadInputExitsTwoWithOneLineAndWritesNothing) {
     // not its name.
     std::string sceneKernel;
     for (const auto& k : kernels::all())
-        if (k.role == "ao" && kernels::evaluatesScene(k) && sceneKernel.empty()) sceneKernel = k.name;
+        if (k.role == cavity::kernels::Role::Ao && kernels::evaluatesScene(k) && sceneKernel.empty()) sceneKernel = k.name;
     ASSERT_FALSE(sceneKernel.empty()) << "the SDF AO kernels declare a scene parameter";
     cases.push_back({"scene kernel", "--gbuffer import --gbuffer-file " + good + " --kernel " + sceneKernel,
                      "cavity run: --kernel " + sceneKernel + ": pass ao (" + sceneKernel +

@@ -41,7 +41,7 @@ TEST(ToolFlags, BenchHelpNamesEveryFlagAndEveryKernelWithItsSummary) {
                           "--plant", "--plant-file", "--device", "--benchmark_filter"})
         EXPECT_NE(o.output.find(f), std::string::npos) << f;
     for (const auto& k : cavity::kernels::all()) {
-        if (k.role != "ao" && k.role != "reference") continue;
+        if (k.role != cavity::kernels::Role::Ao && k.role != cavity::kernels::Role::Reference) continue;
         EXPECT_NE(o.output.find(k.summary), std::string::npos) << k.name;
     }
 }
