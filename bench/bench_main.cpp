@@ -9,7 +9,7 @@
 // N independent measurements.
 //
 // Its own flags are declared once (benchSpec below) and parsed by CLI11
-// through harness/flags.h, as cavity's are; --benchmark_* and --v= go to
+// through cli/flags.h, as cavity's are; --benchmark_* and --v= go to
 // Google Benchmark untouched.
 #include "bench_runner.h"
 #include "per_pass_reporter.h"

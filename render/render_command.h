@@ -20,7 +20,7 @@ struct RenderCommand {
 };
 
 // Every error names the flag, the value and what is allowed (flags declared
-// once, parsed by CLI11 through harness/flags.h).
+// once, parsed by CLI11 through cli/flags.h).
 Result<RenderCommand> parseRenderFlags(const std::vector<std::string>& argv);
 
 // Validates, renders, writes DIR; returns the process exit code: 0 every

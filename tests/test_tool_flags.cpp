@@ -1,5 +1,5 @@
 // cavity_bench's and cavity_render's own flags, declared once and parsed by
-// CLI11 as cavity's are (harness/flags.h): --help on stdout with exit 0, an
+// CLI11 as cavity's are (cli/flags.h): --help on stdout with exit 0, an
 // unknown flag named with its nearest neighbour, one-line errors with exit 2.
 #include "kernel.h"
 #include "run_binary.h"
