@@ -27,6 +27,8 @@ double unit(uint32_t seed, uint32_t a, uint32_t b, uint32_t c) {
     return double(pcg(pcg(pcg(seed + a) + b) + c) >> 8) / 16777216.0;
 }
 
+}  // namespace
+
 // n points in the unit +Z hemisphere, as vec4s (w = 1: each point is its
 // own direction, see ssao_hemisphere.glsl), for a kernel of n
 // samples (004_94976db8e6612027.txt, "Generate the sampling kernel"). A
@@ -37,8 +39,6 @@ double unit(uint32_t seed, uint32_t a, uint32_t b, uint32_t c) {
 // length in the volume, times lerp(0.1, 1, t^2) with t = i / n, which puts
 // the first samples close to the surface, where contact occlusion changes
 // fastest.
-}  // namespace
-
 std::vector<float> hemisphereKernel(int n) {
     constexpr uint32_t kSeed = 0x5eed0004u;
     std::vector<float> out(size_t(maxKernelPoints()) * 4, 0.0f);
