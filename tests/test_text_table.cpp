@@ -14,9 +14,9 @@ TEST(TextTable, ColumnsFitTheirWidestCell) {
     t.add({"short", TextTable::number(1.5, 3)});
     t.add({"a/much/longer/configuration/id/than/the/header", TextTable::number(12.25, 3)}, " !");
     EXPECT_EQ(t.str(),
-              "id                                                   ms\n"
-              "short                                             1.500\n"
-              "a/much/longer/configuration/id/than/the/header   12.250 !\n");
+              "id                                                  ms\n"
+              "short                                            1.500\n"
+              "a/much/longer/configuration/id/than/the/header  12.250 !\n");
 }
 
 TEST(TextTable, NoHeaderLineWithoutHeadersAndNoTrailingBlanks) {
