@@ -106,7 +106,7 @@ struct Bind {
 // A shader handed to a backend: one fully expanded GLSL 4.50 translation
 // unit (no #include left) plus a name table for its #line source numbers,
 // so that a compile error names the kernel file and line. The backend
-// compiles it with glslang for its own API (kernels/compiler.h).
+// compiles it with glslang for its own API (backends/compiler/compiler.h).
 struct ShaderSource {
     std::string name;           // kernel id, e.g. "alchemy"
     Stage stage = Stage::Compute;

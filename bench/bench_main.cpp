@@ -8,14 +8,14 @@
 // --benchmark_repetitions=N (and --benchmark_enable_random_interleaving) for
 // N independent measurements.
 //
-//   cavity_bench [--backend gl|vk|all] [--sweep gpu|cpu|auto] [--frames N] [--warmup N]
-//                [--timing batch|drained] [--max-noise PCT] [--max-time S]
-//                [--plant PASS:FMAS[,PASS:FMAS]] [--plant-file FILE.json] [--device K]
-//                [google benchmark flags: --benchmark_filter=..., --benchmark_out=..., ...]
+// Its own flags are declared once (benchSpec below) and parsed by CLI11
+// through cli/flags.h, as cavity's are; --benchmark_* and --v= go to
+// Google Benchmark untouched.
 #include "bench_runner.h"
 #include "per_pass_reporter.h"
 
 #include "cli.h"
+#include "flags.h"
 
 #include <benchmark/benchmark.h>
 #include <nlohmann/json.hpp>
@@ -28,12 +28,6 @@
 #include <regex>
 
 namespace {
-
-constexpr const char* kUsage =
-    "usage: cavity_bench [--backend gl|vk|all] [--sweep gpu|cpu|auto] [--frames N] [--warmup N]\n"
-    "                    [--timing batch|drained] [--max-noise PCT] [--max-time S]\n"
-    "                    [--plant PASS:FMAS[,PASS:FMAS..]] [--plant-file FILE.json] [--device K]\n"
-    "                    [--benchmark_* flags]\n";
 
 using cavity::Result;
 using cavity::Status;
@@ -71,27 +65,54 @@ Status readPlantFile(const std::string& path, std::map<std::string, cavity::Plan
     return {};
 }
 
-// Takes Cavity's own flags out of argv; the rest goes to Google Benchmark.
-Result<cavity::bench::Options> parse(int argc, char** argv, std::vector<char*>& rest) {
+// The flags of cavity_bench, declared once: --help and the parse read this.
+const cavity::cli::CommandSpec& benchSpec() {
+    static const cavity::cli::CommandSpec spec = [] {
+        cavity::cli::CommandSpec c;
+        c.program = "cavity_bench";
+        c.description =
+            "One Google Benchmark per configuration of the sweep (harness/sweep.h), named by its configuration id; "
+            "each iteration is one whole measurement, its time the median per-frame GPU time of the AO pipeline. "
+            "Google Benchmark's own flags (--benchmark_filter=REGEX, --benchmark_out=FILE, "
+            "--benchmark_repetitions=N, --benchmark_list_tests, ...) are passed to it; give them as --name=value.";
+        c.flags = {
+            {"--backend", "gl|vk|all", "backends to measure (default all)"},
+            {"--sweep", "gpu|cpu|auto", "the configurations: the GPU sweep, the smaller CPU-renderer one, or by device (default auto)"},
+            {"--frames", "N", "measured frames, at least (1..1000000)"},
+            {"--iterations", "N", "the same as --frames"},
+            {"--warmup", "N", "warm-up frames, at least (0..100000)"},
+            {"--timing", "batch|drained", "batch: back-to-back frames; drained: wait for the GPU after each (default: the device's)"},
+            {"--max-noise", "PCT", "stop measuring once the median's noise is under PCT percent (0..100)"},
+            {"--max-time", "S", "stop measuring after S seconds (0.001..3600)"},
+            {"--plant", "PASS:FMAS[,..]", "plant FMAS dependent FMAs per pixel in PASS (1..1000000; the timing-verdict check)"},
+            {"--plant-file", "FILE.json", "planted FMAs per configuration id and pass ({\"<id>\": {\"<pass>\": FMAS}})"},
+            {"--device", "K", "device index (0..64; default 0)"},
+        };
+        c.footer = "\n" + cavity::cli::kernelHelp("Kernels (the sweep's AO pipelines; select by id with --benchmark_filter)") +
+                   "\nExit codes: 0 ok, 2 bad usage (or no benchmark matches the filter), 3 no backend, 4 GPU error.";
+        return c;
+    }();
+    return spec;
+}
+
+// Takes Cavity's own flags out of argv; --benchmark_* and --v= go to Google Benchmark.
+Result<cavity::bench::Options> parse(int argc, char** argv, std::vector<char*>& rest, bool& help) {
     using namespace cavity::cli;
     cavity::bench::Options o;
     rest = {argv[0]};
+    std::vector<std::string> own;
     for (int i = 1; i < argc; ++i) {
-        std::string arg = argv[i];
-        if (arg == "--help" || arg == "-h") return cavity::badInput(kUsage);
-        if (arg.rfind("--benchmark_", 0) == 0 || arg.rfind("--v=", 0) == 0 || arg.rfind("--", 0) != 0) {
-            rest.push_back(argv[i]);
-            continue;
-        }
-        std::string flag = arg, value;
-        if (const auto eq = arg.find('='); eq != std::string::npos) {
-            flag = arg.substr(0, eq);
-            value = arg.substr(eq + 1);
-        } else if (i + 1 < argc) {
-            value = argv[++i];
-        } else {
-            return cavity::badInput(flag + ": missing value");
-        }
+        const std::string arg = argv[i];
+        if (arg.rfind("--benchmark_", 0) == 0 || arg.rfind("--v=", 0) == 0) rest.push_back(argv[i]);
+        else own.push_back(arg);
+    }
+    CAVITY_ASSIGN(const ParsedFlags parsed, parseFlags(benchSpec(), own));
+    help = parsed.help;
+    if (help) {
+        std::cout << parsed.helpText;
+        return o;
+    }
+    for (const auto& [flag, value] : parsed.values) {
         if (flag == "--backend") {
             if (value != "gl" && value != "vk" && value != "all")
                 return cavity::badInput("--backend '" + value + "': must be gl, vk or all");
@@ -119,12 +140,6 @@ Result<cavity::bench::Options> parse(int argc, char** argv, std::vector<char*>& 
             CAVITY_TRY(readPlantFile(value, o.plantById));
         } else if (flag == "--device") {
             CAVITY_ASSIGN(o.device, parseInt(flag, value, 0, 64));
-        } else {
-            const std::string near = cavity::cli::nearest(
-                flag, {"--backend", "--sweep", "--frames", "--iterations", "--warmup", "--timing", "--max-noise",
-                       "--max-time", "--plant", "--plant-file", "--device"});
-            return cavity::badInput(flag + ": unknown flag (" + (near.empty() ? "" : "did you mean " + near + "? ") +
-                                    "see cavity_bench --help)");
         }
     }
     return o;
@@ -143,13 +158,13 @@ std::string benchmarkFlag(const std::vector<char*>& args, const char* name) {
 
 int main(int argc, char** argv) {
     std::vector<char*> rest;
-    auto options = parse(argc, argv, rest);
+    bool help = false;
+    auto options = parse(argc, argv, rest, help);
     if (!options) {
-        const bool help = options.error().message == kUsage;
-        (help ? std::cout : std::cerr) << (help ? "" : "cavity_bench: ") << options.error().message
-                                       << (help ? "" : "\n");
-        return help ? 0 : 2;
+        std::cerr << "cavity_bench: " << options.error().message << "\n";
+        return 2;
     }
+    if (help) return 0;
     // Read before Initialize, which takes its flags out of the list.
     const std::string out = benchmarkFlag(rest, "benchmark_out"), format = benchmarkFlag(rest, "benchmark_out_format"),
                       filter = benchmarkFlag(rest, "benchmark_filter");

@@ -33,7 +33,7 @@ double bytesPerPixel(const PassSpec& p, const RunConfig& c) {
 
 double aoSamplesPerPixel(const PassSpec& p, const RunConfig& c) {
     const auto* k = kernels::find(p.kernel);
-    return k && k->role == "ao" ? double(c.samples()) : 0.0;
+    return k && k->role == kernels::Role::Ao ? double(c.samples()) : 0.0;
 }
 
 struct Bench {

@@ -12,15 +12,15 @@ namespace cavity {
 
 namespace {
 
-const kernels::ParamDecl* findParam(const std::string& name) {
-    for (const auto& k : kernels::all())
-        for (const auto& p : k.params)
-            if (p.name == name) return &p;
-    return nullptr;
-}
+using kernels::findParam;
 
+// A parameter's value in this configuration: given, or the AO kernel's
+// default where the kernel reads it, or the declaration's.
 double paramOr(const RunConfig& c, const std::string& name) {
     if (auto it = c.params.find(name); it != c.params.end()) return it->second;
+    if (const auto* k = kernels::find(c.kernel))
+        for (const auto& p : k->params)
+            if (p.name() == name) return p.def;
     const auto* p = findParam(name);
     return p ? p->def : 0.0;
 }
@@ -28,7 +28,7 @@ double paramOr(const RunConfig& c, const std::string& name) {
 std::string aoKernelNames() {
     std::string s;
     for (const auto& k : kernels::all())
-        if (k.role == "ao" || k.role == "reference") s += (s.empty() ? "" : ", ") + k.name;
+        if (k.role == kernels::Role::Ao || k.role == kernels::Role::Reference) s += (s.empty() ? "" : ", ") + k.name;
     return s;
 }
 
@@ -36,19 +36,17 @@ std::string aoKernelNames() {
 std::string screenSpaceAoNames() {
     std::string s;
     for (const auto& k : kernels::all())
-        if (k.role == "ao" && !kernels::evaluatesScene(k)) s += (s.empty() ? "" : ", ") + k.name;
+        if (k.role == kernels::Role::Ao && !kernels::evaluatesScene(k)) s += (s.empty() ? "" : ", ") + k.name;
     return s;
 }
 
 }  // namespace
 
 std::string RunConfig::scene() const {
-    const auto* p = findParam("scene");
-    const int i = int(paramOr(*this, "scene"));
-    return p && i >= 0 && i < int(p->choices.size()) ? p->choices[size_t(i)] : "?";
+    return kernels::valueText(*findParam("scene"), paramOr(*this, "scene"));
 }
-int RunConfig::samples() const { return int(paramOr(*this, "samples")); }
-int RunConfig::blur() const { return int(paramOr(*this, "blur")); }
+int RunConfig::samples() const { return kernels::asInt(paramOr(*this, "samples")); }
+int RunConfig::blur() const { return kernels::asInt(paramOr(*this, "blur")); }
 std::string RunConfig::gbufferSource() const { return imported() ? "import" : raster ? "raster" : "sdf"; }
 
 std::string importStem(const std::string& path) {
@@ -64,10 +62,7 @@ namespace {
 // as the same double (0.3, not 0.29999999999999999), or an Enum's choice name.
 std::string valueText(const std::string& name, double v) {
     const auto* p = findParam(name);
-    if (p && p->type == kernels::ParamType::Enum) {
-        const int i = int(v);
-        if (i >= 0 && i < int(p->choices.size())) return p->choices[size_t(i)];
-    }
+    if (p && p->type == kernels::ParamType::Enum) return kernels::valueText(*p, v);
     char buf[64];
     const auto r = std::to_chars(buf, buf + sizeof buf, v);
     return std::string(buf, r.ptr);
@@ -82,7 +77,7 @@ bool differsFromDefault(const RunConfig& c, const std::string& name, double v) {
         const auto* k = kernels::find(spec.kernel);
         if (!k) continue;
         for (const auto& p : k->params)
-            if (p.name == name) {
+            if (p.name() == name) {
                 declared = true;
                 if (p.def != v) return true;
             }
@@ -102,7 +97,7 @@ std::string configId(const RunConfig& c) {
     const std::string scene = c.imported() ? importStem(c.gbufferFile) + "+import" : c.scene() + (c.raster ? "+raster" : "");
     const auto* k = kernels::find(c.kernel);
     auto declares = [&](const std::string& name) {
-        return k && std::any_of(k->params.begin(), k->params.end(), [&](const auto& p) { return p.name == name; });
+        return k && std::any_of(k->params.begin(), k->params.end(), [&](const auto& p) { return p.name() == name; });
     };
     std::string count = "n";
     count += std::to_string(c.samples());
@@ -142,22 +137,7 @@ bool isKernelParam(const std::string& name) { return findParam(name) != nullptr;
 Status setParam(RunConfig& c, const std::string& name, const std::string& text) {
     const auto* p = findParam(name);
     if (!p) return badInput("--" + name + ": unknown flag");
-    if (p->type == kernels::ParamType::Enum) {
-        for (size_t i = 0; i < p->choices.size(); ++i)
-            if (p->choices[i] == text) {
-                c.params[name] = double(i);
-                return {};
-            }
-        std::string allowed;
-        for (const auto& ch : p->choices) allowed += (allowed.empty() ? "" : ", ") + ch;
-        return badInput("--" + name + " " + text + ": must be one of " + allowed);
-    }
-    double v = 0;
-    const char* b = text.data();
-    auto r = std::from_chars(b, b + text.size(), v);
-    if (text.empty() || r.ec != std::errc() || r.ptr != b + text.size() || !std::isfinite(v))
-        return badInput("--" + name + " '" + text + "': must be " + kernels::allowedValues(*p));
-    c.params[name] = v;
+    CAVITY_ASSIGN(c.params[name], kernels::parseValue(*p, text));
     return {};
 }
 
@@ -165,7 +145,7 @@ Status validate(const RunConfig& c) {
     const auto* k = kernels::find(c.kernel);
     // "reference" kernels (the ground truth) run in the AO slot when named;
     // sweeps over "every AO kernel" leave them out (they are slow by design).
-    if (!k || (k->role != "ao" && k->role != "reference")) return badInput("--kernel " + c.kernel + ": unknown kernel (have: " + aoKernelNames() + ")");
+    if (!k || (k->role != kernels::Role::Ao && k->role != kernels::Role::Reference)) return badInput("--kernel " + c.kernel + ": unknown kernel (have: " + aoKernelNames() + ")");
     if (c.width < 1 || c.height < 1 || c.width > kMaxResolution || c.height > kMaxResolution)
         return badInput("--res " + std::to_string(c.width) + "x" + std::to_string(c.height) +
                         ": must be WIDTHxHEIGHT with each in 1.." + std::to_string(kMaxResolution));
@@ -180,7 +160,12 @@ Status validate(const RunConfig& c) {
                                         "(--gbuffer import); use a screen-space kernel (have: " + screenSpaceAoNames() + ")");
     if (c.half && !supportsHalf(c.kernel))
         return badInput("--resolution half: kernel " + c.kernel + " has no half-resolution pipeline (use full)");
-    for (const auto& decl : kernels::all()) CAVITY_TRY(kernels::validate(decl, c.params));
+    // Values set in code (sweeps, matrices, tests) rather than parsed.
+    for (const auto& [name, v] : c.params) {
+        const auto* p = findParam(name);
+        if (!p) return badInput("--" + name + ": unknown flag");
+        CAVITY_TRY(kernels::checkValue(*p, v));
+    }
     return {};
 }
 

@@ -1,6 +1,7 @@
 #include "kernel_runner.h"
 
 #include "camera.h"
+#include "texels/texels.h"
 
 #include <cmath>
 #include <cstring>
@@ -17,18 +18,6 @@ gpu::Format floatFormat(int channels) {
     }
 }
 
-float roundToHalf(float x) {
-    // Round to the nearest IEEE half (ties to even) and back, in float.
-    if (!std::isfinite(x) || x == 0.0f) return x;
-    const float a = std::fabs(x);
-    if (a >= 65520.0f) return std::copysign(INFINITY, x);
-    int e;
-    std::frexp(a, &e);                          // a = m * 2^e, m in [0.5, 1)
-    const int exp = std::max(e - 1, -14);       // half's normal range bottoms at 2^-14
-    const float ulp = std::ldexp(1.0f, exp - 10);
-    return std::copysign(std::nearbyint(a / ulp) * ulp, x);
-}
-
 }  // namespace
 
 void quantize(HostImage& img, gpu::Format format) {
@@ -36,9 +25,9 @@ void quantize(HostImage& img, gpu::Format format) {
         switch (format) {
         case gpu::Format::R16F:
         case gpu::Format::RG16F:
-        case gpu::Format::RGBA16F: v = roundToHalf(v); break;
+        case gpu::Format::RGBA16F: v = gpu::texels::roundToHalf(v); break;
         case gpu::Format::R8:
-        case gpu::Format::RGBA8: v = std::floor(std::clamp(v, 0.0f, 1.0f) * 255.0f + 0.5f) / 255.0f; break;
+        case gpu::Format::RGBA8: v = gpu::texels::roundToUnorm8(v); break;
         default: break;
         }
     }

@@ -155,11 +155,13 @@ Result<std::unique_ptr<PassChain>> PassChain::create(gpu::Backend& gpu, const Ru
         pass->binds.push_back({kernels::kParamsBinding, {}, pass->paramsUbo, {}});
         uint32_t b = kernels::kFirstImageBinding;
         for (size_t i = 0; i < spec.inputs.size(); ++i) {
-            if (spec.inputs[i].rfind("const:", 0) == 0 && !chain->images_.count(spec.inputs[i]))
-                CAVITY_TRY(chain->createConstant(spec.inputs[i], c.params));
-            auto it = chain->images_.find(spec.inputs[i]);
-            if (it == chain->images_.end())
-                return internal("pass '" + spec.name + "' reads image '" + spec.inputs[i] + "' before any pass writes it");
+            const ImageRef& in = spec.inputs[i];
+            const bool constant = in.source == ImageSource::Constant;
+            if (constant && !chain->constants_.count(in.name)) CAVITY_TRY(chain->createConstant(in.name, c.params));
+            auto& table = constant ? chain->constants_ : chain->images_;
+            auto it = table.find(in.name);
+            if (it == table.end())
+                return internal("pass '" + spec.name + "' reads image '" + in.name + "' before any pass writes it");
             pass->binds.push_back({b++, it->second.image, {}, k.inputs[i].sampler});
         }
         const auto planted = plant.find(spec.name);
@@ -205,14 +207,14 @@ Result<std::unique_ptr<PassChain>> PassChain::create(gpu::Backend& gpu, const Ru
 
 PassChain::PassChain(gpu::Backend& gpu) : gpu_(gpu) {}
 
-Status PassChain::createConstant(const std::string& input, const kernels::ParamValues& params) {
-    const auto* decl = kernels::findConstant(input.substr(6));
-    if (!decl) return internal("no constant image '" + input + "' (kernels/registry.cpp)");
+Status PassChain::createConstant(const std::string& name, const kernels::ParamValues& params) {
+    const auto* decl = kernels::findConstant(name);
+    if (!decl) return internal("no constant image '" + name + "' (kernels/decl_screen_space.cpp)");
     const auto levels = decl->make(params);
-    if (levels.empty()) return internal("constant image '" + input + "' has no levels");
-    gpu::ImageDesc d{levels[0].width, levels[0].height, decl->format, int(levels.size()), input, kUploaded};
+    if (levels.empty()) return internal("constant image '" + name + "' has no levels");
+    gpu::ImageDesc d{levels[0].width, levels[0].height, decl->format, int(levels.size()), "constant " + name, kUploaded};
     CAVITY_ASSIGN(gpu::Image img, gpu_.createImage(d));
-    images_[input] = {img, d.width, d.height, d.format};
+    constants_[name] = {img, d.width, d.height, d.format};
     for (size_t l = 0; l < levels.size(); ++l) CAVITY_TRY(gpu_.uploadImage(img, int(l), levels[l].pixels));
     return {};
 }
@@ -227,6 +229,7 @@ PassChain::~PassChain() {
         for (auto& l : p->levels) gpu_.destroy(l.frameUbo);
     }
     for (auto& [name, t] : images_) gpu_.destroy(t.image);
+    for (auto& [name, t] : constants_) gpu_.destroy(t.image);
 }
 
 void PassChain::recordPass(size_t i) {

@@ -14,10 +14,26 @@
 
 namespace cavity {
 
+// Where a pass's input comes from: an image a pass wrote (or the uploaded
+// G-buffer), or one the CPU makes (kernels::ConstantImageDecl: the noise
+// tile, the sky panorama).
+enum class ImageSource { Pass, Constant };
+
+struct ImageRef {
+    std::string name;
+    ImageSource source = ImageSource::Pass;
+    ImageRef(std::string n, ImageSource s = ImageSource::Pass) : name(std::move(n)), source(s) {}
+    ImageRef(const char* n) : name(n) {}
+};
+// True for the image a pass wrote under that name (never a constant).
+inline bool operator==(const ImageRef& r, const std::string& passImage) {
+    return r.source == ImageSource::Pass && r.name == passImage;
+}
+
 struct PassSpec {
     std::string name;                  // timestamp scope and results key: "gbuffer", "ao", ...
     std::string kernel;                // a kernels::all() name
-    std::vector<std::string> inputs;   // image names, in the kernel's input order
+    std::vector<ImageRef> inputs;      // in the kernel's input order
     std::vector<std::string> outputs;  // image names, in the kernel's output order
     bool half = false;                 // runs at half the configuration's resolution
 };
@@ -82,7 +98,7 @@ public:
 
 private:
     explicit PassChain(gpu::Backend& gpu);
-    Status createConstant(const std::string& input, const kernels::ParamValues& params);
+    Status createConstant(const std::string& name, const kernels::ParamValues& params);
     Status createRaster(const PassSpec& spec, const RunConfig& c);
     Status uploadGBuffer(const RunConfig& c);
     struct Pass;
@@ -90,7 +106,8 @@ private:
     gpu::Backend& gpu_;
     std::vector<PassSpec> specs_;
     std::vector<std::unique_ptr<Pass>> passes_;
-    std::map<std::string, Target> images_;
+    std::map<std::string, Target> images_;      // by name: what passes wrote, the uploaded G-buffer
+    std::map<std::string, Target> constants_;   // by name: CPU-made images
 };
 
 }  // namespace cavity

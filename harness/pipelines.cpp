@@ -32,8 +32,8 @@ std::vector<PassSpec> buildPasses(const RunConfig& c) {
     if (!k) return p;
 
     if (isSsdo(*k)) {
-        std::vector<std::string> in;
-        for (const auto& i : k->inputs) in.push_back(isConstant(i.name) ? "const:" + i.name : i.name);
+        std::vector<ImageRef> in;
+        for (const auto& i : k->inputs) in.push_back({i.name, isConstant(i.name) ? ImageSource::Constant : ImageSource::Pass});
         // Visibility plays the part of AO in the outputs a user and the gate see.
         p.push_back({"ao", k->name, in, {"ao", "radiance"}, false});
         p.push_back({"blur", "blur_bilateral_ssdo", {"ao", "radiance", "position", "normal"}, {"ao_blur", "radiance_blur"}, false});
@@ -55,13 +55,13 @@ std::vector<PassSpec> buildPasses(const RunConfig& c) {
     const std::string suffix = half ? "_half" : "";
     const std::string position = "position" + suffix, normal = "normal" + suffix;
     if (half) p.push_back({"downsample", "downsample_depth", {"position", "normal"}, {position, normal}, true});
-    std::vector<std::string> in;
+    std::vector<ImageRef> in;
     for (const auto& i : k->inputs) {
         if (i.name == "position") in.push_back(position);
         else if (i.name == "normal") in.push_back(normal);
         else if (i.name == "depth") in.push_back("depth" + suffix);
         else if (i.name == "zmip") in.push_back("zmip" + suffix);
-        else if (isConstant(i.name)) in.push_back("const:" + i.name);
+        else if (isConstant(i.name)) in.push_back({i.name, ImageSource::Constant});
         else in.push_back(i.name);
     }
     for (const auto& i : k->inputs) {

@@ -64,7 +64,7 @@ Result<std::vector<QualityRow>> measureQuality(gpu::Backend& gpu, const QualityO
     std::vector<std::string> names = o.kernels;
     if (names.empty())
         for (const auto& k : kernels::all())
-            if (k.role == "ao") names.push_back(k.name);
+            if (k.role == kernels::Role::Ao) names.push_back(k.name);
     std::vector<QualityRow> rows;
     for (const auto& scene : o.scenes) {
         CAVITY_ASSIGN(const GroundTruth truth, groundTruth(gpu, scene, o.width, o.height, o.rays, o.sharedReach ? o.radius : 0));

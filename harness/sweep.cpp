@@ -22,7 +22,7 @@ SweepAxes cpuSweep() {
 std::vector<std::string> aoKernels() {
     std::vector<std::string> names;
     for (const auto& k : kernels::all())
-        if (k.role == "ao") names.push_back(k.name);
+        if (k.role == kernels::Role::Ao) names.push_back(k.name);
     return names;
 }
 

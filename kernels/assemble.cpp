@@ -29,61 +29,22 @@ const KernelDecl* find(const std::string& name) {
 ParamValues withDefaults(const KernelDecl& k, const ParamValues& given) {
     ParamValues v;
     for (const auto& p : k.params) {
-        auto it = given.find(p.name);
-        v[p.name] = it == given.end() ? p.def : it->second;
+        auto it = given.find(p.name());
+        v[p.name()] = it == given.end() ? p.def : it->second;
     }
     return v;
 }
 
 namespace {
 
-std::string number(double x) {
-    std::ostringstream s;
-    s << x;
-    return s.str();
-}
-
 bool isIntegral(ParamType t) { return t != ParamType::Float; }
 
 }  // namespace
 
 Status validate(const KernelDecl& k, const ParamValues& values) {
-    for (const auto& p : k.params) {
-        auto it = values.find(p.name);
-        if (it == values.end()) continue;
-        const double x = it->second;
-        const std::string flag = "--" + p.name + " " + number(x);
-        if (p.type == ParamType::Enum) {
-            if (x != std::floor(x) || x < 0 || x >= double(p.choices.size())) {
-                std::string allowed;
-                for (const auto& c : p.choices) allowed += (allowed.empty() ? "" : ", ") + c;
-                return badInput(flag + ": must be one of " + allowed);
-            }
-            continue;
-        }
-        const bool integral = isIntegral(p.type);
-        const bool lowOk = p.minExclusive ? x > p.min : x >= p.min;
-        // The shader reads a float: a value below the smallest normal float
-        // would arrive as 0 or a denormal (a radius of 1e-300 is a radius of 0).
-        const bool floatOk = integral || x == 0 || std::fabs(x) >= std::numeric_limits<float>::min();
-        if (!std::isfinite(x) || (integral && x != std::floor(x)) || !lowOk || x > p.max || !floatOk)
-            return badInput(flag + ": must be " + allowedValues(p));
-    }
+    for (const auto& p : k.params)
+        if (auto it = values.find(p.name()); it != values.end()) CAVITY_TRY(checkValue(*p.decl, it->second));
     return {};
-}
-
-std::string allowedValues(const ParamDecl& p) {
-    const bool integral = isIntegral(p.type);
-    std::string what = integral ? "an integer in " + number(p.min) + ".." + number(p.max)
-                     : p.minExclusive ? "a number > " + number(p.min) + " and <= " + number(p.max)
-                                      : "a number in " + number(p.min) + ".." + number(p.max);
-    if (p.type == ParamType::Bool) what = "0 or 1";
-    if (p.type == ParamType::Enum) {
-        what = "one of ";
-        for (size_t i = 0; i < p.choices.size(); ++i) what += (i ? ", " : "") + p.choices[i];
-    }
-    if (p.type == ParamType::Float) what += ", and 0 or at least " + number(std::numeric_limits<float>::min()) + " in magnitude (a 32-bit float)";
-    return what + (p.unit.empty() ? "" : " (" + p.unit + ")");
 }
 
 std::vector<std::byte> packParams(const KernelDecl& k, const ParamValues& values) {
@@ -95,12 +56,11 @@ std::vector<std::byte> packParams(const KernelDecl& k, const ParamValues& values
     };
     const ParamValues full = withDefaults(k, values);
     for (const auto& p : k.params) {
-        const double x = full.at(p.name);
-        if (isIntegral(p.type)) {
-            const int32_t i = int32_t(std::lround(x));
+        if (isIntegral(p.type())) {
+            const int32_t i = intValue(full, p.name());
             put(&i, 4);
         } else {
-            const float f = float(x);
+            const float f = floatValue(full, p.name());
             put(&f, 4);
         }
     }
@@ -193,14 +153,13 @@ Result<gpu::ShaderSource> assemble(const KernelDecl& k, gpu::Stage stage,
     if (values) {
         const ParamValues all = withDefaults(k, *values);
         for (const auto& name : k.compileTime)
-            if (auto it = all.find(name); it != all.end())
-                p << "#define CAVITY_CONST_" << name << " " << std::lround(it->second) << "\n";
+            if (all.count(name)) p << "#define CAVITY_CONST_" << name << " " << intValue(all, name) << "\n";
     }
     p << "layout(std140, binding = " << kFrameBinding << ") uniform Frame {\n"
          "    mat4 proj;\n    mat4 invProj;\n    vec4 camera;\n"
          "    ivec2 size;\n    ivec2 srcSize;\n    vec2 invSize;\n    int level;\n    int pad_;\n} frame;\n";
     p << "layout(std140, binding = " << kParamsBinding << ") uniform Params {\n";
-    for (const auto& prm : k.params) p << "    " << (isIntegral(prm.type) ? "int " : "float ") << prm.name << ";\n";
+    for (const auto& prm : k.params) p << "    " << (isIntegral(prm.type()) ? "int " : "float ") << prm.name() << ";\n";
     if (k.params.empty() && k.arrays.empty()) p << "    int unused_;\n";
     for (const auto& a : k.arrays) p << "    vec4 " << a.name << "[" << a.vec4Count << "];\n";
     p << "} P;\n";

@@ -4,8 +4,8 @@
 //
 // All of them read the G-buffer only for the surface point and normal, and
 // evaluate the scene's distance function there, so they take the same
-// --scene and --view as the G-buffer (one declaration, registry.cpp).
-// `samples` keeps the shared range and default (16); the seed's own counts
+// --scene and --view as the G-buffer (one declaration, params.cpp).
+// `samples` keeps the shared default (16); the seed's own counts
 // (5, 6, 7, 6, 32, 32) are reproduced with --samples. `radius` and
 // `strength` default to each seed variant's own constants: the same flag
 // means "reach" and "how hard a shortfall counts" in every kernel, at the
@@ -31,15 +31,15 @@ KernelDecl sdfKernel(std::string name, std::string file, std::string summary, do
     k.name = std::move(name);
     k.file = std::move(file);
     k.summary = std::move(summary);
-    k.role = "ao";
+    k.role = Role::Ao;
+    k.seeds = {"001_8103f59163db3ce3.txt"};
     k.params = {
-        sceneParam(),
-        viewParam(),
-        makeParam("samples", ParamType::Int, 16, 1, 256, "samples", "distance-field probes per pixel (n)"),
-        makeParam("radius", ParamType::Float, radius, 0, 100, "world units", std::move(radiusHelp), true),
+        use("scene"),
+        use("view"),
+        use("samples", "distance-field probes"),
+        use("radius", radius, std::move(radiusHelp)),
     };
-    if (!strengthHelp.empty())
-        k.params.push_back(makeParam("strength", ParamType::Float, strength, 0, 100, "", std::move(strengthHelp)));
+    if (!strengthHelp.empty()) k.params.push_back(use("strength", strength, std::move(strengthHelp)));
     k.inputs = {{"position", {}}, {"normal", {}}};
     k.outputs = {{"ao", Format::R16F}};
     k.compileTime = {"scene"};
@@ -56,14 +56,13 @@ KernelDecl groundTruth() {
     k.summary = "reference AO: cosine-weighted hemisphere visibility within R, 1024+ rays traced against the scene";
     // Named with --kernel it runs in the AO slot; sweeps over every AO
     // kernel leave it out (seconds per frame at 320x180 on a CPU renderer).
-    k.role = "reference";
+    k.role = Role::Reference;
+    k.seeds = {"001_8103f59163db3ce3.txt"};
     k.params = {
-        sceneParam(),
-        viewParam(),
-        makeParam("rays", ParamType::Int, 1024, 1024, 65536, "rays", "rays per pixel, stratified (a Fibonacci lattice)"),
-        makeParam("radius", ParamType::Float, 0.5, 0, 100, "world units",
-              "occluders farther than this along a ray do not count (the AO radius R of the screen-space kernels)",
-              true),
+        use("scene"),
+        use("view"),
+        use("rays"),
+        use("radius", "along each ray (the AO radius R of the screen-space kernels)"),
     };
     k.inputs = {{"position", {}}, {"normal", {}}};
     k.outputs = {{"ao", Format::R16F}};

@@ -8,14 +8,6 @@
 
 namespace cavity::kernels {
 
-// The --scene and --view parameters (registry.cpp), one declaration for
-// every kernel that takes them.
-ParamDecl sceneParam();
-// A parameter declaration in one call (decl_screen_space.cpp).
-ParamDecl makeParam(std::string name, ParamType type, double def, double min, double max, std::string unit,
-                    std::string help, bool minExclusive = false);
-ParamDecl viewParam();
-
 std::vector<KernelDecl> screenSpaceKernels();   // decl_screen_space.cpp: hemisphere, box blur, SSDO, half resolution
 std::vector<KernelDecl> sdfAoKernels();         // decl_sdf_ao.cpp: the SDF AO variants and the ground truth
 std::vector<ConstantImageDecl> screenSpaceConstants();   // decl_screen_space.cpp: noise tile, sky panorama

@@ -23,6 +23,7 @@
 #pragma once
 
 #include "backend.h"
+#include "params.h"
 
 #include <functional>
 #include <map>
@@ -30,19 +31,6 @@
 #include <vector>
 
 namespace cavity::kernels {
-
-enum class ParamType { Int, Float, Bool, Enum };
-
-struct ParamDecl {
-    std::string name;          // the flag (--name), the GLSL field (P.name), the results key
-    ParamType type = ParamType::Float;
-    double def = 0;
-    double min = 0, max = 0;   // inclusive; for Enum: index range of choices
-    std::string unit;          // "world units", "px", "samples", ""
-    std::string help;
-    std::vector<std::string> choices;   // Enum only: names, value = index
-    bool minExclusive = false;          // e.g. R > 0
-};
 
 struct InputDecl {
     std::string name;                   // GLSL sampler in_<name>
@@ -64,8 +52,6 @@ struct ArrayDecl {
     std::string name;                   // GLSL P.<name>[i], a vec4 array
     int vec4Count = 1;
 };
-
-using ParamValues = std::map<std::string, double>;
 
 // What one output pixel of a kernel costs in memory traffic, for the
 // benchmark's bytes/s counter and each pass's floor (harness/roofline.h,
@@ -92,18 +78,32 @@ constexpr double fetchSlots(double texelBytes) { return texelBytes <= 4 ? 1 : te
 // from the parameter values: arrays[name] gets 4 * vec4Count floats.
 using DeriveFn = std::function<void(const ParamValues&, std::map<std::string, std::vector<float>>& arrays)>;
 
+// What the harness may use a kernel for.
+enum class Role {
+    GBuffer,      // writes the G-buffer (or a view of it: hardware depth)
+    Ao,           // an AO estimator: selectable with --kernel, in "every AO kernel" sweeps
+    Reference,    // the ground truth: selectable with --kernel, never in a sweep (slow by design)
+    Pyramid,      // the linear-depth mip pyramid of the fast kernels
+    Downsample,   // the half-resolution G-buffer
+    Upsample,     // half-resolution AO back to full
+    Blur,         // filters AO (or SSDO's visibility and radiance)
+    Indirect,     // SSDO's one-bounce indirect light
+    Composite,    // the lit 8-bit image
+};
+
 struct KernelDecl {
     std::string name;                   // "alchemy"
     std::string file;                   // "ssao_alchemy.glsl", relative to kernels/
     std::string summary;                // one line for --help
-    std::vector<ParamDecl> params;
+    // The seed files (/work/shared/seeds, README "Kernels") the kernel
+    // follows, for --help: "004_94976db8e6612027.txt". Empty: our own.
+    std::vector<std::string> seeds;
+    std::vector<KernelParam> params;   // uniform-block order
     std::vector<InputDecl> inputs;
     std::vector<OutputDecl> outputs;
     std::vector<ArrayDecl> arrays;
     DeriveFn derive;                    // may be empty
-    // What the harness may use it for: "gbuffer", "ao" (selectable with
-    // --kernel), "blur", "upsample", "composite", "reference".
-    std::string role = "ao";
+    Role role = Role::Ao;
     std::function<Cost(const ParamValues&)> cost;   // may be empty
     // Parameters whose value is compiled into the shader as well as passed
     // in the uniform block: assemble() defines CAVITY_CONST_<name> when it
@@ -128,8 +128,8 @@ struct FrameUniforms {
 static_assert(sizeof(FrameUniforms) == 176);
 
 // An image the harness makes on the CPU rather than a pass: the 4x4 rotation
-// noise tile, the sky panorama with its mip chain. A pass reads one by naming
-// "const:<name>" among its inputs; the kernel's InputDecl gives the sampler.
+// noise tile, the sky panorama with its mip chain. A kernel input of that name
+// reads it (harness/pipeline.h ImageSource::Constant); the InputDecl gives the sampler.
 struct ConstantImageDecl {
     std::string name;
     gpu::Format format = gpu::Format::RGBA32F;
@@ -155,11 +155,8 @@ bool evaluatesScene(const KernelDecl& k);
 // Default values for every parameter of a kernel, overridden by `given`.
 ParamValues withDefaults(const KernelDecl& k, const ParamValues& given = {});
 
-// Checks every value against its declared range. The message names the flag,
-// the value and what is allowed: "--samples 300: must be an integer in 1..256".
+// Checks every value the kernel reads against its declaration (checkValue).
 Status validate(const KernelDecl& k, const ParamValues& values);
-// What a parameter accepts, as the messages say it: "a number > 0 and <= 100 (world units)".
-std::string allowedValues(const ParamDecl& p);
 
 // The std140 bytes of the Params block (binding 1) for these values.
 std::vector<std::byte> packParams(const KernelDecl& k, const ParamValues& values);

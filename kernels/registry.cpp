@@ -14,55 +14,6 @@ namespace {
 
 using gpu::Format;
 
-ParamDecl intParam(std::string name, double def, double min, double max, std::string unit, std::string help) {
-    ParamDecl p;
-    p.name = std::move(name);
-    p.type = ParamType::Int;
-    p.def = def;
-    p.min = min;
-    p.max = max;
-    p.unit = std::move(unit);
-    p.help = std::move(help);
-    return p;
-}
-
-ParamDecl floatParam(std::string name, double def, double min, double max, std::string unit, std::string help,
-                     bool minExclusive = false) {
-    ParamDecl p = intParam(std::move(name), def, min, max, std::move(unit), std::move(help));
-    p.type = ParamType::Float;
-    p.minExclusive = minExclusive;
-    return p;
-}
-
-ParamDecl boolParam(std::string name, bool def, std::string help) {
-    ParamDecl p = intParam(std::move(name), def ? 1 : 0, 0, 1, "", std::move(help));
-    p.type = ParamType::Bool;
-    return p;
-}
-
-ParamDecl enumParam(std::string name, std::vector<std::string> choices, std::string help) {
-    ParamDecl p = intParam(std::move(name), 0, 0, double(choices.size()) - 1, "", std::move(help));
-    p.type = ParamType::Enum;
-    p.choices = std::move(choices);
-    return p;
-}
-
-}  // namespace
-
-// The scene and camera pose: shared by the G-buffer kernels and every kernel
-// that evaluates the signed-distance scene itself (the SDF AO family), so one
-// --scene flag drives them all. Order is kernels/include/sdf_scenes.glsl's.
-ParamDecl sceneParam() {
-    return enumParam("scene", {"corner", "slats", "open", "contact", "grille", "plates"},
-                     "scene: corner (floor, two walls, a sphere at the crease), slats (a cabinet of 30 slats "
-                     "with recesses), open (a bare floor), contact (objects resting on a table), grille (a "
-                     "perforated panel before a cavity), plates (three stacked plates)");
-}
-
-ParamDecl viewParam() { return intParam("view", 0, 0, 3, "", "camera pose of the scene (four per scene)"); }
-
-namespace {
-
 // Bytes per texel of the formats below, for the cost model.
 constexpr double kRgba32f = 16, kRgba16f = 8, kRgba8 = 4, kR16f = 2;
 
@@ -71,11 +22,8 @@ KernelDecl gbufferSdf() {
     k.name = "gbuffer_sdf";
     k.file = "gbuffer_sdf.glsl";
     k.summary = "G-buffer (view position and depth, normal, albedo) by sphere tracing a signed-distance scene";
-    k.role = "gbuffer";
-    k.params = {
-        sceneParam(),
-        viewParam(),
-    };
+    k.role = Role::GBuffer;
+    k.params = {use("scene"), use("view")};
     k.outputs = {{"position", Format::RGBA32F}, {"normal", Format::RGBA16F}, {"albedo", Format::RGBA8}};
     k.compileTime = {"scene"};
     k.cost = [](const ParamValues&) {
@@ -89,7 +37,8 @@ KernelDecl alchemy() {
     k.name = "alchemy";
     k.file = "ssao_alchemy.glsl";
     k.summary = "Alchemy screen-space ambient obscurance (McGuire et al. 2011): spiral samples in a world-radius disc";
-    k.role = "ao";
+    k.seeds = {"000_79d41de70034b569.txt"};
+    k.role = Role::Ao;
     // scale and contrast: the seed (000_79d41de70034b569.txt) tunes them per
     // camera distance (s = 2.0, k = 3.0 for a room seen from afar, 1.7 and
     // 2.2 close up) and says to expect to retune. Our cameras sit 1.5-4.5
@@ -97,12 +46,11 @@ KernelDecl alchemy() {
     // shows; at s = 2 the slat recesses go black across their whole width.
     // s = 1.5, k = 1.5 keeps both legible, creases dark but not clipped.
     k.params = {
-        intParam("samples", 16, 1, 256, "samples", "spiral samples per pixel (n)"),
-        floatParam("radius", 0.5, 0, 100, "world units", "world-space search radius R", true),
-        floatParam("bias", 0.01, 0, 1, "world units",
-                   "height above the tangent plane a sample needs to occlude (hides G-buffer rounding)"),
-        floatParam("scale", 1.5, 0, 10, "", "obscurance scale s in A = max(0, 1 - s S)^k"),
-        floatParam("contrast", 1.5, 0.1, 10, "", "contrast exponent k in A = max(0, 1 - s S)^k"),
+        use("samples", "spiral samples in a disc of world radius R"),
+        use("radius"),
+        use("bias"),
+        use("scale"),
+        use("contrast", 1.5, "k in A = max(0, 1 - s S)^k"),
     };
     k.inputs = {{"position", {}}, {"normal", {}}};
     k.outputs = {{"ao", Format::R16F}};
@@ -119,20 +67,17 @@ KernelDecl blurBilateral() {
     k.name = "blur_bilateral";
     k.file = "blur_bilateral.glsl";
     k.summary = "bilateral blur of AO: Gaussian taps weighted by normal agreement and linear-depth difference";
-    k.role = "blur";
+    k.role = Role::Blur;
     k.params = {
-        intParam("blur", 4, 0, 32, "px", "blur radius r: (2r+1)^2 taps, sigma = r/2; 0 passes AO through"),
-        // Above 1e-4: the weight divides by 2 sigma^2 in 32-bit floats, and a
-        // tinier sigma overflows that to inf and the centre tap to 0 * inf = NaN.
-        floatParam("depth_sigma", 0.1, 1e-4, 10, "world units",
-                   "sigma of the depth weight exp(-dd^2 / (2 sigma^2)) between a tap and the centre", true),
+        use("blur", "(2r+1)^2 taps"),
+        use("depth_sigma"),
     };
     k.inputs = {{"ao", {}}, {"position", {}}, {"normal", {}}};
     k.outputs = {{"ao", Format::R16F}};
     // 33 weights (r up to 32) in vec4s.
     k.arrays = {{"weights", 9}};
     k.derive = [](const ParamValues& v, std::map<std::string, std::vector<float>>& arrays) {
-        arrays["weights"] = gaussianWeights(int(std::lround(v.at("blur"))));
+        arrays["weights"] = gaussianWeights(intValue(v, "blur"));
     };
     k.cost = [](const ParamValues& v) {
         const double r = v.at("blur");
@@ -149,10 +94,8 @@ KernelDecl composite() {
     k.name = "composite";
     k.file = "composite.glsl";
     k.summary = "albedo times sky/ground ambient times AO, with IGN dither before the 8-bit store";
-    k.role = "composite";
-    k.params = {
-        boolParam("dither", true, "add +-0.5/255 of interleaved gradient noise against 8-bit banding"),
-    };
+    k.role = Role::Composite;
+    k.params = {use("dither")};
     k.inputs = {{"ao", {}}, {"normal", {}}, {"albedo", {}}};
     k.outputs = {{"color", Format::RGBA8}};
     k.cost = [](const ParamValues&) {
@@ -175,7 +118,7 @@ KernelDecl depthPyramid() {
     k.name = "depth_pyramid";
     k.file = "depth_pyramid.glsl";
     k.summary = "linear-depth mip pyramid (R32F, 5 levels, one real depth of each 2x2 block) for the fast AO kernels";
-    k.role = "pyramid";
+    k.role = Role::Pyramid;
     // Level l reads level l - 1 of its own output: "zmip" is both.
     k.inputs = {{"position", {}}, {"zmip", {gpu::Filter::Nearest, gpu::Address::ClampToEdge, true}}};
     k.outputs = {{"zmip", Format::R32F, kPyramidLevels}};
@@ -194,6 +137,7 @@ KernelDecl alchemyFast() {
     k.name = "alchemy_fast";
     k.file = "ssao_alchemy_fast.glsl";
     k.summary = "Alchemy obscurance on a linear-depth mip pyramid with a separable blur (after SAO, McGuire et al. 2012)";
+    k.seeds = {"000_79d41de70034b569.txt"};
     k.inputs = {{"zmip", {gpu::Filter::Nearest, gpu::Address::ClampToEdge, true}}, {"normal", {}}};
     k.outputs = {{"ao", Format::R16F}, {"ao_key", Format::RGBA16F}};
     // Sample i's spiral direction at phase 0, (cos, sin) of (i + 0.5) 7/9
@@ -227,7 +171,7 @@ KernelDecl blurSeparable(const std::string& axis) {
     k.file = "blur_separable_" + axis + ".glsl";
     k.summary = std::string(axis == "x" ? "horizontal" : "vertical") +
                 " pass of the separable depth- and normal-aware blur of packed AO, depth and normal (2r+1 taps)";
-    k.params[0].help = "blur radius r: 2r+1 taps along each axis, sigma = r/2; 0 passes AO through";
+    k.params[0].note = "2r+1 taps along each axis";
     k.inputs = {{"ao_key", {}}};
     k.outputs = {{axis == "x" ? "ao_key" : "ao", axis == "x" ? Format::RGBA16F : Format::R16F}};
     const double out = axis == "x" ? kRgba16f : kR16f;
@@ -254,9 +198,9 @@ std::vector<KernelDecl>& registryForTests() {
 const std::vector<KernelDecl>& all() { return registryForTests(); }
 
 bool evaluatesScene(const KernelDecl& k) {
-    if (k.role == "gbuffer") return false;
+    if (k.role == Role::GBuffer) return false;
     for (const auto& p : k.params)
-        if (p.name == "scene") return true;
+        if (p.name() == "scene") return true;
     return false;
 }
 

@@ -1,6 +1,7 @@
 #include "image_file.h"
 
 #include "digest.h"
+#include "texels/texels.h"
 
 #include <zlib.h>
 
@@ -47,42 +48,9 @@ uint64_t getU64(const std::string& s, size_t at) {
 // The half float with exactly the value of f, if there is one. NaNs are
 // left to float32: their payloads need not survive.
 bool exactHalf(float f, uint16_t& h) {
-    const uint32_t bits = std::bit_cast<uint32_t>(f);
-    const uint16_t sign = uint16_t(bits >> 16 & 0x8000);
-    const int exp = int(bits >> 23 & 0xff);
-    const uint32_t mant = bits & 0x7fffff;
-    if (exp == 0xff) {
-        h = uint16_t(sign | 0x7c00);
-        return mant == 0;
-    }
-    if (exp == 0) {   // zero, or a float denormal (far below the smallest half)
-        h = sign;
-        return mant == 0;
-    }
-    const int e = exp - 127;
-    if (e >= -14 && e <= 15) {
-        h = uint16_t(sign | (e + 15) << 10 | mant >> 13);
-        return (mant & 0x1fff) == 0;
-    }
-    if (e >= -24 && e < -14) {   // a half denormal: significand * 2^-24
-        const uint32_t sig = 1u << 23 | mant;
-        const int shift = -(e + 1);
-        h = uint16_t(sign | sig >> shift);
-        return (sig & ((1u << shift) - 1)) == 0;
-    }
-    return false;
-}
-
-float halfToFloat(uint16_t h) {
-    const uint32_t sign = uint32_t(h & 0x8000) << 16;
-    const int exp = h >> 10 & 0x1f;
-    const uint32_t mant = h & 0x3ff;
-    if (exp == 0) {
-        const float v = std::ldexp(float(mant), -24);   // exact: 10 bits of significand
-        return sign ? -v : v;
-    }
-    if (exp == 0x1f) return std::bit_cast<float>(sign | 0x7f800000u | mant << 13);
-    return std::bit_cast<float>(sign | uint32_t(exp - 15 + 127) << 23 | mant << 13);
+    if (std::isnan(f)) return false;
+    h = gpu::texels::toHalf(f);
+    return std::bit_cast<uint32_t>(gpu::texels::fromHalf(h)) == std::bit_cast<uint32_t>(f);
 }
 
 constexpr size_t kPaletteBytes = 256 * 4;
@@ -164,7 +132,7 @@ void widen(const std::string& stored, uint32_t sampleBytes, HostImage& image) {
             const size_t p = 4 * byte(kPaletteBytes + i);
             image.pixels[i] = std::bit_cast<float>(byte(p) | byte(p + 1) << 8 | byte(p + 2) << 16 | byte(p + 3) << 24);
         } else if (sampleBytes == 2) {
-            image.pixels[i] = halfToFloat(uint16_t(byte(i) | byte(n + i) << 8));
+            image.pixels[i] = gpu::texels::fromHalf(uint16_t(byte(i) | byte(n + i) << 8));
         } else {
             image.pixels[i] = std::bit_cast<float>(byte(i) | byte(n + i) << 8 | byte(2 * n + i) << 16 | byte(3 * n + i) << 24);
         }

@@ -3,6 +3,7 @@
 #include "kernel.h"
 
 #include "cli.h"
+#include "flags.h"
 #include "render_folder.h"
 #include "results.h"
 #include "runner.h"
@@ -22,13 +23,36 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr const char* kUsage =
-    "usage: cavity_render --matrix NAME [--baselines DIR] [--backend gl|vk|all] [--shard I/N] [--device K]\n"
-    "                     [--filter REGEX] [--repeat N] [--validation]\n"
-    "                     [--timing batch|drained] [--max-noise PCT] [--max-time S]\n"
-    "                     [--kernel-source NAME=FILE] --out DIR\n"
-    "       cavity_render quality [the flags of cavity quality]\n"
-    "renders a matrix of DIR/matrices.json (default baselines/) into a render folder for `cavity gate judge`\n";
+// The flags of cavity_render, declared once: --help and the parse read this.
+const cli::CommandSpec& renderSpec() {
+    static const cli::CommandSpec spec{
+        "cavity_render",
+        "Renders a matrix of DIR/matrices.json (default baselines/) into a render folder for `cavity gate judge`, "
+        "on the GPU machine (no OpenImageIO). `cavity_render quality [the flags of cavity quality]` measures "
+        "quality there (see cavity_render quality --help).",
+        {
+            {"--matrix", "NAME", "the matrix of matrices.json to render (required)"},
+            {"--out", "DIR", "the render folder to write (required)"},
+            {"--baselines", "DIR", "folder holding matrices.json (default baselines)"},
+            {"--backend", "gl|vk|all", "backends to render on (default all)"},
+            {"--shard", "I/N", "shard I of N (0 <= I < N); also GTEST_SHARD_INDEX/GTEST_TOTAL_SHARDS, TEST_SHARD_INDEX"},
+            {"--device", "K", "device index (0..64; default 0)"},
+            {"--filter", "REGEX", "only the configurations whose id matches (searched)"},
+            {"--repeat", "N", "renders of each configuration (1..1000; default 1)"},
+            {"--validation", "", "enable the Vulkan validation layers and the GL debug output"},
+            {"--timing", "batch|drained", "batch: back-to-back frames; drained: wait for the GPU after each (default: the device's)"},
+            {"--max-noise", "PCT", "stop measuring once the median's noise is under PCT percent (0..100)"},
+            {"--max-time", "S", "stop measuring after S seconds (0.001..3600)"},
+            {"--kernel-source", "NAME=FILE", "render with kernels/NAME replaced by FILE's text (a planted defect); repeatable",
+             "Options", true},
+        },
+        "",
+        "",
+        "\nExit codes: 0 every configuration rendered, 2 bad input (nothing written), 3 a backend did not start, "
+        "4 a configuration failed on the GPU.",
+    };
+    return spec;
+}
 
 int fail(const Error& e) {
     std::cerr << "cavity_render: " << e.message << "\n";
@@ -59,14 +83,14 @@ int worst(const RenderManifest& m) {
 Result<RenderCommand> parseRenderFlags(const std::vector<std::string>& argv) {
     std::optional<std::string> shardFlag;
     RenderCommand o;
-    cli::Args a(argv, {"--kernel-source"});
-    while (!a.done()) {
-        const std::string flag = a.next();
-        if (flag == "--validation") {
-            o.render.validation = true;
-            continue;
-        }
-        CAVITY_ASSIGN(const std::string v, a.value(flag));
+    CAVITY_ASSIGN(const cli::ParsedFlags parsed, cli::parseFlags(renderSpec(), argv));
+    o.help = parsed.help;
+    if (parsed.help) {
+        o.helpText = parsed.helpText;
+        return o;
+    }
+    o.render.validation = parsed.has("--validation");
+    for (const auto& [flag, v] : parsed.values) {
         if (flag == "--matrix") o.matrix = v;
         else if (flag == "--baselines") o.baselines = v;
         else if (flag == "--out") o.out = v;
@@ -103,8 +127,6 @@ Result<RenderCommand> parseRenderFlags(const std::vector<std::string>& argv) {
             o.render.maxNoise = pct / 100;
         } else if (flag == "--max-time") {
             CAVITY_ASSIGN(o.render.maxSeconds, cli::parseNumber(flag, v, 0.001, 3600));
-        } else {
-            return badInput(flag + ": unknown flag (see cavity_render --help)");
         }
     }
     if (o.matrix.empty()) return badInput("--matrix: missing (name a matrix of " + o.baselines + "/matrices.json)");
@@ -118,13 +140,13 @@ Result<RenderCommand> parseRenderFlags(const std::vector<std::string>& argv) {
 }
 
 int renderCommand(const std::vector<std::string>& argv) {
-    if (!argv.empty() && (argv[0] == "--help" || argv[0] == "-h")) {
-        std::cout << kUsage;
-        return 0;
-    }
     const auto start = std::chrono::steady_clock::now();
     auto o = parseRenderFlags(argv);
     if (!o) return fail(o.error());
+    if (o->help) {
+        std::cout << o->helpText;
+        return 0;
+    }
     auto matrix = gate::loadMatrix((fs::path(o->baselines) / "matrices.json").string(), o->matrix);
     if (!matrix) return fail(matrix.error());
     auto entries = gate::selectEntries(*matrix, o->shardIndex, o->shardCount, o->filter);

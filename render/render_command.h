@@ -12,12 +12,15 @@
 namespace cavity::render {
 
 struct RenderCommand {
+    bool help = false;                    // --help given: print helpText, exit 0, nothing else read
+    std::string helpText;
     std::string matrix, baselines = "baselines", out, filter;
     int shardIndex = 0, shardCount = 1;
     RenderOptions render;
 };
 
-// Every error names the flag, the value and what is allowed.
+// Every error names the flag, the value and what is allowed (flags declared
+// once, parsed by CLI11 through cli/flags.h).
 Result<RenderCommand> parseRenderFlags(const std::vector<std::string>& argv);
 
 // Validates, renders, writes DIR; returns the process exit code: 0 every

@@ -1,5 +1,6 @@
 // The cavity command as a user meets it: exit codes, one-line errors that
 // name the flag, the value and what is allowed, and nothing written on bad input.
+#include "run_binary.h"
 #include "kernel.h"
 #include "sweep.h"
 
@@ -18,23 +19,11 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct Outcome {
-    int code = -1;
-    std::string output;   // stdout and stderr
-};
+using ::cavity::test::Outcome;
 
 // `redirect`: how the shell sends the two streams into the pipe read here.
 Outcome cavity(const std::string& args, const std::string& env = "", const std::string& redirect = "2>&1") {
-    const std::string cmd = env + " " + CAVITY_EXE + " " + args + " " + redirect;
-    Outcome o;
-    FILE* p = popen(cmd.c_str(), "r");
-    if (!p) return o;
-    std::array<char, 4096> buf;
-    size_t n;
-    while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) o.output.append(buf.data(), n);
-    const int status = pclose(p);
-    o.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return o;
+    return ::cavity::test::runBinary(CAVITY_EXE, args, env, redirect);
 }
 
 // The kernels --kernel accepts as the registry lists them, the way the
@@ -44,7 +33,7 @@ std::string aoList() {
     std::string s;
     for (const auto& k : cavity::aoKernels()) s += (s.empty() ? "" : ", ") + k;
     for (const auto& k : cavity::kernels::all())
-        if (k.role == "reference") s += ", " + k.name;
+        if (k.role == cavity::kernels::Role::Reference) s += ", " + k.name;
     return s;
 }
 
@@ -184,17 +173,25 @@ TEST_F(Cli, RunHelpNamesEveryKernelAndParameterWithDefaultAndRange) {
     const Outcome o = stdoutOf("run --help");
     ASSERT_EQ(o.code, 0);
     for (const auto& k : cavity::kernels::all()) {
-        if (k.role != "ao" && k.role != "reference") continue;
+        if (k.role != cavity::kernels::Role::Ao && k.role != cavity::kernels::Role::Reference) continue;
         EXPECT_NE(o.output.find(k.name), std::string::npos) << k.name;
         EXPECT_NE(o.output.find(k.summary), std::string::npos) << k.name << " summary";
+        // The kernel's line: its summary, then its seed files.
+        const size_t line = o.output.find(k.summary);
+        const std::string kernelLine = line == std::string::npos ? "" : o.output.substr(line, o.output.find('\n', line) - line);
+        if (!k.seeds.empty()) {
+            EXPECT_NE(kernelLine.find(" [seed " + k.seeds[0]), std::string::npos) << kernelLine;
+        }
+        for (const auto& seed : k.seeds) EXPECT_NE(kernelLine.find(seed), std::string::npos) << k.name << " " << seed;
         for (const auto& p : k.params) {
-            EXPECT_NE(o.output.find("--" + p.name + " "), std::string::npos) << "--" << p.name;
-            if (p.name != "scene") {
-                EXPECT_NE(o.output.find(p.help), std::string::npos) << "--" << p.name << " help";
+            EXPECT_NE(o.output.find("--" + p.name() + " "), std::string::npos) << "--" << p.name();
+            EXPECT_NE(o.output.find(p.decl->help), std::string::npos) << "--" << p.name() << " help";
+            if (!p.note.empty()) {
+                EXPECT_NE(o.output.find(p.note), std::string::npos) << k.name << " --" << p.name();
             }
         }
     }
-    EXPECT_NE(o.output.find("default 0.5"), std::string::npos);          // --radius
+    EXPECT_NE(o.output.find("default 0.5, 0.13 (sdf_classic)"), std::string::npos);   // --radius: a kernel's own default
     EXPECT_NE(o.output.find("integer 1..256 samples"), std::string::npos);  // --samples
 }
 

@@ -1,6 +1,7 @@
 // `cavity compare` as a pull request meets it: two runs with a known change,
 // in both file formats, and the verdicts, intervals, exit codes and
 // one-line errors that come out. No GPU: every input is fabricated here.
+#include "run_binary.h"
 #include "json_file.h"
 #include "sample_sets.h"
 
@@ -24,22 +25,10 @@ using nlohmann::json;
 
 namespace {
 
-struct Outcome {
-    int code = -1;
-    std::string output;   // stdout and stderr
-};
+using ::cavity::test::Outcome;
 
 Outcome cavity(const std::string& args) {
-    const std::string cmd = std::string(CAVITY_EXE) + " " + args + " 2>&1";
-    Outcome o;
-    FILE* p = popen(cmd.c_str(), "r");
-    if (!p) return o;
-    std::array<char, 4096> buf;
-    size_t n;
-    while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) o.output.append(buf.data(), n);
-    const int status = pclose(p);
-    o.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return o;
+    return ::cavity::test::runBinary(CAVITY_EXE, args);
 }
 
 // Deterministic noise in [-1, 1), so that every run of the test sees the same samples.

@@ -1,6 +1,7 @@
 // Bad gate inputs are reported as bad input (exit 2, one line naming the
 // file), never silently passed; `baselines update` rewrites only what it is
 // asked to, atomically.
+#include "run_binary.h"
 #include "image_io.h"
 
 #include <gtest/gtest.h>
@@ -25,21 +26,10 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct Outcome {
-    int code = -1;
-    std::string output;
-};
+using ::cavity::test::Outcome;
 
 Outcome run(const std::string& args, const std::string& env = "") {
-    const std::string cmd = env + " " + CAVITY_EXE + " " + args + " 2>&1";
-    Outcome o;
-    FILE* p = popen(cmd.c_str(), "r");
-    std::array<char, 4096> buf;
-    size_t n;
-    while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) o.output.append(buf.data(), n);
-    const int status = pclose(p);
-    o.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return o;
+    return ::cavity::test::runBinary(CAVITY_EXE, args, env);
 }
 
 std::string checksum(const fs::path& p) {

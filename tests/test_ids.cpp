@@ -78,13 +78,14 @@ TEST(ConfigId, NamesEveryParameterThatDiffersFromItsDefault) {
     EXPECT_NE(configId(with({{"radius", "0.3"}})), configId(with({{"radius", "1"}})));
     // Every declared numeric parameter of every AO kernel, moved off its default, changes the id.
     for (const auto& k : kernels::all()) {
-        if (k.role != "ao" && k.role != "reference") continue;
+        if (k.role != cavity::kernels::Role::Ao && k.role != cavity::kernels::Role::Reference) continue;
         RunConfig base;
         base.kernel = k.name;
-        for (const auto& p : k.params) {
+        for (const auto& u : k.params) {
+            const auto& p = *u.decl;
             if (p.type == kernels::ParamType::Enum) continue;
             RunConfig c = base;
-            c.params[p.name] = p.def == p.max ? p.min + (p.minExclusive ? (p.max - p.min) / 2 : 0) : p.max;
+            c.params[p.name] = u.def == p.max ? p.min + (p.minExclusive ? (p.max - p.min) / 2 : 0) : p.max;
             EXPECT_NE(configId(c), configId(base)) << k.name << " --" << p.name;
         }
     }

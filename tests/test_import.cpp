@@ -15,6 +15,7 @@
 //    sample to another pixel on some driver; measured 4.8e-7).
 //  * Bad input through the cavity binary: exit 2, one line naming the flag or
 //    file and the value, nothing written into --out.
+#include "run_binary.h"
 #include "camera.h"
 #include "gbuffer_import.h"
 #include "gpu_fixture.h"
@@ -147,7 +148,7 @@ TEST_P(ImportRoundTrip, EveryScreenSpacePipelineMatchesTheGeneratedGBuffer) {
     int pipelines = 0;
     for (const auto& kernel : aoKernels()) {
         bool scene = false;
-        for (const auto& p : kernels::find(kernel)->params) scene |= p.name == "scene";
+        for (const auto& p : kernels::find(kernel)->params) scene |= p.name() == "scene";
         if (scene) continue;
         for (bool half : {false, true}) {
             if (half && !supportsHalf(kernel)) continue;
@@ -233,22 +234,10 @@ CAVITY_ALL_BACKENDS(ImportRoundTrip);
 
 // --- through the cavity binary ----------------------------------------------
 
-struct Outcome {
-    int code = -1;
-    std::string output;   // stdout and stderr
-};
+using ::cavity::test::Outcome;
 
 Outcome cavity(const std::string& args) {
-    const std::string cmd = std::string(CAVITY_EXE) + " " + args + " 2>&1";
-    Outcome o;
-    FILE* p = popen(cmd.c_str(), "r");
-    if (!p) return o;
-    std::array<char, 4096> buf;
-    size_t n;
-    while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) o.output.append(buf.data(), n);
-    const int status = pclose(p);
-    o.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return o;
+    return ::cavity::test::runBinary(CAVITY_EXE, args);
 }
 
 // A plane facing the camera at depth 2 (P.* or Z), 32x18.
@@ -346,7 +335,7 @@ TEST_F(ImportCli, BadInputExitsTwoWithOneLineAndWritesNothing) {
     // not its name.
     std::string sceneKernel;
     for (const auto& k : kernels::all())
-        if (k.role == "ao" && kernels::evaluatesScene(k) && sceneKernel.empty()) sceneKernel = k.name;
+        if (k.role == cavity::kernels::Role::Ao && kernels::evaluatesScene(k) && sceneKernel.empty()) sceneKernel = k.name;
     ASSERT_FALSE(sceneKernel.empty()) << "the SDF AO kernels declare a scene parameter";
     cases.push_back({"scene kernel", "--gbuffer import --gbuffer-file " + good + " --kernel " + sceneKernel,
                      "cavity run: --kernel " + sceneKernel + ": pass ao (" + sceneKernel +

@@ -65,17 +65,17 @@ void checkChain(gpu::Backend& gpu, gpu::Api api, const Case& cs) {
         ASSERT_NE(k, nullptr);
         std::vector<HostImage> inputs;
         for (const auto& in : pass.inputs) {
-            if (in.rfind("const:", 0) == 0) {
+            if (in.source == ImageSource::Constant) {
                 // CPU-made inputs: the reference gets the level-0 data itself.
-                const auto* decl = kernels::findConstant(in.substr(6));
-                ASSERT_NE(decl, nullptr) << in;
+                const auto* decl = kernels::findConstant(in.name);
+                ASSERT_NE(decl, nullptr) << in.name;
                 const auto levels = decl->make(kernels::withDefaults(*k, c.params));
                 HostImage img(levels[0].width, levels[0].height, gpu::channelCount(decl->format));
                 img.pixels = levels[0].pixels;
                 inputs.push_back(std::move(img));
                 continue;
             }
-            auto img = (*chain)->read(in);
+            auto img = (*chain)->read(in.name);
             ASSERT_TRUE(img) << img.error().message;
             inputs.push_back(std::move(*img));
         }
@@ -120,7 +120,7 @@ void checkChain(gpu::Backend& gpu, gpu::Api api, const Case& cs) {
 // Every AO pipeline, full and half resolution; the fragment stage too at 160x90.
 void checkAll(gpu::Backend& gpu, gpu::Api api, const std::string& scene, int w, int h) {
     for (const auto& k : kernels::all()) {
-        if (k.role != "ao") continue;
+        if (k.role != cavity::kernels::Role::Ao) continue;
         for (bool half : {false, true}) {
             if (half && !supportsHalf(k.name)) continue;
             for (auto stage : {gpu::Stage::Compute, gpu::Stage::Fragment}) {
@@ -329,7 +329,7 @@ TEST_P(StageAgreement, ComputeAndFragmentAgree) {
     double largest = 0;
     std::vector<std::string> names{"ground_truth"};
     for (const auto& k : kernels::all())
-        if (k.role == "ao") names.push_back(k.name);
+        if (k.role == cavity::kernels::Role::Ao) names.push_back(k.name);
     for (const std::string scene : {"corner", "contact"})
         for (const auto& name : names)
             for (bool half : {false, true}) {

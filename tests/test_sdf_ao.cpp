@@ -76,7 +76,7 @@ TEST_P(SdfAo, GroundTruthMatchesItsReference) {
 TEST_P(SdfAo, OpenSceneIsUnoccludedForEveryKernel) {
     std::vector<std::string> names{"ground_truth"};
     for (const auto& k : kernels::all())
-        if (k.role == "ao") names.push_back(k.name);
+        if (k.role == cavity::kernels::Role::Ao) names.push_back(k.name);
     for (const auto& name : names) {
         auto img = run(config(name, "open", 160, 90), {"position", "ao"});
         ASSERT_EQ(img.size(), 2u) << name;
@@ -157,7 +157,7 @@ TEST_P(SdfAo, ContactDarkensTheTableBesideTheSphere) {
     const reference::Vec3 contact{-0.35f, 0.78f, 0.1f}, cube{0.3f, 0.78f, -0.1f};
     std::vector<std::string> names{"ground_truth"};
     for (const auto& k : kernels::all())
-        if (k.role == "ao") names.push_back(k.name);
+        if (k.role == cavity::kernels::Role::Ao) names.push_back(k.name);
     for (const auto& name : names) {
         auto img = run(config(name, "contact", 160, 90), {"position", "ao"});
         ASSERT_EQ(img.size(), 2u);

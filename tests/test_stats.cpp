@@ -51,8 +51,14 @@ TEST(ConfigId, IsTheCanonicalPath) {
 }
 
 TEST(ConfigValidation, NamesFlagValueAndRange) {
+    // Parsed: refused when the flag is read (kernels::parseValue).
     RunConfig c;
-    ASSERT_TRUE(setParam(c, "samples", "300").ok());
+    const Status parsed = setParam(c, "samples", "300");
+    ASSERT_FALSE(parsed.ok());
+    EXPECT_EQ(parsed.error().code, ErrorCode::BadInput);
+    EXPECT_EQ(parsed.error().message, "--samples 300: must be an integer in 1..256 (samples)");
+    // Set in code: validate() checks it against the same declaration, in the same words.
+    c.params["samples"] = 300;
     const Status s = validate(c);
     ASSERT_FALSE(s.ok());
     EXPECT_EQ(s.error().code, ErrorCode::BadInput);

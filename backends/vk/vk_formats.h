@@ -18,11 +18,8 @@ inline VkImageAspectFlags aspectOf(Format f) {
     return isDepth(f) ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT;
 }
 
-// IEEE 754 binary16, round to nearest even; denormals, infinities and NaN kept.
-uint16_t floatToHalf(float f);
-float halfToFloat(uint16_t h);
-
-// channelCount(f) floats per pixel <-> tightly packed texels of f.
+// channelCount(f) floats per pixel <-> tightly packed texels of f (the
+// conversions: backends/texels/texels.h).
 // `in.size()` and `out.size()` are in floats.
 void packTexels(Format f, std::span<const float> in, std::byte* out);
 void unpackTexels(Format f, const std::byte* in, std::span<float> out);

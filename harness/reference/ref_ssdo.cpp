@@ -23,7 +23,7 @@
 // weights, within 1e-3.
 //
 // The sky's levels come from the constant image's own generator, since a
-// pass chain's read-back of const:sky returns level 0 only.
+// pass chain's read-back of the constant sky returns level 0 only.
 #include "families.h"
 #include "noise.h"
 #include "portable_math.h"

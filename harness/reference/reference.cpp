@@ -21,9 +21,9 @@ std::vector<HostImage> makeOutputs(const Context& ctx) {
     return out;
 }
 
-int intParam(const Context& ctx, const std::string& name) { return int(std::lround(ctx.params.at(name))); }
+int intParam(const Context& ctx, const std::string& name) { return kernels::intValue(ctx.params, name); }
 
-float floatParam(const Context& ctx, const std::string& name) { return float(ctx.params.at(name)); }
+float floatParam(const Context& ctx, const std::string& name) { return kernels::floatValue(ctx.params, name); }
 
 const std::vector<float>& array(const Context& ctx, const std::string& name) {
     static const std::vector<float> empty;
@@ -55,8 +55,8 @@ Result<std::vector<HostImage>> run(const Context& ctx) {
         if (!ctx.inputs[i] || ctx.inputs[i]->width <= 0 || ctx.inputs[i]->height <= 0)
             return internal("reference " + name + ": input '" + ctx.kernel.inputs[i].name + "' is missing or empty");
     for (const auto& p : ctx.kernel.params)
-        if (!ctx.params.count(p.name))
-            return internal("reference " + name + ": parameter '" + p.name + "' has no value (use withDefaults)");
+        if (!ctx.params.count(p.name()))
+            return internal("reference " + name + ": parameter '" + p.name() + "' has no value (use withDefaults)");
 
     std::vector<RefEntry> table = firstSliceRefs();
     for (const auto& e : screenSpaceRefs()) table.push_back(e);

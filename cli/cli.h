@@ -1,5 +1,6 @@
-// Command-line plumbing shared by the cavity subcommands: a flag reader whose
-// every error names the flag, the value and what is allowed.
+// Command-line plumbing shared by the cavity subcommands, cavity_render and
+// cavity_bench: value parsers whose every error names the flag, the value and
+// what is allowed (the flags themselves are declared and parsed in flags.h).
 #pragma once
 
 #include "flags.h"
@@ -10,26 +11,6 @@
 #include <vector>
 
 namespace cavity::cli {
-
-class Args {
-public:
-    // Flags in `repeatable` may be given more than once (--kernel-source A=x
-    // --kernel-source B=y); any other flag given twice is an error, never
-    // "the last one wins".
-    Args(std::vector<std::string> a, std::set<std::string> repeatable = {})
-        : a_(std::move(a)), repeatable_(std::move(repeatable)) {}
-    bool done() const { return i_ >= a_.size(); }
-    const std::string& peek() const { return a_[i_]; }
-    std::string next() { return a_[i_++]; }
-    // The value after a flag, or an error naming the flag: missing, empty, or
-    // the flag given twice.
-    Result<std::string> value(const std::string& flag);
-
-private:
-    std::vector<std::string> a_;
-    std::set<std::string> repeatable_, seen_;
-    size_t i_ = 0;
-};
 
 Result<int> parseInt(const std::string& flag, const std::string& text, int lo, int hi);
 // A finite number in [lo, hi]; "nan", "inf", "1e999" and trailing text fail.
@@ -46,7 +27,8 @@ Result<std::pair<int, int>> parseShard(const std::string& text);
 // command declares itself (--scene).
 std::vector<FlagSpec> kernelParamFlags(const std::set<std::string>& skip = {});
 // The kernels --kernel accepts, one a line with its summary (KernelDecl::summary).
-std::string kernelHelp();
+// `heading` starts the list ("Kernels (--kernel)").
+std::string kernelHelp(const std::string& heading = "Kernels (--kernel)");
 
 // The baselines folder when --baselines is not given: baselines/ of the first
 // folder from the working directory up that holds baselines/matrices.json,

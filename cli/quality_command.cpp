@@ -6,6 +6,7 @@
 #include "quality.h"
 #include "results.h"
 #include "runner.h"
+#include "text_table.h"
 
 #include <cstdio>
 #include <filesystem>
@@ -25,14 +26,14 @@ CommandSpec qualitySpec(const std::string& program) {
         {"--backend", "gl|vk", "the backend (default vk)"},
         {"--scene", "S[,S..]", "scenes (default corner,slats)"},
         {"--kernel", "K[,K..]", "AO kernels (default every kernel of role ao; see cavity run --help)"},
-        {"--samples", "N[,N..]", "sample counts (1..256; default 16,64)"},
+        {"--samples", "N[,N..]", "sample counts, each " + kernels::allowedValues(*kernels::findParam("samples")) + " (default 16,64)"},
         {"--res", "WxH", "image size (default 160x90)"},
-        {"--rays", "N", "the ground truth's rays per pixel (1024..65536; default 1024)"},
+        {"--rays", "N", "the ground truth's rays per pixel, " + kernels::allowedValues(*kernels::findParam("rays")) + " (default 1024)"},
         {"--resolution", "full|half", "AO at full or half resolution (default full)"},
         {"--reach", "seed|shared", "seed (default): each kernel at its own default reach, the truth at 0.5; "
                                    "shared: every kernel and the truth at --radius"},
         {"--radius", "R", "the shared reach (default 0.5; implies --reach shared)"},
-        {"--blur", "R", "compare the AO after the pipeline's blur of radius R (0..32; default 0, the raw AO)"},
+        {"--blur", "R", "compare the AO after the pipeline's blur of radius R, " + kernels::allowedValues(*kernels::findParam("blur")) + " (default 0, the raw AO)"},
         {"--device", "K", "device index (0..64)"},
         {"--out", "DIR", "also write DIR/quality.json"},
         {"--filter", "REGEX", "only the configurations whose id matches (searched; ids as --list prints them)"},
@@ -70,7 +71,7 @@ int qualityCommand(const std::vector<std::string>& argv, const std::string& prog
             o.sharedReach = *v == "shared";
             reachGiven = true;
         } else if (flag == "--radius") {
-            auto r = parseNumber("--radius", *v, 1e-6, 100);
+            auto r = kernels::parseValue(*kernels::findParam("radius"), *v);
             if (!r) return fail(r.error());
             o.radius = *r;
             radiusGiven = true;
@@ -91,29 +92,29 @@ int qualityCommand(const std::vector<std::string>& argv, const std::string& prog
             o.kernels = *items;
             for (const auto& k : o.kernels) {
                 const auto* d = kernels::find(k);
-                if (!d || d->role != "ao") return fail(badInput("--kernel " + k + ": not an AO kernel (see cavity run --help)"));
+                if (!d || d->role != kernels::Role::Ao) return fail(badInput("--kernel " + k + ": not an AO kernel (see cavity run --help)"));
             }
         } else if (flag == "--samples") {
             o.samples.clear();
             auto items = splitList(flag, *v);
             if (!items) return fail(items.error());
             for (const auto& s : *items) {
-                auto n = parseInt("--samples", s, 1, 256);
+                auto n = kernels::parseValue(*kernels::findParam("samples"), s);
                 if (!n) return fail(n.error());
-                o.samples.push_back(*n);
+                o.samples.push_back(kernels::asInt(*n));
             }
         } else if (flag == "--res") {
             auto wh = parseResolution("--res", *v);
             if (!wh) return fail(wh.error());
             std::tie(o.width, o.height) = *wh;
         } else if (flag == "--blur") {
-            auto r = parseInt("--blur", *v, 0, 32);
+            auto r = kernels::parseValue(*kernels::findParam("blur"), *v);
             if (!r) return fail(r.error());
-            o.blur = *r;
+            o.blur = kernels::asInt(*r);
         } else if (flag == "--rays") {
-            auto n = parseInt("--rays", *v, 1024, 65536);
+            auto n = kernels::parseValue(*kernels::findParam("rays"), *v);
             if (!n) return fail(n.error());
-            o.rays = *n;
+            o.rays = kernels::asInt(*n);
         } else if (flag == "--resolution") {
             if (*v != "full" && *v != "half") return fail(badInput("--resolution " + *v + ": must be full or half"));
             o.half = *v == "half";
@@ -141,7 +142,7 @@ int qualityCommand(const std::vector<std::string>& argv, const std::string& prog
     std::vector<std::string> names = o.kernels;
     if (names.empty())
         for (const auto& k : kernels::all())
-            if (k.role == "ao") names.push_back(k.name);
+            if (k.role == kernels::Role::Ao) names.push_back(k.name);
     struct Step {
         QualityOptions options;   // one scene, one kernel or all, the selected sample counts
         std::vector<std::string> ids;
@@ -212,7 +213,9 @@ int qualityCommand(const std::vector<std::string>& argv, const std::string& prog
         std::printf("reach: shared, every kernel and the truth at R = %g\n", o.radius);
     else
         std::printf("reach: seed, each kernel at its own default reach, the truth at R = 0.5\n");
-    std::printf("%-8s %-20s %7s %8s %8s %8s %8s\n", "scene", "kernel", "samples", "MAE", "max", "mean AO", "truth");
+    using A = TextTable::Align;
+    TextTable table({{"scene", A::Left}, {"kernel", A::Left}, {"samples", A::Right}, {"MAE", A::Right}, {"max", A::Right},
+                     {"mean AO", A::Right}, {"truth", A::Right}});
     nlohmann::json doc = {{"schema", "cavity-quality/1"},
                           {"backend", gpu::apiName(api)},
                           {"device", (*gpu)->info().deviceName},
@@ -225,8 +228,8 @@ int qualityCommand(const std::vector<std::string>& argv, const std::string& prog
                           {"radius", o.sharedReach ? nlohmann::json(o.radius) : nlohmann::json(nullptr)},
                           {"rows", nlohmann::json::array()}};
     for (const auto& r : rows) {
-        std::printf("%-8s %-20s %7d %8.4f %8.4f %8.4f %8.4f\n", r.scene.c_str(), r.kernel.c_str(), r.samples,
-                    r.meanAbsError, r.maxAbsError, r.meanAo, r.meanTruth);
+        table.add({r.scene, r.kernel, std::to_string(r.samples), TextTable::number(r.meanAbsError, 4),
+                   TextTable::number(r.maxAbsError, 4), TextTable::number(r.meanAo, 4), TextTable::number(r.meanTruth, 4)});
         doc["rows"].push_back({{"scene", r.scene},
                                {"kernel", r.kernel},
                                {"samples", r.samples},
@@ -236,6 +239,7 @@ int qualityCommand(const std::vector<std::string>& argv, const std::string& prog
                                {"mean_truth", r.meanTruth},
                                {"pixels", r.pixels}});
     }
+    table.print();
     if (!out.empty()) {
         std::error_code ec;
         std::filesystem::create_directories(out, ec);

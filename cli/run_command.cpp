@@ -4,6 +4,7 @@
 #include "gbuffer_import.h"
 #include "progress.h"
 #include "runner.h"
+#include "text_table.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -29,10 +30,7 @@ const CommandSpec& runSpec() {
             "results.json, a timing table on stdout, progress on stderr. Every list flag takes "
             "VALUE[,VALUE..] and the sweep is the product of all lists.";
         const std::string sweep = "Sweep", timing = "Timing", output = "Device and output";
-        std::string scenes;
-        for (const auto& k : kernels::all())
-            for (const auto& p : k.params)
-                if (p.name == "scene" && scenes.empty()) scenes = p.help;
+        const std::string scenes = kernels::findParam("scene")->help;
         c.flags = {
             {"--backend", "gl|vk|all[,..]", "backends to run on (default all)", sweep},
             {"--kernel", "K[,K..]", "AO kernels (default alchemy; listed below)", sweep},
@@ -69,7 +67,7 @@ struct Sweep {
     std::vector<std::string> scenes{"corner"};
     // Every kernel parameter given (--samples, --blur, --radius, ...): one
     // axis each, its values in the order given.
-    std::map<std::string, std::vector<std::string>> params;
+    std::map<std::string, std::vector<double>> params;
     std::vector<std::string> resolutions{"full"};
     std::vector<std::pair<int, int>> sizes{{320, 180}};
     std::vector<gpu::Stage> stages{gpu::Stage::Compute};
@@ -158,10 +156,17 @@ Result<Sweep> parse(const std::vector<std::string>& argv) {
             s.filterText = v;
         } else if (isKernelParam(flag.substr(2))) {
             // Every kernel parameter sweeps: --radius 0.5,1.0 is two configurations.
+            // Each value is parsed and checked once, here (kernels/params.h).
             CAVITY_ASSIGN(auto items, splitList(flag, v));
-            RunConfig scratch;
-            for (const auto& item : items) CAVITY_TRY(setParam(scratch, flag.substr(2), item));
-            s.params[flag.substr(2)] = std::move(items);
+            const auto& decl = *kernels::findParam(flag.substr(2));
+            std::vector<double> values;
+            for (const auto& item : items) {
+                CAVITY_ASSIGN(double x, kernels::parseValue(decl, item));
+                if (std::find(values.begin(), values.end(), x) != values.end())
+                    return badInput(flag + " '" + v + "': " + item + " is a value given twice");
+                values.push_back(x);
+            }
+            s.params[flag.substr(2)] = std::move(values);
         }
     }
     const bool import = std::find(s.gbuffers.begin(), s.gbuffers.end(), "import") != s.gbuffers.end();
@@ -178,10 +183,10 @@ Result<Sweep> parse(const std::vector<std::string>& argv) {
 
 // Expands the sweep axes into validated configurations (API left unset).
 Result<std::vector<RunConfig>> expand(const Sweep& s) {
-    // The kernel parameters' product, each point a set of (name, text) pairs.
-    std::vector<std::vector<std::pair<std::string, std::string>>> points{{}};
+    // The kernel parameters' product, each point a set of (name, value) pairs.
+    std::vector<std::vector<std::pair<std::string, double>>> points{{}};
     for (const auto& [name, values] : s.params) {
-        std::vector<std::vector<std::pair<std::string, std::string>>> next;
+        std::vector<std::vector<std::pair<std::string, double>>> next;
         for (const auto& point : points)
             for (const auto& v : values) {
                 auto p = point;
@@ -208,7 +213,7 @@ Result<std::vector<RunConfig>> expand(const Sweep& s) {
                                 } else {
                                     CAVITY_TRY(setParam(c, "scene", scene));
                                 }
-                                for (const auto& [name, v] : point) CAVITY_TRY(setParam(c, name, v));
+                                for (const auto& [name, v] : point) c.params[name] = v;
                                 c.half = res == "half";
                                 c.width = w;
                                 c.height = h;
@@ -236,26 +241,25 @@ void printTable(const std::vector<RunRecord>& runs) {
     int most = 0;
     for (const auto& [c, n] : clockCount)
         if (n > most) most = n, clock = c;
-    size_t idWidth = std::string("configuration").size(), passWidth = std::string("frame").size();
-    for (const auto& r : runs) {
-        idWidth = std::max(idWidth, configId(r.config).size());
-        for (const auto& p : r.timing.passes) passWidth = std::max(passWidth, p.name.size());
-    }
-    const int iw = int(idWidth), pw = int(passWidth);
     std::printf("\nclock: %s%s\n", clock.c_str(), clockCount.size() == 1 ? " (every configuration)" : " (except as noted below)");
-    std::printf("%-*s  %-*s %10s %10s %10s %7s\n", iw, "configuration", pw, "pass", "median ms", "min ms", "p90 ms", "CV");
+    using A = TextTable::Align;
+    TextTable table({{"configuration", A::Left}, {"pass", A::Left}, {"median ms", A::Right}, {"min ms", A::Right},
+                     {"p90 ms", A::Right}, {"CV", A::Right}},
+                    "  ");
     std::vector<std::string> noisy;
     for (const auto& r : runs) {
         const std::string id = configId(r.config);
         auto row = [&](const std::string& name, const Stats& st) {
             const bool flag = st.cv > kNoisyCv;
-            std::printf("%-*s  %-*s %10.3f %10.3f %10.3f %6.1f%%%s\n", iw, id.c_str(), pw, name.c_str(), st.median, st.min,
-                        st.p90, 100.0 * st.cv, flag ? " !" : "");
+            table.add({id, name, TextTable::number(st.median, 3), TextTable::number(st.min, 3), TextTable::number(st.p90, 3),
+                       TextTable::number(100.0 * st.cv, 1) + "%"},
+                      flag ? " !" : "");
             if (flag) noisy.push_back(id + " " + name);
         };
         for (const auto& p : r.timing.passes) row(p.name, p.stats);
         row("frame", r.timing.frame.stats);
     }
+    table.print();
     for (const auto& r : runs)
         if (clockOf(r) != clock)
             std::printf("note: %s: clock %s (not %s)\n", configId(r.config).c_str(), clockOf(r).c_str(), clock.c_str());

@@ -1,6 +1,7 @@
 #include "cli.h"
 
 #include "kernel.h"
+#include "text_table.h"
 
 #include <algorithm>
 #include <charconv>
@@ -10,15 +11,6 @@
 #include <sstream>
 
 namespace cavity::cli {
-
-Result<std::string> Args::value(const std::string& flag) {
-    if (done() || (a_[i_].rfind("--", 0) == 0 && a_[i_].size() > 2))
-        return badInput(flag + ": missing value");
-    if (!seen_.insert(flag).second && !repeatable_.count(flag))
-        return badInput(flag + ": given twice (give one value, or one comma-separated list where the flag takes a list)");
-    if (a_[i_].empty()) return badInput(flag + " '': empty value");
-    return next();
-}
 
 Result<int> parseInt(const std::string& flag, const std::string& text, int lo, int hi) {
     int v = 0;
@@ -68,25 +60,6 @@ Result<std::pair<int, int>> parseShard(const std::string& text) {
 
 namespace {
 
-std::string number(double v) {
-    std::ostringstream o;
-    o << v;
-    return o.str();
-}
-
-// "0.5", or "0.5 (alchemy), 1 (hemisphere)" where kernels differ.
-std::string defaults(const std::vector<std::pair<const kernels::KernelDecl*, const kernels::ParamDecl*>>& uses) {
-    auto text = [](const kernels::ParamDecl& p) {
-        return p.type == kernels::ParamType::Enum ? p.choices[size_t(p.def)] : number(p.def);
-    };
-    bool same = true;
-    for (const auto& [k, p] : uses) same = same && p->def == uses.front().second->def;
-    if (same) return text(*uses.front().second);
-    std::string s;
-    for (const auto& [k, p] : uses) s += (s.empty() ? "" : ", ") + text(*p) + " (" + k->name + ")";
-    return s;
-}
-
 std::string range(const kernels::ParamDecl& p) {
     using kernels::ParamType;
     if (p.type == ParamType::Enum) {
@@ -95,56 +68,71 @@ std::string range(const kernels::ParamDecl& p) {
         return s;
     }
     if (p.type == ParamType::Bool) return "0|1";
-    const std::string r = p.minExclusive ? "(" + number(p.min) + ", " + number(p.max) + "]"
-                                         : number(p.min) + ".." + number(p.max);
-    return (p.type == ParamType::Int ? "integer " : "") + r + (p.unit.empty() ? "" : " " + p.unit);
+    std::string r = p.type == ParamType::Int ? "integer " : "";
+    r += p.minExclusive ? "(" : "";
+    r += kernels::valueText(p, p.min);
+    r += p.minExclusive ? ", " : "..";
+    r += kernels::valueText(p, p.max);
+    r += p.minExclusive ? "]" : "";
+    if (!p.unit.empty()) r += " " + p.unit;
+    return r;
 }
 
 }  // namespace
 
 std::vector<FlagSpec> kernelParamFlags(const std::set<std::string>& skip) {
-    // Name order of first declaration; a shared name is one flag for every kernel.
-    std::vector<std::string> names;
-    std::map<std::string, std::vector<std::pair<const kernels::KernelDecl*, const kernels::ParamDecl*>>> uses;
-    for (const auto& k : kernels::all())
-        for (const auto& p : k.params) {
-            if (skip.count(p.name)) continue;
-            if (!uses.count(p.name)) names.push_back(p.name);
-            uses[p.name].push_back({&k, &p});
-        }
+    // One flag per declaration (kernels/params.cpp), in its order; the
+    // kernels that read it, their defaults where they differ from the
+    // declaration's, and their notes on what they do with it.
     std::vector<FlagSpec> out;
-    for (const auto& name : names) {
-        const auto& u = uses[name];
-        const auto& p = *u.front().second;
-        std::string who;
-        for (const auto& [k, _] : u) who += (who.empty() ? "" : ", ") + k->name;
-        FlagSpec f;
-        f.name = "--" + name;
-        f.valueName = p.type == kernels::ParamType::Enum ? "NAME[,NAME..]" : "V[,V..]";
-        // Kernels that share a name may say in their own words what it does.
-        std::string what = p.help;
-        for (const auto& [k, q] : u)
-            if (q->help != p.help) {
-                what = "";
-                for (const auto& [k2, q2] : u) what += (what.empty() ? "" : "; ") + k2->name + ": " + q2->help;
-                break;
+    for (const auto& p : kernels::paramDecls()) {
+        if (skip.count(p.name)) continue;
+        std::string who, own;
+        // Notes in order of first use, each with the kernels that give it.
+        std::vector<std::pair<std::string, std::string>> notes;
+        for (const auto& k : kernels::all())
+            for (const auto& u : k.params) {
+                if (u.decl != &p) continue;
+                if (!who.empty()) who += ", ";
+                who += k.name;
+                if (u.def != p.def) own += ", " + kernels::valueText(p, u.def) + " (" + k.name + ")";
+                if (u.note.empty()) continue;
+                auto it = std::find_if(notes.begin(), notes.end(), [&](const auto& n) { return n.first == u.note; });
+                if (it == notes.end()) notes.emplace_back(u.note, k.name);
+                else it->second += ", " + k.name;
             }
-        f.help = what + "; default " + defaults(u) + "; " + range(p) + (what == p.help ? "; kernels: " + who : "");
+        std::string noteText;
+        for (const auto& [note, kernels] : notes) {
+            noteText += noteText.empty() ? " (" : "; ";
+            noteText += kernels + ": " + note;
+        }
+        if (!noteText.empty()) noteText += ")";
+        if (who.empty()) continue;
+        FlagSpec f;
+        f.name = "--" + p.name;
+        f.valueName = p.type == kernels::ParamType::Enum ? "NAME[,NAME..]" : "V[,V..]";
+        f.help = p.help + noteText + "; default " + kernels::valueText(p, p.def) + own +
+                 "; " + range(p) + "; kernels: " + who;
         f.group = "Kernel parameters (each takes a comma list and sweeps it)";
         out.push_back(std::move(f));
     }
     return out;
 }
 
-std::string kernelHelp() {
-    std::string s = "Kernels (--kernel):\n";
+std::string kernelHelp(const std::string& heading) {
+    TextTable table({{"", TextTable::Align::Left}, {"", TextTable::Align::Left}}, "  ");
     for (const auto& k : kernels::all()) {
-        if (k.role != "ao" && k.role != "reference") continue;
-        std::string name = "  " + k.name;
-        name.resize(std::max<size_t>(name.size() + 1, 24), ' ');
-        s += name + k.summary + (k.role == "reference" ? " [reference: never in an \"every AO kernel\" sweep]" : "") + "\n";
+        if (k.role != kernels::Role::Ao && k.role != kernels::Role::Reference) continue;
+        std::string text = k.summary;
+        for (size_t i = 0; i < k.seeds.size(); ++i) {
+            text += i == 0 ? " [seed " : ", ";
+            text += k.seeds[i];
+        }
+        if (!k.seeds.empty()) text += "]";
+        if (k.role == kernels::Role::Reference) text += " [reference: never in an \"every AO kernel\" sweep]";
+        table.add({"  " + k.name, text});
     }
-    return s;
+    return heading + ", each with its one-line summary and the seed files it follows:\n" + table.str();
 }
 
 Result<std::string> defaultBaselines() {

@@ -1,0 +1,33 @@
+// The tables the screen-space kernels read that the CPU makes: the sample
+// kernels of the hemisphere SSAO (noise_tables.cpp), the 4x4 rotation-noise
+// tile (noise_tables.cpp), and the sky panorama (sky_panorama.cpp) with its
+// spherical-harmonic projection (sky_sh.cpp). decl_screen_space.cpp declares
+// the kernels and images that use them.
+#pragma once
+
+#include "kernel.h"
+
+#include <vector>
+
+namespace cavity::kernels {
+
+// Room in the hemisphere kernel array: the largest --samples.
+int maxKernelPoints();
+
+// n points of seed 004's hemisphere kernel, and of the cosine-weighted ray
+// kernel of hemisphere_cosine, as maxKernelPoints() vec4s.
+std::vector<float> hemisphereKernel(int n);
+std::vector<float> cosineKernel(int n);
+
+// 16 random unit vectors in the view xy plane, RGBA32F.
+ConstantImageDecl::Level noiseTile();
+
+// The sky panorama and every mip level down to 1x1; the view direction at
+// panorama coordinates (u, v).
+const std::vector<ConstantImageDecl::Level>& skyLevels();
+void skyDirection(double u, double v, double& dx, double& dy, double& dz);
+
+// Irradiance / pi of the panorama as 9 SH coefficients (vec4s).
+std::vector<float> skySh();
+
+}  // namespace cavity::kernels

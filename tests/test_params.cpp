@@ -1,0 +1,90 @@
+// Kernel parameters: each name declared once (kernels/params.cpp), every
+// kernel referring to that declaration, and one parse that makes an integer
+// parameter an integer.
+#include "config.h"
+#include "kernel.h"
+
+#include <gtest/gtest.h>
+
+#include <set>
+
+namespace {
+
+using namespace cavity;
+using kernels::ParamType;
+
+TEST(Params, EachNameIsDeclaredOnce) {
+    std::set<std::string> names;
+    for (const auto& p : kernels::paramDecls()) EXPECT_TRUE(names.insert(p.name).second) << p.name << " declared twice";
+    EXPECT_GE(names.size(), 20u);
+}
+
+TEST(Params, EveryKernelRefersToTheOneDeclaration) {
+    std::set<const kernels::ParamDecl*> used;
+    for (const auto& k : kernels::all()) {
+        std::set<std::string> seen;
+        for (const auto& u : k.params) {
+            ASSERT_NE(u.decl, nullptr) << k.name;
+            // The address, not a copy: range, unit and help cannot drift apart.
+            EXPECT_EQ(u.decl, kernels::findParam(u.name())) << k.name << " --" << u.name();
+            EXPECT_TRUE(seen.insert(u.name()).second) << k.name << " reads --" << u.name() << " twice";
+            // A kernel's own default is still inside the one range.
+            EXPECT_TRUE(kernels::checkValue(*u.decl, u.def).ok()) << k.name << " --" << u.name() << " default " << u.def;
+            used.insert(u.decl);
+        }
+    }
+    // A declaration no kernel reads would be a flag that does nothing.
+    for (const auto& p : kernels::paramDecls()) EXPECT_TRUE(used.count(&p)) << "--" << p.name << " is read by no kernel";
+}
+
+TEST(Params, SharedNamesAreSharedAndKernelsMayKeepTheirOwnDefault) {
+    int samples = 0;
+    for (const auto& k : kernels::all())
+        for (const auto& u : k.params)
+            if (u.name() == "samples") ++samples;
+    EXPECT_GE(samples, 8);   // alchemy, hemisphere, ssdo, the SDF family...
+    auto defaultOf = [](const std::string& kernel, const std::string& name) {
+        for (const auto& u : kernels::find(kernel)->params)
+            if (u.name() == name) return u.def;
+        return -1.0;
+    };
+    EXPECT_EQ(defaultOf("alchemy", "radius"), 0.5);
+    EXPECT_EQ(defaultOf("sdf_classic", "radius"), 0.13);
+    EXPECT_EQ(defaultOf("alchemy", "contrast"), 1.5);
+    EXPECT_EQ(defaultOf("hemisphere", "contrast"), 1.0);
+    EXPECT_EQ(defaultOf("hemisphere_cosine", "step_jitter"), 1.0);
+}
+
+TEST(Params, OneParseMakesAnIntegerAnInteger) {
+    const auto& samples = *kernels::findParam("samples");
+    ASSERT_EQ(samples.type, ParamType::Int);
+    auto v = kernels::parseValue(samples, "32");
+    ASSERT_TRUE(v.ok());
+    EXPECT_EQ(*v, 32.0);
+    EXPECT_EQ(kernels::intValue({{"samples", *v}}, "samples"), 32);
+    for (const char* bad : {"16.5", "0", "257", "abc", "", "nan"}) {
+        auto r = kernels::parseValue(samples, bad);
+        ASSERT_FALSE(r.ok()) << bad;
+        EXPECT_NE(r.error().message.find("--samples"), std::string::npos) << r.error().message;
+        EXPECT_NE(r.error().message.find("an integer in 1..256 (samples)"), std::string::npos) << r.error().message;
+    }
+    const auto& scene = *kernels::findParam("scene");
+    EXPECT_EQ(*kernels::parseValue(scene, "slats"), 1.0);
+    EXPECT_FALSE(kernels::parseValue(scene, "kitchen").ok());
+}
+
+TEST(Params, SetParamRejectsAnOutOfRangeValueAtParseTime) {
+    RunConfig c;
+    auto s = setParam(c, "blur", "33");
+    ASSERT_FALSE(s.ok());
+    EXPECT_EQ(s.error().message.rfind("--blur 33: must be an integer in 0..32", 0), 0u) << s.error().message;
+    EXPECT_TRUE(c.params.empty());
+    EXPECT_FALSE(setParam(c, "radiuss", "1").ok());
+    ASSERT_TRUE(setParam(c, "radius", "0.25").ok());
+    EXPECT_EQ(c.params.at("radius"), 0.25);
+    // A value set in code is checked by validate() against the same declaration.
+    c.params["samples"] = 16.5;
+    EXPECT_FALSE(validate(c).ok());
+}
+
+}  // namespace

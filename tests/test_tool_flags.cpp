@@ -1,0 +1,127 @@
+// cavity_bench's and cavity_render's own flags, declared once and parsed by
+// CLI11 as cavity's are (cli/flags.h): --help on stdout with exit 0, an
+// unknown flag named with its nearest neighbour, one-line errors with exit 2.
+#include "kernel.h"
+#include "run_binary.h"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <regex>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace {
+
+using cavity::test::runBinary;
+
+struct Tool {
+    std::string name, path;
+};
+
+const std::vector<Tool>& tools() {
+    static const std::vector<Tool> t = {{"cavity_bench", CAVITY_BENCH_EXE}, {"cavity_render", CAVITY_RENDER_EXE}};
+    return t;
+}
+
+TEST(ToolFlags, HelpPrintsOnStdoutAndExitsZero) {
+    for (const auto& t : tools()) {
+        for (const char* h : {"--help", "-h"}) {
+            const auto o = runBinary(t.path, h, "", "2>/dev/null");
+            EXPECT_EQ(o.code, 0) << t.name << " " << h << "\n" << o.output;
+            EXPECT_NE(o.output.find("Usage: " + t.name), std::string::npos) << t.name << "\n" << o.output;
+        }
+        // Help wins wherever it stands, even after a bad value.
+        EXPECT_EQ(runBinary(t.path, "--device abc --help").code, 0) << t.name;
+    }
+}
+
+TEST(ToolFlags, BenchHelpNamesEveryFlagAndEveryKernelWithItsSummary) {
+    const auto o = runBinary(CAVITY_BENCH_EXE, "--help", "", "2>/dev/null");
+    ASSERT_EQ(o.code, 0);
+    for (const char* f : {"--backend", "--sweep", "--frames", "--warmup", "--timing", "--max-noise", "--max-time",
+                          "--plant", "--plant-file", "--device", "--benchmark_filter"})
+        EXPECT_NE(o.output.find(f), std::string::npos) << f;
+    for (const auto& k : cavity::kernels::all()) {
+        if (k.role != cavity::kernels::Role::Ao && k.role != cavity::kernels::Role::Reference) continue;
+        EXPECT_NE(o.output.find(k.summary), std::string::npos) << k.name;
+    }
+}
+
+TEST(ToolFlags, RenderHelpNamesEveryFlag) {
+    const auto o = runBinary(CAVITY_RENDER_EXE, "--help", "", "2>/dev/null");
+    ASSERT_EQ(o.code, 0);
+    for (const char* f : {"--matrix", "--out", "--baselines", "--backend", "--shard", "--device", "--filter", "--repeat",
+                          "--validation", "--timing", "--max-noise", "--max-time", "--kernel-source"})
+        EXPECT_NE(o.output.find(f), std::string::npos) << f;
+}
+
+// The flags --help prints, as README's sections name them.
+std::set<std::string> helpFlags(const std::string& help) {
+    std::set<std::string> flags;
+    const std::regex flag(R"(\n  (--[a-z-]+))");
+    for (auto it = std::sregex_iterator(help.begin(), help.end(), flag); it != std::sregex_iterator(); ++it)
+        flags.insert((*it)[1].str());
+    flags.erase("--help");
+    return flags;
+}
+
+std::string readmeSection(const std::string& from, const std::string& to) {
+    std::ifstream f(std::string(CAVITY_SOURCE_DIR) + "/README.md");
+    const std::string text((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+    const size_t a = text.find(from), b = text.find(to, a);
+    return a == std::string::npos || b == std::string::npos ? "" : text.substr(a, b - a);
+}
+
+TEST(ToolFlags, ReadmeNamesEveryFlagHelpPrints) {
+    const std::string bench = readmeSection("## Benchmarks and charts", "`--benchmark_filter`, `--benchmark_repetitions`");
+    const std::string render = readmeSection("    cavity_render --matrix NAME", "    cavity gate judge RENDER_DIR");
+    ASSERT_FALSE(bench.empty());
+    ASSERT_FALSE(render.empty());
+    const auto benchFlags = helpFlags(runBinary(CAVITY_BENCH_EXE, "--help", "", "2>/dev/null").output);
+    const auto renderFlags = helpFlags(runBinary(CAVITY_RENDER_EXE, "--help", "", "2>/dev/null").output);
+    EXPECT_GE(benchFlags.size(), 10u);
+    EXPECT_GE(renderFlags.size(), 12u);
+    for (const auto& f : benchFlags) EXPECT_NE(bench.find("`" + f), std::string::npos) << f << ": not in README, Benchmarks";
+    for (const auto& f : renderFlags) EXPECT_NE(render.find(f), std::string::npos) << f << ": not in README's cavity_render usage";
+}
+
+struct BadCase {
+    std::string tool, args, line;   // the one line expected, whole
+};
+
+TEST(ToolFlags, BadInputIsOneLineNamingTheFlagAndExitsTwo) {
+    const std::string bench = CAVITY_BENCH_EXE, render = CAVITY_RENDER_EXE;
+    const std::vector<BadCase> cases = {
+        {bench, "--framse 3", "cavity_bench: --framse: unknown flag (did you mean --frames? see cavity_bench --help)"},
+        {bench, "--sweeep cpu", "cavity_bench: --sweeep: unknown flag (did you mean --sweep? see cavity_bench --help)"},
+        {bench, "--half", "cavity_bench: --half: unknown flag (see cavity_bench --help)"},
+        {bench, "--frames", "cavity_bench: --frames: missing value (--frames N)"},
+        {bench, "--frames 3 --frames 4",
+         "cavity_bench: --frames: given twice (give one value, or one comma-separated list where the flag takes a list)"},
+        {bench, "--device ''", "cavity_bench: --device '': empty value (--device K)"},
+        {bench, "--iterations 0", "cavity_bench: --iterations 0: must be an integer in 1..1000000"},
+        {bench, "--sweep moon", "cavity_bench: --sweep 'moon': must be gpu, cpu or auto"},
+        {render, "--matirx ci --out x", "cavity_render: --matirx: unknown flag (did you mean --matrix? see cavity_render --help)"},
+        {render, "--repeat 0 --matrix ci --out x", "cavity_render: --repeat 0: must be an integer in 1..1000"},
+        {render, "--matrix", "cavity_render: --matrix: missing value (--matrix NAME)"},
+        {render, "--out x", "cavity_render: --matrix: missing (name a matrix of baselines/matrices.json)"},
+        {render, "stray --matrix ci --out x", "cavity_render: 'stray': unexpected argument (flags start with --; see cavity_render --help)"},
+    };
+    for (const auto& c : cases) {
+        const auto o = runBinary(c.tool, c.args);
+        EXPECT_EQ(o.code, 2) << c.tool << " " << c.args << "\n" << o.output;
+        EXPECT_EQ(o.output, c.line + "\n") << c.tool << " " << c.args;
+    }
+}
+
+TEST(ToolFlags, RenderTakesKernelSourceMoreThanOnce) {
+    // Repeatable: both are read (the second names no kernel source, and says so).
+    const auto o = runBinary(CAVITY_RENDER_EXE,
+                             "--matrix ci --out x --kernel-source ssao_alchemy.glsl=/dev/null --kernel-source nope.glsl=/dev/null");
+    EXPECT_EQ(o.code, 2) << o.output;
+    EXPECT_EQ(o.output, "cavity_render: --kernel-source nope.glsl: no kernel source of that name (kernels/*.glsl)\n");
+}
+
+}  // namespace
