@@ -41,6 +41,14 @@ ParamDecl biasParam(const std::string& help) {
 ParamDecl contrastParam(double def, const std::string& help) {
     return makeParam("contrast", ParamType::Float, def, 0.1, 10, "", help);
 }
+// Points tested along each ray, out to R: hemisphere_cosine's march
+// (cosineKernel), and SSDO's (include/ssdo.glsl), where 1 is seed 003's one
+// point at a random length; ssdo_marched (decl_quality_variants.cpp)
+// marches 4.
+ParamDecl stepsParam(double def) {
+    return makeParam("steps", ParamType::Int, def, 1, 16, "points",
+                     "points tested along each ray, marched out to R (ssdo's 1: one point at a random length in (0, R])");
+}
 
 // --- deterministic random numbers for the CPU-made tables ------------------
 
@@ -94,8 +102,10 @@ std::vector<float> hemisphereKernel(int n) {
     return out;
 }
 
-// The kernel of hemisphere_cosine: n points as ceil(n / 4) directions of up
-// to 4 steps each, at R/4, R/2, 3R/4 and R (w = 1 on a direction's last).
+// The kernel of hemisphere_cosine: n points as ceil(n / s) directions of up
+// to s steps each (`steps`, 4 by default: R/4, R/2, 3R/4 and R), w = 1 on a
+// direction's last. The points are the cost, so at a given n more steps a
+// ray means fewer rays a pixel (README, Kernels: the narrow gap).
 // Seed 004's kernel counts the occluded share of the hemisphere's volume
 // with points crowded near the centre, which is not the visibility an AO
 // term stands for: at 0.25-0.5R from a concave 90 degree crease it read
@@ -108,10 +118,10 @@ std::vector<float> hemisphereKernel(int n) {
 // IGN turn the whole set about N per pixel as for the seed's kernel. The last
 // step at exactly R makes a solid occluder (a wall, a floor) count exactly
 // when the ray meets it within R; the earlier steps catch thin ones.
-std::vector<float> cosineKernel(int n) {
+std::vector<float> cosineKernel(int n, int stepsPerRay) {
     std::vector<float> out(size_t(kMaxSamples) * 4, 0.0f);
     n = std::clamp(n, 1, kMaxSamples);
-    const int steps = std::min(n, 4);
+    const int steps = std::clamp(stepsPerRay, 1, n);
     const int dirs = (n + steps - 1) / steps;
     for (int i = 0; i < n; ++i) {
         const int j = i / steps, k = i % steps;
@@ -311,6 +321,11 @@ KernelDecl hemisphere() {
               "fade out occluders far from the surface in depth (smoothstep(0, 1, R / |dz|))"),
         makeParam("step_jitter", ParamType::Bool, 0, 0, 1, "",
               "move each direction's steps in by a random share of a step per pixel (hemisphere_cosine: 1)"),
+        // The box blur pass after this one: seed 004's plain 4x4 box, or
+        // blur_box_depth (decl_quality_variants.cpp), which keeps to the
+        // centre's surface.
+        makeParam("depth_aware_box", ParamType::Bool, 0, 0, 1, "",
+              "box-blur only the texels of the centre's surface (blur_box_depth), not all 16 (seed 004)"),
     };
     gpu::SamplerState repeat;
     repeat.address = gpu::Address::Repeat;
@@ -335,13 +350,18 @@ KernelDecl hemisphere() {
 KernelDecl hemisphereCosine() {
     KernelDecl k = hemisphere();
     k.name = "hemisphere_cosine";
-    k.summary = "hemisphere-kernel SSAO walking n/4 cosine-weighted rays in 4 steps to R (blocked if any step is)";
+    k.summary = "hemisphere-kernel SSAO walking n/steps cosine-weighted rays in `steps` (4) steps to R (blocked if any step is)";
     for (auto& p : k.params) {
-        if (p.name == "samples") p.help = "kernel points per pixel (n): ceil(n / 4) rays of up to 4 steps";
+        if (p.name == "samples") p.help = "kernel points per pixel (n): ceil(n / steps) rays of up to `steps` points";
         if (p.name == "step_jitter") p.def = 1;
+        // The seed's box averaged the slats' thin occluders with what lies
+        // behind them: 0.238 MAE on slats against 0.115 kept to one surface
+        // (README, Kernels).
+        if (p.name == "depth_aware_box") p.def = 1;
     }
+    k.params.push_back(stepsParam(4));
     k.derive = [](const ParamValues& v, std::map<std::string, std::vector<float>>& arrays) {
-        arrays["kernel"] = cosineKernel(int(std::lround(v.at("samples"))));
+        arrays["kernel"] = cosineKernel(int(std::lround(v.at("samples"))), int(std::lround(v.at("steps"))));
     };
     return k;
 }
@@ -439,6 +459,7 @@ KernelDecl ssdo() {
         biasParam("distance a sample must lie behind the recorded surface's plane to be occluded"),
         contrastParam(1.0, "power curve on the visibility fraction: V^k (seed 003's contrast)"),
         skyLodParam(),
+        stepsParam(1),
     };
     k.inputs = {{"position", {}}, {"normal", {}}, {"sky", skySampler()}};
     k.outputs = {{"visibility", Format::R16F}, {"radiance", Format::RGBA16F}};
@@ -501,6 +522,7 @@ KernelDecl ssdoIndirect() {
         // smoothly towards the crease.
         makeParam("distance_clamp", ParamType::Float, 0.1, 0, 10, "world units",
               "lower bound of the sender-receiver distance in the form factor's 1/d^2", true),
+        stepsParam(1),
     };
     k.inputs = {{"position", {}}, {"normal", {}}, {"albedo", {}}, {"radiance", {}}};
     k.outputs = {{"indirect", Format::RGBA16F}};

@@ -17,6 +17,7 @@ ParamDecl makeParam(std::string name, ParamType type, double def, double min, do
 ParamDecl viewParam();
 
 std::vector<KernelDecl> screenSpaceKernels();   // decl_screen_space.cpp: hemisphere, box blur, SSDO, half resolution
+std::vector<KernelDecl> qualityVariantKernels();   // decl_quality_variants.cpp: ssdo_marched, blur_box_depth (issue 11)
 std::vector<KernelDecl> sdfAoKernels();         // decl_sdf_ao.cpp: the SDF AO variants and the ground truth
 std::vector<ConstantImageDecl> screenSpaceConstants();   // decl_screen_space.cpp: noise tile, sky panorama
 
