@@ -37,7 +37,11 @@ std::vector<PassSpec> buildPasses(const RunConfig& c) {
         // Visibility plays the part of AO in the outputs a user and the gate see.
         p.push_back({"ao", k->name, in, {"ao", "radiance"}, false});
         p.push_back({"blur", "blur_bilateral_ssdo", {"ao", "radiance", "position", "normal"}, {"ao_blur", "radiance_blur"}, false});
-        p.push_back({"indirect", "ssdo_indirect", {"position", "normal", "albedo", "radiance_blur"}, {"indirect"}, false});
+        // A variant's bounce pass is "<kernel>_indirect" (ssdo_marched_indirect): it
+        // must walk the very points the direct pass did, so it carries the
+        // variant's defaults.
+        const std::string indirect = kernels::find(k->name + "_indirect") ? k->name + "_indirect" : "ssdo_indirect";
+        p.push_back({"indirect", indirect, {"position", "normal", "albedo", "radiance_blur"}, {"indirect"}, false});
         // The bounce is filtered too, as seed 003's lighting pass reads a
         // blurred indirect map: one sample meeting a sender at the distance
         // clamp carries up to (R / clamp)^2 times the others' weight, a
@@ -65,7 +69,14 @@ std::vector<PassSpec> buildPasses(const RunConfig& c) {
         else in.push_back(i.name);
     }
     for (const auto& i : k->inputs) {
-        if (i.name == "depth") p.push_back({"depth", "depth_from_position", {position}, {"depth" + suffix}, half});
+        // At half resolution the depth is put back on each half texel's own
+        // ray (depth_from_position_half.glsl says why).
+        if (i.name == "depth") {
+            if (half)
+                p.push_back({"depth", "depth_from_position_half", {position, normal}, {"depth" + suffix}, true});
+            else
+                p.push_back({"depth", "depth_from_position", {position}, {"depth"}, false});
+        }
         // The linear-depth pyramid of the fast kernels, all its levels in one pass.
         if (i.name == "zmip")
             p.push_back({"pyramid", "depth_pyramid", {position, "zmip" + suffix}, {"zmip" + suffix}, half});
@@ -89,9 +100,15 @@ std::vector<PassSpec> buildPasses(const RunConfig& c) {
     std::string raw = "ao";
     // The hemisphere kernel's 4x4 rotation tile is cancelled by a box blur of
     // exactly one tile period (004_94976db8e6612027.txt) before the bilateral.
+    // With depth_aware_box, blur_box_depth keeps the box to one surface so
+    // that no silhouette's AO spreads onto the wall behind it.
     for (const auto& i : k->inputs)
         if (i.name == "noise4x4") {
-            p.push_back({"box", "blur_box", {"ao"}, {"ao_box"}, half});
+            const auto v = kernels::withDefaults(*k, c.params);
+            if (v.count("depth_aware_box") && v.at("depth_aware_box") != 0)
+                p.push_back({"box", "blur_box_depth", {"ao", "depth" + suffix, normal}, {"ao_box"}, half});
+            else
+                p.push_back({"box", "blur_box", {"ao"}, {"ao_box"}, half});
             raw = "ao_box";
         }
     if (half) {

@@ -57,6 +57,7 @@ KernelDecl hemisphere() {
         use("ign_jitter"),
         use("range_check"),
         use("step_jitter"),
+        use("depth_aware_box"),
     };
     gpu::SamplerState repeat;
     repeat.address = gpu::Address::Repeat;
@@ -81,14 +82,19 @@ KernelDecl hemisphere() {
 KernelDecl hemisphereCosine() {
     KernelDecl k = hemisphere();
     k.name = "hemisphere_cosine";
-    k.summary = "hemisphere-kernel SSAO walking n/4 cosine-weighted rays in 4 steps to R (blocked if any step is)";
+    k.summary = "hemisphere-kernel SSAO walking n/steps cosine-weighted rays in `steps` (4) steps to R (blocked if any step is)";
     k.seeds = {"004_94976db8e6612027.txt", "001_8103f59163db3ce3.txt"};
     for (auto& p : k.params) {
-        if (p.name() == "samples") p.note = "ceil(n / 4) cosine-weighted rays of up to 4 steps";
+        if (p.name() == "samples") p.note = "ceil(n / steps) cosine-weighted rays of up to `steps` points";
         if (p.name() == "step_jitter") p.def = 1;
+        // The seed's box averaged the slats' thin occluders with what lies
+        // behind them: 0.238 MAE on slats against 0.115 kept to one surface
+        // (README, Kernels).
+        if (p.name() == "depth_aware_box") p.def = 1;
     }
+    k.params.push_back(use("steps", 4, "points along each ray; at a given n more steps mean fewer rays"));
     k.derive = [](const ParamValues& v, std::map<std::string, std::vector<float>>& arrays) {
-        arrays["kernel"] = cosineKernel(intValue(v, "samples"));
+        arrays["kernel"] = cosineKernel(intValue(v, "samples"), intValue(v, "steps"));
     };
     return k;
 }
@@ -169,6 +175,7 @@ KernelDecl ssdo() {
         use("bias"),
         use("contrast", "power curve on the visibility fraction: V^k (seed 003's contrast)"),
         use("sky_lod"),
+        use("steps", 1, "1: seed 003's one point at a random length in (0, R]"),
     };
     k.inputs = {{"position", {}}, {"normal", {}}, {"sky", skySampler()}};
     k.outputs = {{"visibility", Format::R16F}, {"radiance", Format::RGBA16F}};
@@ -224,6 +231,7 @@ KernelDecl ssdoIndirect() {
         use("bias"),
         use("bounce_strength"),
         use("distance_clamp"),
+        use("steps", 1, "the same as the direct pass"),
     };
     k.inputs = {{"position", {}}, {"normal", {}}, {"albedo", {}}, {"radiance", {}}};
     k.outputs = {{"indirect", Format::RGBA16F}};

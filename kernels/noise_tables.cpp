@@ -66,8 +66,10 @@ std::vector<float> hemisphereKernel(int n) {
     return out;
 }
 
-// The kernel of hemisphere_cosine: n points as ceil(n / 4) directions of up
-// to 4 steps each, at R/4, R/2, 3R/4 and R (w = 1 on a direction's last).
+// The kernel of hemisphere_cosine: n points as ceil(n / s) directions of up
+// to s steps each (`steps`, 4 by default: R/4, R/2, 3R/4 and R), w = 1 on a
+// direction's last. The points are the cost, so at a given n more steps a
+// ray means fewer rays a pixel (README, Kernels: the narrow gap).
 // Seed 004's kernel counts the occluded share of the hemisphere's volume
 // with points crowded near the centre, which is not the visibility an AO
 // term stands for: at 0.25-0.5R from a concave 90 degree crease it read
@@ -80,10 +82,10 @@ std::vector<float> hemisphereKernel(int n) {
 // IGN turn the whole set about N per pixel as for the seed's kernel. The last
 // step at exactly R makes a solid occluder (a wall, a floor) count exactly
 // when the ray meets it within R; the earlier steps catch thin ones.
-std::vector<float> cosineKernel(int n) {
+std::vector<float> cosineKernel(int n, int stepsPerRay) {
     std::vector<float> out(size_t(maxKernelPoints()) * 4, 0.0f);
     n = std::clamp(n, 1, maxKernelPoints());
-    const int steps = std::min(n, 4);
+    const int steps = std::clamp(stepsPerRay, 1, n);
     const int dirs = (n + steps - 1) / steps;
     for (int i = 0; i < n; ++i) {
         const int j = i / steps, k = i % steps;

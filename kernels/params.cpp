@@ -69,6 +69,16 @@ std::vector<ParamDecl> declare() {
         flag("ign_jitter", true, "rotate the 4x4 noise vector by interleaved gradient noise, hiding the tile's grid"),
         flag("range_check", true, "fade out occluders far from the surface in depth (smoothstep(0, 1, R / |dz|))"),
         flag("step_jitter", false, "move each direction's steps in by a random share of a step per pixel"),
+        // Points tested along each ray, out to R: hemisphere_cosine's march
+        // (cosineKernel) and SSDO's (include/ssdo.glsl), where 1 is seed 003's
+        // one point at a random length; ssdo_marched marches 4.
+        make("steps", T::Int, 4, 1, 16, "points",
+             "points tested along each ray, marched out to R (1: one point at a random length in (0, R], seed 003)"),
+        // The box blur pass after the hemisphere kernels: seed 004's plain 4x4
+        // box, or blur_box_depth (decl_quality_variants.cpp), which keeps to
+        // the centre's surface.
+        flag("depth_aware_box", false,
+             "box-blur only the texels of the centre's surface (blur_box_depth), not all 16 (seed 004)"),
         // Level 5 of the 256x128 panorama is 8x4 texels of 45 degrees, about
         // 0.5 sr each: the 0.4 sr that each of the default 16 samples stands
         // for (2 pi / n). At level 4 or lower the sun is a lobe that only a

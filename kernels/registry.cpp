@@ -188,6 +188,7 @@ std::vector<KernelDecl>& registryForTests() {
     static std::vector<KernelDecl> kernels = [] {
         std::vector<KernelDecl> k = {gbufferSdf(), alchemy(), blurBilateral(), composite()};
         for (auto& d : screenSpaceKernels()) k.push_back(std::move(d));
+        for (auto& d : qualityVariantKernels()) k.push_back(std::move(d));
         for (auto& d : {depthPyramid(), alchemyFast(), blurSeparable("x"), blurSeparable("y")}) k.push_back(d);
         for (auto& d : sdfAoKernels()) k.push_back(std::move(d));
         return k;

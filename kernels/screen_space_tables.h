@@ -17,7 +17,7 @@ int maxKernelPoints();
 // n points of seed 004's hemisphere kernel, and of the cosine-weighted ray
 // kernel of hemisphere_cosine, as maxKernelPoints() vec4s.
 std::vector<float> hemisphereKernel(int n);
-std::vector<float> cosineKernel(int n);
+std::vector<float> cosineKernel(int n, int stepsPerRay);
 
 // 16 random unit vectors in the view xy plane, RGBA32F.
 ConstantImageDecl::Level noiseTile();

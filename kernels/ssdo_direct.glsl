@@ -29,7 +29,7 @@ void cavity_main(ivec2 pixel) {
     float totalLight = 0.0, visibleLight = 0.0;
     vec3 direct = vec3(0.0);
     for (int i = 0; i < n; ++i) {
-        SsdoSample s = ssdoSample(f, p.xyz, pixel, i, n, P.radius, P.bias);
+        SsdoSample s = ssdoSample(f, p.xyz, pixel, i, n, clamp(P.steps, 1, 16), P.radius, P.bias);
         float cosTheta = max(orderedDot(nrm, s.dir), 0.0);
         vec3 sky = textureLod(in_sky, skyUv(s.dir), P.sky_lod).rgb;
         float weight = skyLuminance(sky) * cosTheta;

@@ -31,7 +31,7 @@ void cavity_main(ivec2 pixel) {
     int n = clamp(P.samples, 1, 256);
     vec3 gathered = vec3(0.0);
     for (int i = 0; i < n; ++i) {
-        SsdoSample s = ssdoSample(f, p.xyz, pixel, i, n, P.radius, P.bias);
+        SsdoSample s = ssdoSample(f, p.xyz, pixel, i, n, clamp(P.steps, 1, 16), P.radius, P.bias);
         if (s.visible) continue;
         vec3 q = texelFetch(in_position, s.texel, 0).xyz;
         vec3 m = normalize(texelFetch(in_normal, s.texel, 0).xyz);

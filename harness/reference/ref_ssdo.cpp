@@ -154,24 +154,36 @@ struct Sample {
     int tx = -1, ty = -1;
 };
 
+bool ssdoBlocked(const kernels::FrameUniforms& fr, const HostImage& position, const HostImage& normal, const Basis& f,
+                 Vec3 p, Vec3 point, float bias, int& tx, int& ty) {
+    if (!screen::texelOfView(fr, point, tx, ty) || !screen::texelInside(fr, tx, ty)) return false;
+    const Vec3 q = screen::texel3(position, tx, ty);
+    const Vec3 m = screen::texel3(normal, tx, ty);
+    if (isBackground(position.at(tx, ty, 3)) || lengthSquared(m) == 0.0f) return false;
+    // Only a recorded point above the receiver's tangent plane occludes (see ssdo.glsl).
+    if (dot(f.n, q - p) <= 0.0f) return false;
+    if (dot(m, q) < 0.0f) return dot(m, point - q) < -bias;
+    const float reach = lengthSquared(q);
+    const float limit = reach * screen::inverseSqrt(reach) + bias;
+    return lengthSquared(point) > limit * limit;
+}
+
+// Direction i marched in `steps` points (1: seed 003's one random length).
 Sample ssdoSample(const kernels::FrameUniforms& fr, const HostImage& position, const HostImage& normal, const Basis& f,
-                  Vec3 p, int x, int y, int i, int count, float radius, float bias) {
+                  Vec3 p, int x, int y, int i, int count, int steps, float radius, float bias) {
     Sample s;
     s.dir = ssdoDirection(f, i, count);
-    const float lambda = radius * (1.0f - screen::sampleHash(x, y, i));
-    const Vec3 point = p + s.dir * lambda;
-    if (!screen::texelOfView(fr, point, s.tx, s.ty) || !screen::texelInside(fr, s.tx, s.ty)) return s;
-    const Vec3 q = screen::texel3(position, s.tx, s.ty);
-    const Vec3 m = screen::texel3(normal, s.tx, s.ty);
-    if (isBackground(position.at(s.tx, s.ty, 3)) || lengthSquared(m) == 0.0f) return s;
-    // Only a recorded point above the receiver's tangent plane occludes (see ssdo.glsl).
-    if (dot(f.n, q - p) <= 0.0f) return s;
-    if (dot(m, q) < 0.0f) {
-        s.visible = dot(m, point - q) >= -bias;
-    } else {
-        const float reach = lengthSquared(q);
-        const float limit = reach * screen::inverseSqrt(reach) + bias;
-        s.visible = lengthSquared(point) <= limit * limit;
+    const float u = screen::sampleHash(x, y, i);
+    const float perStep = portableReciprocal(float(steps));
+    for (int j = 0; j < steps; ++j) {
+        const float lambda = radius * ((float(j + 1) - u) * perStep);
+        const Vec3 point = p + s.dir * lambda;
+        int tx = -1, ty = -1;
+        if (ssdoBlocked(fr, position, normal, f, p, point, bias, tx, ty)) {
+            s.visible = false;
+            s.tx = tx, s.ty = ty;
+            return s;
+        }
     }
     return s;
 }
@@ -199,6 +211,7 @@ Result<std::vector<HostImage>> ssdoDirect(const Context& ctx) {
     const int n = std::clamp(intParam(ctx, "samples"), 1, 256);
     const float radius = floatParam(ctx, "radius"), bias = floatParam(ctx, "bias");
     const float contrast = floatParam(ctx, "contrast"), lod = floatParam(ctx, "sky_lod");
+    const int steps = std::clamp(intParam(ctx, "steps"), 1, 16);
 
     auto out = makeOutputs(ctx);
     for (int y = 0; y < f.size[1]; ++y)
@@ -215,7 +228,7 @@ Result<std::vector<HostImage>> ssdoDirect(const Context& ctx) {
             float totalLight = 0.0f, visibleLight = 0.0f;
             Vec3 direct;
             for (int i = 0; i < n; ++i) {
-                const Sample s = ssdoSample(f, position, normal, basis, p, x, y, i, n, radius, bias);
+                const Sample s = ssdoSample(f, position, normal, basis, p, x, y, i, n, steps, radius, bias);
                 const float cosTheta = std::max(dot(nrm, s.dir), 0.0f);
                 const Vec3 L = sampleSky(*sky, skyUv(s.dir), lod);
                 const float weight = skyLuminance(L) * cosTheta;
@@ -294,6 +307,7 @@ Result<std::vector<HostImage>> ssdoIndirect(const Context& ctx) {
     const int n = std::clamp(intParam(ctx, "samples"), 1, 256);
     const float radius = floatParam(ctx, "radius"), bias = floatParam(ctx, "bias");
     const float strength = floatParam(ctx, "bounce_strength"), distanceClamp = floatParam(ctx, "distance_clamp");
+    const int steps = std::clamp(intParam(ctx, "steps"), 1, 16);
 
     auto out = makeOutputs(ctx);
     for (int y = 0; y < f.size[1]; ++y)
@@ -308,7 +322,7 @@ Result<std::vector<HostImage>> ssdoIndirect(const Context& ctx) {
             const Basis basis = ssdoBasis(x, y, nrm);
             Vec3 gathered;
             for (int i = 0; i < n; ++i) {
-                const Sample s = ssdoSample(f, position, normal, basis, p, x, y, i, n, radius, bias);
+                const Sample s = ssdoSample(f, position, normal, basis, p, x, y, i, n, steps, radius, bias);
                 if (s.visible) continue;
                 const Vec3 q = screen::texel3(position, s.tx, s.ty);
                 const Vec3 m = normalize(screen::texel3(normal, s.tx, s.ty));

@@ -19,6 +19,10 @@ namespace cavity::reference {
 Result<std::vector<HostImage>> depthFromPosition(const Context& ctx);
 Result<std::vector<HostImage>> hemisphere(const Context& ctx);
 Result<std::vector<HostImage>> blurBox(const Context& ctx);
+// ref_blur_box_depth.cpp
+Result<std::vector<HostImage>> blurBoxDepth(const Context& ctx);
+// ref_depth_half.cpp
+Result<std::vector<HostImage>> depthFromPositionHalf(const Context& ctx);
 // ref_halfres.cpp
 Result<std::vector<HostImage>> downsampleDepth(const Context& ctx);
 Result<std::vector<HostImage>> upsampleBilateral(const Context& ctx);
@@ -40,6 +44,11 @@ std::vector<RefEntry> screenSpaceRefs() {
         {"blur_bilateral_ssdo", blurBilateralSsdo},
         {"ssdo_indirect", ssdoIndirect},
         {"composite_ssdo", compositeSsdo},
+        // decl_quality_variants.cpp: the same shaders, other defaults
+        {"ssdo_marched", ssdoDirect},
+        {"ssdo_marched_indirect", ssdoIndirect},
+        {"blur_box_depth", blurBoxDepth},
+        {"depth_from_position_half", depthFromPositionHalf},
     };
 }
 

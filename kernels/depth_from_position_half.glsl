@@ -1,0 +1,44 @@
+// depth_from_position.glsl for the half-resolution G-buffer: the hardware
+// depth at which the half texel's own centre ray meets the surface.
+//
+// A half texel holds one real full-resolution texel of its 2x2 block
+// (downsample_depth.glsl), whose position lies on *that* texel's centre
+// ray, half a full texel beside the half texel's in x and y. The hemisphere
+// kernel rebuilds positions from depth on the half texel's centre ray
+// (viewFromDepth, seed 002), so the borrowed depth put every rebuilt point
+// off its surface by the depth's slope over that half texel, one way on
+// the nearest-depth texels of the checkerboard and the other way on the
+// farthest: on a wall seen obliquely, points a texel apart stood in front
+// of and behind each other's planes, and samples near the surface read as
+// occluded, a blotchy grey haze over open walls (issue 11,
+// corner/hemisphere/n16/b4/half/320x180). Intersected with the texel's
+// tangent plane (its position and normal), the ray finds the surface where
+// the kernel will look for it.
+//
+// Where the plane is seen nearly edge-on the intersection runs far along
+// the ray; a move of more than 5% of the depth (a plane under about 5
+// degrees to the ray at 320x180, less at larger sizes) keeps the borrowed
+// depth instead, as before.
+#include "include/screen_space.glsl"
+
+void cavity_main(ivec2 pixel) {
+    vec4 p = texelFetch(in_position, pixel, 0);
+    vec3 n = texelFetch(in_normal, pixel, 0).xyz;
+    float depth = 1.0;
+    if (!isBackground(p.w)) {
+        precise vec3 surface = p.xyz;
+        precise vec2 ndc = (vec2(pixel) + 0.5) * frame.invSize * 2.0 - 1.0;
+        precise vec3 ray = vec3(ndc.x * frame.camera.x, -ndc.y * frame.camera.y, -1.0);
+        precise float facing = orderedDot(n, ray);
+        if (lengthSquared(n) > 0.0 && facing < 0.0) {
+            // ray.z = -1, so t is the linear depth of the hit.
+            precise float t = orderedDot(n, p.xyz) * portableReciprocal(facing);
+            precise float moved = abs(t + p.z);
+            if (t > 0.0 && moved <= 0.05 * -p.z) surface = ray * t;
+        }
+        precise vec4 clip = mulPoint(frame.proj, surface, 1.0);
+        precise float d = clip.z * portableReciprocal(clip.w);
+        depth = d;
+    }
+    write_depth(pixel, vec4(depth, 0.0, 0.0, 0.0));
+}
