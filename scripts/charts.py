@@ -43,7 +43,7 @@ against the ground truth (mean over the scenes of each `cavity quality`
 row's MAE; quality.json, schema cavity-quality/1, one file per resolution)
 against the AO passes' GPU time from cavity_bench JSON (the median over
 repetitions of pass_ao_ms plus the passes that belong to the AO estimate:
-depth, box, downsample, upsample; the bilateral blur and composite are the
+depth, pyramid, box, downsample, upsample; the bilateral blur and composite are the
 same for every kernel and left out) of corner/<kernel>/n<N>/b4/<res>/<size>/
 <api>/compute. The Pareto front (no other point both faster and closer to
 the truth) is drawn and its points ringed. Writes DIR/quality_cost.png,
@@ -842,7 +842,7 @@ class Charts:
 # --------------------------------------------------------------------------
 # quality-cost: error against the ground truth versus AO GPU time
 
-AO_COST_PASSES = ("ao", "depth", "box", "downsample", "upsample")
+AO_COST_PASSES = ("ao", "depth", "pyramid", "box", "downsample", "upsample")
 
 
 def load_quality(path):
@@ -1011,7 +1011,7 @@ def quality_cost_main(argv):
     ax.scatter([q["ms"] for q in front], [q["mae"] for q in front], s=140, facecolors="none", edgecolors="black",
                lw=1.3, zorder=4)
     ax.set_xscale("log")
-    ax.set_xlabel("AO GPU time per frame, ms (log; ao pass + depth/box/downsample/upsample where present)")
+    ax.set_xlabel("AO GPU time per frame, ms (log; ao pass + depth/pyramid/box/downsample/upsample where present)")
     ax.set_ylabel("mean |AO - ground truth| (mean over scenes)")
     device = device_line(context) if context else "unknown device"
     qh = headers[0]
