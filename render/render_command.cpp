@@ -27,13 +27,13 @@ namespace {
 const cli::CommandSpec& renderSpec() {
     static const cli::CommandSpec spec{
         "cavity_render",
-        "Renders a matrix of DIR/matrices.json (default baselines/) into a render folder for `cavity gate judge`, "
+        "Renders a matrix of DIR/matrices.json (default: the repository's baselines/) into a render folder for `cavity gate judge`, "
         "on the GPU machine (no OpenImageIO). `cavity_render quality [the flags of cavity quality]` measures "
         "quality there (see cavity_render quality --help).",
         {
             {"--matrix", "NAME", "the matrix of matrices.json to render (required)"},
             {"--out", "DIR", "the render folder to write (required)"},
-            {"--baselines", "DIR", "folder holding matrices.json (default baselines)"},
+            {"--baselines", "DIR", "folder holding matrices.json (default: baselines/ of the first folder from the working directory up that holds baselines/matrices.json, else of the source tree this binary was built from)"},
             {"--backend", "gl|vk|all", "backends to render on (default all)"},
             {"--shard", "I/N", "shard I of N (0 <= I < N); also GTEST_SHARD_INDEX/GTEST_TOTAL_SHARDS, TEST_SHARD_INDEX"},
             {"--device", "K", "device index (0..64; default 0)"},
@@ -128,6 +128,11 @@ Result<RenderCommand> parseRenderFlags(const std::vector<std::string>& argv) {
         } else if (flag == "--max-time") {
             CAVITY_ASSIGN(o.render.maxSeconds, cli::parseNumber(flag, v, 0.001, 3600));
         }
+    }
+    // As cavity's commands find them: from the working directory up, else the
+    // source tree this binary was built from (cli::defaultBaselines).
+    if (o.baselines.empty()) {
+        CAVITY_ASSIGN(o.baselines, cli::defaultBaselines());
     }
     if (o.matrix.empty()) return badInput("--matrix: missing (name a matrix of " + o.baselines + "/matrices.json)");
     if (o.out.empty()) return badInput("--out: missing (the render folder to write)");

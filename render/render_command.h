@@ -14,7 +14,7 @@ namespace cavity::render {
 struct RenderCommand {
     bool help = false;                    // --help given: print helpText, exit 0, nothing else read
     std::string helpText;
-    std::string matrix, baselines = "baselines", out, filter;
+    std::string matrix, baselines, out, filter;   // baselines: empty until found (cli::defaultBaselines)
     int shardIndex = 0, shardCount = 1;
     RenderOptions render;
 };

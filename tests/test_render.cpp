@@ -534,6 +534,22 @@ TEST_F(TwoStep, BadRenderFlagsExitTwoWithOneLineAndWriteNothing) {
     EXPECT_EQ(noOut.output.rfind("cavity_render: --out: missing", 0), 0u) << noOut.output;
 }
 
+// Without --baselines, cavity_render finds them as cavity's commands do: from
+// the working directory up, else in the source tree it was built from; run
+// from a folder with none above it (under the system's temp folder), it names
+// the source tree's matrices.json, where it used to read ./baselines.
+TEST_F(TwoStep, RenderFindsTheBaselinesFromTheRepositoryNotTheWorkingDirectory) {
+    const fs::path elsewhere = scratch("elsewhere");
+    fs::create_directories(elsewhere);
+    const Outcome o = shell("cd " + elsewhere.string() + " && " + CAVITY_RENDER_EXE + " --matrix nope --out " +
+                            (elsewhere / "out").string());
+    EXPECT_EQ(o.code, 2) << o.output;
+    const std::string want = "cavity_render: --matrix nope: no such matrix in " +
+                             (fs::path(CAVITY_SOURCE_DIR) / "baselines" / "matrices.json").string();
+    EXPECT_EQ(o.output.rfind(want, 0), 0u) << o.output;
+    EXPECT_FALSE(fs::exists(elsewhere / "out"));
+}
+
 // `cavity_render quality` is `cavity quality` on a machine without OpenImageIO.
 TEST_F(TwoStep, QualityOnTheRenderBinaryWritesTheSameQualityJson) {
     const fs::path a = scratch("render"), b = scratch("cavity");

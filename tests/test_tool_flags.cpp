@@ -106,7 +106,10 @@ TEST(ToolFlags, BadInputIsOneLineNamingTheFlagAndExitsTwo) {
         {render, "--matirx ci --out x", "cavity_render: --matirx: unknown flag (did you mean --matrix? see cavity_render --help)"},
         {render, "--repeat 0 --matrix ci --out x", "cavity_render: --repeat 0: must be an integer in 1..1000"},
         {render, "--matrix", "cavity_render: --matrix: missing value (--matrix NAME)"},
-        {render, "--out x", "cavity_render: --matrix: missing (name a matrix of baselines/matrices.json)"},
+        // The baselines are the repository's, found without --baselines (the
+        // test runs inside the build tree, below the source tree).
+        {render, "--out x", "cavity_render: --matrix: missing (name a matrix of " + std::string(CAVITY_SOURCE_DIR) +
+                                "/baselines/matrices.json)"},
         {render, "stray --matrix ci --out x", "cavity_render: 'stray': unexpected argument (flags start with --; see cavity_render --help)"},
     };
     for (const auto& c : cases) {

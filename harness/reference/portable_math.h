@@ -32,10 +32,14 @@ inline Vec2 cosSinTurns(float turns) {
     }
 }
 
-// 1 / x for x > 0 by an exponent-bit estimate and three Newton steps, the
+// 1 / x for x != 0 by an exponent-bit estimate and three Newton steps, the
 // same bits as the GLSL (a division may differ by an ulp between the two).
+// The subtraction is unsigned: GLSL's int arithmetic wraps, C++'s signed
+// overflow is undefined (UBSan caught it for a negative x, which the
+// half-resolution depth passes: the wrapped estimate carries the sign, and
+// the Newton steps converge to 1 / x as for a positive x).
 inline float portableReciprocal(float x) {
-    float y = std::bit_cast<float>(int32_t(0x7EF311C7) - std::bit_cast<int32_t>(x));
+    float y = std::bit_cast<float>(uint32_t(0x7EF311C7u) - std::bit_cast<uint32_t>(x));
     for (int i = 0; i < 3; ++i) y = y * (2.0f - x * y);
     return y;
 }

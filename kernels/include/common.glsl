@@ -49,7 +49,8 @@ vec2 cosSinTurns(float turns) {
     return vec2(s, -c);
 }
 
-// 1 / x for x > 0, the same bits on every implementation. A GLSL division
+// 1 / x for x != 0 (either sign: the int subtraction wraps, and the estimate
+// keeps the sign), the same bits on every implementation. A GLSL division
 // may be off by 2.5 ulp (and often is a reciprocal times a multiply), so
 // this starts from an exponent-bit estimate (relative error under 5.1%) and
 // refines it with Newton steps y' = y (2 - x y), each of which squares the
