@@ -5,6 +5,7 @@
 #include "blur_weights.h"
 #include "families.h"
 #include "kernel.h"
+#include "screen_space_tables.h"
 
 #include <cmath>
 
@@ -165,6 +166,44 @@ KernelDecl alchemyFast() {
     return k;
 }
 
+// hemisphere_cosine (seed 004 with its sampling fixed) on the pyramid: one
+// R32F fetch per point where it reads a depth and a normal
+// (ssao_hemisphere_fast.glsl says what else differs, and why).
+KernelDecl hemisphereFast() {
+    KernelDecl k;
+    k.name = "hemisphere_fast";
+    k.file = "ssao_hemisphere_fast.glsl";
+    k.summary = "hemisphere_cosine on a linear-depth mip pyramid, tested along the receiver's normal, with a separable blur";
+    k.seeds = {"004_94976db8e6612027.txt", "001_8103f59163db3ce3.txt"};
+    k.role = Role::Ao;
+    k.params = {
+        use("samples", "ceil(n / steps) cosine-weighted rays of up to `steps` points"),
+        use("radius"),
+        use("bias", "height above the point, along the receiver's normal, a stored point must rise to occlude it"),
+        use("contrast", "AO = (1 - blocked rays / rays)^k"),
+        use("range_check"),
+        use("step_jitter"),
+        use("steps", 4, "points along each ray; at a given n more steps mean fewer rays"),
+    };
+    for (auto& p : k.params)
+        if (p.name() == "step_jitter") p.def = 1;
+    k.inputs = {{"zmip", {gpu::Filter::Nearest, gpu::Address::ClampToEdge, true}}, {"normal", {}}};
+    k.outputs = {{"ao", Format::R16F}, {"ao_key", Format::RGBA16F}};
+    k.arrays = {{"kernel", maxKernelPoints()}};
+    k.derive = [](const ParamValues& v, std::map<std::string, std::vector<float>>& arrays) {
+        arrays["kernel"] = cosineKernel(intValue(v, "samples"), intValue(v, "steps"));
+    };
+    // Every point fetched: a blocked ray's later points are skipped, which
+    // the floor does not count on.
+    k.cost = [](const ParamValues& v) {
+        const double n = v.at("samples");
+        return Cost{2 + n, kR32f + kRgba16f + n * kR32f + kR16f + kRgba16f,
+                    fetchSlots(kR32f) + fetchSlots(kRgba16f) + n * fetchSlots(kR32f),
+                    kR32f * 4 / 3 + kRgba16f + kR16f + kRgba16f};
+    };
+    return k;
+}
+
 KernelDecl blurSeparable(const std::string& axis) {
     KernelDecl k = blurBilateral();
     k.name = "blur_separable_" + axis;
@@ -189,7 +228,7 @@ std::vector<KernelDecl>& registryForTests() {
         std::vector<KernelDecl> k = {gbufferSdf(), alchemy(), blurBilateral(), composite()};
         for (auto& d : screenSpaceKernels()) k.push_back(std::move(d));
         for (auto& d : qualityVariantKernels()) k.push_back(std::move(d));
-        for (auto& d : {depthPyramid(), alchemyFast(), blurSeparable("x"), blurSeparable("y")}) k.push_back(d);
+        for (auto& d : {depthPyramid(), alchemyFast(), hemisphereFast(), blurSeparable("x"), blurSeparable("y")}) k.push_back(d);
         for (auto& d : sdfAoKernels()) k.push_back(std::move(d));
         return k;
     }();

@@ -1,5 +1,5 @@
 // References of the fast variants (issue 10): kernels/depth_pyramid.glsl,
-// ssao_alchemy_fast.glsl and the separable blur pair
+// ssao_alchemy_fast.glsl, ssao_hemisphere_fast.glsl and the separable blur pair
 // (include/blur_separable.glsl). The pyramid's levels are rebuilt here from
 // level 0, which is all a pass's readback holds: each level keeps one real
 // texel of the level above, so the rebuild is exact.
@@ -13,14 +13,20 @@
 
 namespace cavity::reference {
 
+namespace screen {   // refs_screen_space.cpp
+Vec3 normalizeExact(Vec3 v);
+float smoothstep01(float x);
+float sampleHash(int x, int y, int i);
+}  // namespace screen
+
 namespace {
 
 const float kPi = 3.14159265f;
 
-// ssao_alchemy_fast.glsl's LOG_MAX_OFFSET.
+// include/pyramid.glsl's LOG_MAX_OFFSET.
 constexpr int kLogMaxOffset = 3;
 
-// positionAt() of ssao_alchemy_fast.glsl, operation for operation.
+// positionAt() of include/pyramid.glsl, operation for operation.
 Vec3 positionAt(const kernels::FrameUniforms& f, int x, int y, float depth) {
     const float ndcX = (float(x) + 0.5f) * f.invSize[0] * 2.0f - 1.0f;
     const float ndcY = (float(y) + 0.5f) * f.invSize[1] * 2.0f - 1.0f;
@@ -33,6 +39,18 @@ int findMsb(int v) { return int(std::bit_width(unsigned(v))) - 1; }
 int pyramidLevelCount() {
     const auto* k = kernels::find("depth_pyramid");
     return k && !k->outputs.empty() ? k->outputs[0].mipLevels : 1;
+}
+
+// The level-0 pixel whose depth texel (tx, ty) of `level` holds: the
+// pyramid's picks, undone one level at a time (include/pyramid.glsl does it
+// in closed form).
+void sourcePixel(const std::vector<HostImage>& zmip, int level, int& tx, int& ty) {
+    for (int k = level; k > 0; --k) {
+        const HostImage& above = zmip[size_t(k - 1)];
+        const int px = std::min(2 * tx + (ty & 1), above.width - 1);
+        ty = std::min(2 * ty + (tx & 1), above.height - 1);
+        tx = px;
+    }
 }
 
 // include/octahedral.glsl.
@@ -163,13 +181,7 @@ Result<std::vector<HostImage>> alchemyFast(const Context& ctx) {
                 int tx = std::min(sx >> level, z.width - 1), ty = std::min(sy >> level, z.height - 1);
                 const float zs = z.at(tx, ty);
                 if (isBackground(zs)) continue;
-                // The level-0 pixel that depth came from: the pyramid's picks, undone.
-                for (int k = level; k > 0; --k) {
-                    const HostImage& above = zmip[size_t(k - 1)];
-                    const int px = std::min(2 * tx + (ty & 1), above.width - 1);
-                    ty = std::min(2 * ty + (tx & 1), above.height - 1);
-                    tx = px;
-                }
+                sourcePixel(zmip, level, tx, ty);
                 const Vec3 omega = positionAt(f, tx, ty, zs) - X;
                 const float omega2 = lengthSquared(omega);
                 if (omega2 > R * R) continue;
@@ -187,12 +199,110 @@ Result<std::vector<HostImage>> alchemyFast(const Context& ctx) {
     return out;
 }
 
+// ssao_hemisphere_fast.glsl, operation for operation where a value picks a
+// texel or decides a test.
+Result<std::vector<HostImage>> hemisphereFast(const Context& ctx) {
+    CAVITY_TRY(requireInputs(ctx, {1, 3}));
+    const auto zmip = pyramidLevels(*ctx.inputs[0], pyramidLevelCount());
+    const HostImage& normal = *ctx.inputs[1];
+    const auto& f = ctx.frame;
+    const int n = std::clamp(intParam(ctx, "samples"), 1, 256);
+    const float R = floatParam(ctx, "radius");
+    const float bias = floatParam(ctx, "bias");
+    const float contrast = floatParam(ctx, "contrast");
+    const bool rangeCheck = intParam(ctx, "range_check") != 0;
+    const bool stepJitter = intParam(ctx, "step_jitter") != 0;
+    const int maxLevel = int(zmip.size()) - 1;
+    const std::vector<float>& kernel = array(ctx, "kernel");
+    if (int(kernel.size()) < 4 * n) return internal("reference hemisphere_fast: kernel shorter than " + std::to_string(n));
+    const float toPixelX = 0.5f * float(f.size[0]) * portableReciprocal(f.camera[0]);
+    const float toPixelY = -0.5f * float(f.size[1]) * portableReciprocal(f.camera[1]);
+    const float centreX = 0.5f * float(f.size[0]), centreY = 0.5f * float(f.size[1]);
+
+    auto out = makeOutputs(ctx);
+    for (int y = 0; y < f.size[1]; ++y) {
+        for (int x = 0; x < f.size[0]; ++x) {
+            const float d = zmip[0].at(x, y);
+            Vec3 N{normal.at(x, y, 0), normal.at(x, y, 1), normal.at(x, y, 2)};
+            if (isBackground(d) || lengthSquared(N) == 0.0f) {
+                out[0].at(x, y) = 1.0f;
+                out[1].at(x, y, 0) = 1.0f;
+                continue;
+            }
+            N = screen::normalizeExact(N);
+            const Vec3 X = positionAt(f, x, y, d);
+            const Vec2 r = cosSinTurns(pixelHash(x, y));
+            Vec3 rv{r.x, r.y, 0.0f};
+            Vec3 t = rv - N * dot(rv, N);
+            if (lengthSquared(t) < 1e-6f) {
+                rv = {-r.y, r.x, 0.0f};
+                t = rv - N * dot(rv, N);
+            }
+            t = screen::normalizeExact(t);
+            const Vec3 b = cross(N, t);
+
+            // One point's occlusion: occludedBy() of the kernel.
+            auto occludedBy = [&](const float* k, float lengthScale) -> float {
+                const Vec3 s = X + (t * k[0] + b * k[1] + N * k[2]) * lengthScale;
+                if (s.z >= 0.0f) return 0.0f;
+                const float inv = portableReciprocal(-s.z);
+                const float spx = s.x * inv * toPixelX + centreX, spy = s.y * inv * toPixelY + centreY;
+                const int sx = int(std::floor(std::clamp(spx, -1.0f, float(f.size[0]))));
+                const int sy = int(std::floor(std::clamp(spy, -1.0f, float(f.size[1]))));
+                if (sx < 0 || sy < 0 || sx >= f.size[0] || sy >= f.size[1]) return 0.0f;
+                const int level = std::clamp(findMsb(std::max(std::abs(sx - x), std::abs(sy - y))) - kLogMaxOffset, 0, maxLevel);
+                const HostImage& z = zmip[size_t(level)];
+                int tx = std::min(sx >> level, z.width - 1), ty = std::min(sy >> level, z.height - 1);
+                const float zq = z.at(tx, ty);
+                if (isBackground(zq)) return 0.0f;
+                sourcePixel(zmip, level, tx, ty);
+                const float along = dot(N, positionAt(f, tx, ty, 1.0f));
+                if (along < 0.0f) {
+                    if (zq * along - dot(N, s) <= bias) return 0.0f;
+                } else if (zq + bias >= -s.z) {
+                    return 0.0f;
+                }
+                const float dz = std::fabs(d - zq);
+                return rangeCheck && dz > R ? screen::smoothstep01(R / dz) : 1.0f;
+            };
+            // Rays of grouped points, skipped once fully blocked (see the kernel).
+            float occlusion = 0.0f, directions = 0.0f, blocked = 0.0f, u = 0.0f;
+            int inGroup = 0;
+            for (int i = 0; i < n; ++i) {
+                const float* k = &kernel[size_t(i) * 4];
+                if (inGroup == 0 && stepJitter) u = screen::sampleHash(x, y, int(directions));
+                if (blocked < 1.0f) {
+                    float lengthScale = R;
+                    if (stepJitter) lengthScale = R * (1.0f - u * portableReciprocal(float(inGroup + 1)));
+                    blocked = std::max(blocked, occludedBy(k, lengthScale));
+                }
+                ++inGroup;
+                if (k[3] > 0.5f || i == n - 1) {
+                    occlusion += blocked;
+                    directions += 1.0f;
+                    blocked = 0.0f;
+                    inGroup = 0;
+                }
+            }
+            const float ao = std::pow(std::max(1.0f - occlusion / directions, 0.0f), contrast);
+            out[0].at(x, y) = ao;
+            const Vec2 oct = octEncode(N);
+            out[1].at(x, y, 0) = ao;
+            out[1].at(x, y, 1) = d;
+            out[1].at(x, y, 2) = oct.x;
+            out[1].at(x, y, 3) = oct.y;
+        }
+    }
+    return out;
+}
+
 Result<std::vector<HostImage>> blurSeparableX(const Context& ctx) { return blurSeparable(ctx, true); }
 Result<std::vector<HostImage>> blurSeparableY(const Context& ctx) { return blurSeparable(ctx, false); }
 
 std::vector<RefEntry> fastRefs() {
     return {{"depth_pyramid", depthPyramid},
             {"alchemy_fast", alchemyFast},
+            {"hemisphere_fast", hemisphereFast},
             {"blur_separable_x", blurSeparableX},
             {"blur_separable_y", blurSeparableY}};
 }

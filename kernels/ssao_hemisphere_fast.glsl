@@ -1,0 +1,126 @@
+// Hemisphere-kernel SSAO on the linear-depth pyramid: hemisphere_cosine's
+// estimator (seed 004, 004_94976db8e6612027.txt, with its sampling fixed:
+// n / steps cosine-weighted rays in the normal hemisphere, each walked in
+// `steps` points out to R and blocked when any point is, AO = (1 - blocked
+// rays / rays)^k, the range check) with one 32-bit fetch per point instead
+// of a depth and a normal. The kernel points are hemisphere_cosine's
+// (cosineKernel, decl_screen_space.cpp), made on the CPU.
+//
+// What differs from ssao_hemisphere.glsl, and why:
+//  * The stored point q is rebuilt from the pyramid's linear depth on its
+//    texel's own ray, and far points read a coarser level, as in
+//    ssao_alchemy_fast.glsl.
+//  * The occlusion test needs no normal at q. The seed decides "is the
+//    sample behind the stored surface" with q's plane, because the sample s
+//    projects up to half a texel beside q's ray, and on a plane seen at a
+//    grazing angle the depth changes over that half texel by more than any
+//    bias. Here both are measured along the receiver's normal N instead:
+//    q occludes when it rises above the sample's level by more than `bias`,
+//        N . q - N . s > bias,   with N . q = z_q (N . ray_q),
+//    which is the depth test along q's ray against the point where that ray
+//    crosses the plane through s parallel to the receiver's. On the
+//    receiver's own plane q sits exactly at the receiver's level, under
+//    every sample, at any angle: no self-shadowing without q's normal. Where
+//    q's ray meets the receiver's plane from behind (N . ray_q >= 0, a
+//    receiver seen edge-on), the plain depth test z_q + bias < z_s decides,
+//    as the seed's does where q has no normal.
+//  * The 4x4 noise tile and its box blur give way to a per-pixel rotation
+//    (pixelHash, as alchemy_fast) and the separable blur of the packed key.
+//  * A point that projects off the screen tests nothing (Alchemy's rule),
+//    where the seed tests it against the border texel.
+// The range check is seed 004's, smoothstep(0, 1, R / |dz|), evaluated only
+// where it is under 1.
+#include "include/screen_space.glsl"
+#include "include/octahedral.glsl"
+#include "include/pyramid.glsl"
+
+// How much the kernel point k (tangent frame tn, b, N; scaled by
+// lengthScale) is occluded: 0 or 1, or the range check's fade.
+float occludedBy(vec3 X, vec3 N, float d, vec3 k, vec3 tn, vec3 b, float lengthScale, ivec2 pixel, vec2 toPixel,
+                 vec2 centre, int maxLevel) {
+    precise vec3 s = X + (tn * k.x + b * k.y + N * k.z) * lengthScale;
+    // A point behind the camera plane projects nowhere.
+    if (s.z >= 0.0) return 0.0;
+    precise vec2 sp = s.xy * portableReciprocal(-s.z) * toPixel + centre;
+    ivec2 texel = ivec2(floor(clamp(sp, vec2(-1.0), vec2(frame.size))));
+    if (any(lessThan(texel, ivec2(0))) || any(greaterThanEqual(texel, frame.size))) return 0.0;
+    ivec2 away = abs(texel - pixel);
+    int level = pyramidLevel(max(away.x, away.y), maxLevel);
+    ivec2 tl = min(texel >> level, levelSize(level) - 1);
+    float zq = texelFetch(in_zmip, tl, level).r;
+    if (isBackground(zq)) return 0.0;
+    float along = orderedDot(N, positionAt(sourcePixel(tl, level), 1.0));
+    if (along < 0.0) {
+        precise float rise = zq * along - orderedDot(N, s);
+        if (rise <= P.bias) return 0.0;
+    } else {
+        // q's ray cannot see the receiver's plane (a receiver seen edge-on,
+        // such as a sphere's rim over the floor): the plain depth test
+        // along the point's own ray, the seed's where q has no normal.
+        precise float threshold = zq + P.bias;
+        if (threshold >= -s.z) return 0.0;
+    }
+    float dz = abs(d - zq);
+    return (P.range_check != 0 && dz > P.radius) ? smoothstep(0.0, 1.0, P.radius / dz) : 1.0;
+}
+
+void cavity_main(ivec2 pixel) {
+    float d = texelFetch(in_zmip, pixel, 0).r;
+    vec3 N = texelFetch(in_normal, pixel, 0).xyz;
+    if (isBackground(d) || lengthSquared(N) == 0.0) {
+        write_ao(pixel, vec4(1.0));
+        write_ao_key(pixel, vec4(1.0, 0.0, 0.0, 0.0));
+        return;
+    }
+    N = portableNormalize(N);
+    vec3 X = positionAt(pixel, d);
+    int maxLevel = textureQueryLevels(in_zmip) - 1;
+
+    // The kernel's tangent frame, turned about N by the pixel's phase:
+    // Gram-Schmidt of (cos, sin, 0) against N, or of its perpendicular where
+    // the two are parallel (N in the view xy plane along it).
+    vec2 r = cosSinTurns(pixelHash(pixel));
+    vec3 rv = vec3(r, 0.0);
+    precise vec3 t = rv - N * orderedDot(rv, N);
+    if (lengthSquared(t) < 1e-6) {
+        rv = vec3(-r.y, r.x, 0.0);
+        t = rv - N * orderedDot(rv, N);
+    }
+    vec3 tn = portableNormalize(t);
+    vec3 b = orderedCross(N, tn);
+
+    // View point -> pixel: x_px = x / depth * toPixel.x + size.x / 2, and
+    // y likewise with the flip (positionAt() inverted).
+    precise vec2 toPixel = vec2(0.5, -0.5) * vec2(frame.size) *
+                           vec2(portableReciprocal(frame.camera.x), portableReciprocal(frame.camera.y));
+    vec2 centre = 0.5 * vec2(frame.size);
+
+    // Points come in groups along one ray (P.kernel[i].w = 1 closes one):
+    // a ray is blocked when any of its points is, and once one point has
+    // blocked it fully the rest are not fetched. step_jitter moves ray g's
+    // points in by a share u of a step, drawn per pixel and ray, as in
+    // ssao_hemisphere.glsl.
+    int n = clamp(P.samples, 1, 256);
+    float R = P.radius;
+    float occlusion = 0.0, directions = 0.0, blocked = 0.0, u = 0.0;
+    int inGroup = 0;
+    for (int i = 0; i < n; ++i) {
+        vec4 k = P.kernel[i];
+        if (inGroup == 0 && P.step_jitter != 0) u = sampleHash(pixel, int(directions));
+        if (blocked < 1.0) {
+            precise float lengthScale = R;
+            if (P.step_jitter != 0) lengthScale = R * (1.0 - u * portableReciprocal(float(inGroup + 1)));
+            blocked = max(blocked, occludedBy(X, N, d, k.xyz, tn, b, lengthScale, pixel, toPixel, centre, maxLevel));
+        }
+        ++inGroup;
+        if (k.w > 0.5 || i == n - 1) {
+            occlusion += blocked;
+            directions += 1.0;
+            blocked = 0.0;
+            inGroup = 0;
+        }
+    }
+    float ao = pow(max(1.0 - occlusion / directions, 0.0), P.contrast);
+    write_ao(pixel, vec4(ao, 0.0, 0.0, 0.0));
+    write_ao_key(pixel, vec4(ao, d, octEncode(N)));
+}
