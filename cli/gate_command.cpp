@@ -1,6 +1,7 @@
 // `cavity gate`, `cavity gate judge`, `cavity gate merge` and `cavity baselines update`.
 #include "baseline_update.h"
 #include "cli.h"
+#include "config_id.h"
 #include "expectations.h"
 #include "json_file.h"
 #include "gate_report.h"

@@ -1,6 +1,7 @@
 // The benchmark runner: registers exactly the sweep's configurations, runs a
 // filtered subset on both APIs, and reports as manual time exactly the GPU
 // time the backend's timestamps gave for the passes after the G-buffer.
+#include "config_id.h"
 #include "per_pass_reporter.h"
 #include "sweep.h"
 

@@ -2,6 +2,7 @@
 // never share one, ids at the defaults read as they always did (baseline
 // paths depend on it), and every kernel parameter sweeps in cavity run.
 #include "config.h"
+#include "config_id.h"
 #include "matrix.h"
 #include "pipeline.h"
 #include "sweep.h"
