@@ -1,5 +1,6 @@
 #include "bench_runner.h"
 
+#include "config_id.h"
 #include "kernel.h"
 #include "pipeline.h"
 #include "sweep.h"

@@ -7,6 +7,7 @@
 #include <charconv>
 #include <cmath>
 #include <filesystem>
+#include <iostream>
 #include <map>
 #include <sstream>
 
@@ -20,16 +21,19 @@ Result<int> parseInt(const std::string& flag, const std::string& text, int lo, i
     return v;
 }
 
-Result<double> parseNumber(const std::string& flag, const std::string& text, double lo, double hi) {
+Result<double> parseNumber(const std::string& flag, const std::string& text, const std::function<bool(double)>& allowed,
+                           const std::string& what) {
     double v = 0;
     auto r = std::from_chars(text.data(), text.data() + text.size(), v);
-    if (text.empty() || r.ec != std::errc() || r.ptr != text.data() + text.size() || !std::isfinite(v) || v < lo ||
-        v > hi) {
-        std::ostringstream range;
-        range << lo << ".." << hi;
-        return badInput(flag + " '" + text + "': must be a number in " + range.str());
-    }
+    if (text.empty() || r.ec != std::errc() || r.ptr != text.data() + text.size() || !std::isfinite(v) || !allowed(v))
+        return badInput(flag + " '" + text + "': must be " + what);
     return v;
+}
+
+Result<double> parseNumber(const std::string& flag, const std::string& text, double lo, double hi) {
+    std::ostringstream range;
+    range << "a number in " << lo << ".." << hi;
+    return parseNumber(flag, text, [&](double v) { return v >= lo && v <= hi; }, range.str());
 }
 
 Result<std::vector<std::string>> splitList(const std::string& flag, const std::string& text) {
@@ -154,5 +158,10 @@ Result<std::string> defaultBaselines() {
 }
 
 int exitCode(const Error& e) { return static_cast<int>(e.code); }
+
+int fail(const std::string& program, const Error& e) {
+    std::cerr << program << ": " << e.message << "\n";
+    return exitCode(e);
+}
 
 }  // namespace cavity::cli

@@ -6,6 +6,7 @@
 #include "flags.h"
 #include "result.h"
 
+#include <functional>
 #include <set>
 #include <string>
 #include <vector>
@@ -15,6 +16,10 @@ namespace cavity::cli {
 Result<int> parseInt(const std::string& flag, const std::string& text, int lo, int hi);
 // A finite number in [lo, hi]; "nan", "inf", "1e999" and trailing text fail.
 Result<double> parseNumber(const std::string& flag, const std::string& text, double lo, double hi);
+// The same where [lo, hi] cannot say what is allowed (an open bound, no upper
+// bound): `allowed` decides, `what` names it ("a number in (0, 1)").
+Result<double> parseNumber(const std::string& flag, const std::string& text, const std::function<bool(double)>& allowed,
+                           const std::string& what);
 // "8,16,32" -> {"8", "16", "32"}; an empty list, an empty item ("8,,16")
 // and an item given twice ("8,8": the same configuration twice) are errors.
 Result<std::vector<std::string>> splitList(const std::string& flag, const std::string& text);
@@ -38,6 +43,9 @@ Result<std::string> defaultBaselines();
 
 // Exit code for an error, as documented in README.md ("Exit codes").
 int exitCode(const Error& e);
+// The edge of a command: prints "program: message" on stderr and returns
+// the error's exit code.
+int fail(const std::string& program, const Error& e);
 
 // Subcommands; each returns the process exit code.
 int runCommand(const std::vector<std::string>& args);

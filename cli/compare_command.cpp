@@ -7,8 +7,6 @@
 #include "results.h"
 
 #include <algorithm>
-#include <cmath>
-#include <cstdlib>
 #include <iostream>
 
 namespace cavity::cli {
@@ -33,61 +31,62 @@ const CommandSpec& compareSpec() {
     return spec;
 }
 
-int fail(const std::string& message) {
-    std::cerr << "cavity compare: " << message << "\n";
-    return 2;
-}
+struct CompareFlags {
+    std::vector<std::string> files;   // OLD.json NEW.json
+    CompareThresholds thresholds;
+    std::string jsonPath;
+    bool failOnSlower = false;
+    std::string helpText;             // --help: print this, compare nothing
+};
 
-Result<double> number(const std::string& flag, const std::string& text, double lo, double hi, bool openLo,
-                      const std::string& allowed) {
-    char* end = nullptr;
-    const double x = std::strtod(text.c_str(), &end);
-    const bool ok = !text.empty() && end && *end == '\0' && std::isfinite(x) && (openLo ? x > lo : x >= lo) && x < hi;
-    if (!ok) return badInput(flag + " " + text + ": must be " + allowed);
-    return x;
+Result<CompareFlags> parse(const std::vector<std::string>& argv) {
+    CompareFlags f;
+    CAVITY_ASSIGN(const ParsedFlags parsed, parseFlags(compareSpec(), argv));
+    if (parsed.help) {
+        f.helpText = parsed.helpText;
+        return f;
+    }
+    f.files = parsed.positionals;
+    f.failOnSlower = parsed.has("--fail-on-slower");
+    for (const auto& [flag, v] : parsed.values) {
+        if (flag == "--json") {
+            f.jsonPath = v;
+        } else if (flag == "--alpha") {
+            CAVITY_ASSIGN(f.thresholds.alpha,
+                          parseNumber(flag, v, [](double x) { return x > 0 && x < 1; }, "a number in (0, 1)"));
+        } else if (flag == "--min-change") {
+            CAVITY_ASSIGN(f.thresholds.minChangePct, parseNumber(flag, v, [](double x) { return x >= 0; }, "a percentage >= 0"));
+        }
+    }
+    if (f.files.size() != 2)
+        return badInput("need two files, OLD.json NEW.json (have " + std::to_string(f.files.size()) +
+                        "; see cavity compare --help)");
+    return f;
 }
 
 }  // namespace
 
 int compareCommand(const std::vector<std::string>& argv) {
-    std::vector<std::string> files;
-    CompareThresholds t;
-    std::string jsonPath;
-    bool failOnSlower = false;
-    auto parsed = parseFlags(compareSpec(), argv);
-    if (!parsed) return fail(parsed.error().message);
-    if (parsed->help) {
+    const std::string program = "cavity compare";
+    auto parsed = parse(argv);
+    if (!parsed) return fail(program, parsed.error());
+    if (!parsed->helpText.empty()) {
         std::cout << parsed->helpText;
         return 0;
     }
-    files = parsed->positionals;
-    failOnSlower = parsed->has("--fail-on-slower");
-    for (const auto& [flag, v] : parsed->values) {
-        if (flag == "--json") {
-            jsonPath = v;
-            continue;
-        }
-        auto x = flag == "--alpha" ? number(flag, v, 0, 1, true, "a number in (0, 1)")
-                                   : number(flag, v, 0, HUGE_VAL, false, "a percentage >= 0");
-        if (!x) return fail(x.error().message);
-        (flag == "--alpha" ? t.alpha : t.minChangePct) = *x;
-    }
-    if (files.size() != 2)
-        return fail("need two files, OLD.json NEW.json (have " + std::to_string(files.size()) +
-                    "; see cavity compare --help)");
+    const auto& [files, t, jsonPath, failOnSlower, help] = *parsed;
     auto before = loadSampleSets(files[0]);
-    if (!before) return fail(before.error().message);
+    if (!before) return fail(program, before.error());
     auto after = loadSampleSets(files[1]);
-    if (!after) return fail(after.error().message);
+    if (!after) return fail(program, after.error());
 
     const auto rows = compareAll(*before, *after, t);
     // The JSON first: if it cannot be written the command fails before it
     // has printed a table that looks like success.
     if (!jsonPath.empty()) {
         if (auto s = writeJson(jsonPath, compareJson(rows, *before, *after, t)); !s) {
-            if (s.error().code == ErrorCode::BadInput) return fail("--json " + jsonPath + ": cannot be written");
-            std::cerr << "cavity compare: --json " << s.error().message << "\n";
-            return exitCode(s.error());
+            if (s.error().code == ErrorCode::BadInput) return fail(program, badInput("--json " + jsonPath + ": cannot be written"));
+            return fail(program, {s.error().code, "--json " + s.error().message});
         }
     }
     std::cout << compareTable(rows, *before, *after, t);

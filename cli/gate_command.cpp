@@ -1,6 +1,7 @@
 // `cavity gate`, `cavity gate judge`, `cavity gate merge` and `cavity baselines update`.
 #include "baseline_update.h"
 #include "cli.h"
+#include "config_id.h"
 #include "expectations.h"
 #include "json_file.h"
 #include "gate_report.h"
@@ -112,11 +113,6 @@ const CommandSpec& updateSpec() {
     }                                                              \
     const ParsedFlags& var = *var##_;
 
-int fail(const std::string& who, const Error& e) {
-    std::cerr << who << ": " << e.message << "\n";
-    return exitCode(e);
-}
-
 Result<gate::GateRun> loadGateJson(const std::string& dir) {
     const std::string path = (fs::path(dir) / "gate.json").string();
     if (!fs::exists(path)) return badInput(path + ": cannot be read (run `cavity gate --out " + dir + "` first)");
@@ -177,15 +173,22 @@ int judge(const std::vector<std::string>& argv) {
     return run->exitCode();
 }
 
-}  // namespace
+struct GateFlags {
+    gate::GateOptions options;
+    std::optional<std::string> shard;   // --shard I/N as given
+    bool list = false;
+    std::string helpText;               // --help: print this, run nothing
+};
 
-int gateCommand(const std::vector<std::string>& argv) {
-    if (!argv.empty() && argv[0] == "merge") return merge({argv.begin() + 1, argv.end()});
-    if (!argv.empty() && argv[0] == "judge") return judge({argv.begin() + 1, argv.end()});
-    gate::GateOptions o;
-    std::optional<std::string> shardFlag;
-    CAVITY_PARSE(p, gateSpec(), argv);
-    const bool list = p.has("--list");
+Result<GateFlags> parseGate(const std::vector<std::string>& argv) {
+    GateFlags f;
+    gate::GateOptions& o = f.options;
+    CAVITY_ASSIGN(const ParsedFlags p, parseFlags(gateSpec(), argv));
+    if (p.help) {
+        f.helpText = p.helpText;
+        return f;
+    }
+    f.list = p.has("--list");
     o.validation = p.has("--validation");
     o.quiet = p.has("--quiet");
     o.baselines.clear();
@@ -194,27 +197,37 @@ int gateCommand(const std::vector<std::string>& argv) {
         else if (flag == "--out") o.out = v;
         else if (flag == "--baselines") o.baselines = v;
         else if (flag == "--filter") o.filter = v;
+        else if (flag == "--shard") f.shard = v;
+        else if (flag == "--expectations") o.expectations = v;
         else if (flag == "--device") {
-            auto d = parseInt(flag, v, 0, 64);
-            if (!d) return fail("cavity gate", d.error());
-            o.device = *d;
-        } else if (flag == "--shard") {
-            shardFlag = v;
+            CAVITY_ASSIGN(o.device, parseInt(flag, v, 0, 64));
         } else if (flag == "--retries") {
-            auto n = parseInt(flag, v, 0, 100);
-            if (!n) return fail("cavity gate", n.error());
-            o.retries = *n;
-        } else if (flag == "--expectations") {
-            o.expectations = v;
+            CAVITY_ASSIGN(o.retries, parseInt(flag, v, 0, 100));
         }
     }
+    return f;
+}
+
+}  // namespace
+
+int gateCommand(const std::vector<std::string>& argv) {
+    if (!argv.empty() && argv[0] == "merge") return merge({argv.begin() + 1, argv.end()});
+    if (!argv.empty() && argv[0] == "judge") return judge({argv.begin() + 1, argv.end()});
+    auto parsed = parseGate(argv);
+    if (!parsed) return fail("cavity gate", parsed.error());
+    if (!parsed->helpText.empty()) {
+        std::cout << parsed->helpText;
+        return 0;
+    }
+    gate::GateOptions& o = parsed->options;
+    const bool list = parsed->list;
     if (o.baselines.empty()) {
         auto found = defaultBaselines();
         if (!found) return fail("cavity gate", found.error());
         o.baselines = *found;
     }
     // --shard, GoogleTest's and Bazel's variables (shard_sources.h).
-    auto shard = resolveShard(shardFlag);
+    auto shard = resolveShard(parsed->shard);
     if (!shard) return fail("cavity gate", shard.error());
     std::tie(o.shardIndex, o.shardCount) = std::pair{shard->index, shard->count};
     if (auto st = touchShardStatusFiles(); !st) return fail("cavity gate", st.error());

@@ -1,6 +1,7 @@
 // `cavity quality`: each AO kernel's error against the ray-traced ground
 // truth, as a table on stdout and quality.json.
 #include "cli.h"
+#include "config_id.h"
 #include "pipeline.h"
 #include "progress.h"
 #include "quality.h"

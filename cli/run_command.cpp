@@ -1,6 +1,7 @@
 // `cavity run`: a sweep of configurations on one or both backends, with
 // images, results.json and a timing table on stdout.
 #include "cli.h"
+#include "config_id.h"
 #include "gbuffer_import.h"
 #include "progress.h"
 #include "runner.h"

@@ -1,14 +1,8 @@
-// One run's configuration and its canonical id. The id is built here and
-// nowhere else; it names the configuration in results.json, the benchmark
-// name, the JUnit test name, the baseline path and the --filter syntax:
-//
-//     corner/alchemy/n16/b4/full/320x180/vk/compute
-//     scene / AO kernel / samples / blur radius / full|half / size / API / stage
-// A rasterised G-buffer appends "+raster" to the scene: corner+raster/...
-// An imported G-buffer (--gbuffer import, harness/gbuffer_import.h) puts the
-// capture's file stem in place of the scene, with "+import":
-//     capture+import/alchemy/n16/b4/full/320x180/vk/compute
-// (characters other than letters, digits, '.', '_' and '-' in the stem become '_').
+// One run's configuration: the AO kernel, its parameters, size, stage and
+// API. Its canonical id is built in config_id.h from the passes the
+// configuration runs (pipeline.h), which is why neither the id nor the
+// validation (pipeline.h) is declared here: this header stays below the
+// pipeline.
 #pragma once
 
 #include "backend.h"
@@ -46,13 +40,16 @@ struct RunConfig {
     bool imported() const { return !gbufferFile.empty(); }
     std::string gbufferSource() const;    // "sdf", "raster" or "import"
 
+    // A parameter's value: given, or the AO kernel's default where the
+    // kernel declares it, or the declaration's.
+    double param(const std::string& name) const;
     std::string scene() const;            // the name of params["scene"]
     int samples() const;
     int blur() const;
 };
 
-std::string configId(const RunConfig& c);
-// The file stem of an imported capture as the id shows it (see above).
+// The file stem of an imported capture as the id shows it (config_id.h):
+// characters other than letters, digits, '.', '_' and '-' become '_'.
 std::string importStem(const std::string& path);
 
 // Parses "320x180"; the message names the flag.
@@ -64,10 +61,5 @@ constexpr int kMaxResolution = 16384;
 Status setParam(RunConfig& c, const std::string& name, const std::string& text);
 // True when some kernel declares a parameter of this name.
 bool isKernelParam(const std::string& name);
-
-// Validates the whole configuration (kernel known and of role "ao", every
-// parameter in range for every kernel of the pipeline, sizes; with an
-// imported G-buffer, no pass that evaluates the analytic scene).
-Status validate(const RunConfig& c);
 
 }  // namespace cavity

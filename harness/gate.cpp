@@ -1,5 +1,6 @@
 #include "gate.h"
 
+#include "config_id.h"
 #include "digest.h"
 #include "expectations.h"
 #include "gate_judge.h"

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 
 #include <unistd.h>
@@ -14,6 +15,9 @@
 namespace cavity::gate {
 
 namespace fs = std::filesystem;
+
+// harness/report/'s files by name, embedded at build time (cmake/embed.cmake).
+const std::map<std::string, std::string>& reportFiles();
 
 namespace {
 
@@ -297,129 +301,93 @@ std::string summaryMarkdown(const GateRun& run) {
     return m.str();
 }
 
-std::string reportHtml(const GateRun& run, const std::string& chartsDir) {
-    std::ostringstream h;
-    int failed = 0;
-    for (const auto& r : run.results) failed += r.fatal();
-    h << R"html(<!doctype html><html><head><meta charset="utf-8"><title>Cavity gate )html" << esc(run.matrix)
-      << (failed ? ": " + std::to_string(failed) + " failed" : std::string(": passed")) << R"html(</title>
-<style>
-body{font:14px system-ui,sans-serif;margin:16px;background:#1b1d21;color:#e6e6e6}
-h1{font-size:20px} h2{font-size:15px;margin:0 0 6px 0;font-family:monospace}
-.cfg{border:1px solid #3a3d44;border-radius:6px;padding:10px;margin:10px 0;background:#23262b}
-.fail{border-color:#e05252} .badge{display:inline-block;padding:1px 8px;border-radius:10px;font-size:12px;margin-left:6px}
-.pass .badge{background:#2e7d32} .fail .badge{background:#c62828} .noted .badge{background:#a66f00}
-.row{display:flex;gap:10px;flex-wrap:wrap;align-items:flex-start;margin:6px 0}
-figure{margin:0} figcaption{font-size:12px;color:#aaa}
-.zoomable img{image-rendering:pixelated;border:1px solid #444}
-.cmp{position:relative;display:inline-block} .cmp img{display:block}
-.cmp .top{position:absolute;top:0;left:0;overflow:hidden}
-table{border-collapse:collapse;font-size:12px} td,th{border:1px solid #3a3d44;padding:2px 6px;text-align:right}
-td.l,th.l{text-align:left} .bad{color:#ff6b6b;font-weight:bold}
-.controls{position:sticky;top:0;background:#1b1d21;padding:6px 0;z-index:2}
-.thumb{width:120px;image-rendering:auto;border:1px solid #444}
-.scale{height:8px;width:100%;margin-top:2px;border:1px solid #444}
-.scalelabels{display:flex;justify-content:space-between;font-size:11px;color:#aaa}
-</style></head><body>
-<div class="controls"><b>Cavity gate</b> matrix <code>)html"
-      << esc(run.matrix) << "</code> · " << run.results.size() << " configurations · <span class=\""
-      << (failed ? "bad" : "") << "\">" << failed << " failed</span> · " << esc(countsText(run)) << " · " << num(run.seconds, 3)
-      << R"html( s · zoom <input id="zoom" type="range" min="1" max="8" value="2" oninput="setZoom(this.value)"> <span id="zv">2x</span></div>
-)html";
-    for (const auto& e : run.backendErrors) h << "<p class=bad>backend could not start: " << esc(e) << "</p>\n";
-    int n = 0;
-    for (const auto* r : ordered(run)) {
-        const std::string v = r->verdict();
-        h << "<div class=\"cfg " << (r->fatal() ? "fail" : v == "pass" ? "pass" : "noted") << "\" data-id=\"" << esc(r->id)
-          << "\" data-repetition=\"" << r->repetition << "\" data-verdict=\"" << v << "\"><h2>" << esc(r->label())
-          << "<span class=badge>" << (v == "fail" ? "FAIL" : v) << "</span></h2>\n";
-        if (!r->error.empty()) h << "<p class=bad>" << esc(r->error) << "</p>\n";
-        if (const std::string note = verdictNote(*r); !note.empty()) h << "<p class=bad>" << esc(note) << "</p>\n";
-        if (!r->deterministic) h << "<p class=bad>not bit-identical across two frames on this device</p>\n";
-        if (r->passed()) {
-            // A passing configuration gets thumbnails of what it rendered and
-            // its worst numbers: the page stays small enough to open
-            // (every image of every passing ci configuration embedded in full
-            // made 8.4 MB), and a reviewer's eye goes to the failures.
-            h << "<div class=row>";
-            for (const auto& i : r->images) {
-                h << "<figure><figcaption>" << esc(i.image);
-                if (i.metrics) h << " · max " << num(i.metrics->maxAbs, 2) << " · SSIM " << num(i.metrics->ssim, 5);
-                h << "</figcaption><img class=thumb src=\"" << dataUri(i.newPng) << "\"></figure>";
-            }
-            h << "</div>\n";
+namespace {
+
+// The PNG files the page shows, by the path gate.json names them: a passing
+// configuration's new images (thumbnails), a failing or noted one's
+// baseline, new image and heat-map. Every image of every passing ci
+// configuration embedded in full made 8.4 MB.
+nlohmann::json shownImages(const GateRun& run) {
+    nlohmann::json images = nlohmann::json::object();
+    auto add = [&](const std::string& png) {
+        if (png.empty() || images.contains(png)) return;
+        if (const std::string uri = dataUri(png); !uri.empty()) images[png] = uri;
+    };
+    for (const auto& r : run.results)
+        for (const auto& i : r.images) {
+            add(i.newPng);
+            if (r.passed()) continue;
+            add(i.baselinePng);
+            add(i.diffPng);
         }
-        for (const auto& i : r->images) {
-            if (r->passed()) break;
-            ++n;
-            const std::string base = dataUri(i.baselinePng), now = dataUri(i.newPng), diff = dataUri(i.diffPng);
-            h << "<div class=row><figure class=zoomable><figcaption>" << esc(i.image) << " baseline</figcaption>"
-              << (base.empty() ? "<p class=bad>missing</p>" : "<img class=z src=\"" + base + "\">") << "</figure>"
-              << "<figure class=zoomable><figcaption>new</figcaption><img class=z src=\"" << now << "\"></figure>"
-              << "<figure class=zoomable><figcaption>|new - baseline|</figcaption>"
-              << (diff.empty() ? "" : "<img class=z src=\"" + diff + "\">")
-              << "<div class=scale style=\"background:" << heatScaleCss() << "\"></div><div class=scalelabels><span>0</span><span>"
-              << num(i.tolerance.pixelThreshold) << "</span><span>≥ " << num(2 * i.tolerance.pixelThreshold)
-              << "</span></div></figure>";
-            if (!base.empty())
-                h << "<figure class=zoomable><figcaption>baseline ◀ slider ▶ new</figcaption><div class=cmp><img class=z src=\""
-                  << now << "\"><div class=top id=t" << n << "><img class=z src=\"" << base
-                  << "\"></div></div><input type=range min=0 max=100 value=50 oninput=\"slide(" << n
-                  << ",this.value)\"></figure>";
-            h << "<table><tr><th class=l>metric</th><th>value</th><th>tolerance</th></tr>";
-            if (i.metrics) {
-                const auto& m = *i.metrics;
-                const auto& t = i.tolerance;
-                auto row = [&](const char* name, double v, double tol, bool upper, const char* unit = "") {
-                    const bool bad = upper ? v > tol : v < tol;
-                    h << "<tr><td class=l>" << name << "</td><td class=\"" << (bad ? "bad" : "") << "\">" << num(v) << unit
-                      << "</td><td>" << (upper ? "≤ " : "≥ ") << num(tol) << unit << "</td></tr>";
-                };
-                row("max abs", m.maxAbs, t.maxAbs, true);
-                row("mean abs", m.meanAbs, t.meanAbs, true);
-                row("RMSE", m.rmse, t.rmse, true);
-                row("PSNR", m.psnr, t.psnrMin, false, " dB");
-                row("pixels over threshold", 100 * m.overThresholdShare, 100 * t.overThresholdShare, true, "%");
-                row("SSIM", m.ssim, t.ssimMin, false);
-                if (m.flipMean >= 0) row("FLIP mean", m.flipMean, t.flipMeanMax, true);
-                if (m.flipMean >= 0)
-                    row(("pixels differing by > " + num(t.differingDelta) + " steps").c_str(), 100 * m.differingShare,
-                        100 * t.differingShareMax, true, "%");
-                if (m.nonFinite) h << "<tr><td class=l>non-finite</td><td class=bad>" << m.nonFinite << "</td><td>0</td></tr>";
-            }
-            h << "</table></div>\n";
-            for (const auto& f : i.failures) h << "<div class=bad>" << esc(i.image) << ": " << esc(f) << "</div>\n";
+    return images;
+}
+
+// Charts from scripts/charts.py, when a benchmark run left them (and their
+// index.json) next to the report; by name.
+nlohmann::json charts(const std::string& chartsDir) {
+    nlohmann::json out = nlohmann::json::array();
+    std::error_code ec;
+    if (!fs::exists(fs::path(chartsDir) / "index.json", ec)) return out;
+    std::vector<fs::path> pngs;
+    for (const auto& entry : fs::directory_iterator(chartsDir, ec))
+        if (entry.path().extension() == ".png") pngs.push_back(entry.path());
+    std::sort(pngs.begin(), pngs.end());
+    for (const auto& png : pngs) out.push_back({{"name", png.stem().string()}, {"src", dataUri(png.string())}});
+    return out;
+}
+
+// JSON inside <script>: every '<', '>' and '&' (which JSON holds only inside
+// strings) as a \u escape, so that no "</script>" or "<!--" in a message or
+// a path can end the block or change how it is parsed.
+std::string scriptSafe(const std::string& json) {
+    std::string o;
+    o.reserve(json.size());
+    for (char ch : json) {
+        switch (ch) {
+        case '<': o += "\\u003c"; break;
+        case '>': o += "\\u003e"; break;
+        case '&': o += "\\u0026"; break;
+        default: o += ch;
         }
-        if (!r->timings.empty()) {
-            h << "<table><tr><th class=l>pass</th><th>median ms</th><th>budget ms</th><th>clock</th></tr>";
-            for (const auto& t : r->timings)
-                h << "<tr><td class=l>" << esc(t.pass) << "</td><td class=\"" << (t.passed() ? "" : "bad") << "\">"
-                  << num(t.medianMs) << "</td><td>" << (t.budgetMs ? num(*t.budgetMs) : "none for this device")
-                  << "</td><td>" << esc(t.clock) << "</td></tr>";
-            h << "</table>\n";
-        }
-        h << "</div>\n";
     }
-    // Charts from scripts/charts.py, when a benchmark run left them next to the report.
-    std::ifstream idx(fs::path(chartsDir) / "index.json");
-    if (idx) {
-        h << "<h1>Benchmark charts</h1><div class=row>";
-        for (const auto& entry : fs::directory_iterator(chartsDir))
-            if (entry.path().extension() == ".png")
-                h << "<figure><figcaption>" << esc(entry.path().stem().string()) << "</figcaption><img width=640 src=\""
-                  << dataUri(entry.path().string()) << "\"></figure>";
-        h << "</div>";
-    }
-    h << R"html(<script>
-function setZoom(z){document.getElementById('zv').textContent=z+'x';
- document.querySelectorAll('img.z').forEach(function(i){ if(!i.dataset.w){i.dataset.w=i.naturalWidth;}
-  i.style.width=(i.dataset.w*z)+'px';});
- document.querySelectorAll('.cmp .top').forEach(function(t){t.style.height='100%';});}
-function slide(n,v){var t=document.getElementById('t'+n);t.style.width=v+'%';}
-window.addEventListener('load',function(){setZoom(2);document.querySelectorAll('.cmp .top').forEach(function(t){t.style.width='50%';});});
-</script></body></html>
-)html";
-    return h.str();
+    return o;
+}
+
+// Replaces the one occurrence of `marker` in `page`.
+Status fill(std::string& page, const std::string& marker, const std::string& text) {
+    const auto at = page.find(marker);
+    if (at == std::string::npos || page.find(marker, at + 1) != std::string::npos)
+        return internal("harness/report/index.html: needs " + marker + " exactly once");
+    page.replace(at, marker.size(), text);
+    return {};
+}
+
+}  // namespace
+
+nlohmann::json reportData(const GateRun& run, const std::string& chartsDir) {
+    nlohmann::json order = nlohmann::json::array(), results = nlohmann::json::array();
+    for (const auto* r : ordered(run)) order.push_back(r - run.results.data());
+    for (const auto& r : run.results) results.push_back({{"label", r.label()}, {"note", verdictNote(r)}});
+    return {{"gate", toJson(run)},
+            {"view",
+             {{"counts", countsText(run)},
+              {"order", order},
+              {"results", results},
+              {"images", shownImages(run)},
+              {"heat_scale", heatScaleCss()},
+              {"charts", charts(chartsDir)}}}};
+}
+
+Result<std::string> reportHtml(const GateRun& run, const std::string& chartsDir) {
+    const auto& files = reportFiles();
+    std::string page = files.at("index.html");
+    // A message or a path that is not UTF-8 is written with U+FFFD rather
+    // than failing the report.
+    const std::string data = reportData(run, chartsDir).dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+    CAVITY_TRY(fill(page, "<script src=\"report.js\"></script>", "<script>\n" + files.at("report.js") + "</script>"));
+    CAVITY_TRY(fill(page, "@GATE_DATA@", scriptSafe(data)));
+    return page;
 }
 
 Status writeReports(const GateRun& run, const std::string& outDir) {
@@ -429,7 +397,8 @@ Status writeReports(const GateRun& run, const std::string& outDir) {
     CAVITY_TRY(writeJson((out / "gate.json").string(), toJson(run)));
     CAVITY_TRY(writeText(out / "junit.xml", junitXml(run)));
     CAVITY_TRY(writeText(out / "summary.md", summaryMarkdown(run)));
-    CAVITY_TRY(writeText(out / "index.html", reportHtml(run, (out / "charts").string())));
+    CAVITY_ASSIGN(const std::string html, reportHtml(run, (out / "charts").string()));
+    CAVITY_TRY(writeText(out / "index.html", html));
     return {};
 }
 

@@ -1,5 +1,6 @@
 #include "judge_folders.h"
 
+#include "config_id.h"
 #include "gate_judge.h"
 #include "image_file.h"
 #include "json_input.h"

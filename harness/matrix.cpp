@@ -1,5 +1,6 @@
 #include "matrix.h"
 
+#include "config_id.h"
 #include "digest.h"
 #include "json_input.h"
 #include "pipeline.h"

@@ -43,6 +43,12 @@ std::vector<PassSpec> buildPasses(const RunConfig& c);
 // radiance would need an upsample of its own).
 bool supportsHalf(const std::string& kernel);
 
+// Validates the whole configuration against the pipeline it builds: kernel
+// known and of role "ao", every parameter in range for every kernel of the
+// pipeline, sizes; with an imported G-buffer, no pass that evaluates the
+// analytic scene.
+Status validate(const RunConfig& c);
+
 // The images a user looks at, in the order they are written: name and what it is.
 struct OutputSpec { std::string image; std::string description; };
 std::vector<OutputSpec> userOutputs(const RunConfig& c);

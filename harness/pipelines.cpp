@@ -15,6 +15,21 @@ bool isSsdo(const kernels::KernelDecl& k) {
     return k.outputs.size() == 2 && k.outputs[0].name == "visibility" && k.outputs[1].name == "radiance";
 }
 
+std::string aoKernelNames() {
+    std::string s;
+    for (const auto& k : kernels::all())
+        if (k.role == kernels::Role::Ao || k.role == kernels::Role::Reference) s += (s.empty() ? "" : ", ") + k.name;
+    return s;
+}
+
+// The AO kernels that read only the G-buffer.
+std::string screenSpaceAoNames() {
+    std::string s;
+    for (const auto& k : kernels::all())
+        if (k.role == kernels::Role::Ao && !kernels::evaluatesScene(k)) s += (s.empty() ? "" : ", ") + k.name;
+    return s;
+}
+
 }  // namespace
 
 bool supportsHalf(const std::string& kernel) {
@@ -126,6 +141,34 @@ std::vector<OutputSpec> userOutputs(const RunConfig& c) {
             {"ao_blur", "blurred ambient occlusion"},
             {"color", "composited image"},
             {"normal", "G-buffer view-space normal"}};
+}
+
+Status validate(const RunConfig& c) {
+    const auto* k = kernels::find(c.kernel);
+    // "reference" kernels (the ground truth) run in the AO slot when named;
+    // sweeps over "every AO kernel" leave them out (they are slow by design).
+    if (!k || (k->role != kernels::Role::Ao && k->role != kernels::Role::Reference)) return badInput("--kernel " + c.kernel + ": unknown kernel (have: " + aoKernelNames() + ")");
+    if (c.width < 1 || c.height < 1 || c.width > kMaxResolution || c.height > kMaxResolution)
+        return badInput("--res " + std::to_string(c.width) + "x" + std::to_string(c.height) +
+                        ": must be WIDTHxHEIGHT with each in 1.." + std::to_string(kMaxResolution));
+    if (c.raster && c.imported()) return badInput("--gbuffer: raster and import exclude each other");
+    // A pass that evaluates the analytic scene itself has no scene to
+    // evaluate when the G-buffer is a capture.
+    if (c.imported())
+        for (const auto& spec : buildPasses(c))
+            if (const auto* d = kernels::find(spec.kernel); d && kernels::evaluatesScene(*d))
+                return badInput("--kernel " + c.kernel + ": pass " + spec.name + " (" + d->name +
+                                        ") evaluates the analytic scene, so it cannot run on an imported G-buffer "
+                                        "(--gbuffer import); use a screen-space kernel (have: " + screenSpaceAoNames() + ")");
+    if (c.half && !supportsHalf(c.kernel))
+        return badInput("--resolution half: kernel " + c.kernel + " has no half-resolution pipeline (use full)");
+    // Values set in code (sweeps, matrices, tests) rather than parsed.
+    for (const auto& [name, v] : c.params) {
+        const auto* p = kernels::findParam(name);
+        if (!p) return badInput("--" + name + ": unknown flag");
+        CAVITY_TRY(kernels::checkValue(*p, v));
+    }
+    return {};
 }
 
 }  // namespace cavity

@@ -1,5 +1,7 @@
 #include "results.h"
 
+#include "config_id.h"
+
 #include <chrono>
 #include <cmath>
 #include <ctime>

@@ -1,5 +1,6 @@
 #include "runner.h"
 
+#include "config_id.h"
 #include "gbuffer_import.h"
 #include "image_io.h"
 

@@ -1,5 +1,6 @@
 #include "sweep.h"
 
+#include "config_id.h"
 #include "pipeline.h"
 
 #include <set>

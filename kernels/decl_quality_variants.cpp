@@ -46,15 +46,12 @@ void setDefault(KernelDecl& k, const std::string& param, double def) {
     throw std::logic_error("decl_quality_variants: kernel '" + k.name + "' has no parameter '" + param + "'");
 }
 
-KernelDecl ssdoMarched(const std::vector<KernelDecl>& seeds) {
-    KernelDecl k = copyOf(seeds, "ssdo");
-    k.name = "ssdo_marched";
-    k.summary = "SSDO with each of the n directions marched in 4 steps to R (seed 003 tests one point at a random length)";
+// A seed SSDO pass made to march `steps` points a direction, and its cost
+// with every direction marching all its steps (an open direction does):
+// each step past the seed's one fetches a position and a normal more.
+void marchEveryStep(KernelDecl& k) {
     setDefault(k, "steps", kMarchedSteps);
-    auto seedCost = k.cost;
-    // The seed's cost with every direction marching all its steps (an open
-    // direction does): each step fetches a position and a normal.
-    k.cost = [seedCost](const ParamValues& v) {
+    k.cost = [seedCost = k.cost](const ParamValues& v) {
         Cost c = seedCost(v);
         const double extra = v.at("samples") * (v.at("steps") - 1);
         c.fetchesPerPixel += 2 * extra;
@@ -62,6 +59,13 @@ KernelDecl ssdoMarched(const std::vector<KernelDecl>& seeds) {
         c.fetchSlotsPerPixel += extra * (fetchSlots(16) + fetchSlots(kRgba16f));
         return c;
     };
+}
+
+KernelDecl ssdoMarched(const std::vector<KernelDecl>& seeds) {
+    KernelDecl k = copyOf(seeds, "ssdo");
+    k.name = "ssdo_marched";
+    k.summary = "SSDO with each of the n directions marched in 4 steps to R (seed 003 tests one point at a random length)";
+    marchEveryStep(k);
     return k;
 }
 
@@ -73,16 +77,7 @@ KernelDecl ssdoMarchedIndirect(const std::vector<KernelDecl>& seeds) {
     KernelDecl k = copyOf(seeds, "ssdo_indirect");
     k.name = "ssdo_marched_indirect";
     k.summary = "ssdo_marched's one-bounce indirect light, from the first blocked point of each marched direction";
-    setDefault(k, "steps", kMarchedSteps);
-    auto seedCost = k.cost;
-    k.cost = [seedCost](const ParamValues& v) {
-        Cost c = seedCost(v);
-        const double extra = v.at("samples") * (v.at("steps") - 1);
-        c.fetchesPerPixel += 2 * extra;
-        c.bytesPerPixel += extra * (16 + kRgba16f);
-        c.fetchSlotsPerPixel += extra * (fetchSlots(16) + fetchSlots(kRgba16f));
-        return c;
-    };
+    marchEveryStep(k);
     return k;
 }
 

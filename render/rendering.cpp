@@ -1,5 +1,6 @@
 #include "rendering.h"
 
+#include "config_id.h"
 #include "digest.h"
 #include "runner.h"
 

@@ -11,7 +11,8 @@ struct Outcome {
     std::string output;   // what `redirect` sent into the pipe (by default stdout and stderr)
 };
 
-// `binary args redirect`, with `env` (VAR=value ...) before it. `redirect` is
+// `binary args redirect`, with `env` before it: VAR=value assignments, or
+// `env -C DIR` to run the binary from DIR. `redirect` is
 // how the shell sends the two streams into the pipe read here: "2>&1" for
 // both, "2>/dev/null" for stdout only, "2>&1 >/dev/null" for stderr only.
 Outcome runBinary(const std::string& binary, const std::string& args, const std::string& env = "",

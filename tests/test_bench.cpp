@@ -1,13 +1,14 @@
 // The benchmark runner: registers exactly the sweep's configurations, runs a
 // filtered subset on both APIs, and reports as manual time exactly the GPU
 // time the backend's timestamps gave for the passes after the G-buffer.
+#include "config_id.h"
 #include "per_pass_reporter.h"
+#include "run_binary.h"
 #include "sweep.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include <array>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -20,22 +21,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct Outcome {
-    int code = -1;
-    std::string output;
-};
+using cavity::test::Outcome;
 
-Outcome bench(const std::string& args) {
-    const std::string cmd = std::string(CAVITY_BENCH_EXE) + " " + args + " 2>&1";
-    Outcome o;
-    FILE* p = popen(cmd.c_str(), "r");
-    std::array<char, 4096> buf;
-    size_t n;
-    while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) o.output.append(buf.data(), n);
-    const int status = pclose(p);
-    o.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return o;
-}
+Outcome bench(const std::string& args) { return cavity::test::runBinary(CAVITY_BENCH_EXE, args); }
 
 bool ci() {
     const char* v = std::getenv("CI");

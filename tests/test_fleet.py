@@ -45,6 +45,27 @@ def verdicts(gate_json):
             for r in load(gate_json)["results"]}
 
 
+def report_data(html):
+    """The data the gate inlined in its index.html (harness/report/)."""
+    with open(html) as f:
+        m = re.search(r'<script type="application/json" id="gate-data">(.*?)</script>', f.read(), re.S)
+    return json.loads(m.group(1))
+
+
+def rendered_dom(test, html):
+    """The report's document once its script has run, as headless Chromium
+    serialises it; without chromium a skip, or a failure under CI=true."""
+    if not shutil.which("chromium"):
+        if os.environ.get("CI") == "true":
+            test.fail("chromium is not installed (scripts/setup.sh installs it)")
+        test.skipTest("chromium is not installed")
+    p = subprocess.run(["timeout", "120", "chromium", "--headless=new", "--no-sandbox", "--disable-gpu",
+                        "--dump-dom", "file://" + os.path.abspath(html)],
+                       capture_output=True, text=True)
+    test.assertEqual(p.returncode, 0, p.stderr)
+    return p.stdout
+
+
 def one_line_error(test, p, *words):
     test.assertEqual(p.returncode, 2, p.stdout + p.stderr)
     lines = p.stderr.strip().splitlines()
@@ -229,16 +250,20 @@ class Flaky(Base):
             summary = f.read()
         self.assertIn(f"| `{VK}` | flaky |", summary)
         self.assertNotIn("all 2 configurations passed", summary)
-        with open(os.path.join(out, "index.html")) as f:
-            html = f.read()
-        self.assertIn(f'data-id="{VK}" data-repetition="0" data-verdict="flaky"', html)
-        self.assertIn("<span class=badge>flaky</span>", html)
         self.assertIn("| flaky |", p.stdout)   # the console gets summary.md
         # The verdict survives gate.json: a merge of the shard keeps it.
         merged = os.path.join(self.tmp, "merged")
         p = run([CAVITY, "gate", "merge", out, "--out", merged])
         self.assertEqual(p.returncode, 0, p.stderr)
         self.assertEqual(verdicts(os.path.join(merged, "gate.json"))[VK][0], "flaky")
+        # The report's page shows the verdict it was given: the data inlined
+        # in it is gate.json, and the page its script builds carries the badge
+        # (last: without chromium the rest of this test is skipped).
+        html = os.path.join(out, "index.html")
+        self.assertEqual(report_data(html)["gate"], g)
+        dom = rendered_dom(self, html)
+        self.assertIn(f'data-id="{VK}" data-repetition="0" data-verdict="flaky"', dom)
+        self.assertIn('<span class="badge">flaky</span>', dom)
 
     def test_without_retries_the_flake_is_a_failure(self):
         out = os.path.join(self.tmp, "gate")

@@ -5,8 +5,11 @@
 #include "gate.h"
 #include "gate_report.h"
 #include "gpu_fixture.h"
+#include "run_binary.h"
 
 #include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -265,14 +268,66 @@ TEST(Gate, ShardsPartitionTheMatrix) {
     EXPECT_EQ(seen.size(), 20u);
 }
 
+// The report is a page whose script builds it from the data inlined in it:
+// what a reviewer sees is what headless Chromium has in its document after
+// the script ran. Not installed: a failure in CI (scripts/setup.sh installs
+// it), a skip elsewhere.
+#define REQUIRE_CHROMIUM()                                                                \
+    if (runBinary("command", "-v chromium", "", ">/dev/null 2>&1").code != 0) {          \
+        if (inCI()) FAIL() << "chromium is not installed (scripts/setup.sh installs it)"; \
+        GTEST_SKIP() << "chromium is not installed";                                     \
+    }
+
+const std::string kChromium = "120 chromium --headless=new --no-sandbox --disable-gpu --hide-scrollbars --window-size=1400,1000 ";
+
+// The document of the page at `html` once its script has run, as Chromium serialises it.
+std::string renderedDom(const fs::path& html) {
+    const Outcome o = runBinary("timeout", kChromium + "--dump-dom file://" + html.string(), "", "2>/dev/null");
+    EXPECT_EQ(o.code, 0) << html;
+    return o.output;
+}
+
+std::string slurp(const fs::path& p) {
+    std::ifstream f(p, std::ios::binary);
+    return {std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>()};
+}
+
+// The page's data is gate.json as written beside it, inlined so that no text
+// in it can end its <script> block or change how the block parses: a
+// message holding "</script>" or "<!--<script>" stays data, and the page
+// shows it as text.
+TEST(Gate, HtmlReportInlinesGateJsonThatNoMessageBreaksOutOf) {
+    gate::GateRun run;
+    run.matrix = "ci";
+    gate::ConfigResult r;
+    r.id = "corner/alchemy/n16/b4/full/160x90/vk/compute";
+    r.error = "</script><!--<script> a & b </SCRIPT>";
+    r.errorCode = 4;
+    run.results.push_back(r);
+    const fs::path out = tempDir("inline");
+    ASSERT_TRUE(gate::writeReports(run, out.string()).ok());
+    const std::string html = slurp(out / "index.html");
+    const std::string open = "<script type=\"application/json\" id=\"gate-data\">";
+    const auto at = html.find(open);
+    ASSERT_NE(at, std::string::npos);
+    const std::string block = html.substr(at + open.size(), html.find("</script>", at) - at - open.size());
+    EXPECT_EQ(block.find('<'), std::string::npos) << block;
+    const auto data = nlohmann::json::parse(block);
+    EXPECT_EQ(data["gate"], nlohmann::json::parse(slurp(out / "gate.json")));
+    EXPECT_EQ(data["view"]["order"], nlohmann::json::array({0}));
+    REQUIRE_CHROMIUM();
+    const std::string dom = renderedDom(out / "index.html");
+    EXPECT_NE(dom.find("<p class=\"bad\">&lt;/script&gt;&lt;!--&lt;script&gt; a &amp; b &lt;/SCRIPT&gt;</p>"), std::string::npos)
+        << dom;
+    EXPECT_NE(dom.find("<title>Cavity gate ci: 1 failed</title>"), std::string::npos);
+    fs::remove_all(out);
+}
+
 // The report a reviewer opens: every configuration present, failing first,
 // loadable by headless Chromium from disk; the screenshot is kept to look at.
 TEST(Gate, HtmlReportOpensInHeadlessChromiumWithFailuresFirst) {
     REQUIRE_BACKENDS();
-    if (std::system("command -v chromium >/dev/null 2>&1") != 0) {
-        if (inCI()) FAIL() << "chromium is not installed (scripts/setup.sh installs it)";
-        GTEST_SKIP() << "chromium is not installed";
-    }
+    REQUIRE_CHROMIUM();
     gate::GateOptions o;
     o.baselines = kBaselines;
     o.out = tempDir("report").string();
@@ -286,15 +341,13 @@ TEST(Gate, HtmlReportOpensInHeadlessChromiumWithFailuresFirst) {
     const auto run = runOrDie(o);
     ASSERT_TRUE(gate::writeReports(run, o.out).ok());
     const fs::path html = fs::path(o.out) / "index.html";
-    const fs::path dom = fs::path(o.out) / "dom.html";
     const fs::path shot = fs::path(CAVITY_BINARY_DIR) / "gate_report_screenshot.png";
-    const std::string flags = "timeout 120 chromium --headless=new --no-sandbox --disable-gpu --hide-scrollbars "
-                              "--window-size=1400,1000 ";
-    ASSERT_EQ(std::system((flags + "--dump-dom file://" + html.string() + " > " + dom.string() + " 2>/dev/null").c_str()), 0);
-    ASSERT_EQ(std::system((flags + "--screenshot=" + shot.string() + " file://" + html.string() + " >/dev/null 2>&1").c_str()), 0);
+    ASSERT_EQ(runBinary("timeout", kChromium + "--screenshot=" + shot.string() + " file://" + html.string()).code, 0);
     EXPECT_GT(fs::file_size(shot), 10000u);
-    std::ifstream f(dom);
-    const std::string text((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+    // What the page's script built from the inlined data: the document up to
+    // the script itself (the data block and report.js follow the results).
+    const std::string page = renderedDom(html);
+    const std::string text = page.substr(0, page.find("<script"));
     size_t lastFail = 0, firstPass = std::string::npos;
     for (const auto& r : run.results) {
         const auto at = text.find("data-id=\"" + r.id + "\"");

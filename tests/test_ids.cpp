@@ -2,15 +2,16 @@
 // never share one, ids at the defaults read as they always did (baseline
 // paths depend on it), and every kernel parameter sweeps in cavity run.
 #include "config.h"
+#include "config_id.h"
 #include "matrix.h"
 #include "pipeline.h"
+#include "run_binary.h"
 #include "sweep.h"
 
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
 
-#include <array>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -146,28 +147,11 @@ TEST(ConfigId, DistinctInTheBenchmarkSweep) {
         expectIdsMatchContent(benchmarkSweep(axes, {gpu::Api::OpenGL, gpu::Api::Vulkan}));
 }
 
-namespace {
-
-std::string shell(const std::string& cmd, int* code) {
-    std::string out;
-    FILE* p = popen((cmd + " 2>&1").c_str(), "r");
-    if (!p) return out;
-    std::array<char, 4096> buf;
-    size_t n;
-    while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) out.append(buf.data(), n);
-    const int st = pclose(p);
-    *code = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-    return out;
-}
-
-}  // namespace
-
 TEST(RunSweep, EveryKernelParameterSweeps) {
     const fs::path dir = fs::temp_directory_path() / ("cavity-ids-" + std::to_string(::getpid()));
     fs::remove_all(dir);
-    int code = -1;
-    const std::string out = shell(std::string(CAVITY_EXE) + " run --backend vk --res 32x18 --frames 1 --warmup 0"
-                                  " --radius 0.5,1.0 --out " + dir.string(), &code);
+    const auto [code, out] = test::runBinary(CAVITY_EXE, "run --backend vk --res 32x18 --frames 1 --warmup 0"
+                                                         " --radius 0.5,1.0 --out " + dir.string());
     ASSERT_EQ(code, 0) << out;
     EXPECT_TRUE(fs::is_directory(dir / "corner/alchemy/n16/b4/full/32x18/vk/compute")) << out;
     EXPECT_TRUE(fs::is_directory(dir / "corner/alchemy/n16/b4/radius=1/full/32x18/vk/compute")) << out;

@@ -3,6 +3,7 @@
 // parameter an integer.
 #include "config.h"
 #include "kernel.h"
+#include "pipeline.h"
 
 #include <gtest/gtest.h>
 

@@ -12,6 +12,7 @@
 //  * G-buffer: see kGbuffer below; the ray march is iterative, so a ray that
 //    grazes a silhouette may hit on one side and miss on the other.
 #include "camera.h"
+#include "config_id.h"
 #include "gpu_fixture.h"
 #include "kernel_runner.h"
 #include "pipeline.h"

@@ -11,6 +11,7 @@
 #include "render_folder.h"
 #include "rendering.h"
 #include "results.h"
+#include "run_binary.h"
 
 #include <elf.h>
 
@@ -19,7 +20,6 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
-#include <array>
 #include <cstring>
 #include <limits>
 #include <cstdio>
@@ -36,25 +36,8 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-struct Outcome {
-    int code = -1;
-    std::string output;   // stdout and stderr
-};
-
-Outcome shell(const std::string& cmd) {
-    Outcome o;
-    FILE* p = popen((cmd + " 2>&1").c_str(), "r");
-    if (!p) return o;
-    std::array<char, 4096> buf;
-    size_t n;
-    while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) o.output.append(buf.data(), n);
-    const int status = pclose(p);
-    o.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return o;
-}
-
-Outcome cavity(const std::string& args) { return shell(std::string(CAVITY_EXE) + " " + args); }
-Outcome render(const std::string& args) { return shell(std::string(CAVITY_RENDER_EXE) + " " + args); }
+Outcome cavity(const std::string& args) { return runBinary(CAVITY_EXE, args); }
+Outcome render(const std::string& args) { return runBinary(CAVITY_RENDER_EXE, args); }
 
 std::string slurp(const fs::path& p) {
     std::ifstream f(p, std::ios::binary);
@@ -348,7 +331,7 @@ TEST(RenderBinary, LinksNoOpenImageIO) {
         EXPECT_TRUE(ok) << CAVITY_RENDER_EXE << " needs " << lib << ", which does not travel";
     }
     // And nothing it loads pulls OpenImageIO in either.
-    const Outcome ldd = shell(std::string("ldd ") + CAVITY_RENDER_EXE);
+    const Outcome ldd = runBinary("ldd", CAVITY_RENDER_EXE);
     if (ldd.code == 0) {
         EXPECT_EQ(ldd.output.find("OpenImageIO"), std::string::npos) << ldd.output;
     }
@@ -541,8 +524,8 @@ TEST_F(TwoStep, BadRenderFlagsExitTwoWithOneLineAndWriteNothing) {
 TEST_F(TwoStep, RenderFindsTheBaselinesFromTheRepositoryNotTheWorkingDirectory) {
     const fs::path elsewhere = scratch("elsewhere");
     fs::create_directories(elsewhere);
-    const Outcome o = shell("cd " + elsewhere.string() + " && " + CAVITY_RENDER_EXE + " --matrix nope --out " +
-                            (elsewhere / "out").string());
+    const Outcome o = runBinary(CAVITY_RENDER_EXE, "--matrix nope --out " + (elsewhere / "out").string(),
+                                "env -C " + elsewhere.string());
     EXPECT_EQ(o.code, 2) << o.output;
     const std::string want = "cavity_render: --matrix nope: no such matrix in " +
                              (fs::path(CAVITY_SOURCE_DIR) / "baselines" / "matrices.json").string();

@@ -3,6 +3,7 @@
 // the cases with no floor, every declaration's cost being complete, and
 // bench/ROOFLINE.md's table being what the code computes.
 #include "config.h"
+#include "config_id.h"
 #include "pipeline.h"
 #include "roofline.h"
 

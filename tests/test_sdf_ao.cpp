@@ -5,6 +5,7 @@
 // test_reference.cpp.)
 #include "camera.h"
 #include "config.h"
+#include "config_id.h"
 #include "gpu_fixture.h"
 #include "pipeline.h"
 #include "quality.h"

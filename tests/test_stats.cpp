@@ -1,5 +1,6 @@
 // Statistics and configuration ids: plain functions, no GPU.
 #include "config.h"
+#include "config_id.h"
 #include "hodges_lehmann.h"
 #include "mann_whitney.h"
 #include "stats.h"
