@@ -66,6 +66,7 @@ const CommandSpec& judgeSpec() {
             {"--baselines", "DIR", kBaselinesHelp},
             {"--expectations", "DIR", "folder of expectation files (default <baselines>/expectations)"},
             {"--out", "DIR", "report folder (default out/gate)"},
+            {"--quiet", "", "no progress lines on stderr"},
         },
         "RENDER_DIR...",
         "folders written by cavity_render",
@@ -164,7 +165,7 @@ int judge(const std::vector<std::string>& argv) {
     auto expectations =
         gate::loadExpectations(expectationsDir.empty() ? (fs::path(baselines) / "expectations").string() : expectationsDir);
     if (!expectations) return fail("cavity gate judge", expectations.error());
-    auto run = gate::judgeFolders(dirs, baselines, out);
+    auto run = gate::judgeFolders(dirs, baselines, out, p.has("--quiet"));
     if (!run) return fail("cavity gate judge", run.error());
     gate::applyExpectations(*run, *expectations);
     if (auto st = gate::writeReports(*run, out); !st) return fail("cavity gate judge", st.error());

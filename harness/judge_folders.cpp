@@ -118,7 +118,8 @@ Status checkFiles(const Folder& f) {
 
 }  // namespace
 
-Result<GateRun> judgeFolders(const std::vector<std::string>& dirs, const std::string& baselines, const std::string& out) {
+Result<GateRun> judgeFolders(const std::vector<std::string>& dirs, const std::string& baselines, const std::string& out,
+                             bool quiet) {
     const auto start = std::chrono::steady_clock::now();
     if (dirs.empty()) return badInput("needs one or more render folders (cavity_render --out DIR)");
     std::vector<Folder> folders;
@@ -176,6 +177,8 @@ Result<GateRun> judgeFolders(const std::vector<std::string>& dirs, const std::st
             if (std::find(run.backendErrors.begin(), run.backendErrors.end(), e.message) == run.backendErrors.end())
                 run.backendErrors.push_back(e.message);
     }
+    size_t renders = 0;
+    for (const auto& [f, c] : items) renders += c->renders.size();
     for (const auto& [f, c] : items) {
         ConfigResult rep0;
         for (const auto& entry : c->renders) {
@@ -197,8 +200,13 @@ Result<GateRun> judgeFolders(const std::vector<std::string>& dirs, const std::st
                 CAVITY_ASSIGN(r.images[i.name], render::readImageFile((fs::path(f->dir) / i.file).string(), i.stored));
             }
             CAVITY_ASSIGN(ConfigResult res, judgeRendering(r, judge, entry.repetition ? &rep0 : nullptr));
-            if (res.error.empty())
-                std::fprintf(stderr, "gate: %-56s %s\n", res.label().c_str(), res.passed() ? "pass" : "FAIL");
+            // Progress as `cavity gate` prints it: count, elapsed, ETA.
+            const size_t done = run.results.size() + 1;
+            const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            const double eta = elapsed / double(done) * double(renders - std::min(done, renders));
+            if (res.error.empty() && !quiet)
+                std::fprintf(stderr, "gate: [%zu/%zu] %s %s  elapsed %.1f s  ETA %.1f s\n", done, renders, res.label().c_str(),
+                             res.passed() ? "pass" : "FAIL", elapsed, eta);
             if (entry.repetition == 0) rep0 = res;
             run.results.push_back(std::move(res));
         }

@@ -16,6 +16,7 @@
 
 namespace cavity::gate {
 
-Result<GateRun> judgeFolders(const std::vector<std::string>& dirs, const std::string& baselines, const std::string& out);
+Result<GateRun> judgeFolders(const std::vector<std::string>& dirs, const std::string& baselines, const std::string& out,
+                             bool quiet = false);
 
 }  // namespace cavity::gate

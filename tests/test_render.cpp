@@ -210,6 +210,13 @@ TEST_F(TwoStep, JudgingARenderFolderGivesTheOneStepVerdictsAndMetrics) {
             EXPECT_EQ(t["clock"], measured[key]["clock"]) << key;
         }
     for (const char* f : {"junit.xml", "summary.md", "index.html"}) EXPECT_TRUE(fs::exists(out / f)) << f;
+    // Progress as `cavity gate` prints it, a line a judged render; none with --quiet.
+    EXPECT_NE(o.output.find("gate: [6/6] "), std::string::npos) << o.output;
+    EXPECT_NE(o.output.find(" ETA "), std::string::npos) << o.output;
+    const Outcome quiet = cavity("gate judge " + rendered().string() + " --baselines " + base.string() + " --out " +
+                                 scratch("quiet").string() + " --quiet");
+    ASSERT_EQ(quiet.code, 0) << quiet.output;
+    EXPECT_EQ(quiet.output.find("gate: ["), std::string::npos) << quiet.output;
 }
 
 TEST_F(TwoStep, BudgetsAreCheckedAgainstTheManifestTimes) {
