@@ -133,6 +133,16 @@ KernelDecl depthPyramid() {
     return k;
 }
 
+// A fast AO kernel's cost: the pixel's depth and normal, n R32F samples
+// of the pyramid, the AO and its packed key written; the pyramid's smaller
+// levels are a third of level 0 in DRAM.
+Cost pyramidAoCost(const ParamValues& v) {
+    const double n = v.at("samples");
+    return Cost{2 + n, kR32f + kRgba16f + n * kR32f + kR16f + kRgba16f,
+                fetchSlots(kR32f) + fetchSlots(kRgba16f) + n * fetchSlots(kR32f),
+                kR32f * 4 / 3 + kRgba16f + kR16f + kRgba16f};
+}
+
 KernelDecl alchemyFast() {
     KernelDecl k = alchemy();
     k.name = "alchemy_fast";
@@ -156,13 +166,7 @@ KernelDecl alchemyFast() {
         }
         arrays["spiral"] = std::move(table);
     };
-    k.cost = [](const ParamValues& v) {
-        const double n = v.at("samples");
-        return Cost{2 + n, kR32f + kRgba16f + n * kR32f + kR16f + kRgba16f,
-                    fetchSlots(kR32f) + fetchSlots(kRgba16f) + n * fetchSlots(kR32f),
-                    // the pyramid's smaller levels are a third of level 0
-                    kR32f * 4 / 3 + kRgba16f + kR16f + kRgba16f};
-    };
+    k.cost = pyramidAoCost;
     return k;
 }
 
@@ -195,12 +199,7 @@ KernelDecl hemisphereFast() {
     };
     // Every point fetched: a blocked ray's later points are skipped, which
     // the floor does not count on.
-    k.cost = [](const ParamValues& v) {
-        const double n = v.at("samples");
-        return Cost{2 + n, kR32f + kRgba16f + n * kR32f + kR16f + kRgba16f,
-                    fetchSlots(kR32f) + fetchSlots(kRgba16f) + n * fetchSlots(kR32f),
-                    kR32f * 4 / 3 + kRgba16f + kR16f + kRgba16f};
-    };
+    k.cost = pyramidAoCost;
     return k;
 }
 

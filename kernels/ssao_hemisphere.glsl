@@ -31,18 +31,9 @@ void cavity_main(ivec2 pixel) {
         precise vec2 rotated = vec2(r.x * cs.x - r.y * cs.y, r.x * cs.y + r.y * cs.x);
         r = rotated;
     }
-    // Gram-Schmidt (seed 004, step 4): the noise vector minus its component
-    // along N is a random tangent. It vanishes only when N lies in the view
-    // xy plane along the noise vector; the perpendicular in xy is then a
-    // tangent instead.
-    vec3 rv = vec3(r, 0.0);
-    precise vec3 t = rv - nrm * orderedDot(rv, nrm);
-    if (lengthSquared(t) < 1e-6) {
-        rv = vec3(-r.y, r.x, 0.0);
-        t = rv - nrm * orderedDot(rv, nrm);
-    }
-    t = portableNormalize(t);
-    vec3 b = orderedCross(nrm, t);
+    // The noise vector, Gram-Schmidt against N: a random tangent (seed 004, step 4).
+    vec3 t, b;
+    tangentFrame(r, nrm, t, b);
 
     int n = clamp(P.samples, 1, 256);
     // Kernel points come in groups along one direction (P.kernel[i].w = 1

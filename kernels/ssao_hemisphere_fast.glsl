@@ -76,18 +76,9 @@ void cavity_main(ivec2 pixel) {
     vec3 X = positionAt(pixel, d);
     int maxLevel = textureQueryLevels(in_zmip) - 1;
 
-    // The kernel's tangent frame, turned about N by the pixel's phase:
-    // Gram-Schmidt of (cos, sin, 0) against N, or of its perpendicular where
-    // the two are parallel (N in the view xy plane along it).
-    vec2 r = cosSinTurns(pixelHash(pixel));
-    vec3 rv = vec3(r, 0.0);
-    precise vec3 t = rv - N * orderedDot(rv, N);
-    if (lengthSquared(t) < 1e-6) {
-        rv = vec3(-r.y, r.x, 0.0);
-        t = rv - N * orderedDot(rv, N);
-    }
-    vec3 tn = portableNormalize(t);
-    vec3 b = orderedCross(N, tn);
+    // The kernel's tangent frame, turned about N by the pixel's phase.
+    vec3 tn, b;
+    tangentFrame(cosSinTurns(pixelHash(pixel)), N, tn, b);
 
     // View point -> pixel: x_px = x / depth * toPixel.x + size.x / 2, and
     // y likewise with the flip (positionAt() inverted).

@@ -17,6 +17,7 @@ namespace screen {   // refs_screen_space.cpp
 Vec3 normalizeExact(Vec3 v);
 float smoothstep01(float x);
 float sampleHash(int x, int y, int i);
+void tangentFrame(Vec2 r, Vec3 n, Vec3& t, Vec3& b);
 }  // namespace screen
 
 namespace {
@@ -71,6 +72,17 @@ Vec3 octDecode(float px, float py) {
         n.x = x;
     }
     return normalize(n);
+}
+
+// A fast AO kernel's two outputs at (x, y): the AO, and the key the
+// separable blur reads (AO, linear depth, octahedral normal).
+void writeAo(std::vector<HostImage>& out, int x, int y, float ao, float depth, Vec3 N) {
+    const Vec2 oct = octEncode(N);
+    out[0].at(x, y) = ao;
+    out[1].at(x, y, 0) = ao;
+    out[1].at(x, y, 1) = depth;
+    out[1].at(x, y, 2) = oct.x;
+    out[1].at(x, y, 3) = oct.y;
 }
 
 // One axis of the separable blur at pixel (x, y): the key with its AO blurred.
@@ -187,13 +199,7 @@ Result<std::vector<HostImage>> alchemyFast(const Context& ctx) {
                 if (omega2 > R * R) continue;
                 S += weight * std::max(0.0f, dot(N, omega) - bias) / std::max(c * c, omega2);
             }
-            const float A = std::pow(std::max(0.0f, 1.0f - scale * S), contrast);
-            out[0].at(x, y) = A;
-            const Vec2 oct = octEncode(N);
-            out[1].at(x, y, 0) = A;
-            out[1].at(x, y, 1) = d;
-            out[1].at(x, y, 2) = oct.x;
-            out[1].at(x, y, 3) = oct.y;
+            writeAo(out, x, y, std::pow(std::max(0.0f, 1.0f - scale * S), contrast), d, N);
         }
     }
     return out;
@@ -231,15 +237,8 @@ Result<std::vector<HostImage>> hemisphereFast(const Context& ctx) {
             }
             N = screen::normalizeExact(N);
             const Vec3 X = positionAt(f, x, y, d);
-            const Vec2 r = cosSinTurns(pixelHash(x, y));
-            Vec3 rv{r.x, r.y, 0.0f};
-            Vec3 t = rv - N * dot(rv, N);
-            if (lengthSquared(t) < 1e-6f) {
-                rv = {-r.y, r.x, 0.0f};
-                t = rv - N * dot(rv, N);
-            }
-            t = screen::normalizeExact(t);
-            const Vec3 b = cross(N, t);
+            Vec3 t, b;
+            screen::tangentFrame(cosSinTurns(pixelHash(x, y)), N, t, b);
 
             // One point's occlusion: occludedBy() of the kernel.
             auto occludedBy = [&](const float* k, float lengthScale) -> float {
@@ -284,13 +283,7 @@ Result<std::vector<HostImage>> hemisphereFast(const Context& ctx) {
                     inGroup = 0;
                 }
             }
-            const float ao = std::pow(std::max(1.0f - occlusion / directions, 0.0f), contrast);
-            out[0].at(x, y) = ao;
-            const Vec2 oct = octEncode(N);
-            out[1].at(x, y, 0) = ao;
-            out[1].at(x, y, 1) = d;
-            out[1].at(x, y, 2) = oct.x;
-            out[1].at(x, y, 3) = oct.y;
+            writeAo(out, x, y, std::pow(std::max(1.0f - occlusion / directions, 0.0f), contrast), d, N);
         }
     }
     return out;

@@ -14,6 +14,7 @@ namespace cavity::reference {
 
 namespace screen {   // refs_screen_space.cpp
 Vec3 normalizeExact(Vec3 v);
+void tangentFrame(Vec2 r, Vec3 n, Vec3& t, Vec3& b);
 std::array<float, 4> mulPoint(const float* m, Vec3 v, float w);
 Vec3 viewFromDepth(const kernels::FrameUniforms& f, int tx, int ty, float depth);
 bool texelOfView(const kernels::FrameUniforms& f, Vec3 p, int& tx, int& ty);
@@ -77,14 +78,8 @@ Result<std::vector<HostImage>> hemisphere(const Context& ctx) {
                 const Vec2 cs = cosSinTurns(ign(float(x) + 0.5f, float(y) + 0.5f));
                 r = {r.x * cs.x - r.y * cs.y, r.x * cs.y + r.y * cs.x};
             }
-            Vec3 rv{r.x, r.y, 0.0f};
-            Vec3 t = rv - nrm * dot(rv, nrm);
-            if (lengthSquared(t) < 1e-6f) {
-                rv = {-r.y, r.x, 0.0f};
-                t = rv - nrm * dot(rv, nrm);
-            }
-            t = screen::normalizeExact(t);
-            const Vec3 b = cross(nrm, t);
+            Vec3 t, b;
+            screen::tangentFrame(r, nrm, t, b);
 
             // Points grouped by direction, w = 1 closing a group: a
             // direction is blocked when any of its points is (see the kernel).

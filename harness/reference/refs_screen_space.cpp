@@ -63,6 +63,20 @@ float inverseSqrt(float x) {
 
 Vec3 normalizeExact(Vec3 v) { return v * inverseSqrt(lengthSquared(v)); }
 
+// tangentFrame() of include/screen_space.glsl: Gram-Schmidt of (r, 0)
+// against the unit normal n, or of its perpendicular where the two are
+// parallel.
+void tangentFrame(Vec2 r, Vec3 n, Vec3& t, Vec3& b) {
+    Vec3 rv{r.x, r.y, 0.0f};
+    t = rv - n * dot(rv, n);
+    if (lengthSquared(t) < 1e-6f) {
+        rv = {-r.y, r.x, 0.0f};
+        t = rv - n * dot(rv, n);
+    }
+    t = normalizeExact(t);
+    b = cross(n, t);
+}
+
 std::array<float, 4> mulPoint(const float* m, Vec3 v, float w) {
     // Column c of the GLSL mat4 is m[4c .. 4c+3]; the sum runs over the
     // columns in order, as mulPoint in screen_space.glsl spells it out.

@@ -44,6 +44,21 @@ vec3 portableNormalize(vec3 v) {
 
 // frame matrix times (v, w) as explicit column sums: the order of the
 // additions in a mat4 * vec4 is the implementation's.
+// Gram-Schmidt (seed 004, step 4): the vector (r, 0) minus its component
+// along the unit normal n is a tangent t, and b = n x t completes the frame.
+// It vanishes only when n lies in the view xy plane along r; the
+// perpendicular of r in xy is then a tangent instead.
+void tangentFrame(vec2 r, vec3 n, out vec3 t, out vec3 b) {
+    vec3 rv = vec3(r, 0.0);
+    precise vec3 g = rv - n * orderedDot(rv, n);
+    if (lengthSquared(g) < 1e-6) {
+        rv = vec3(-r.y, r.x, 0.0);
+        g = rv - n * orderedDot(rv, n);
+    }
+    t = portableNormalize(g);
+    b = orderedCross(n, t);
+}
+
 vec4 mulPoint(mat4 m, vec3 v, float w) {
     precise vec4 r = m[0] * v.x + m[1] * v.y + m[2] * v.z + m[3] * w;
     return r;
