@@ -12,8 +12,12 @@ namespace {
 bool isConstant(const std::string& name) { return kernels::findConstant(name) != nullptr; }
 
 bool isSsdo(const kernels::KernelDecl& k) {
-    return k.outputs.size() == 2 && k.outputs[0].name == "visibility" && k.outputs[1].name == "radiance";
+    return k.outputs.size() >= 2 && k.outputs[0].name == "visibility" && k.outputs[1].name == "radiance";
 }
+
+// A kernel that packs its AO (or visibility) with the depth key the
+// separable blur reads: its last output, "ao_key".
+bool packsKey(const kernels::KernelDecl& k) { return k.outputs.size() >= 2 && k.outputs.back().name == "ao_key"; }
 
 std::string aoKernelNames() {
     std::string s;
@@ -48,21 +52,38 @@ std::vector<PassSpec> buildPasses(const RunConfig& c) {
 
     if (isSsdo(*k)) {
         std::vector<ImageRef> in;
-        for (const auto& i : k->inputs) in.push_back({i.name, isConstant(i.name) ? ImageSource::Constant : ImageSource::Pass});
-        // Visibility plays the part of AO in the outputs a user and the gate see.
-        p.push_back({"ao", k->name, in, {"ao", "radiance"}, false});
-        p.push_back({"blur", "blur_bilateral_ssdo", {"ao", "radiance", "position", "normal"}, {"ao_blur", "radiance_blur"}, false});
+        for (const auto& i : k->inputs) {
+            in.push_back({i.name, isConstant(i.name) ? ImageSource::Constant : ImageSource::Pass});
+            if (i.name == "zmip") p.push_back({"pyramid", "depth_pyramid", {"position", "zmip"}, {"zmip"}, false});
+        }
         // A variant's bounce pass is "<kernel>_indirect" (ssdo_marched_indirect): it
         // must walk the very points the direct pass did, so it carries the
-        // variant's defaults.
-        const std::string indirect = kernels::find(k->name + "_indirect") ? k->name + "_indirect" : "ssdo_indirect";
-        p.push_back({"indirect", indirect, {"position", "normal", "albedo", "radiance_blur"}, {"indirect"}, false});
+        // variant's defaults. It reads what the direct pass read, plus the
+        // albedo and the blurred radiance.
+        const std::string indirectKernel = kernels::find(k->name + "_indirect") ? k->name + "_indirect" : "ssdo_indirect";
+        std::vector<ImageRef> indirectIn;
+        for (const auto& i : kernels::find(indirectKernel)->inputs)
+            indirectIn.push_back(i.name == "radiance" ? ImageRef{"radiance_blur"} : ImageRef{i.name});
+        // Visibility plays the part of AO in the outputs a user and the gate see.
         // The bounce is filtered too, as seed 003's lighting pass reads a
         // blurred indirect map: one sample meeting a sender at the distance
         // clamp carries up to (R / clamp)^2 times the others' weight, a
-        // single-pixel firefly along every crease when left raw. The same
-        // bilateral, edge for edge; its visibility output is not used.
-        p.push_back({"indirect_blur", "blur_bilateral_ssdo", {"ao_blur", "indirect", "position", "normal"}, {"indirect_vis", "indirect_blur"}, false});
+        // single-pixel firefly along every crease when left raw. The blur's
+        // visibility output there is not used.
+        if (packsKey(*k)) {
+            // The separable pair, weighted by the direct pass's key for both.
+            p.push_back({"ao", k->name, in, {"ao", "radiance", "ao_key"}, false});
+            p.push_back({"blur_x", "blur_separable_ssdo_x", {"ao_key", "radiance"}, {"ao_key_x", "radiance_x"}, false});
+            p.push_back({"blur_y", "blur_separable_ssdo_y", {"ao_key_x", "radiance_x"}, {"ao_blur", "radiance_blur"}, false});
+            p.push_back({"indirect", indirectKernel, indirectIn, {"indirect"}, false});
+            p.push_back({"indirect_blur_x", "blur_separable_ssdo_x", {"ao_key", "indirect"}, {"indirect_key_x", "indirect_x"}, false});
+            p.push_back({"indirect_blur_y", "blur_separable_ssdo_y", {"indirect_key_x", "indirect_x"}, {"indirect_vis", "indirect_blur"}, false});
+        } else {
+            p.push_back({"ao", k->name, in, {"ao", "radiance"}, false});
+            p.push_back({"blur", "blur_bilateral_ssdo", {"ao", "radiance", "position", "normal"}, {"ao_blur", "radiance_blur"}, false});
+            p.push_back({"indirect", indirectKernel, indirectIn, {"indirect"}, false});
+            p.push_back({"indirect_blur", "blur_bilateral_ssdo", {"ao_blur", "indirect", "position", "normal"}, {"indirect_vis", "indirect_blur"}, false});
+        }
         p.push_back({"composite", "composite_ssdo", {"ao_blur", "radiance_blur", "indirect_blur", "normal", "albedo"}, {"color"}, false});
         return p;
     }
@@ -98,8 +119,7 @@ std::vector<PassSpec> buildPasses(const RunConfig& c) {
     }
     // A kernel that packs AO with its depth key ("ao_key") is blurred by the
     // separable pair, which reads only that; the others by the 2-D bilateral.
-    const bool packed = k->outputs.size() == 2 && k->outputs[1].name == "ao_key";
-    if (packed) {
+    if (packsKey(*k)) {
         p.push_back({"ao", k->name, in, {"ao", "ao_key"}, half});
         p.push_back({"blur_x", "blur_separable_x", {"ao_key"}, {"ao_key_x"}, half});
         if (half) {

@@ -8,6 +8,7 @@
 #include "screen_space_tables.h"
 
 #include <cmath>
+#include <stdexcept>
 
 namespace cavity::kernels {
 
@@ -220,6 +221,82 @@ KernelDecl blurSeparable(const std::string& axis) {
     return k;
 }
 
+
+// The separable pair for ssdo_fast: the key's visibility and an RGBA16F
+// radiance beside it, blurred with the same weights (blur_separable_ssdo_x.glsl).
+KernelDecl blurSeparableSsdo(const std::string& axis) {
+    KernelDecl k = blurSeparable(axis);
+    k.name = "blur_separable_ssdo_" + axis;
+    k.file = "blur_separable_ssdo_" + axis + ".glsl";
+    k.summary = std::string(axis == "x" ? "horizontal" : "vertical") +
+                " pass of the separable blur of SSDO visibility (in the packed key) and radiance (2r+1 taps)";
+    k.inputs = {{"ao_key", {}}, {"radiance", {}}};
+    if (axis == "x")
+        k.outputs = {{"ao_key", Format::RGBA16F}, {"radiance", Format::RGBA16F}};
+    else
+        k.outputs = {{"visibility", Format::R16F}, {"radiance", Format::RGBA16F}};
+    const double out = (axis == "x" ? kRgba16f : kR16f) + kRgba16f;
+    k.cost = [out](const ParamValues& v) {
+        const double taps = 2 * v.at("blur") + 1;
+        return Cost{2 * taps, 2 * taps * kRgba16f + out, 2 * taps * fetchSlots(kRgba16f), 2 * kRgba16f + out};
+    };
+    return k;
+}
+
+// ssdo_marched (seed 003 with each direction marched in `steps` points) on
+// the pyramid: one R32F fetch per point where it reads an RGBA32F position
+// and an RGBA16F normal (include/ssdo_fast.glsl), and the separable pair
+// for both blurs. Its bounce pass is ssdo_fast_indirect.
+const KernelDecl& qualityVariant(const std::string& name) {
+    static const std::vector<KernelDecl> variants = qualityVariantKernels();
+    for (const auto& k : variants)
+        if (k.name == name) return k;
+    throw std::logic_error("registry: no quality variant '" + name + "'");
+}
+
+// Texels of the sky panorama a direction's textureLod reads: bilinear, or
+// trilinear between two levels (the panorama stays in L2: no DRAM).
+double skyTexels(const ParamValues& v) {
+    const double lod = v.at("sky_lod");
+    return lod == std::floor(lod) ? 4 : 8;
+}
+
+KernelDecl ssdoFast() {
+    KernelDecl k = qualityVariant("ssdo_marched");
+    k.name = "ssdo_fast";
+    k.file = "ssdo_fast_direct.glsl";
+    k.summary = "ssdo_marched on a linear-depth mip pyramid, tested along the receiver's normal, with a separable blur";
+    k.inputs = {{"zmip", {gpu::Filter::Nearest, gpu::Address::ClampToEdge, true}}, {"normal", {}}, k.inputs.at(2)};
+    k.outputs = {{"visibility", Format::R16F}, {"radiance", Format::RGBA16F}, {"ao_key", Format::RGBA16F}};
+    // Every direction marched to its last point (an open one is).
+    k.cost = [](const ParamValues& v) {
+        const double points = v.at("samples") * v.at("steps"), sky = v.at("samples") * skyTexels(v);
+        return Cost{2 + points + v.at("samples"), kR32f + kRgba16f + points * kR32f + sky * kRgba32f + kR16f + 2 * kRgba16f,
+                    fetchSlots(kR32f) + fetchSlots(kRgba16f) + points * fetchSlots(kR32f) + sky / 4 * fetchSlots(kRgba32f),
+                    kR32f * 4 / 3 + kRgba16f + kR16f + 2 * kRgba16f};
+    };
+    return k;
+}
+
+KernelDecl ssdoFastIndirect() {
+    KernelDecl k = qualityVariant("ssdo_marched_indirect");
+    k.name = "ssdo_fast_indirect";
+    k.file = "ssdo_fast_indirect.glsl";
+    k.summary = "ssdo_fast's one-bounce indirect light, from the first blocked point of each marched direction";
+    k.inputs = {{"zmip", {gpu::Filter::Nearest, gpu::Address::ClampToEdge, true}}, {"normal", {}}, {"albedo", {}},
+                {"radiance", {}}};
+    // Upper bound: every point fetched, and every direction blocked, so
+    // every one reads its sender's normal, radiance and albedo.
+    k.cost = [](const ParamValues& v) {
+        const double n = v.at("samples"), points = n * v.at("steps");
+        return Cost{2 + points + 3 * n, kR32f + kRgba16f + points * kR32f + n * (2 * kRgba16f + kRgba8) + kRgba16f,
+                    fetchSlots(kR32f) + fetchSlots(kRgba16f) + points * fetchSlots(kR32f) +
+                        n * (2 * fetchSlots(kRgba16f) + fetchSlots(kRgba8)),
+                    kR32f * 4 / 3 + 2 * kRgba16f + kRgba8 + kRgba16f};
+    };
+    return k;
+}
+
 }  // namespace
 
 std::vector<KernelDecl>& registryForTests() {
@@ -227,7 +304,9 @@ std::vector<KernelDecl>& registryForTests() {
         std::vector<KernelDecl> k = {gbufferSdf(), alchemy(), blurBilateral(), composite()};
         for (auto& d : screenSpaceKernels()) k.push_back(std::move(d));
         for (auto& d : qualityVariantKernels()) k.push_back(std::move(d));
-        for (auto& d : {depthPyramid(), alchemyFast(), hemisphereFast(), blurSeparable("x"), blurSeparable("y")}) k.push_back(d);
+        for (auto& d : {depthPyramid(), alchemyFast(), hemisphereFast(), blurSeparable("x"), blurSeparable("y"), ssdoFast(),
+                        ssdoFastIndirect(), blurSeparableSsdo("x"), blurSeparableSsdo("y")})
+            k.push_back(d);
         for (auto& d : sdfAoKernels()) k.push_back(std::move(d));
         return k;
     }();

@@ -10,7 +10,6 @@
 // sky rather than one texel of it, so a small bright sun does not turn into
 // per-pixel sparkle (seed 003).
 #include "include/ssdo.glsl"
-#include "include/sky.glsl"
 
 void cavity_main(ivec2 pixel) {
     vec4 p = texelFetch(in_position, pixel, 0);
@@ -26,23 +25,11 @@ void cavity_main(ivec2 pixel) {
     nrm = portableNormalize(nrm);
     SsdoBasis f = ssdoBasis(pixel, nrm);
     int n = clamp(P.samples, 1, 256);
-    float totalLight = 0.0, visibleLight = 0.0;
-    vec3 direct = vec3(0.0);
+    SkyGather g = SkyGather(0.0, 0.0, vec3(0.0));
     for (int i = 0; i < n; ++i) {
         SsdoSample s = ssdoSample(f, p.xyz, pixel, i, n, clamp(P.steps, 1, 16), P.radius, P.bias);
-        float cosTheta = max(orderedDot(nrm, s.dir), 0.0);
-        vec3 sky = textureLod(in_sky, skyUv(s.dir), P.sky_lod).rgb;
-        float weight = skyLuminance(sky) * cosTheta;
-        totalLight += weight;
-        if (s.visible) {
-            visibleLight += weight;
-            direct += sky * cosTheta;
-        }
+        gatherSky(g, nrm, s.dir, textureLod(in_sky, skyUv(s.dir), P.sky_lod).rgb, s.visible);
     }
-    // The constant factors (1/pi)(2 pi / n) = 2 / n, out of the loop.
-    direct *= 2.0 / float(n);
-    float visibility = totalLight > 0.0 ? visibleLight / totalLight : 1.0;
-    visibility = clamp(pow(visibility, P.contrast), 0.0, 1.0);
-    write_visibility(pixel, vec4(visibility, 0.0, 0.0, 0.0));
-    write_radiance(pixel, vec4(direct, 1.0));
+    write_visibility(pixel, vec4(skyVisibility(g, P.contrast), 0.0, 0.0, 0.0));
+    write_radiance(pixel, vec4(skyRadiance(g, n), 1.0));
 }

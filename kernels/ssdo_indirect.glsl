@@ -6,13 +6,7 @@
 //
 //     L_ind = sum (1/pi) L_s rho_s A_s cos(theta_s) cos(theta_r) strength falloff / d^2
 //
-// theta_s: between the sender's normal and the way to the receiver;
-// theta_r: between the receiver's normal and the way to the sender;
-// falloff = max(0, 1 - dist/R) fades senders out at the hemisphere's edge;
-// d = max(distance_clamp, dist) bounds 1/d^2 where the two nearly touch.
-// The seed's listing takes both cosines with the sign opposite to its own
-// definitions (it would bleed light only from surfaces facing away); the
-// definitions are what is implemented.
+// (include/ssdo_sampling.glsl's bounceFrom has the terms).
 //
 // Inputs: position, normal, albedo (G-buffer) and radiance, the blurred
 // direct radiance: pre-blurring keeps one noisy sender from spiking the
@@ -35,16 +29,8 @@ void cavity_main(ivec2 pixel) {
         if (s.visible) continue;
         vec3 q = texelFetch(in_position, s.texel, 0).xyz;
         vec3 m = normalize(texelFetch(in_normal, s.texel, 0).xyz);
-        vec3 toSender = q - p.xyz;
-        float dist = length(toSender);
-        if (dist <= 0.0) continue;
-        vec3 w = toSender / dist;
-        float cosSender = max(dot(m, -w), 0.0);
-        float cosReceiver = max(dot(nrm, w), 0.0);
-        float falloff = max(1.0 - dist / P.radius, 0.0);
-        float d = max(P.distance_clamp, dist);
         vec3 emitted = texelFetch(in_radiance, s.texel, 0).rgb * texelFetch(in_albedo, s.texel, 0).rgb;
-        gathered += emitted * (cosSender * cosReceiver * falloff / (d * d));
+        gathered += bounceFrom(p.xyz, nrm, q, m, emitted, P.radius, P.distance_clamp);
     }
     float area = PI * P.radius * P.radius / float(n);
     write_indirect(pixel, vec4(gathered * (area * P.bounce_strength / PI), 1.0));

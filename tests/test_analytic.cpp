@@ -268,6 +268,7 @@ TEST_P(Analytic, CreaseFollowsTheTruthInEveryBand) {
         // where its visibility is the cosine-weighted one the truth counts.
         variants.push_back({"ssdo", {{"sky_lod", 8}}});
         variants.push_back({"ssdo_marched", {{"sky_lod", 8}}});
+        variants.push_back({"ssdo_fast", {{"sky_lod", 8}}});
         for (const auto& variant : variants) {
             const std::string& kernel = variant.kernel;
             const HostImage ao = aoOf(gpu(), p, api(), kernel, variant.params);
@@ -295,7 +296,8 @@ TEST_P(Analytic, CreaseFollowsTheTruthInEveryBand) {
                 std::printf("  [%.2fR] %.3f/%.3f mae %.3f", b * 0.25, mean[b], truth[b], err[b]);
             }
             std::printf("\n");
-            const bool skyWeighted = (kernel == "ssdo" || kernel == "ssdo_marched") && !variant.params.count("sky_lod");
+            const bool skyWeighted =
+                (kernel == "ssdo" || kernel == "ssdo_marched" || kernel == "ssdo_fast") && !variant.params.count("sky_lod");
             if (skyWeighted) {
                 // Not bounded: under the default sky SSDO weighs each
                 // direction by the sky's luminance there (seed 003's
@@ -346,6 +348,7 @@ TEST_P(Analytic, NarrowGapIsAsDarkAsOneDepthLayerShows) {
     std::vector<Variant> cases = atDefaults();
     cases.push_back({"hemisphere_cosine", {{"steps", 8}, {"samples", 32}}});
     cases.push_back({"ssdo_marched", {{"steps", 8}, {"sky_lod", 8}}});
+    cases.push_back({"ssdo_fast", {{"steps", 8}, {"sky_lod", 8}}});
     for (const auto& cs : cases) {
         const HostImage ao = aoOf(gpu(), p, api(), cs.kernel, cs.params);
         const HostImage raw = aoOf(gpu(), p, api(), cs.kernel, cs.params, "ao");
@@ -369,7 +372,8 @@ TEST_P(Analytic, NarrowGapIsAsDarkAsOneDepthLayerShows) {
             // any box that cancels the rotation tile (the depth-aware one
             // too) spreads the open floor over it (README, Kernels).
             EXPECT_NEAR(rawMean, layer8, 0.1) << name;
-        } else if (cs.kernel == "hemisphere_cosine" || cs.kernel == "hemisphere_fast" || cs.kernel == "ssdo_marched") {
+        } else if (cs.kernel == "hemisphere_cosine" || cs.kernel == "hemisphere_fast" || cs.kernel == "ssdo_marched" ||
+                   cs.kernel == "ssdo_fast") {
             EXPECT_LE(mean, layer4 + 0.1) << name;
         } else {
             EXPECT_GT(mean, layer4 + 0.1) << name << " now sees the plate as a 4-step ray does; update the README's kernel table";

@@ -6,6 +6,7 @@
 #include "alchemy_spiral.h"
 #include "noise.h"
 #include "portable_math.h"
+#include "pyramid.h"
 #include "refs.h"
 
 #include <array>
@@ -20,31 +21,33 @@ float sampleHash(int x, int y, int i);
 void tangentFrame(Vec2 r, Vec3 n, Vec3& t, Vec3& b);
 }  // namespace screen
 
-namespace {
+namespace pyramid {
 
-const float kPi = 3.14159265f;
+namespace {
 
 // include/pyramid.glsl's LOG_MAX_OFFSET.
 constexpr int kLogMaxOffset = 3;
 
-// positionAt() of include/pyramid.glsl, operation for operation.
+// GLSL findMSB of a non-negative int: -1 for 0.
+int findMsb(int v) { return int(std::bit_width(unsigned(v))) - 1; }
+
+float signNotNegative(float v) { return v >= 0.0f ? 1.0f : -1.0f; }
+
+}  // namespace
+
 Vec3 positionAt(const kernels::FrameUniforms& f, int x, int y, float depth) {
     const float ndcX = (float(x) + 0.5f) * f.invSize[0] * 2.0f - 1.0f;
     const float ndcY = (float(y) + 0.5f) * f.invSize[1] * 2.0f - 1.0f;
     return {ndcX * f.camera[0] * depth, -ndcY * f.camera[1] * depth, -depth};
 }
 
-// GLSL findMSB of a non-negative int: -1 for 0.
-int findMsb(int v) { return int(std::bit_width(unsigned(v))) - 1; }
-
-int pyramidLevelCount() {
+int levelCount() {
     const auto* k = kernels::find("depth_pyramid");
     return k && !k->outputs.empty() ? k->outputs[0].mipLevels : 1;
 }
 
-// The level-0 pixel whose depth texel (tx, ty) of `level` holds: the
-// pyramid's picks, undone one level at a time (include/pyramid.glsl does it
-// in closed form).
+// The pyramid's picks, undone one level at a time (include/pyramid.glsl does
+// it in closed form).
 void sourcePixel(const std::vector<HostImage>& zmip, int level, int& tx, int& ty) {
     for (int k = level; k > 0; --k) {
         const HostImage& above = zmip[size_t(k - 1)];
@@ -54,9 +57,47 @@ void sourcePixel(const std::vector<HostImage>& zmip, int level, int& tx, int& ty
     }
 }
 
-// include/octahedral.glsl.
-float signNotNegative(float v) { return v >= 0.0f ? 1.0f : -1.0f; }
+View view(const kernels::FrameUniforms& f, int levels) {
+    return {0.5f * float(f.size[0]) * portableReciprocal(f.camera[0]),
+            -0.5f * float(f.size[1]) * portableReciprocal(f.camera[1]), 0.5f * float(f.size[0]),
+            0.5f * float(f.size[1]), levels - 1};
+}
 
+bool lookup(const kernels::FrameUniforms& f, const std::vector<HostImage>& zmip, const View& v, Vec3 s, int x, int y,
+            int& sx, int& sy, float& zq) {
+    sx = sy = -1;
+    zq = 0.0f;
+    if (s.z >= 0.0f) return false;
+    const float inv = portableReciprocal(-s.z);
+    const float spx = s.x * inv * v.toPixelX + v.centreX, spy = s.y * inv * v.toPixelY + v.centreY;
+    const int px = int(std::floor(std::clamp(spx, -1.0f, float(f.size[0]))));
+    const int py = int(std::floor(std::clamp(spy, -1.0f, float(f.size[1]))));
+    if (px < 0 || py < 0 || px >= f.size[0] || py >= f.size[1]) return false;
+    const int level = std::clamp(findMsb(std::max(std::abs(px - x), std::abs(py - y))) - kLogMaxOffset, 0, v.maxLevel);
+    const HostImage& z = zmip[size_t(level)];
+    int tx = std::min(px >> level, z.width - 1), ty = std::min(py >> level, z.height - 1);
+    zq = z.at(tx, ty);
+    if (isBackground(zq)) return false;
+    sourcePixel(zmip, level, tx, ty);
+    sx = tx, sy = ty;
+    return true;
+}
+
+bool risesAbove(const kernels::FrameUniforms& f, Vec3 N, Vec3 s, int sx, int sy, float zq, float bias) {
+    const float along = dot(N, positionAt(f, sx, sy, 1.0f));
+    if (along < 0.0f) return zq * along - dot(N, s) > bias;
+    return zq + bias < -s.z;
+}
+
+bool blocks(const kernels::FrameUniforms& f, const std::vector<HostImage>& zmip, const View& v, Vec3 N, Vec3 X, Vec3 s,
+            int x, int y, float bias, int& sx, int& sy, float& zq) {
+    if (!lookup(f, zmip, v, s, x, y, sx, sy, zq)) return false;
+    if (risesAbove(f, N, s, sx, sy, zq, bias)) return true;
+    const float lift = dot(N, positionAt(f, sx, sy, zq)) - dot(N, X);
+    return lift > bias && zq + bias < -s.z;
+}
+
+// include/octahedral.glsl.
 Vec2 octEncode(Vec3 n) {
     const float l1 = std::fabs(n.x) + std::fabs(n.y) + std::fabs(n.z);
     Vec2 p{n.x / l1, n.y / l1};
@@ -74,6 +115,19 @@ Vec3 octDecode(float px, float py) {
     return normalize(n);
 }
 
+}  // namespace pyramid
+
+namespace {
+
+const float kPi = 3.14159265f;
+
+using pyramid::findMsb;
+using pyramid::kLogMaxOffset;
+using pyramid::octDecode;
+using pyramid::octEncode;
+using pyramid::positionAt;
+using pyramid::sourcePixel;
+
 // A fast AO kernel's two outputs at (x, y): the AO, and the key the
 // separable blur reads (AO, linear depth, octahedral normal).
 void writeAo(std::vector<HostImage>& out, int x, int y, float ao, float depth, Vec3 N) {
@@ -85,9 +139,14 @@ void writeAo(std::vector<HostImage>& out, int x, int y, float ao, float depth, V
     out[1].at(x, y, 3) = oct.y;
 }
 
-// One axis of the separable blur at pixel (x, y): the key with its AO blurred.
-std::array<float, 4> blurAlong(const Context& ctx, const HostImage& key, int x, int y, int ax, int ay) {
+// One axis of the separable blur at pixel (x, y): the key with its AO
+// blurred, and in `value` the RGB of `with` blurred alike (blurredWith() of
+// include/blur_separable.glsl; nothing when `with` is null).
+std::array<float, 4> blurAlong(const Context& ctx, const HostImage& key, const HostImage* with, int x, int y, int ax,
+                               int ay, Vec3& value) {
     const std::array<float, 4> centre{key.at(x, y, 0), key.at(x, y, 1), key.at(x, y, 2), key.at(x, y, 3)};
+    auto tapValue = [&](int qx, int qy) { return with ? Vec3{with->at(qx, qy, 0), with->at(qx, qy, 1), with->at(qx, qy, 2)} : Vec3{}; };
+    value = tapValue(x, y);
     const int r = intParam(ctx, "blur");
     if (r == 0 || isBackground(centre[1])) return centre;
     const Vec3 N = octDecode(centre[2], centre[3]);
@@ -95,6 +154,7 @@ std::array<float, 4> blurAlong(const Context& ctx, const HostImage& key, int x, 
     const float twoSigma2 = 2.0f * sigma * sigma;
     const std::vector<float>& w = array(ctx, "weights");
     float sum = 0.0f, total = 0.0f;
+    Vec3 valueSum;
     for (int t = -r; t <= r; ++t) {
         const int qx = x + ax * t, qy = y + ay * t;
         if (qx < 0 || qy < 0 || qx >= ctx.frame.size[0] || qy >= ctx.frame.size[1]) continue;
@@ -104,23 +164,33 @@ std::array<float, 4> blurAlong(const Context& ctx, const HostImage& key, int x, 
         const float normalWeight = std::max(0.0f, dot(N, octDecode(key.at(qx, qy, 2), key.at(qx, qy, 3))));
         const float W = w[size_t(std::abs(t))] * normalWeight * std::exp(-dd * dd / twoSigma2);
         sum += key.at(qx, qy, 0) * W;
+        valueSum = valueSum + tapValue(qx, qy) * W;
         total += W;
     }
+    value = valueSum + value * (1.0f - total);
     return {sum + (1.0f - total) * centre[0], centre[1], centre[2], centre[3]};
 }
 
-Result<std::vector<HostImage>> blurSeparable(const Context& ctx, bool horizontal) {
-    CAVITY_TRY(requireInputs(ctx, {4}));
+// blur_separable_{x,y}.glsl, and with `withRadiance` blur_separable_ssdo_{x,y}.glsl
+// (input 1 the radiance, blurred into output 1).
+Result<std::vector<HostImage>> blurSeparable(const Context& ctx, bool horizontal, bool withRadiance) {
+    CAVITY_TRY(withRadiance ? requireInputs(ctx, {4, 3}) : requireInputs(ctx, {4}));
     const int r = intParam(ctx, "blur");
     if (r > 0 && int(array(ctx, "weights").size()) <= r)
         return internal("reference " + ctx.kernel.name + ": too few weights for radius " + std::to_string(r));
+    const HostImage* radiance = withRadiance ? ctx.inputs[1] : nullptr;
     auto out = makeOutputs(ctx);
     for (int y = 0; y < ctx.frame.size[1]; ++y)
         for (int x = 0; x < ctx.frame.size[0]; ++x) {
-            const auto v = blurAlong(ctx, *ctx.inputs[0], x, y, horizontal ? 1 : 0, horizontal ? 0 : 1);
+            Vec3 value;
+            const auto v = blurAlong(ctx, *ctx.inputs[0], radiance, x, y, horizontal ? 1 : 0, horizontal ? 0 : 1, value);
             out[0].at(x, y, 0) = v[0];
             if (horizontal)
                 for (int c = 1; c < 4; ++c) out[0].at(x, y, c) = v[size_t(c)];
+            if (radiance) {
+                out[1].at(x, y, 0) = value.x, out[1].at(x, y, 1) = value.y, out[1].at(x, y, 2) = value.z;
+                out[1].at(x, y, 3) = 1.0f;
+            }
         }
     return out;
 }
@@ -152,7 +222,7 @@ Result<std::vector<HostImage>> depthPyramid(const Context& ctx) {
 
 Result<std::vector<HostImage>> alchemyFast(const Context& ctx) {
     CAVITY_TRY(requireInputs(ctx, {1, 3}));
-    const auto zmip = pyramidLevels(*ctx.inputs[0], pyramidLevelCount());
+    const auto zmip = pyramidLevels(*ctx.inputs[0], pyramid::levelCount());
     const HostImage& normal = *ctx.inputs[1];
     const auto& f = ctx.frame;
     const int n = intParam(ctx, "samples");
@@ -209,7 +279,7 @@ Result<std::vector<HostImage>> alchemyFast(const Context& ctx) {
 // texel or decides a test.
 Result<std::vector<HostImage>> hemisphereFast(const Context& ctx) {
     CAVITY_TRY(requireInputs(ctx, {1, 3}));
-    const auto zmip = pyramidLevels(*ctx.inputs[0], pyramidLevelCount());
+    const auto zmip = pyramidLevels(*ctx.inputs[0], pyramid::levelCount());
     const HostImage& normal = *ctx.inputs[1];
     const auto& f = ctx.frame;
     const int n = std::clamp(intParam(ctx, "samples"), 1, 256);
@@ -218,12 +288,9 @@ Result<std::vector<HostImage>> hemisphereFast(const Context& ctx) {
     const float contrast = floatParam(ctx, "contrast");
     const bool rangeCheck = intParam(ctx, "range_check") != 0;
     const bool stepJitter = intParam(ctx, "step_jitter") != 0;
-    const int maxLevel = int(zmip.size()) - 1;
     const std::vector<float>& kernel = array(ctx, "kernel");
     if (int(kernel.size()) < 4 * n) return internal("reference hemisphere_fast: kernel shorter than " + std::to_string(n));
-    const float toPixelX = 0.5f * float(f.size[0]) * portableReciprocal(f.camera[0]);
-    const float toPixelY = -0.5f * float(f.size[1]) * portableReciprocal(f.camera[1]);
-    const float centreX = 0.5f * float(f.size[0]), centreY = 0.5f * float(f.size[1]);
+    const pyramid::View view = pyramid::view(f, int(zmip.size()));
 
     auto out = makeOutputs(ctx);
     for (int y = 0; y < f.size[1]; ++y) {
@@ -243,24 +310,9 @@ Result<std::vector<HostImage>> hemisphereFast(const Context& ctx) {
             // One point's occlusion: occludedBy() of the kernel.
             auto occludedBy = [&](const float* k, float lengthScale) -> float {
                 const Vec3 s = X + (t * k[0] + b * k[1] + N * k[2]) * lengthScale;
-                if (s.z >= 0.0f) return 0.0f;
-                const float inv = portableReciprocal(-s.z);
-                const float spx = s.x * inv * toPixelX + centreX, spy = s.y * inv * toPixelY + centreY;
-                const int sx = int(std::floor(std::clamp(spx, -1.0f, float(f.size[0]))));
-                const int sy = int(std::floor(std::clamp(spy, -1.0f, float(f.size[1]))));
-                if (sx < 0 || sy < 0 || sx >= f.size[0] || sy >= f.size[1]) return 0.0f;
-                const int level = std::clamp(findMsb(std::max(std::abs(sx - x), std::abs(sy - y))) - kLogMaxOffset, 0, maxLevel);
-                const HostImage& z = zmip[size_t(level)];
-                int tx = std::min(sx >> level, z.width - 1), ty = std::min(sy >> level, z.height - 1);
-                const float zq = z.at(tx, ty);
-                if (isBackground(zq)) return 0.0f;
-                sourcePixel(zmip, level, tx, ty);
-                const float along = dot(N, positionAt(f, tx, ty, 1.0f));
-                if (along < 0.0f) {
-                    if (zq * along - dot(N, s) <= bias) return 0.0f;
-                } else if (zq + bias >= -s.z) {
-                    return 0.0f;
-                }
+                int sx = -1, sy = -1;
+                float zq = 0.0f;
+                if (!pyramid::blocks(f, zmip, view, N, X, s, x, y, bias, sx, sy, zq)) return 0.0f;
                 const float dz = std::fabs(d - zq);
                 return rangeCheck && dz > R ? screen::smoothstep01(R / dz) : 1.0f;
             };
@@ -289,15 +341,19 @@ Result<std::vector<HostImage>> hemisphereFast(const Context& ctx) {
     return out;
 }
 
-Result<std::vector<HostImage>> blurSeparableX(const Context& ctx) { return blurSeparable(ctx, true); }
-Result<std::vector<HostImage>> blurSeparableY(const Context& ctx) { return blurSeparable(ctx, false); }
+Result<std::vector<HostImage>> blurSeparableX(const Context& ctx) { return blurSeparable(ctx, true, false); }
+Result<std::vector<HostImage>> blurSeparableY(const Context& ctx) { return blurSeparable(ctx, false, false); }
+Result<std::vector<HostImage>> blurSeparableSsdoX(const Context& ctx) { return blurSeparable(ctx, true, true); }
+Result<std::vector<HostImage>> blurSeparableSsdoY(const Context& ctx) { return blurSeparable(ctx, false, true); }
 
 std::vector<RefEntry> fastRefs() {
     return {{"depth_pyramid", depthPyramid},
             {"alchemy_fast", alchemyFast},
             {"hemisphere_fast", hemisphereFast},
             {"blur_separable_x", blurSeparableX},
-            {"blur_separable_y", blurSeparableY}};
+            {"blur_separable_y", blurSeparableY},
+            {"blur_separable_ssdo_x", blurSeparableSsdoX},
+            {"blur_separable_ssdo_y", blurSeparableSsdoY}};
 }
 
 }  // namespace cavity::reference

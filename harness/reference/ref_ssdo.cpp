@@ -27,6 +27,7 @@
 #include "families.h"
 #include "noise.h"
 #include "portable_math.h"
+#include "pyramid.h"
 #include "refs.h"
 #include "vec.h"
 
@@ -188,6 +189,95 @@ Sample ssdoSample(const kernels::FrameUniforms& fr, const HostImage& position, c
     return s;
 }
 
+// SkyGather and its functions in include/ssdo_sampling.glsl.
+struct SkyGather {
+    float total = 0.0f, visible = 0.0f;
+    Vec3 direct;
+
+    void add(Vec3 n, Vec3 dir, Vec3 sky, bool open) {
+        const float cosTheta = std::max(dot(n, dir), 0.0f);
+        const float weight = skyLuminance(sky) * cosTheta;
+        total += weight;
+        if (open) {
+            visible += weight;
+            direct = direct + sky * cosTheta;
+        }
+    }
+    float visibility(float contrast) const {
+        const float v = total > 0.0f ? visible / total : 1.0f;
+        return clamp(std::pow(v, contrast), 0.0f, 1.0f);
+    }
+    Vec3 radiance(int count) const { return direct * (2.0f / float(count)); }
+};
+
+// bounceFrom() of include/ssdo_sampling.glsl.
+Vec3 bounceFrom(Vec3 p, Vec3 n, Vec3 q, Vec3 m, Vec3 emitted, float radius, float distanceClamp) {
+    const Vec3 toSender = q - p;
+    const float dist = length(toSender);
+    if (dist <= 0.0f) return {};
+    const Vec3 w = toSender * (1.0f / dist);
+    const float cosSender = std::max(dot(m, -w), 0.0f);
+    const float cosReceiver = std::max(dot(n, w), 0.0f);
+    const float falloff = std::max(1.0f - dist / radius, 0.0f);
+    const float d = std::max(distanceClamp, dist);
+    return emitted * (cosSender * cosReceiver * falloff / (d * d));
+}
+
+// What both ssdo_fast passes walk (include/ssdo_fast.glsl's FastReceiver):
+// inputs 0 and 1 are the pyramid's level 0 and the normal.
+struct FastMarch {
+    const kernels::FrameUniforms& f;
+    std::vector<HostImage> zmip;
+    const HostImage& normal;
+    pyramid::View view;
+    int n, steps;
+    float radius, bias;
+
+    explicit FastMarch(const Context& ctx)
+        : f(ctx.frame), zmip(pyramidLevels(*ctx.inputs[0], pyramid::levelCount())), normal(*ctx.inputs[1]),
+          view(pyramid::view(f, int(zmip.size()))), n(std::clamp(intParam(ctx, "samples"), 1, 256)),
+          steps(std::clamp(intParam(ctx, "steps"), 1, 16)), radius(floatParam(ctx, "radius")),
+          bias(floatParam(ctx, "bias")) {}
+
+    struct Receiver {
+        float depth;
+        Vec3 n, X;
+        Basis basis;
+    };
+
+    // fastReceiver(): false on the background or a pixel without a normal.
+    bool receiver(int x, int y, Receiver& r) const {
+        r.depth = zmip[0].at(x, y);
+        const Vec3 nrm = screen::texel3(normal, x, y);
+        if (isBackground(r.depth) || lengthSquared(nrm) == 0.0f) return false;
+        r.n = screen::normalizeExact(nrm);
+        r.X = pyramid::positionAt(f, x, y, r.depth);
+        r.basis = ssdoBasis(x, y, r.n);
+        return true;
+    }
+
+    // ssdoFastSample(): direction i marched, blocked by its first blocked
+    // point, whose level-0 pixel (s.tx, s.ty) and depth are the sender.
+    Sample sample(const Receiver& r, int x, int y, int i, float& senderDepth) const {
+        Sample s;
+        s.dir = ssdoDirection(r.basis, i, n);
+        senderDepth = 0.0f;
+        const float u = screen::sampleHash(x, y, i);
+        const float perStep = portableReciprocal(float(steps));
+        for (int j = 0; j < steps; ++j) {
+            const float lambda = radius * ((float(j + 1) - u) * perStep);
+            const Vec3 point = r.X + s.dir * lambda;
+            if (pyramid::blocks(f, zmip, view, r.n, r.X, point, x, y, bias, s.tx, s.ty, senderDepth)) {
+                s.visible = false;
+                return s;
+            }
+        }
+        s.tx = s.ty = -1;
+        senderDepth = 0.0f;
+        return s;
+    }
+};
+
 Vec3 viewRay(const kernels::FrameUniforms& f, int x, int y) {
     const float ndcX = (float(x) + 0.5f) * f.invSize[0] * 2.0f - 1.0f;
     const float ndcY = (float(y) + 0.5f) * f.invSize[1] * 2.0f - 1.0f;
@@ -225,24 +315,13 @@ Result<std::vector<HostImage>> ssdoDirect(const Context& ctx) {
             nrm = screen::normalizeExact(nrm);
             const Vec3 p = screen::texel3(position, x, y);
             const Basis basis = ssdoBasis(x, y, nrm);
-            float totalLight = 0.0f, visibleLight = 0.0f;
-            Vec3 direct;
+            SkyGather g;
             for (int i = 0; i < n; ++i) {
                 const Sample s = ssdoSample(f, position, normal, basis, p, x, y, i, n, steps, radius, bias);
-                const float cosTheta = std::max(dot(nrm, s.dir), 0.0f);
-                const Vec3 L = sampleSky(*sky, skyUv(s.dir), lod);
-                const float weight = skyLuminance(L) * cosTheta;
-                totalLight += weight;
-                if (s.visible) {
-                    visibleLight += weight;
-                    direct = direct + L * cosTheta;
-                }
+                g.add(nrm, s.dir, sampleSky(*sky, skyUv(s.dir), lod), s.visible);
             }
-            direct = direct * (2.0f / float(n));
-            float visibility = totalLight > 0.0f ? visibleLight / totalLight : 1.0f;
-            visibility = clamp(std::pow(visibility, contrast), 0.0f, 1.0f);
-            out[0].at(x, y) = visibility;
-            put(out[1], x, y, direct, 1.0f);
+            out[0].at(x, y) = g.visibility(contrast);
+            put(out[1], x, y, g.radiance(n), 1.0f);
         }
     return out;
 }
@@ -326,18 +405,80 @@ Result<std::vector<HostImage>> ssdoIndirect(const Context& ctx) {
                 if (s.visible) continue;
                 const Vec3 q = screen::texel3(position, s.tx, s.ty);
                 const Vec3 m = normalize(screen::texel3(normal, s.tx, s.ty));
-                const Vec3 toSender = q - p;
-                const float dist = length(toSender);
-                if (dist <= 0.0f) continue;
-                const Vec3 w = toSender * (1.0f / dist);
-                const float cosSender = std::max(dot(m, -w), 0.0f);
-                const float cosReceiver = std::max(dot(nrm, w), 0.0f);
-                const float falloff = std::max(1.0f - dist / radius, 0.0f);
-                const float d = std::max(distanceClamp, dist);
                 const Vec3 emitted = screen::texel3(radiance, s.tx, s.ty) * screen::texel3(albedo, s.tx, s.ty);
-                gathered = gathered + emitted * (cosSender * cosReceiver * falloff / (d * d));
+                gathered = gathered + bounceFrom(p, nrm, q, m, emitted, radius, distanceClamp);
             }
             const float area = kPi * radius * radius / float(n);
+            put(out[0], x, y, gathered * (area * strength / kPi), 1.0f);
+        }
+    return out;
+}
+
+// ssdo_fast_direct.glsl: inputs the pyramid's level 0, the normal and the sky.
+Result<std::vector<HostImage>> ssdoFastDirect(const Context& ctx) {
+    const auto& f = ctx.frame;
+    CAVITY_TRY(screen::requireInput(ctx, 0, f.size[0], f.size[1], 1));
+    CAVITY_TRY(screen::requireInput(ctx, 1, f.size[0], f.size[1], 3));
+    const Levels* sky = skyLevels();
+    if (!sky) return internal("reference ssdo_fast: no constant image 'sky' in screenSpaceConstants()");
+    const FastMarch march(ctx);
+    const float contrast = floatParam(ctx, "contrast"), lod = floatParam(ctx, "sky_lod");
+
+    auto out = makeOutputs(ctx);
+    for (int y = 0; y < f.size[1]; ++y)
+        for (int x = 0; x < f.size[0]; ++x) {
+            FastMarch::Receiver r;
+            if (!march.receiver(x, y, r)) {
+                out[0].at(x, y) = 1.0f;
+                put(out[1], x, y, sampleSky(*sky, skyUv(normalize(viewRay(f, x, y))), 0.0f), 1.0f);
+                out[2].at(x, y, 0) = 1.0f;
+                continue;
+            }
+            SkyGather g;
+            for (int i = 0; i < march.n; ++i) {
+                float senderDepth = 0.0f;
+                const Sample s = march.sample(r, x, y, i, senderDepth);
+                g.add(r.n, s.dir, sampleSky(*sky, skyUv(s.dir), lod), s.visible);
+            }
+            const float visibility = g.visibility(contrast);
+            out[0].at(x, y) = visibility;
+            put(out[1], x, y, g.radiance(march.n), 1.0f);
+            const Vec2 oct = pyramid::octEncode(r.n);
+            out[2].at(x, y, 0) = visibility, out[2].at(x, y, 1) = r.depth, out[2].at(x, y, 2) = oct.x, out[2].at(x, y, 3) = oct.y;
+        }
+    return out;
+}
+
+// ssdo_fast_indirect.glsl: inputs the pyramid's level 0, normal, albedo and
+// the blurred radiance.
+Result<std::vector<HostImage>> ssdoFastIndirect(const Context& ctx) {
+    CAVITY_TRY(requireInputs(ctx, {1, 3, 3, 3}));
+    const HostImage& albedo = *ctx.inputs[2];
+    const HostImage& radiance = *ctx.inputs[3];
+    const auto& f = ctx.frame;
+    const FastMarch march(ctx);
+    const float strength = floatParam(ctx, "bounce_strength"), distanceClamp = floatParam(ctx, "distance_clamp");
+
+    auto out = makeOutputs(ctx);
+    for (int y = 0; y < f.size[1]; ++y)
+        for (int x = 0; x < f.size[0]; ++x) {
+            FastMarch::Receiver r;
+            if (!march.receiver(x, y, r)) {
+                put(out[0], x, y, {}, 1.0f);
+                continue;
+            }
+            Vec3 gathered;
+            for (int i = 0; i < march.n; ++i) {
+                float senderDepth = 0.0f;
+                const Sample s = march.sample(r, x, y, i, senderDepth);
+                if (s.visible) continue;
+                const Vec3 m = screen::texel3(march.normal, s.tx, s.ty);
+                if (lengthSquared(m) == 0.0f) continue;
+                const Vec3 emitted = screen::texel3(radiance, s.tx, s.ty) * screen::texel3(albedo, s.tx, s.ty);
+                gathered = gathered + bounceFrom(r.X, r.n, pyramid::positionAt(f, s.tx, s.ty, senderDepth), normalize(m),
+                                                 emitted, march.radius, distanceClamp);
+            }
+            const float area = kPi * march.radius * march.radius / float(march.n);
             put(out[0], x, y, gathered * (area * strength / kPi), 1.0f);
         }
     return out;

@@ -31,6 +31,8 @@ Result<std::vector<HostImage>> ssdoDirect(const Context& ctx);
 Result<std::vector<HostImage>> blurBilateralSsdo(const Context& ctx);
 Result<std::vector<HostImage>> ssdoIndirect(const Context& ctx);
 Result<std::vector<HostImage>> compositeSsdo(const Context& ctx);
+Result<std::vector<HostImage>> ssdoFastDirect(const Context& ctx);
+Result<std::vector<HostImage>> ssdoFastIndirect(const Context& ctx);
 
 std::vector<RefEntry> screenSpaceRefs() {
     return {
@@ -49,6 +51,9 @@ std::vector<RefEntry> screenSpaceRefs() {
         {"ssdo_marched_indirect", ssdoIndirect},
         {"blur_box_depth", blurBoxDepth},
         {"depth_from_position_half", depthFromPositionHalf},
+        // registry.cpp's fast SSDO, on the depth pyramid (the separable pair is in ref_fast.cpp)
+        {"ssdo_fast", ssdoFastDirect},
+        {"ssdo_fast_indirect", ssdoFastIndirect},
     };
 }
 

@@ -21,14 +21,22 @@ float gaussianWeight(int i) {
     return P.weights[i >> 2][i & 3];
 }
 
-// The centre's key with its AO blurred along `axis`.
-vec4 blurAlong(ivec2 pixel, ivec2 axis) {
+// What the kernel blurs beside the key's AO, with the same weights, at
+// texel q: the SSDO radiance (blur_separable_ssdo_x.glsl), or vec3(0.0)
+// where there is nothing (the compiler drops it). Each kernel defines it.
+vec3 blurredWith(ivec2 q);
+
+// The centre's key with its AO blurred along `axis`, and in `value` what
+// blurredWith() reads, blurred alike.
+vec4 blurAlong(ivec2 pixel, ivec2 axis, out vec3 value) {
     vec4 centre = texelFetch(in_ao_key, pixel, 0);
+    value = blurredWith(pixel);
     int r = P.blur;
     if (r == 0 || isBackground(centre.g)) return centre;
     vec3 N = octDecode(centre.ba);
     float twoSigma2 = 2.0 * P.depth_sigma * P.depth_sigma;
     float sum = 0.0;
+    vec3 valueSum = vec3(0.0);
     float totalWeight = 0.0;
     for (int t = -r; t <= r; ++t) {
         ivec2 q = pixel + axis * t;
@@ -38,7 +46,9 @@ vec4 blurAlong(ivec2 pixel, ivec2 axis) {
         float dd = centre.g - tap.g;
         float W = gaussianWeight(abs(t)) * max(0.0, dot(N, octDecode(tap.ba))) * exp(-dd * dd / twoSigma2);
         sum += tap.r * W;
+        valueSum += blurredWith(q) * W;
         totalWeight += W;
     }
+    value = valueSum + (1.0 - totalWeight) * value;
     return vec4(sum + (1.0 - totalWeight) * centre.r, centre.gba);
 }

@@ -1,6 +1,6 @@
 // Reading the linear-depth pyramid (depth_pyramid.glsl): the fast AO
 // kernels' shared helpers, mirrored by harness/reference/ref_fast.cpp.
-#include "include/common.glsl"
+#include "include/screen_space.glsl"
 
 // Samples up to 2^(3 + 1) = 16 px away read level 0; each doubling of the
 // distance moves one level down (after Scalable Ambient Obscurance).
@@ -46,4 +46,76 @@ ivec2 sourcePixel(ivec2 t, int level) {
     int low = ((1 << level) - 1) ^ high;                // bits level-2, level-4, ...
     ivec2 parity = t & 1;
     return (t << level) | ivec2(parity.y * high | parity.x * low, parity.x * high | parity.y * low);
+}
+
+// What projecting a view-space point onto this pass's pixels takes:
+// x_px = x / depth * toPixel.x + size.x / 2, and y likewise with the flip
+// (positionAt() inverted); and the pyramid's last level.
+struct PyramidView {
+    vec2 toPixel;
+    vec2 centre;
+    int maxLevel;
+};
+
+PyramidView pyramidView() {
+    precise vec2 toPixel = vec2(0.5, -0.5) * vec2(frame.size) *
+                           vec2(portableReciprocal(frame.camera.x), portableReciprocal(frame.camera.y));
+    return PyramidView(toPixel, 0.5 * vec2(frame.size), textureQueryLevels(in_zmip) - 1);
+}
+
+// The stored surface under the view-space point s, seen from the receiver
+// at `pixel`: false for a point behind the camera plane, off the screen or
+// on the background. Samples far from the pixel read coarser levels
+// (pyramidLevel). `source` and `zq`: the level-0 pixel whose depth the
+// level holds, and that depth (the stored point is positionAt(source, zq)).
+bool pyramidLookup(PyramidView v, vec3 s, ivec2 pixel, out ivec2 source, out float zq) {
+    source = ivec2(-1);
+    zq = 0.0;
+    if (s.z >= 0.0) return false;
+    precise vec2 sp = s.xy * portableReciprocal(-s.z) * v.toPixel + v.centre;
+    ivec2 texel = ivec2(floor(clamp(sp, vec2(-1.0), vec2(frame.size))));
+    if (any(lessThan(texel, ivec2(0))) || any(greaterThanEqual(texel, frame.size))) return false;
+    ivec2 away = abs(texel - pixel);
+    int level = pyramidLevel(max(away.x, away.y), v.maxLevel);
+    ivec2 tl = min(texel >> level, levelSize(level) - 1);
+    zq = texelFetch(in_zmip, tl, level).r;
+    if (isBackground(zq)) return false;
+    source = sourcePixel(tl, level);
+    return true;
+}
+
+// Whether the stored point q (pyramidLookup's source and zq) hides s from
+// the receiver with unit normal N, tested along N with no normal fetched at
+// q (ssao_hemisphere_fast.glsl says why):
+//     N . q - N . s > bias,   with N . q = z_q (N . ray_q),
+// and where q's ray meets the receiver's plane from behind (N . ray_q >= 0,
+// a receiver seen edge-on, such as a sphere's rim over the floor) the
+// seed's test where q has no normal, the plain depth test z_q + bias < z_s
+// along s's own ray.
+bool risesAbove(vec3 N, vec3 s, ivec2 source, float zq, float bias) {
+    float along = orderedDot(N, positionAt(source, 1.0));
+    if (along < 0.0) {
+        precise float rise = zq * along - orderedDot(N, s);
+        return rise > bias;
+    }
+    precise float threshold = zq + bias;
+    return threshold < -s.z;
+}
+
+// Whether the point s, sampled from the receiver at view point X with unit
+// normal N, is blocked, and by which stored point (pyramidLookup's source
+// and zq). Hidden along N (risesAbove: no self-shadowing on any plane, no
+// normal fetched), or else behind the stored surface along s's own ray while
+// that surface stands above the receiver's tangent plane by more than
+// `bias`: the verdict of a depth layer for a point that has passed through
+// or under a thin occluder seen from above (a slat, a plate over a gap),
+// which rises no higher than the point and so passes the first test. The
+// receiver's own plane never stands above itself, so the second test cannot
+// shadow it either.
+bool pyramidBlocks(PyramidView v, vec3 N, vec3 X, vec3 s, ivec2 pixel, float bias, out ivec2 source, out float zq) {
+    if (!pyramidLookup(v, s, pixel, source, zq)) return false;
+    if (risesAbove(N, s, source, zq, bias)) return true;
+    precise float lift = orderedDot(N, positionAt(source, zq)) - orderedDot(N, X);
+    precise float threshold = zq + bias;
+    return lift > bias && threshold < -s.z;
 }

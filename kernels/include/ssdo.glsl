@@ -5,42 +5,7 @@
 //
 // A kernel including this file declares inputs named `position` and
 // `normal` (the G-buffer at the output's resolution).
-#include "include/screen_space.glsl"
-
-struct SsdoBasis {
-    vec3 t, b, n;
-    float phiTurns;   // the seed's phi, in turns
-};
-
-// Tangent frame from an auxiliary up vector never collinear with N (seed
-// 003), and the per-pixel azimuth offset phi = pi IGN, i.e. IGN / 2 turns.
-SsdoBasis ssdoBasis(ivec2 pixel, vec3 n) {
-    SsdoBasis f;
-    vec3 up = abs(n.y) < 0.999 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0);
-    f.n = n;
-    f.t = portableNormalize(orderedCross(up, n));
-    f.b = orderedCross(n, f.t);
-    f.phiTurns = 0.5 * ign(vec2(pixel) + 0.5);
-    return f;
-}
-
-// Direction i of `count`: stratified elevation cos = 1 - alpha with
-// alpha = (i + 0.5) / count, uniform in solid angle over the hemisphere (so
-// each sample stands for 2 pi / count steradians), and azimuth
-// 2 pi alpha (7 count / 9) + phi, which is (i + 0.5) 7/9 turns + phi
-// whatever the count: successive samples 7/9 of a turn apart.
-// T, B, N are orthonormal and the local vector is unit, so the seed's
-// final normalize would change only rounding; it is left out.
-vec3 ssdoDirection(SsdoBasis f, int i, int count) {
-    precise float alpha = (float(i) + 0.5) * portableReciprocal(float(count));
-    precise float cosE = 1.0 - alpha;
-    precise float sin2 = 1.0 - cosE * cosE;
-    precise float sinE = sin2 * portableInverseSqrt(sin2);
-    precise float turns = (float(i) + 0.5) * 0.7777778 + f.phiTurns;
-    vec2 cs = cosSinTurns(turns);
-    precise vec3 d = f.t * (sinE * cs.x) + f.b * (sinE * cs.y) + f.n * cosE;
-    return d;
-}
+#include "include/ssdo_sampling.glsl"
 
 struct SsdoSample {
     vec3 dir;

@@ -1,0 +1,50 @@
+// The CPU side of kernels/include/pyramid.glsl and octahedral.glsl, shared by
+// the fast variants' references (ref_fast.cpp defines them; ref_ssdo.cpp's
+// ssdo_fast uses them too). Operation for operation where a value picks a
+// texel or decides a test.
+#pragma once
+
+#include "refs.h"
+#include "vec.h"
+
+#include <vector>
+
+namespace cavity::reference::pyramid {
+
+// positionAt(): view position on the ray through the centre of (x, y) at
+// linear depth `depth`.
+Vec3 positionAt(const kernels::FrameUniforms& f, int x, int y, float depth);
+
+// The levels of depth_pyramid's output.
+int levelCount();
+
+// The level-0 pixel whose depth texel (tx, ty) of `level` holds.
+void sourcePixel(const std::vector<HostImage>& zmip, int level, int& tx, int& ty);
+
+// PyramidView and pyramidView().
+struct View {
+    float toPixelX, toPixelY, centreX, centreY;
+    int maxLevel;
+};
+View view(const kernels::FrameUniforms& f, int levels);
+
+// pyramidLookup(): the stored surface under the view point s, seen from
+// (x, y): false off the screen, behind the camera or on the background;
+// (sx, sy) and zq the level-0 pixel and depth it holds.
+bool lookup(const kernels::FrameUniforms& f, const std::vector<HostImage>& zmip, const View& v, Vec3 s, int x, int y,
+            int& sx, int& sy, float& zq);
+
+// risesAbove(): whether that stored point hides s along the unit normal N.
+bool risesAbove(const kernels::FrameUniforms& f, Vec3 N, Vec3 s, int sx, int sy, float zq, float bias);
+
+// pyramidBlocks(): whether the view point s, sampled from the receiver at
+// view point X, pixel (x, y), with unit normal N, is blocked; (sx, sy) and
+// zq the level-0 pixel and depth that decided ((-1, -1) and 0 where none
+// did).
+bool blocks(const kernels::FrameUniforms& f, const std::vector<HostImage>& zmip, const View& v, Vec3 N, Vec3 X, Vec3 s,
+            int x, int y, float bias, int& sx, int& sy, float& zq);
+
+Vec2 octEncode(Vec3 n);
+Vec3 octDecode(float px, float py);
+
+}  // namespace cavity::reference::pyramid

@@ -1,0 +1,73 @@
+// SSDO's sampling (include/ssdo.glsl) on the linear-depth pyramid: the same
+// basis, directions and marched points, each tested with one R32F fetch of
+// the pyramid (include/pyramid.glsl) and no position or normal, instead of
+// against the G-buffer's position and normal. Shared by ssdo_fast_direct.glsl
+// and ssdo_fast_indirect.glsl, which must walk the same points: the bounce
+// re-uses the direct pass's blocked points as senders.
+//
+// A kernel including this file declares inputs named `zmip` (the pyramid)
+// and `normal`.
+#include "include/ssdo_sampling.glsl"
+#include "include/pyramid.glsl"
+
+struct FastSample {
+    vec3 dir;
+    bool visible;
+    ivec2 sender;        // the level-0 pixel of the first blocked point's depth
+    float senderDepth;   // its linear depth: the sender is positionAt(sender, senderDepth)
+};
+
+// Direction i of `count` from the receiver at view point p, marched in
+// `steps` points out to R as ssdoSample marches it (point j at
+// (j + 1 - u) R / steps, u drawn per pixel and direction), blocked by its
+// first hidden point.
+FastSample ssdoFastSample(PyramidView v, SsdoBasis f, vec3 p, ivec2 pixel, int i, int count, int steps, float radius,
+                          float bias) {
+    FastSample s;
+    s.dir = ssdoDirection(f, i, count);
+    s.visible = true;
+    float u = sampleHash(pixel, i);
+    precise float perStep = portableReciprocal(float(steps));
+    for (int j = 0; j < steps; ++j) {
+        precise float lambda = radius * ((float(j + 1) - u) * perStep);
+        precise vec3 point = p + s.dir * lambda;
+        if (pyramidBlocks(v, f.n, p, point, pixel, bias, s.sender, s.senderDepth)) {
+            s.visible = false;
+            return s;
+        }
+    }
+    s.sender = ivec2(-1);
+    s.senderDepth = 0.0;
+    return s;
+}
+
+// A receiver of either pass: its depth, unit normal, view point, basis, and
+// what its directions are marched with.
+struct FastReceiver {
+    float depth;
+    vec3 n;
+    vec3 X;
+    SsdoBasis f;
+    PyramidView view;
+    int count, steps;
+};
+
+// The receiver at `pixel`; false on the background (or a pixel without a
+// normal), which both passes write as open.
+bool fastReceiver(ivec2 pixel, out FastReceiver r) {
+    r.depth = texelFetch(in_zmip, pixel, 0).r;
+    vec3 nrm = texelFetch(in_normal, pixel, 0).xyz;
+    if (isBackground(r.depth) || lengthSquared(nrm) == 0.0) return false;
+    r.n = portableNormalize(nrm);
+    r.X = positionAt(pixel, r.depth);
+    r.f = ssdoBasis(pixel, r.n);
+    r.view = pyramidView();
+    r.count = clamp(P.samples, 1, 256);
+    r.steps = clamp(P.steps, 1, 16);
+    return true;
+}
+
+// Direction i of the receiver at `pixel`, marched.
+FastSample fastSample(FastReceiver r, ivec2 pixel, int i) {
+    return ssdoFastSample(r.view, r.f, r.X, pixel, i, r.count, r.steps, P.radius, P.bias);
+}

@@ -1,0 +1,26 @@
+// ssdo_fast's one-bounce indirect light: ssdo_indirect.glsl's gather
+// (003_9aa4a2c3c5c6ee23.txt, "The bounce - sender as emitter") over the
+// points ssdo_fast_direct.glsl found blocked. The sender is rebuilt from the
+// pyramid's depth on its own pixel's ray; its normal, blurred radiance and
+// albedo are read at that pixel, once per blocked direction.
+#include "include/ssdo_fast.glsl"
+
+void cavity_main(ivec2 pixel) {
+    FastReceiver r;
+    if (!fastReceiver(pixel, r)) {
+        write_indirect(pixel, vec4(0.0, 0.0, 0.0, 1.0));
+        return;
+    }
+    vec3 gathered = vec3(0.0);
+    for (int i = 0; i < r.count; ++i) {
+        FastSample s = fastSample(r, pixel, i);
+        if (s.visible) continue;
+        vec3 m = texelFetch(in_normal, s.sender, 0).xyz;
+        if (lengthSquared(m) == 0.0) continue;
+        vec3 emitted = texelFetch(in_radiance, s.sender, 0).rgb * texelFetch(in_albedo, s.sender, 0).rgb;
+        gathered += bounceFrom(r.X, r.n, positionAt(s.sender, s.senderDepth), normalize(m), emitted, P.radius,
+                               P.distance_clamp);
+    }
+    float area = PI * P.radius * P.radius / float(r.count);
+    write_indirect(pixel, vec4(gathered * (area * P.bounce_strength / PI), 1.0));
+}
