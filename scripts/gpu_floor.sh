@@ -1,19 +1,24 @@
 #!/usr/bin/env bash
-# Issue 10's measurement, in one call on the GPU machine (through the device
-# tool, .gl and .bundle carried): the seed and fast Alchemy pipelines at
-# n16 and n32 and the hemisphere ones (seed, cosine, fast) at n16 and the
-# fast one at n32, 1920x1080, full and half, both APIs, 10 interleaved
-# repetitions each, with the clocks sampled beside them; the fast kernels'
-# fragment stage; then the AO of the seed and fast kernels against the
-# ground truth at 1920x1080, raw and after the blur (cavity quality --blur 0
-# and 4, the shared reach); and the gpu-cpu gate matrix's hemisphere_fast
-# configurations rendered here, to judge against the lavapipe baselines.
+# Issue 10's measurement on the GPU machine (through the device tool, .gl
+# and .bundle carried), in parts so that each call stays under the device's
+# 10 minutes:
+#   bench:   the fast pipelines (alchemy_fast, hemisphere_fast at n16 and
+#            n32, full and half; ssdo_fast at n16, full) beside the seed and
+#            fixed ones they replace (alchemy, hemisphere_cosine, ssdo,
+#            ssdo_marched), 1920x1080, both APIs, compute stage, 10
+#            interleaved repetitions each, clocks sampled beside them; then
+#            the fast kernels' fragment stage;
+#   quality: the AO of the fast kernels and the ones they replace against
+#            the ground truth at 1920x1080, raw and after the blur (cavity
+#            quality --blur 0 and 4, the shared reach);
+#   render:  the gpu-cpu gate matrix's fast configurations rendered here, to
+#            judge against the lavapipe baselines.
 # Leaves floor.tgz in $OUT; read it here with scripts/floor_table.py.
-#   scripts/gpu_floor.sh [REPS (10)] [MAX_TIME_S (0.25)]
+#   scripts/gpu_floor.sh [PARTS ("bench quality render")] [REPS (10)] [MAX_TIME_S (0.25)]
 set -uo pipefail
 cd "$(dirname "$0")/.."
 . scripts/gpu_env.sh
-reps="${1:-10}" maxt="${2:-0.25}"
+parts=" ${1:-bench quality render} " reps="${2:-10}" maxt="${3:-0.25}"
 work=/tmp/floor
 rm -rf "$work"
 mkdir -p "$work"
@@ -28,18 +33,24 @@ run_bench() {   # name, filter, extra flags...
   echo "rc $? $(tail -1 "$work/$name.err")"
   smi_stop
 }
-run_bench compute '^corner/(alchemy|alchemy_fast|hemisphere_fast)/n(16|32)/b4/(full|half)/1920x1080/(gl|vk)/compute/|^corner/(hemisphere|hemisphere_cosine)/n16/b4/(full|half)/1920x1080/(gl|vk)/compute/'
-run_bench fragment '^corner/(alchemy|alchemy_fast|hemisphere_cosine|hemisphere_fast)/n16/b4/(full|half)/1920x1080/(gl|vk)/fragment/'
-for b in 0 4; do
-  for s in corner slats; do
-    timeout 120 .bundle/render.sh quality --backend vk --res 1920x1080 --scene "$s" \
-      --kernel alchemy,alchemy_fast,hemisphere_cosine,hemisphere_fast \
-      --samples 16,32 --reach shared --blur "$b" --out "$work/quality_${s}_b$b" > "$work/quality_${s}_b$b.txt" 2>&1
-    echo "quality $s blur $b: rc $? $(tail -1 "$work/quality_${s}_b$b.txt")"
+if [[ $parts == *" bench "* ]]; then
+  run_bench compute '^corner/(alchemy_fast|hemisphere_fast)/n(16|32)/b4/(full|half)/1920x1080/(gl|vk)/compute/|^corner/(alchemy|hemisphere_cosine)/n16/b4/(full|half)/1920x1080/(gl|vk)/compute/|^corner/(ssdo|ssdo_marched|ssdo_fast)/n16/b4/full/1920x1080/(gl|vk)/compute/'
+  run_bench fragment '^corner/(alchemy_fast|hemisphere_fast|ssdo_fast)/n16/b4/full/1920x1080/(gl|vk)/fragment/'
+fi
+if [[ $parts == *" quality "* ]]; then
+  for b in 0 4; do
+    for s in corner slats; do
+      timeout 150 .bundle/render.sh quality --backend vk --res 1920x1080 --scene "$s" \
+        --kernel alchemy,alchemy_fast,hemisphere_cosine,hemisphere_fast,ssdo_marched,ssdo_fast \
+        --samples 16,32 --reach shared --blur "$b" --out "$work/quality_${s}_b$b" > "$work/quality_${s}_b$b.txt" 2>&1
+      echo "quality $s blur $b: rc $? $(tail -1 "$work/quality_${s}_b$b.txt")"
+    done
   done
-done
-timeout 120 .bundle/render.sh --matrix gpu-cpu --filter hemisphere_fast --out "$work/render_gpu_cpu" > "$work/render_gpu_cpu.txt" 2>&1
-echo "render gpu-cpu hemisphere_fast: rc $? $(tail -1 "$work/render_gpu_cpu.txt")"
+fi
+if [[ $parts == *" render "* ]]; then
+  timeout 150 .bundle/render.sh --matrix gpu-cpu --filter '(hemisphere_fast|ssdo_fast)/' --out "$work/render_gpu_cpu" > "$work/render_gpu_cpu.txt" 2>&1
+  echo "render gpu-cpu fast kernels: rc $? $(tail -1 "$work/render_gpu_cpu.txt")"
+fi
 nvidia-smi -q > "$work/nvidia-smi.txt" 2>&1
 tar -C "$work" -czf "$OUT/floor.tgz" .
 ls -la "$OUT"
