@@ -45,11 +45,12 @@
 
 // How much the kernel point k (tangent frame tn, b, N; scaled by
 // lengthScale) is occluded: 0 or 1, or the range check's fade.
-float occludedBy(PyramidView v, vec3 X, vec3 N, float d, vec3 k, vec3 tn, vec3 b, float lengthScale, ivec2 pixel) {
+float occludedBy(PyramidView v, vec3 X, vec3 N, float level, float d, vec3 k, vec3 tn, vec3 b, float lengthScale,
+                 ivec2 pixel) {
     precise vec3 s = X + (tn * k.x + b * k.y + N * k.z) * lengthScale;
     ivec2 source;
     float zq;
-    if (!pyramidBlocks(v, N, X, s, pixel, P.bias, source, zq)) return 0.0;
+    if (!pyramidBlocks(v, N, level, s, pixel, P.bias, source, zq)) return 0.0;
     float dz = abs(d - zq);
     return (P.range_check != 0 && dz > P.radius) ? smoothstep(0.0, 1.0, P.radius / dz) : 1.0;
 }
@@ -65,6 +66,7 @@ void cavity_main(ivec2 pixel) {
     N = portableNormalize(N);
     vec3 X = positionAt(pixel, d);
     PyramidView view = pyramidView();
+    float level = orderedDot(N, X);
 
     // The kernel's tangent frame, turned about N by the pixel's phase.
     vec3 tn, b;
@@ -85,7 +87,7 @@ void cavity_main(ivec2 pixel) {
         if (blocked < 1.0) {
             precise float lengthScale = R;
             if (P.step_jitter != 0) lengthScale = R * (1.0 - u * portableReciprocal(float(inGroup + 1)));
-            blocked = max(blocked, occludedBy(view, X, N, d, k.xyz, tn, b, lengthScale, pixel));
+            blocked = max(blocked, occludedBy(view, X, N, level, d, k.xyz, tn, b, lengthScale, pixel));
         }
         ++inGroup;
         if (k.w > 0.5 || i == n - 1) {

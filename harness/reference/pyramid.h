@@ -34,15 +34,11 @@ View view(const kernels::FrameUniforms& f, int levels);
 bool lookup(const kernels::FrameUniforms& f, const std::vector<HostImage>& zmip, const View& v, Vec3 s, int x, int y,
             int& sx, int& sy, float& zq);
 
-// risesAbove(): whether that stored point hides s along the unit normal N.
-bool risesAbove(const kernels::FrameUniforms& f, Vec3 N, Vec3 s, int sx, int sy, float zq, float bias);
-
 // pyramidBlocks(): whether the view point s, sampled from the receiver at
-// view point X, pixel (x, y), with unit normal N, is blocked; (sx, sy) and
-// zq the level-0 pixel and depth that decided ((-1, -1) and 0 where none
-// did).
-bool blocks(const kernels::FrameUniforms& f, const std::vector<HostImage>& zmip, const View& v, Vec3 N, Vec3 X, Vec3 s,
-            int x, int y, float bias, int& sx, int& sy, float& zq);
+// pixel (x, y) with unit normal N and level N . X, is blocked by the stored
+// point lookup() finds.
+bool blocks(const kernels::FrameUniforms& f, const std::vector<HostImage>& zmip, const View& v, Vec3 N,
+            float receiverLevel, Vec3 s, int x, int y, float bias, int& sx, int& sy, float& zq);
 
 Vec2 octEncode(Vec3 n);
 Vec3 octDecode(float px, float py);

@@ -83,18 +83,14 @@ bool lookup(const kernels::FrameUniforms& f, const std::vector<HostImage>& zmip,
     return true;
 }
 
-bool risesAbove(const kernels::FrameUniforms& f, Vec3 N, Vec3 s, int sx, int sy, float zq, float bias) {
-    const float along = dot(N, positionAt(f, sx, sy, 1.0f));
-    if (along < 0.0f) return zq * along - dot(N, s) > bias;
-    return zq + bias < -s.z;
-}
-
-bool blocks(const kernels::FrameUniforms& f, const std::vector<HostImage>& zmip, const View& v, Vec3 N, Vec3 X, Vec3 s,
-            int x, int y, float bias, int& sx, int& sy, float& zq) {
+bool blocks(const kernels::FrameUniforms& f, const std::vector<HostImage>& zmip, const View& v, Vec3 N,
+            float receiverLevel, Vec3 s, int x, int y, float bias, int& sx, int& sy, float& zq) {
     if (!lookup(f, zmip, v, s, x, y, sx, sy, zq)) return false;
-    if (risesAbove(f, N, s, sx, sy, zq, bias)) return true;
-    const float lift = dot(N, positionAt(f, sx, sy, zq)) - dot(N, X);
-    return lift > bias && zq + bias < -s.z;
+    const float along = dot(N, positionAt(f, sx, sy, 1.0f));
+    const float height = zq * along;
+    if (along < 0.0f && height - dot(N, s) > bias) return true;
+    if (zq + bias >= -s.z) return false;
+    return along >= 0.0f || height - receiverLevel > bias;
 }
 
 // include/octahedral.glsl.
@@ -304,6 +300,7 @@ Result<std::vector<HostImage>> hemisphereFast(const Context& ctx) {
             }
             N = screen::normalizeExact(N);
             const Vec3 X = positionAt(f, x, y, d);
+            const float level = dot(N, X);
             Vec3 t, b;
             screen::tangentFrame(cosSinTurns(pixelHash(x, y)), N, t, b);
 
@@ -312,7 +309,7 @@ Result<std::vector<HostImage>> hemisphereFast(const Context& ctx) {
                 const Vec3 s = X + (t * k[0] + b * k[1] + N * k[2]) * lengthScale;
                 int sx = -1, sy = -1;
                 float zq = 0.0f;
-                if (!pyramid::blocks(f, zmip, view, N, X, s, x, y, bias, sx, sy, zq)) return 0.0f;
+                if (!pyramid::blocks(f, zmip, view, N, level, s, x, y, bias, sx, sy, zq)) return 0.0f;
                 const float dz = std::fabs(d - zq);
                 return rangeCheck && dz > R ? screen::smoothstep01(R / dz) : 1.0f;
             };

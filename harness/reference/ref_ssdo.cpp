@@ -242,6 +242,7 @@ struct FastMarch {
     struct Receiver {
         float depth;
         Vec3 n, X;
+        float level;   // N . X
         Basis basis;
     };
 
@@ -252,6 +253,7 @@ struct FastMarch {
         if (isBackground(r.depth) || lengthSquared(nrm) == 0.0f) return false;
         r.n = screen::normalizeExact(nrm);
         r.X = pyramid::positionAt(f, x, y, r.depth);
+        r.level = dot(r.n, r.X);
         r.basis = ssdoBasis(x, y, r.n);
         return true;
     }
@@ -267,7 +269,7 @@ struct FastMarch {
         for (int j = 0; j < steps; ++j) {
             const float lambda = radius * ((float(j + 1) - u) * perStep);
             const Vec3 point = r.X + s.dir * lambda;
-            if (pyramid::blocks(f, zmip, view, r.n, r.X, point, x, y, bias, s.tx, s.ty, senderDepth)) {
+            if (pyramid::blocks(f, zmip, view, r.n, r.level, point, x, y, bias, s.tx, s.ty, senderDepth)) {
                 s.visible = false;
                 return s;
             }

@@ -84,38 +84,33 @@ bool pyramidLookup(PyramidView v, vec3 s, ivec2 pixel, out ivec2 source, out flo
     return true;
 }
 
-// Whether the stored point q (pyramidLookup's source and zq) hides s from
-// the receiver with unit normal N, tested along N with no normal fetched at
-// q (ssao_hemisphere_fast.glsl says why):
-//     N . q - N . s > bias,   with N . q = z_q (N . ray_q),
-// and where q's ray meets the receiver's plane from behind (N . ray_q >= 0,
-// a receiver seen edge-on, such as a sphere's rim over the floor) the
-// seed's test where q has no normal, the plain depth test z_q + bias < z_s
-// along s's own ray.
-bool risesAbove(vec3 N, vec3 s, ivec2 source, float zq, float bias) {
-    float along = orderedDot(N, positionAt(source, 1.0));
-    if (along < 0.0) {
-        precise float rise = zq * along - orderedDot(N, s);
-        return rise > bias;
-    }
-    precise float threshold = zq + bias;
-    return threshold < -s.z;
-}
-
-// Whether the point s, sampled from the receiver at view point X with unit
-// normal N, is blocked, and by which stored point (pyramidLookup's source
-// and zq). Hidden along N (risesAbove: no self-shadowing on any plane, no
-// normal fetched), or else behind the stored surface along s's own ray while
-// that surface stands above the receiver's tangent plane by more than
-// `bias`: the verdict of a depth layer for a point that has passed through
-// or under a thin occluder seen from above (a slat, a plate over a gap),
-// which rises no higher than the point and so passes the first test. The
-// receiver's own plane never stands above itself, so the second test cannot
-// shadow it either.
-bool pyramidBlocks(PyramidView v, vec3 N, vec3 X, vec3 s, ivec2 pixel, float bias, out ivec2 source, out float zq) {
+// Whether the point s, sampled from the receiver with unit normal N at the
+// level `receiverLevel` = N . X along it (X its view point), is blocked, and
+// by which stored point q (pyramidLookup's source and zq). No normal is
+// fetched at q; two tests, both along N (ssao_hemisphere_fast.glsl says
+// why):
+//  * q rises above s: N . q - N . s > bias, with N . q = z_q (N . ray_q).
+//    The receiver's own plane sits at the receiver's level under every
+//    point, at any viewing angle: no self-shadowing.
+//  * s lies behind q along its own ray (z_q + bias < z_s) while q stands
+//    above the receiver's tangent plane, N . q - N . X > bias: the verdict
+//    of a depth layer for a point that has passed under or through a thin
+//    occluder seen from above (a slat, a plate over a gap), which rises no
+//    higher than the point and so passes the first test. The receiver's own
+//    plane never stands above itself, so this cannot shadow it either.
+// Where q's ray meets the receiver's plane from behind (N . ray_q >= 0, a
+// receiver seen edge-on, such as a sphere's rim over the floor) N . q says
+// nothing, and the depth test alone decides, the seed's where q has no
+// normal.
+bool pyramidBlocks(PyramidView v, vec3 N, float receiverLevel, vec3 s, ivec2 pixel, float bias, out ivec2 source,
+                   out float zq) {
     if (!pyramidLookup(v, s, pixel, source, zq)) return false;
-    if (risesAbove(N, s, source, zq, bias)) return true;
-    precise float lift = orderedDot(N, positionAt(source, zq)) - orderedDot(N, X);
+    float along = orderedDot(N, positionAt(source, 1.0));
+    precise float height = zq * along;
+    precise float rise = height - orderedDot(N, s);
+    if (along < 0.0 && rise > bias) return true;
     precise float threshold = zq + bias;
-    return lift > bias && threshold < -s.z;
+    if (threshold >= -s.z) return false;
+    precise float lift = height - receiverLevel;
+    return along >= 0.0 || lift > bias;
 }

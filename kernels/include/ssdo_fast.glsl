@@ -17,12 +17,13 @@ struct FastSample {
     float senderDepth;   // its linear depth: the sender is positionAt(sender, senderDepth)
 };
 
-// Direction i of `count` from the receiver at view point p, marched in
+// Direction i of `count` from the receiver at view point p (at `level` =
+// N . p along its normal), marched in
 // `steps` points out to R as ssdoSample marches it (point j at
 // (j + 1 - u) R / steps, u drawn per pixel and direction), blocked by its
 // first hidden point.
-FastSample ssdoFastSample(PyramidView v, SsdoBasis f, vec3 p, ivec2 pixel, int i, int count, int steps, float radius,
-                          float bias) {
+FastSample ssdoFastSample(PyramidView v, SsdoBasis f, vec3 p, float level, ivec2 pixel, int i, int count, int steps,
+                          float radius, float bias) {
     FastSample s;
     s.dir = ssdoDirection(f, i, count);
     s.visible = true;
@@ -31,7 +32,7 @@ FastSample ssdoFastSample(PyramidView v, SsdoBasis f, vec3 p, ivec2 pixel, int i
     for (int j = 0; j < steps; ++j) {
         precise float lambda = radius * ((float(j + 1) - u) * perStep);
         precise vec3 point = p + s.dir * lambda;
-        if (pyramidBlocks(v, f.n, p, point, pixel, bias, s.sender, s.senderDepth)) {
+        if (pyramidBlocks(v, f.n, level, point, pixel, bias, s.sender, s.senderDepth)) {
             s.visible = false;
             return s;
         }
@@ -47,6 +48,7 @@ struct FastReceiver {
     float depth;
     vec3 n;
     vec3 X;
+    float level;   // N . X
     SsdoBasis f;
     PyramidView view;
     int count, steps;
@@ -60,6 +62,7 @@ bool fastReceiver(ivec2 pixel, out FastReceiver r) {
     if (isBackground(r.depth) || lengthSquared(nrm) == 0.0) return false;
     r.n = portableNormalize(nrm);
     r.X = positionAt(pixel, r.depth);
+    r.level = orderedDot(r.n, r.X);
     r.f = ssdoBasis(pixel, r.n);
     r.view = pyramidView();
     r.count = clamp(P.samples, 1, 256);
@@ -69,5 +72,5 @@ bool fastReceiver(ivec2 pixel, out FastReceiver r) {
 
 // Direction i of the receiver at `pixel`, marched.
 FastSample fastSample(FastReceiver r, ivec2 pixel, int i) {
-    return ssdoFastSample(r.view, r.f, r.X, pixel, i, r.count, r.steps, P.radius, P.bias);
+    return ssdoFastSample(r.view, r.f, r.X, r.level, pixel, i, r.count, r.steps, P.radius, P.bias);
 }
