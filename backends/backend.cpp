@@ -1,5 +1,8 @@
 #include "backend.h"
 
+#include <cstdlib>
+#include <string>
+
 namespace cavity::gpu {
 
 // Each implementation file defines its factory; nothing else of theirs leaks.
@@ -67,7 +70,10 @@ const char* formatName(Format f) {
 }
 
 Result<std::unique_ptr<Backend>> createBackend(Api api, const BackendOptions& options) {
-    return api == Api::OpenGL ? createGlBackend(options) : createVkBackend(options);
+    BackendOptions o = options;
+    const char* full = std::getenv("CAVITY_FULL_BARRIERS");
+    if (full && std::string(full) == "1") o.fullBarriers = true;
+    return api == Api::OpenGL ? createGlBackend(o) : createVkBackend(o);
 }
 
 }  // namespace cavity::gpu

@@ -177,6 +177,13 @@ struct BackendOptions {
     int deviceIndex = 0;        // EGL device / physical device index
     std::string deviceName;     // Vulkan: physical-device name substring; wins over index
     bool validation = false;    // Vulkan: Khronos validation layer with synchronisation validation; GL: KHR_debug output
+    // Every barrier() the widest there is (Vulkan: all commands' memory
+    // writes before all commands' reads and writes; GL: GL_ALL_BARRIER_BITS)
+    // instead of as narrow as the passes around it need. A diagnostic: an
+    // image that changes with it points at a missing barrier, and timing
+    // with and without it measures what the narrowing buys. Also set by the
+    // environment variable CAVITY_FULL_BARRIERS=1 (createBackend).
+    bool fullBarriers = false;
 };
 
 class Backend {

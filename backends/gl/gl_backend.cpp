@@ -160,6 +160,7 @@ private:
     // ordered with later commands by the API itself.
     bool storedSinceBarrier_ = false;   // a pass with a storage binding ran since the last barrier()
     bool barrierOwed_ = false;          // the last barrier() followed such a pass
+    bool fullBarriers_ = false;         // BackendOptions::fullBarriers
     GLbitfield barrierIssued_ = 0;      // the glMemoryBarrier bits already issued for it
     Status sticky_;
     std::vector<ScopeTime> scopes_;
@@ -168,6 +169,7 @@ private:
 Status GlBackend::init(const BackendOptions& options) {
     if (epoxy_gl_version() < 45)
         return unavailable("gl: OpenGL 4.5 needed, " + glString(GL_RENDERER) + " gives " + glString(GL_VERSION));
+    fullBarriers_ = options.fullBarriers;
     if (options.validation) CAVITY_TRY(debug_.install());
     // backend.h conventions: NDC y = -1 is row 0 (GL's own), depth in [0, 1] as in Vulkan.
     glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
@@ -534,6 +536,10 @@ Status GlBackend::drawNow(Pipeline p, std::span<const Bind> binds, const RenderT
 
 Status GlBackend::barrierNow() {
     CAVITY_TRY(startRecording("barrier"));
+    if (fullBarriers_) {
+        glMemoryBarrier(GL_ALL_BARRIER_BITS);
+        return checkGl("glMemoryBarrier(GL_ALL_BARRIER_BITS)");
+    }
     if (!storedSinceBarrier_) return {};   // two barrier() calls in a row are one
     storedSinceBarrier_ = false;
     barrierOwed_ = true;
@@ -548,6 +554,7 @@ Status GlBackend::barrierNow() {
 // next barrier() gets the bits it needs, once. A storage binding counts as a
 // store: the layout does not say whether the shader writes it.
 Status GlBackend::owedBarrier(const PipelineRecord& pipe, bool draws) {
+    if (fullBarriers_) return {};   // barrierNow() issued every bit already
     GLbitfield need = draws ? GL_FRAMEBUFFER_BARRIER_BIT : 0;
     bool stores = false;
     for (const BindingSlot& slot : pipe.layout) {

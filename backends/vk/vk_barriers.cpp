@@ -31,7 +31,12 @@ VkAccessFlags toAccess1(VkAccessFlags2 a) {
 
 }  // namespace
 
-void pipelineBarrier(Device& d, VkCommandBuffer cmd, const SyncScope& src, const SyncScope& dst) {
+void pipelineBarrier(Device& d, VkCommandBuffer cmd, const SyncScope& narrowSrc, const SyncScope& narrowDst) {
+    // BackendOptions::fullBarriers: the widest dependency instead.
+    const SyncScope src = d.fullBarriers ? SyncScope{VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT} : narrowSrc;
+    const SyncScope dst = d.fullBarriers ? SyncScope{VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
+                                                     VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT}
+                                         : narrowDst;
     if (d.cmdPipelineBarrier2) {
         auto b = vkStruct<VkMemoryBarrier2>(VK_STRUCTURE_TYPE_MEMORY_BARRIER_2);
         b.srcStageMask = src.stages;

@@ -279,6 +279,7 @@ Result<std::unique_ptr<Device>> createDevice(const BackendOptions& o) {
         return unavailable("vk: could not start: the Vulkan loader offers " + versionString(loader) + ", need 1.2");
     const uint32_t instanceVersion = std::min(loader, VK_API_VERSION_1_3);
 
+    d->fullBarriers = o.fullBarriers;
     CAVITY_TRY(createInstance(*d, o, instanceVersion));
     CAVITY_ASSIGN(d->physical, pickPhysicalDevice(d->instance, o));
     vkGetPhysicalDeviceProperties(d->physical, &d->props);

@@ -31,6 +31,7 @@ struct Device {
     // synchronization2 (core 1.3, where the device enables the feature);
     // null: barriers go through vkCmdPipelineBarrier.
     PFN_vkCmdPipelineBarrier2 cmdPipelineBarrier2 = nullptr;
+    bool fullBarriers = false;   // BackendOptions::fullBarriers
     DeviceInfo info;
 
     // For submitOnce.
