@@ -1,6 +1,6 @@
-#include "gbuffer_import.h"
-
 #include "camera.h"
+#include "gbuffer_import.h"
+#include "image_module.h"
 
 #include <OpenImageIO/imageio.h>
 
@@ -10,7 +10,7 @@
 #include <filesystem>
 #include <map>
 
-namespace cavity {
+namespace cavity::oiio {
 
 namespace fs = std::filesystem;
 using namespace OIIO;
@@ -111,7 +111,7 @@ Result<Capture> open(const std::string& path) {
 
 }  // namespace
 
-Result<GBufferImages> importGBuffer(const std::string& path, int width, int height) {
+Result<GBufferImages> importGBuffer(const std::string& path, int width, int height, FrameFn frameOf) {
     CAVITY_ASSIGN(Capture cap, open(path));
     const int w = cap.spec().width, h = cap.spec().height;
     const std::string size = std::to_string(w) + "x" + std::to_string(h);
@@ -142,7 +142,7 @@ Result<GBufferImages> importGBuffer(const std::string& path, int width, int heig
     g.normal = HostImage(w, h, 4);
     g.albedo = HostImage(w, h, 4);
     // The same arithmetic as viewRayAt (kernels/include/common.glsl), in float.
-    const auto frame = frameUniforms(w, h, w, h);
+    const auto frame = frameOf(w, h, w, h);
     char rangeText[64];
     std::snprintf(rangeText, sizeof rangeText, "[%g, %g]", double(kNear), double(kFar));
     const std::string depthRange = rangeText;
@@ -195,4 +195,4 @@ Result<GBufferImages> importGBuffer(const std::string& path, int width, int heig
     return g;
 }
 
-}  // namespace cavity
+}  // namespace cavity::oiio

@@ -1,4 +1,4 @@
-#include "image_io.h"
+#include "image_module.h"
 
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
@@ -13,7 +13,7 @@
 
 #include <unistd.h>
 
-namespace cavity {
+namespace cavity::oiio {
 
 namespace fs = std::filesystem;
 using namespace OIIO;
@@ -130,4 +130,4 @@ Result<HostImage> readImage(const std::string& path) {
     return img;
 }
 
-}  // namespace cavity
+}  // namespace cavity::oiio
