@@ -1,6 +1,7 @@
 #include "camera.h"
 #include "gbuffer_import.h"
 #include "image_module.h"
+#include "oiio_pixels.h"
 
 #include <OpenImageIO/imageio.h>
 
@@ -67,9 +68,17 @@ public:
     Result<std::vector<float>> read(const std::string& name) {
         const int c = index(name);
         const ImageSpec& s = spec();
+        // Every channel at the first read, in one call: a read of one
+        // channel as floats costs what a whole image does (oiio_pixels.h).
+        if (pixels_.pixels.empty()) {
+            pixels_ = HostImage(s.width, s.height, s.nchannels);
+            if (!readFloats(*in_, pixels_)) {
+                pixels_ = HostImage{};
+                return error("channel " + name + " cannot be read (" + oneLine(in_->geterror()) + ")");
+            }
+        }
         std::vector<float> v(size_t(s.width) * size_t(s.height));
-        if (!in_->read_image(0, 0, c, c + 1, TypeDesc::FLOAT, v.data()))
-            return error("channel " + name + " cannot be read (" + oneLine(in_->geterror()) + ")");
+        for (size_t i = 0; i < v.size(); ++i) v[i] = pixels_.pixels[i * size_t(s.nchannels) + size_t(c)];
         for (size_t i = 0; i < v.size(); ++i)
             if (!std::isfinite(v[i]))
                 return error("channel " + name + " is " + fmt(v[i]) + " at " + pixelName(i, s.width) + ": must be finite");
@@ -84,6 +93,7 @@ private:
     }
     std::string path_;
     std::unique_ptr<ImageInput> in_;
+    HostImage pixels_;   // every channel, once read
 };
 
 Result<Capture> open(const std::string& path) {
