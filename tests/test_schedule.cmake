@@ -1,3 +1,5 @@
+# When ctest starts each test.
+#
 # ctest -j starts the tests of highest COST first. After a run it takes each
 # test's time from Testing/Temporary/CTestCostData.txt instead, but CI builds
 # a clean clone, which has none: without these it would start the tests in
@@ -88,4 +90,28 @@ foreach(entry
   list(GET pair 0 cost)
   list(GET pair 1 name)
   set_tests_properties("${name}" PROPERTIES COST ${cost})
+endforeach()
+
+# test_render is SERIAL (tests/CMakeLists.txt), but these of its tests judge
+# no time: a damaged or mismatched render folder, or a bad flag, is refused
+# with exit 2 before anything is judged; the render binary's libraries; an
+# image file's bytes. Each process works in its own folder (named by its
+# pid), so they run beside other tests, as test_render's budgets of 1e6 ms
+# would let its other tests too (54 s of the 350 s of serial tests on
+# 2026-12-02).
+foreach(name
+    "TwoStep.OverlappingShardsAreRefused"
+    "TwoStep.FoldersOfTwoBuildsAreRefused"
+    "TwoStep.BadRenderFlagsExitTwoWithOneLineAndWriteNothing"
+    "RenderBinary.LinksNoOpenImageIO"
+    "ImageFile.RoundTripsEveryBitInTheNarrowestForm")
+  set_tests_properties("${name}" PROPERTIES RUN_SERIAL FALSE)
+endforeach()
+# Named as gtest_discover_tests names them, with the parameter's index.
+set(index 0)
+foreach(damage MissingImage WrongSize TruncatedFile CorruptFile DigestMismatch ManifestOfAnotherMatrix
+        ManifestOfAnEditedMatrix ManifestOfAnotherBuild ManifestOfAnotherSchema NoManifest FileOutsideTheFolder)
+  set_tests_properties("Damages/BadRenderFolder.IsRefusedWithOneLineNamingTheFileAndWritesNothing/${damage}  # GetParam() = ${index}"
+                       PROPERTIES RUN_SERIAL FALSE)
+  math(EXPR index "${index} + 1")
 endforeach()
