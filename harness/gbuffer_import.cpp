@@ -1,6 +1,7 @@
-#include "gbuffer_import.h"
-
 #include "camera.h"
+#include "gbuffer_import.h"
+#include "image_module.h"
+#include "oiio_pixels.h"
 
 #include <OpenImageIO/imageio.h>
 
@@ -10,7 +11,7 @@
 #include <filesystem>
 #include <map>
 
-namespace cavity {
+namespace cavity::oiio {
 
 namespace fs = std::filesystem;
 using namespace OIIO;
@@ -67,9 +68,17 @@ public:
     Result<std::vector<float>> read(const std::string& name) {
         const int c = index(name);
         const ImageSpec& s = spec();
+        // Every channel at the first read, in one call: a read of one
+        // channel as floats costs what a whole image does (oiio_pixels.h).
+        if (pixels_.pixels.empty()) {
+            pixels_ = HostImage(s.width, s.height, s.nchannels);
+            if (!readFloats(*in_, pixels_)) {
+                pixels_ = HostImage{};
+                return error("channel " + name + " cannot be read (" + oneLine(in_->geterror()) + ")");
+            }
+        }
         std::vector<float> v(size_t(s.width) * size_t(s.height));
-        if (!in_->read_image(0, 0, c, c + 1, TypeDesc::FLOAT, v.data()))
-            return error("channel " + name + " cannot be read (" + oneLine(in_->geterror()) + ")");
+        for (size_t i = 0; i < v.size(); ++i) v[i] = pixels_.pixels[i * size_t(s.nchannels) + size_t(c)];
         for (size_t i = 0; i < v.size(); ++i)
             if (!std::isfinite(v[i]))
                 return error("channel " + name + " is " + fmt(v[i]) + " at " + pixelName(i, s.width) + ": must be finite");
@@ -84,6 +93,7 @@ private:
     }
     std::string path_;
     std::unique_ptr<ImageInput> in_;
+    HostImage pixels_;   // every channel, once read
 };
 
 Result<Capture> open(const std::string& path) {
@@ -111,7 +121,7 @@ Result<Capture> open(const std::string& path) {
 
 }  // namespace
 
-Result<GBufferImages> importGBuffer(const std::string& path, int width, int height) {
+Result<GBufferImages> importGBuffer(const std::string& path, int width, int height, FrameFn frameOf) {
     CAVITY_ASSIGN(Capture cap, open(path));
     const int w = cap.spec().width, h = cap.spec().height;
     const std::string size = std::to_string(w) + "x" + std::to_string(h);
@@ -142,7 +152,7 @@ Result<GBufferImages> importGBuffer(const std::string& path, int width, int heig
     g.normal = HostImage(w, h, 4);
     g.albedo = HostImage(w, h, 4);
     // The same arithmetic as viewRayAt (kernels/include/common.glsl), in float.
-    const auto frame = frameUniforms(w, h, w, h);
+    const auto frame = frameOf(w, h, w, h);
     char rangeText[64];
     std::snprintf(rangeText, sizeof rangeText, "[%g, %g]", double(kNear), double(kFar));
     const std::string depthRange = rangeText;
@@ -195,4 +205,4 @@ Result<GBufferImages> importGBuffer(const std::string& path, int width, int heig
     return g;
 }
 
-}  // namespace cavity
+}  // namespace cavity::oiio

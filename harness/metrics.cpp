@@ -1,9 +1,7 @@
 #include "metrics.h"
 
 #include "flip.h"
-
-#include <OpenImageIO/imagebuf.h>
-#include <OpenImageIO/imagebufalgo.h>
+#include "image_module.h"
 
 #include <algorithm>
 #include <cmath>
@@ -14,27 +12,10 @@ namespace cavity::metrics {
 
 namespace {
 
-namespace IBA = OIIO::ImageBufAlgo;
-
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 std::string shape(const HostImage& i) {
     return std::to_string(i.width) + "x" + std::to_string(i.height) + "x" + std::to_string(i.channels);
-}
-
-// OIIO reads the HostImage's floats in place; nothing here writes through it.
-OIIO::ImageBuf wrap(const HostImage& img) {
-    OIIO::ImageSpec spec(img.width, img.height, img.channels, OIIO::TypeDesc::FLOAT);
-    return OIIO::ImageBuf(spec, const_cast<float*>(img.pixels.data()));
-}
-
-// fixNonFinite in its counting-only mode counts pixels (not values) holding
-// any NaN or Inf, which is what the gate reports.
-long long nonFinitePixels(const HostImage& img) {
-    int n = 0;
-    OIIO::ImageBuf unused;
-    IBA::fixNonFinite(unused, wrap(img), IBA::NONFINITE_NONE, &n);
-    return n;
 }
 
 // OIIO's compare counts a NaN as matching a NaN and an Inf an Inf; keep that,
@@ -57,15 +38,16 @@ struct Sums {
     int worstX = 0, worstY = 0;
 };
 
-Sums oiioCompare(const HostImage& a, const HostImage& b, double threshold) {
-    const auto cr = IBA::compare(wrap(a), wrap(b), float(threshold), float(threshold));
-    return {cr.maxerror, cr.meanerror, cr.rms_error, (long long)cr.nfail, cr.maxx, cr.maxy};
+// OIIO's compare, in the image module (image_module.h).
+Sums oiioCompare(const ImageModule& oiio, const HostImage& a, const HostImage& b, double threshold) {
+    const OiioCompareSums cr = oiio.compare(a, b, threshold);
+    return {cr.maxError, cr.meanError, cr.rmsError, cr.failing, cr.maxX, cr.maxY};
 }
 
 // With non-finite values present, compare copies in which every pair holding
 // one is zeroed in both images, then take those pairs out of the averages and
 // put the mismatched ones back in as infinite, over-threshold errors.
-Sums compareWithNonFinite(const HostImage& a, const HostImage& b, double threshold) {
+Sums compareWithNonFinite(const ImageModule& oiio, const HostImage& a, const HostImage& b, double threshold) {
     HostImage sa = a, sb = b;
     const size_t npix = size_t(a.width) * a.height;
     const int ch = a.channels;
@@ -87,7 +69,7 @@ Sums compareWithNonFinite(const HostImage& a, const HostImage& b, double thresho
             mismatchedPixels.push_back(p);
         }
     }
-    Sums s = oiioCompare(sa, sb, threshold);
+    Sums s = oiioCompare(oiio, sa, sb, threshold);
     const double nvals = double(npix) * ch, used = nvals - double(excluded);
     s.meanAbs = used > 0 ? s.meanAbs * nvals / used : 0.0;
     s.rmse = used > 0 ? std::sqrt(s.rmse * s.rmse * nvals / used) : 0.0;
@@ -106,10 +88,9 @@ Sums compareWithNonFinite(const HostImage& a, const HostImage& b, double thresho
 }
 
 // What SSIM and FLIP see: non-finite values as 0 (OIIO's NONFINITE_BLACK).
-HostImage finiteCopy(const HostImage& img) {
+HostImage finiteCopy(const ImageModule& oiio, const HostImage& img) {
     HostImage out = img;
-    OIIO::ImageBuf buf = wrap(out);
-    IBA::fixNonFinite(buf, buf, IBA::NONFINITE_BLACK);
+    oiio.zeroNonFinite(out);
     return out;
 }
 
@@ -248,6 +229,7 @@ Result<Report> compare(const HostImage& baselineIn, const HostImage& candidateIn
             return internal("image " + shape(*img) + " holds " + std::to_string(img->pixels.size()) + " floats");
     if (baselineIn.width <= 0 || baselineIn.height <= 0 || baselineIn.channels <= 0)
         return badInput("cannot compare empty images (" + shape(baselineIn) + ")");
+    CAVITY_ASSIGN(const ImageModule* oiio, imageModule());
     const bool dropAlpha = constantAlpha(baselineIn, candidateIn);
     const HostImage rgbBaseline = dropAlpha ? colourOnly(baselineIn) : HostImage{};
     const HostImage rgbCandidate = dropAlpha ? colourOnly(candidateIn) : HostImage{};
@@ -260,7 +242,7 @@ Result<Report> compare(const HostImage& baselineIn, const HostImage& candidateIn
         r.differingPixels = differing(baseline, candidate, options.differingDelta);
         r.differingShare = double(r.differingPixels) / (double(baseline.width) * baseline.height);
     }
-    r.nonFinite = nonFinitePixels(candidate);
+    r.nonFinite = oiio->nonFinitePixels(candidate);
     if (r.nonFinite > 0) {
         const size_t at = size_t(std::find_if(candidate.pixels.begin(), candidate.pixels.end(),
                                               [](float v) { return !std::isfinite(v); }) -
@@ -268,10 +250,10 @@ Result<Report> compare(const HostImage& baselineIn, const HostImage& candidateIn
         r.firstNonFiniteX = int(at % candidate.width);
         r.firstNonFiniteY = int(at / candidate.width);
     }
-    const bool anyNonFinite = r.nonFinite > 0 || nonFinitePixels(baseline) > 0;
+    const bool anyNonFinite = r.nonFinite > 0 || oiio->nonFinitePixels(baseline) > 0;
 
-    const Sums s = anyNonFinite ? compareWithNonFinite(baseline, candidate, options.threshold)
-                                : oiioCompare(baseline, candidate, options.threshold);
+    const Sums s = anyNonFinite ? compareWithNonFinite(*oiio, baseline, candidate, options.threshold)
+                                : oiioCompare(*oiio, baseline, candidate, options.threshold);
     r.maxAbs = s.maxAbs;
     r.meanAbs = s.meanAbs;
     r.rmse = s.rmse;
@@ -280,8 +262,8 @@ Result<Report> compare(const HostImage& baselineIn, const HostImage& candidateIn
     r.psnr = r.rmse > 0 ? -20.0 * std::log10(r.rmse) : kInf;   // 20 log10(1 / rmse)
     r.overThresholdShare = double(s.overThreshold) / (double(baseline.width) * baseline.height);
 
-    const HostImage fa = anyNonFinite ? finiteCopy(baseline) : HostImage{};
-    const HostImage fb = anyNonFinite ? finiteCopy(candidate) : HostImage{};
+    const HostImage fa = anyNonFinite ? finiteCopy(*oiio, baseline) : HostImage{};
+    const HostImage fb = anyNonFinite ? finiteCopy(*oiio, candidate) : HostImage{};
     const HostImage& a = anyNonFinite ? fa : baseline;
     const HostImage& b = anyNonFinite ? fb : candidate;
     r.ssim = ssim(a, b);
