@@ -8,22 +8,38 @@
 
 #include <dlfcn.h>
 
+#include <filesystem>
+#include <string>
+
 namespace cavity {
 
 namespace {
 
-// The module's path in this build tree, where every binary that loads it
-// runs from (CMakeLists.txt passes $<TARGET_FILE:cavity_image_module>).
+// The module's path in this build tree (CMakeLists.txt passes
+// $<TARGET_FILE:cavity_image_module>), where every binary that loads it runs
+// from; a `cavity` copied elsewhere with the module beside it finds that one
+// first.
 constexpr const char* kModulePath = CAVITY_IMAGE_MODULE_PATH;
+
+std::string besideExecutable() {
+    std::error_code ec;
+    const auto exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+    if (ec) return {};
+    return (exe.parent_path() / std::filesystem::path(kModulePath).filename()).string();
+}
 
 Result<const ImageModule*> load() {
     // RTLD_LOCAL: OpenImageIO's symbols stay out of the binary's namespace.
-    void* handle = ::dlopen(kModulePath, RTLD_NOW | RTLD_LOCAL);
+    std::string path = besideExecutable();
+    void* handle = path.empty() || !std::filesystem::exists(path) ? nullptr : ::dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+    if (!handle) {
+        path = kModulePath;
+        handle = ::dlopen(kModulePath, RTLD_NOW | RTLD_LOCAL);
+    }
     if (!handle) return internal(std::string("load the image module: ") + ::dlerror());
     using Entry = const ImageModule* (*)();
     auto entry = reinterpret_cast<Entry>(::dlsym(handle, CAVITY_IMAGE_MODULE_ENTRY));
-    if (!entry)
-        return internal(std::string("load the image module ") + kModulePath + ": no " + CAVITY_IMAGE_MODULE_ENTRY);
+    if (!entry) return internal("load the image module " + path + ": no " + CAVITY_IMAGE_MODULE_ENTRY);
     return entry();   // never unloaded: OpenImageIO keeps threads and caches to exit
 }
 
