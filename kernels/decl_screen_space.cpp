@@ -181,13 +181,12 @@ KernelDecl ssdo() {
     k.outputs = {{"visibility", Format::R16F}, {"radiance", Format::RGBA16F}};
     k.cost = [](const ParamValues& v) {
         const double n = v.at("samples");
-        const double lod = v.at("sky_lod");
-        const double skyTexels = lod == std::floor(lod) ? 4 : 8;   // bilinear, or trilinear
+        const double sky = skyTexels(v);
         // The sky panorama (256x128 RGBA32F and its mips, 0.7 MB) stays in
         // L2: no DRAM traffic per pixel.
-        return Cost{2 + 3 * n, kRgba32f + kRgba16f + n * (kRgba32f + kRgba16f + skyTexels * kRgba32f) + kR16f + kRgba16f,
+        return Cost{2 + 3 * n, kRgba32f + kRgba16f + n * (kRgba32f + kRgba16f + sky * kRgba32f) + kR16f + kRgba16f,
                     fetchSlots(kRgba32f) + fetchSlots(kRgba16f) +
-                        n * (fetchSlots(kRgba32f) + fetchSlots(kRgba16f) + skyTexels / 4 * fetchSlots(kRgba32f)),
+                        n * (fetchSlots(kRgba32f) + fetchSlots(kRgba16f) + sky / 4 * fetchSlots(kRgba32f)),
                     kRgba32f + kRgba16f + kR16f + kRgba16f};
     };
     return k;
@@ -266,6 +265,11 @@ KernelDecl compositeSsdo() {
 }
 
 }  // namespace
+
+double skyTexels(const ParamValues& v) {
+    const double lod = v.at("sky_lod");
+    return lod == std::floor(lod) ? 4 : 8;
+}
 
 std::vector<KernelDecl> screenSpaceKernels() {
     return {depthFromPosition(), hemisphere(),        hemisphereCosine(), blurBox(),      downsampleDepth(), upsampleBilateral(),

@@ -12,5 +12,8 @@ std::vector<KernelDecl> screenSpaceKernels();   // decl_screen_space.cpp: hemisp
 std::vector<KernelDecl> qualityVariantKernels();   // decl_quality_variants.cpp: ssdo_marched, blur_box_depth (issue 11)
 std::vector<KernelDecl> sdfAoKernels();         // decl_sdf_ao.cpp: the SDF AO variants and the ground truth
 std::vector<ConstantImageDecl> screenSpaceConstants();   // decl_screen_space.cpp: noise tile, sky panorama
+// Texels of the sky panorama one SSDO direction's textureLod reads at `sky_lod`:
+// 4 (bilinear) or 8 (trilinear between two levels). decl_screen_space.cpp.
+double skyTexels(const ParamValues& v);
 
 }  // namespace cavity::kernels

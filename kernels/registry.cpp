@@ -254,13 +254,6 @@ const KernelDecl& qualityVariant(const std::string& name) {
     throw std::logic_error("registry: no quality variant '" + name + "'");
 }
 
-// Texels of the sky panorama a direction's textureLod reads: bilinear, or
-// trilinear between two levels (the panorama stays in L2: no DRAM).
-double skyTexels(const ParamValues& v) {
-    const double lod = v.at("sky_lod");
-    return lod == std::floor(lod) ? 4 : 8;
-}
-
 KernelDecl ssdoFast() {
     KernelDecl k = qualityVariant("ssdo_marched");
     k.name = "ssdo_fast";
