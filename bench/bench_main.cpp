@@ -1,6 +1,6 @@
 // The benchmark runner: one Google Benchmark per configuration of the sweep
-// (harness/sweep.h), named by its configuration id. Each benchmark iteration
-// is one whole measurement (harness/timing.h): frames recorded back to back
+// (harness/plan/sweep.h), named by its configuration id. Each benchmark iteration
+// is one whole measurement (harness/measure/timing.h): frames recorded back to back
 // after a steady warm-up until the medians are known to 0.5%; the iteration's
 // time is the median per-frame GPU time of the AO pipeline (every pass but
 // the G-buffer), from the backend's timestamps (UseManualTime) or from the
@@ -32,7 +32,7 @@ namespace {
 using cavity::Result;
 using cavity::Status;
 
-Status parsePlant(const std::string& text, cavity::PlantedSlowdown& plant) {
+Status parsePlant(const std::string& text, cavity::pipeline::PlantedSlowdown& plant) {
     CAVITY_ASSIGN(const auto items, cavity::cli::splitList("--plant", text));
     for (const auto& item : items) {
         const auto colon = item.find(':');
@@ -47,7 +47,7 @@ Status parsePlant(const std::string& text, cavity::PlantedSlowdown& plant) {
 }
 
 // {"<configuration id>": {"<pass>": FMAS, ...}, ...} (scripts/plant_calibrate.py writes it).
-Status readPlantFile(const std::string& path, std::map<std::string, cavity::PlantedSlowdown>& out) {
+Status readPlantFile(const std::string& path, std::map<std::string, cavity::pipeline::PlantedSlowdown>& out) {
     std::ifstream f(path);
     if (!f || std::filesystem::is_directory(path)) return cavity::badInput("--plant-file " + path + ": cannot be read");
     try {
@@ -71,7 +71,7 @@ const cavity::cli::CommandSpec& benchSpec() {
         cavity::cli::CommandSpec c;
         c.program = "cavity_bench";
         c.description =
-            "One Google Benchmark per configuration of the sweep (harness/sweep.h), named by its configuration id; "
+            "One Google Benchmark per configuration of the sweep (harness/plan/sweep.h), named by its configuration id; "
             "each iteration is one whole measurement, its time the median per-frame GPU time of the AO pipeline. "
             "Google Benchmark's own flags (--benchmark_filter=REGEX, --benchmark_out=FILE, "
             "--benchmark_repetitions=N, --benchmark_list_tests, ...) are passed to it; give them as --name=value.";
@@ -128,7 +128,7 @@ Result<cavity::bench::Options> parse(int argc, char** argv, std::vector<char*>& 
         } else if (flag == "--timing") {
             if (value != "batch" && value != "drained")
                 return cavity::badInput("--timing '" + value + "': must be batch or drained");
-            o.mode = value == "batch" ? cavity::TimingMode::Batch : cavity::TimingMode::Drained;
+            o.mode = value == "batch" ? cavity::measure::TimingMode::Batch : cavity::measure::TimingMode::Drained;
         } else if (flag == "--max-noise") {
             CAVITY_ASSIGN(const double pct, parseNumber(flag, value, 0, 100));
             o.maxNoise = pct / 100;

@@ -1,12 +1,12 @@
 #include "bench_runner.h"
 
-#include "config_id.h"
+#include "pipeline/config_id.h"
 #include "kernel.h"
-#include "pipeline.h"
-#include "sweep.h"
-#include "gpu_clocks.h"
-#include "roofline.h"
-#include "timing.h"
+#include "pipeline/pipeline.h"
+#include "plan/sweep.h"
+#include "measure/gpu_clocks.h"
+#include "measure/roofline.h"
+#include "measure/timing.h"
 
 #include <benchmark/benchmark.h>
 
@@ -51,7 +51,7 @@ std::map<std::string, std::string>& configurationClocks() {
     return clocks;
 }
 
-// One benchmark iteration is one whole measurement (harness/timing.h: batched
+// One benchmark iteration is one whole measurement (harness/measure/timing.h: batched
 // frames after a steady warm-up, stopped on noise), so every Google Benchmark
 // repetition is an independent measurement and the repetitions' spread is the
 // run-to-run noise a comparison has to beat.
@@ -79,7 +79,7 @@ void run(benchmark::State& state, const Bench& b) {
     const auto& passes = chains[0]->passes();
     Timing t;
     for (auto _ : state) {
-        auto m = measure(gpu, views, options, GpuClocks::forDevice(gpu.info()));
+        auto m = measurePasses(gpu, views, options, GpuClocks::forDevice(gpu.info()));
         if (!m) {
             state.SkipWithError(m.error().message.c_str());
             return;

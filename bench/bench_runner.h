@@ -1,9 +1,10 @@
 // Registration and the body of every Cavity benchmark.
 #pragma once
 
-#include "pipeline.h"
+#include "harness.h"
+#include "pipeline/pipeline.h"
 #include "result.h"
-#include "timing.h"
+#include "measure/timing.h"
 
 #include <map>
 #include <optional>
@@ -12,10 +13,12 @@
 
 namespace cavity::bench {
 
+using namespace cavity::harness;
+
 struct Options {
     std::string backend = "all";   // gl, vk, all
     std::string sweep = "auto";    // gpu, cpu, auto (cpu when every started backend is a software renderer)
-    // Unset: the device's defaults (harness/timing.h); on a CPU renderer 5
+    // Unset: the device's defaults (harness/measure/timing.h); on a CPU renderer 5
     // frames after 1 warm-up frame.
     std::optional<int> frames, warmup;
     std::optional<TimingMode> mode;

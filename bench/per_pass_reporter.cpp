@@ -1,8 +1,11 @@
+#include "harness.h"
 #include "per_pass_reporter.h"
 
 #include <string>
 
 namespace cavity::bench {
+
+using namespace cavity::harness;
 
 namespace {
 

@@ -1,7 +1,7 @@
 #include "cli.h"
 
 #include "kernel.h"
-#include "text_table.h"
+#include "core/text_table.h"
 
 #include <algorithm>
 #include <charconv>

@@ -3,8 +3,8 @@
 // verdict (compare_verdict.h). OLD and NEW are each a results.json or the
 // Google Benchmark JSON of cavity_bench, in any pairing.
 #include "cli.h"
-#include "compare_report.h"
-#include "results.h"
+#include "report/compare_report.h"
+#include "measure/results.h"
 
 #include <algorithm>
 #include <iostream>

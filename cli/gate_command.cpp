@@ -1,14 +1,14 @@
 // `cavity gate`, `cavity gate judge`, `cavity gate merge` and `cavity baselines update`.
-#include "baseline_update.h"
+#include "gate/baseline_update.h"
 #include "cli.h"
-#include "config_id.h"
-#include "expectations.h"
-#include "json_file.h"
-#include "gate_report.h"
-#include "image_io.h"
-#include "judge_folders.h"
-#include "results.h"
-#include "runner.h"
+#include "pipeline/config_id.h"
+#include "gate/expectations.h"
+#include "core/json_file.h"
+#include "report/gate_report.h"
+#include "images/image_io.h"
+#include "gate/judge_folders.h"
+#include "measure/results.h"
+#include "measure/runner.h"
 #include "shard_sources.h"
 
 #include <cstdlib>
@@ -143,8 +143,8 @@ int merge(const std::vector<std::string>& argv) {
             if (seen.insert({r.id, r.repetition}).second) merged.results.push_back(std::move(r));
     }
     if (auto st = checkWritableDir("--out", out); !st) return fail("cavity gate merge", st.error());
-    if (auto st = gate::writeReports(merged, out); !st) return fail("cavity gate merge", st.error());
-    std::cout << gate::summaryMarkdown(merged);
+    if (auto st = report::writeReports(merged, out); !st) return fail("cavity gate merge", st.error());
+    std::cout << report::summaryMarkdown(merged);
     return merged.exitCode();
 }
 
@@ -168,8 +168,8 @@ int judge(const std::vector<std::string>& argv) {
     auto run = gate::judgeFolders(dirs, baselines, out, p.has("--quiet"));
     if (!run) return fail("cavity gate judge", run.error());
     gate::applyExpectations(*run, *expectations);
-    if (auto st = gate::writeReports(*run, out); !st) return fail("cavity gate judge", st.error());
-    std::cout << gate::summaryMarkdown(*run);
+    if (auto st = report::writeReports(*run, out); !st) return fail("cavity gate judge", st.error());
+    std::cout << report::summaryMarkdown(*run);
     std::cout << "\nreport: " << (fs::path(out) / "index.html").string() << "\n";
     return run->exitCode();
 }
@@ -235,9 +235,9 @@ int gateCommand(const std::vector<std::string>& argv) {
     if (const char* hook = std::getenv("CAVITY_TEST_FLAKY")) o.flakyForTest = hook;
     if (list) {
         // The selection, one id a line, nothing rendered: what a shard holds.
-        auto m = gate::loadMatrix((fs::path(o.baselines) / "matrices.json").string(), o.matrix);
+        auto m = plan::loadMatrix((fs::path(o.baselines) / "matrices.json").string(), o.matrix);
         if (!m) return fail("cavity gate", m.error());
-        auto entries = gate::selectEntries(*m, o.shardIndex, o.shardCount, o.filter);
+        auto entries = plan::selectEntries(*m, o.shardIndex, o.shardCount, o.filter);
         if (!entries) return fail("cavity gate", entries.error());
         for (const auto& e : *entries) std::cout << configId(e.config) << "\n";
         return 0;
@@ -245,8 +245,8 @@ int gateCommand(const std::vector<std::string>& argv) {
     if (auto st = gate::recoverBaselineUpdate(o.baselines); !st) return fail("cavity gate", st.error());
     auto run = gate::runGate(o);
     if (!run) return fail("cavity gate", run.error());
-    if (auto st = gate::writeReports(*run, o.out); !st) return fail("cavity gate", st.error());
-    std::cout << gate::summaryMarkdown(*run);
+    if (auto st = report::writeReports(*run, o.out); !st) return fail("cavity gate", st.error());
+    std::cout << report::summaryMarkdown(*run);
     std::cout << "\nreport: " << (fs::path(o.out) / "index.html").string() << "\n";
     return run->exitCode();
 }
@@ -307,7 +307,7 @@ int baselinesCommand(const std::vector<std::string>& argv) {
             said.push_back(line.str() + ")");
         }
     }
-    // All or nothing (harness/baseline_update.h).
+    // All or nothing (harness/gate/baseline_update.h).
     if (auto st = gate::applyBaselineUpdate(root, writes); !st) return fail("cavity baselines update", st.error());
     for (const auto& line : said) std::cout << line << "\n";
     const size_t changed = writes.size();

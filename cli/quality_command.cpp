@@ -1,13 +1,13 @@
 // `cavity quality`: each AO kernel's error against the ray-traced ground
 // truth, as a table on stdout and quality.json.
 #include "cli.h"
-#include "config_id.h"
-#include "pipeline.h"
-#include "progress.h"
-#include "quality.h"
-#include "results.h"
-#include "runner.h"
-#include "text_table.h"
+#include "pipeline/config_id.h"
+#include "pipeline/pipeline.h"
+#include "core/progress.h"
+#include "measure/quality.h"
+#include "measure/results.h"
+#include "measure/runner.h"
+#include "core/text_table.h"
 
 #include <cstdio>
 #include <filesystem>

@@ -1,11 +1,11 @@
 // `cavity run`: a sweep of configurations on one or both backends, with
 // images, results.json and a timing table on stdout.
 #include "cli.h"
-#include "config_id.h"
-#include "gbuffer_import.h"
-#include "progress.h"
-#include "runner.h"
-#include "text_table.h"
+#include "pipeline/config_id.h"
+#include "images/gbuffer_import.h"
+#include "core/progress.h"
+#include "measure/runner.h"
+#include "core/text_table.h"
 
 #include <algorithm>
 #include <cstdio>

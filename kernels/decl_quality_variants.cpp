@@ -71,7 +71,7 @@ KernelDecl ssdoMarched(const std::vector<KernelDecl>& seeds) {
 
 // The bounce must walk the very directions and steps the direct pass did
 // (it re-uses their blocked points as senders): the pipeline runs
-// "<ao kernel>_indirect" when there is one (harness/pipelines.cpp), and
+// "<ao kernel>_indirect" when there is one (harness/pipeline/pipelines.cpp), and
 // this one's `steps` default is the direct pass's.
 KernelDecl ssdoMarchedIndirect(const std::vector<KernelDecl>& seeds) {
     KernelDecl k = copyOf(seeds, "ssdo_indirect");

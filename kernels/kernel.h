@@ -54,7 +54,7 @@ struct ArrayDecl {
 };
 
 // What one output pixel of a kernel costs in memory traffic, for the
-// benchmark's bytes/s counter and each pass's floor (harness/roofline.h,
+// benchmark's bytes/s counter and each pass's floor (harness/measure/roofline.h,
 // bench/ROOFLINE.md). Fill all four: a cost with fetches but no fetch slots,
 // or no DRAM bytes, gives its pass no floor rather than a floor of zero.
 struct Cost {
@@ -129,7 +129,7 @@ static_assert(sizeof(FrameUniforms) == 176);
 
 // An image the harness makes on the CPU rather than a pass: the 4x4 rotation
 // noise tile, the sky panorama with its mip chain. A kernel input of that name
-// reads it (harness/pipeline.h ImageSource::Constant); the InputDecl gives the sampler.
+// reads it (harness/pipeline/pipeline.h ImageSource::Constant); the InputDecl gives the sampler.
 struct ConstantImageDecl {
     std::string name;
     gpu::Format format = gpu::Format::RGBA32F;

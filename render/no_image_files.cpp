@@ -1,12 +1,12 @@
-// cavity_render carries no OpenImageIO, but it shares harness/runner.cpp with
+// cavity_render carries no OpenImageIO, but it shares harness/measure/runner.cpp with
 // cavity, and runConfig reaches image files in two places: writing images
 // when RunOptions::outDir is set, and reading a capture for an imported
 // G-buffer. cavity_render asks for neither (it keeps pixels in memory, and a
 // matrix has no imported G-buffer), so here both are errors, as values.
-#include "gbuffer_import.h"
-#include "image_io.h"
+#include "images/gbuffer_import.h"
+#include "images/image_io.h"
 
-namespace cavity {
+namespace cavity::images {
 
 Status writeImage(const std::string& path, const HostImage&, Encoding, bool) {
     return badInput(path + ": cavity_render writes no EXR or PNG files (no OpenImageIO); use cavity run");
@@ -16,4 +16,4 @@ Result<GBufferImages> importGBuffer(const std::string& path, int, int) {
     return badInput("--gbuffer-file " + path + ": cavity_render imports no G-buffers (no OpenImageIO); use cavity run");
 }
 
-}  // namespace cavity
+}  // namespace cavity::images

@@ -4,9 +4,9 @@
 
 #include "cli.h"
 #include "flags.h"
-#include "render_folder.h"
-#include "results.h"
-#include "runner.h"
+#include "render/render_folder.h"
+#include "measure/results.h"
+#include "measure/runner.h"
 #include "shard_sources.h"
 
 #include <chrono>
@@ -152,9 +152,9 @@ int renderCommand(const std::vector<std::string>& argv) {
         std::cout << o->helpText;
         return 0;
     }
-    auto matrix = gate::loadMatrix((fs::path(o->baselines) / "matrices.json").string(), o->matrix);
+    auto matrix = plan::loadMatrix((fs::path(o->baselines) / "matrices.json").string(), o->matrix);
     if (!matrix) return fail(matrix.error());
-    auto entries = gate::selectEntries(*matrix, o->shardIndex, o->shardCount, o->filter);
+    auto entries = plan::selectEntries(*matrix, o->shardIndex, o->shardCount, o->filter);
     if (!entries) return fail(entries.error());
     if (auto st = checkWritableDir("--out", o->out); !st) return fail(st.error());
 

@@ -4,12 +4,15 @@
 //   cavity_render quality [the flags of cavity quality]
 #pragma once
 
-#include "rendering.h"
+#include "harness.h"
+#include "render/rendering.h"
 
 #include <string>
 #include <vector>
 
 namespace cavity::render {
+
+using namespace cavity::harness;
 
 struct RenderCommand {
     bool help = false;                    // --help given: print helpText, exit 0, nothing else read

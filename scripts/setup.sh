@@ -17,7 +17,7 @@ packages=(
   nlohmann-json3-dev                                            # results.json
   libcli11-dev                                                  # command-line flags and --help
   libimath-dev                                                  # half floats (backends/texels; also OpenEXR's)
-  libfmt-dev                                                    # text tables (harness/text_table.cpp)
+  libfmt-dev                                                    # text tables (harness/core/text_table.cpp)
   zlib1g-dev                                                    # render folders (cavity_render)
   python3 python3-matplotlib python3-jsonschema                 # scripts/charts.py; tests/validate_results.py
   python3-xmlschema python3-junitparser                         # tests/validate_junit.py: junit.xml as CI readers take it

@@ -1,11 +1,14 @@
+#include "harness.h"
 #include "analytic_scenes.h"
 
-#include "camera.h"
+#include "core/camera.h"
 
 #include <cmath>
 #include <limits>
 
 namespace cavity::test::analytic {
+
+using namespace cavity::harness;
 
 namespace {
 

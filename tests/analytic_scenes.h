@@ -1,5 +1,5 @@
 // Analytic scenes for the quality tests: solid axis-aligned boxes in a
-// world frame, seen by the harness camera (harness/camera.h: fovY 60
+// world frame, seen by the harness camera (harness/core/camera.h: fovY 60
 // degrees, looking down -Z in view space) from any eye, target and roll.
 // Planes at any tilt and roll are one box seen from a rotated camera.
 //
@@ -18,13 +18,16 @@
 //     this differ, no screen-space kernel can close the gap.
 #pragma once
 
-#include "config.h"
+#include "harness.h"
+#include "core/config.h"
 
 #include <functional>
 #include <string>
 #include <vector>
 
 namespace cavity::test::analytic {
+
+using namespace cavity::harness;
 
 struct V3 {
     double x = 0, y = 0, z = 0;

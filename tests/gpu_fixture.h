@@ -7,8 +7,9 @@
 // With CI=true a backend that cannot start fails the test instead of skipping.
 #pragma once
 
+#include "harness.h"
 #include "backend.h"
-#include "image.h"
+#include "core/image.h"
 
 #include <functional>
 
@@ -22,6 +23,8 @@ inline void PrintTo(Api api, std::ostream* os) { *os << apiName(api); }
 }  // namespace cavity::gpu
 
 namespace cavity::test {
+
+using namespace cavity::harness;
 
 // Created once per API per process (backend start-up dominates small tests).
 gpu::Backend* sharedBackend(gpu::Api api, std::string* whyNot);

@@ -2,12 +2,15 @@
 // and samples for test_mann_whitney.
 #pragma once
 
-#include "image.h"
+#include "harness.h"
+#include "core/image.h"
 
 #include <cmath>
 #include <cstdint>
 
 namespace cavity::test {
+
+using namespace cavity::harness;
 
 // A deterministic pseudo-random value in [0, 1) (a 32-bit LCG).
 struct Lcg {

@@ -2,9 +2,12 @@
 // what it printed: the one helper the command-line tests share.
 #pragma once
 
+#include "harness.h"
 #include <string>
 
 namespace cavity::test {
+
+using namespace cavity::harness;
 
 struct Outcome {
     int code = -1;        // the exit status; -1 when killed by a signal or not started

@@ -2,12 +2,15 @@
 // sees of planes facing it, at chosen depths.
 #pragma once
 
-#include "camera.h"
-#include "image.h"
+#include "harness.h"
+#include "core/camera.h"
+#include "core/image.h"
 
 #include <functional>
 
 namespace cavity::test {
+
+using namespace cavity::harness;
 
 struct GBuffer {
     HostImage position;   // view xyz, w = linear depth

@@ -1,7 +1,7 @@
 // Every screen-space AO kernel against the exact answer on scenes whose
 // geometry is known in closed form (analytic_scenes.h): G-buffers built
 // here from boxes, written as OpenEXR and uploaded through the import path
-// (harness/gbuffer_import.h) at 160x90, AO read where `cavity quality`
+// (harness/images/gbuffer_import.h) at 160x90, AO read where `cavity quality`
 // reads it (ao_blur with the bilateral off: after the hemisphere kernel's
 // box blur), n16, R = 0.5, both APIs.
 //
@@ -49,11 +49,11 @@
 //     points, 003's one point a direction) are checked to stay above the
 //     4-step layer by more than 0.1.
 #include "analytic_scenes.h"
-#include "gbuffer_import.h"
+#include "images/gbuffer_import.h"
 #include "gpu_fixture.h"
 #include "kernel.h"
-#include "pipeline.h"
-#include "sweep.h"
+#include "pipeline/pipeline.h"
+#include "plan/sweep.h"
 
 #include <OpenImageIO/imageio.h>
 

@@ -1,6 +1,6 @@
 // Backend conformance: the contract of backends/backend.h, one body per API.
 #include "gpu_fixture.h"
-#include "kernel_runner.h"
+#include "pipeline/kernel_runner.h"
 
 #include <algorithm>
 #include <chrono>

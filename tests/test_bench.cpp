@@ -1,10 +1,10 @@
 // The benchmark runner: registers exactly the sweep's configurations, runs a
 // filtered subset on both APIs, and reports as manual time exactly the GPU
 // time the backend's timestamps gave for the passes after the G-buffer.
-#include "config_id.h"
+#include "pipeline/config_id.h"
 #include "per_pass_reporter.h"
 #include "run_binary.h"
-#include "sweep.h"
+#include "plan/sweep.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -38,10 +38,10 @@ TEST(Bench, RegistersExactlyTheDeclaredSweep) {
         std::istringstream lines(o.output);
         for (std::string line; std::getline(lines, line);)
             if (line.find("/iterations:") != std::string::npos) listed.insert(line.substr(0, line.find("/iterations:")));
-        const auto configs = cavity::benchmarkSweep(sweep == "cpu" ? cavity::cpuSweep() : cavity::gpuSweep(),
+        const auto configs = cavity::plan::benchmarkSweep(sweep == "cpu" ? cavity::plan::cpuSweep() : cavity::plan::gpuSweep(),
                                                     {cavity::gpu::Api::OpenGL, cavity::gpu::Api::Vulkan});
         std::set<std::string> declared{"timer/empty_scope/gl", "timer/empty_scope/vk"};
-        for (const auto& c : configs) declared.insert(cavity::configId(c));
+        for (const auto& c : configs) declared.insert(cavity::pipeline::configId(c));
         if (!ci() && listed.size() + 2 < declared.size()) GTEST_SKIP() << "a backend is missing here";
         EXPECT_EQ(listed, declared) << sweep;
         EXPECT_GT(configs.size(), sweep == "gpu" ? 300u : 20u);

@@ -2,7 +2,7 @@
 // name the flag, the value and what is allowed, and nothing written on bad input.
 #include "run_binary.h"
 #include "kernel.h"
-#include "sweep.h"
+#include "plan/sweep.h"
 
 #include <gtest/gtest.h>
 
@@ -31,7 +31,7 @@ Outcome cavity(const std::string& args, const std::string& env = "", const std::
 // "reference", declared last).
 std::string aoList() {
     std::string s;
-    for (const auto& k : cavity::aoKernels()) s += (s.empty() ? "" : ", ") + k;
+    for (const auto& k : cavity::plan::aoKernels()) s += (s.empty() ? "" : ", ") + k;
     for (const auto& k : cavity::kernels::all())
         if (k.role == cavity::kernels::Role::Reference) s += ", " + k.name;
     return s;

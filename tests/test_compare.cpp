@@ -2,8 +2,8 @@
 // in both file formats, and the verdicts, intervals, exit codes and
 // one-line errors that come out. No GPU: every input is fabricated here.
 #include "run_binary.h"
-#include "json_file.h"
-#include "sample_sets.h"
+#include "core/json_file.h"
+#include "compare/sample_sets.h"
 
 #include <gtest/gtest.h>
 
@@ -181,26 +181,26 @@ protected:
 // ---- reading the files ----
 
 TEST(CompareInput, NonFiniteTokensBecomeNullOutsideStrings) {
-    EXPECT_EQ(cavity::nullNonFiniteTokens(R"({"cv": NaN, "a": -Infinity, "b": inf, "c": -inf, "d": [Infinity,nan]})"),
+    EXPECT_EQ(cavity::core::nullNonFiniteTokens(R"({"cv": NaN, "a": -Infinity, "b": inf, "c": -inf, "d": [Infinity,nan]})"),
               R"({"cv": null, "a": null, "b": null, "c": null, "d": [null,null]})");
     // Inside strings, and as parts of other words, nothing changes.
     const std::string kept = R"({"label": "NaN Infinity \" inf", "infinity_count": 1e5, "x": null, "nanite": true})";
-    EXPECT_EQ(cavity::nullNonFiniteTokens(kept), kept);
+    EXPECT_EQ(cavity::core::nullNonFiniteTokens(kept), kept);
 }
 
 TEST(CompareInput, ConfigurationIdAndClockFromTheBenchmarkEntry) {
-    EXPECT_EQ(cavity::configurationIdOf(kId + "/iterations:50/manual_time"), kId);
-    EXPECT_EQ(cavity::configurationIdOf(kId + "/min_time:0.500/repeats:5/threads:1/real_time"), kId);
-    EXPECT_EQ(cavity::configurationIdOf(kId), kId);
-    EXPECT_EQ(cavity::clockOfLabel("clock=gpu-timestamp mode=batch"), "gpu-timestamp");
-    EXPECT_EQ(cavity::clockOfLabel("clock=wall (timestamps do not bracket the work)"), "wall");
-    EXPECT_EQ(cavity::clockOfLabel("mode=batch clock=wall"), "wall");
-    EXPECT_EQ(cavity::clockOfLabel(""), "unknown");
+    EXPECT_EQ(cavity::compare::configurationIdOf(kId + "/iterations:50/manual_time"), kId);
+    EXPECT_EQ(cavity::compare::configurationIdOf(kId + "/min_time:0.500/repeats:5/threads:1/real_time"), kId);
+    EXPECT_EQ(cavity::compare::configurationIdOf(kId), kId);
+    EXPECT_EQ(cavity::compare::clockOfLabel("clock=gpu-timestamp mode=batch"), "gpu-timestamp");
+    EXPECT_EQ(cavity::compare::clockOfLabel("clock=wall (timestamps do not bracket the work)"), "wall");
+    EXPECT_EQ(cavity::compare::clockOfLabel("mode=batch clock=wall"), "wall");
+    EXPECT_EQ(cavity::compare::clockOfLabel(""), "unknown");
 }
 
 TEST_F(Compare, BenchmarkJsonGivesOneSamplePerRepetitionInMilliseconds) {
     const auto c = fakeConfig(kId, 6, 1, 0);
-    const auto sets = cavity::loadSampleSets(write("bench.json", benchmarkJson({c}, true)));
+    const auto sets = cavity::compare::loadSampleSets(write("bench.json", benchmarkJson({c}, true)));
     ASSERT_TRUE(sets.ok()) << sets.error().message;
     EXPECT_EQ(sets->format, "google-benchmark");
     EXPECT_EQ(sets->skippedErrors, 1);

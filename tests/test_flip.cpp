@@ -1,8 +1,9 @@
 // LDR-FLIP (flip.h).
 // Expected values come from the definitions, by arithmetic stated next to
 // them, never from the code under test. CPU only.
-#include "flip.h"
-#include "metrics.h"
+#include "harness.h"
+#include "images/flip.h"
+#include "images/metrics.h"
 #include "image_patterns.h"
 
 #include <gtest/gtest.h>
@@ -13,6 +14,8 @@
 #include <vector>
 
 namespace cavity {
+
+using namespace cavity::harness;
 namespace {
 
 using test::Lcg;

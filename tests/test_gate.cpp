@@ -2,8 +2,8 @@
 // configuration, passes an unchanged build (twice, on both APIs), reports
 // bad baselines and manifests as bad input, and its HTML report opens.
 #include "blur_weights.h"
-#include "gate.h"
-#include "gate_report.h"
+#include "gate/gate.h"
+#include "report/gate_report.h"
 #include "gpu_fixture.h"
 #include "run_binary.h"
 
@@ -247,7 +247,7 @@ TEST(Gate, UnchangedBuildPassesTwiceOnBothApis) {
         o.baselines = kBaselines;
         o.out = tempDir("clean" + std::to_string(round)).string();
         const auto run = runOrDie(o);
-        EXPECT_EQ(run.exitCode(), 0) << "round " << round << "\n" << gate::summaryMarkdown(run);
+        EXPECT_EQ(run.exitCode(), 0) << "round " << round << "\n" << report::summaryMarkdown(run);
         std::set<std::string> apis;
         for (const auto& r : run.results) {
             apis.insert(r.id.substr(r.id.rfind('/', r.id.rfind('/') - 1) + 1, 2));
@@ -262,7 +262,7 @@ TEST(Gate, ShardsPartitionTheMatrix) {
     std::set<size_t> seen;
     for (int shard = 0; shard < 3; ++shard)
         for (size_t i = 0; i < 20; ++i)
-            if (gate::inShard(i, shard, 3)) {
+            if (plan::inShard(i, shard, 3)) {
                 EXPECT_TRUE(seen.insert(i).second) << i;
             }
     EXPECT_EQ(seen.size(), 20u);
@@ -305,7 +305,7 @@ TEST(Gate, HtmlReportInlinesGateJsonThatNoMessageBreaksOutOf) {
     r.errorCode = 4;
     run.results.push_back(r);
     const fs::path out = tempDir("inline");
-    ASSERT_TRUE(gate::writeReports(run, out.string()).ok());
+    ASSERT_TRUE(report::writeReports(run, out.string()).ok());
     const std::string html = slurp(out / "index.html");
     const std::string open = "<script type=\"application/json\" id=\"gate-data\">";
     const auto at = html.find(open);
@@ -339,7 +339,7 @@ TEST(Gate, HtmlReportOpensInHeadlessChromiumWithFailuresFirst) {
     broken.replace(broken.find(d.find), d.find.size(), d.replace);
     o.overrides[d.file] = broken;
     const auto run = runOrDie(o);
-    ASSERT_TRUE(gate::writeReports(run, o.out).ok());
+    ASSERT_TRUE(report::writeReports(run, o.out).ok());
     const fs::path html = fs::path(o.out) / "index.html";
     const fs::path shot = fs::path(CAVITY_BINARY_DIR) / "gate_report_screenshot.png";
     ASSERT_EQ(runBinary("timeout", kChromium + "--screenshot=" + shot.string() + " file://" + html.string()).code, 0);

@@ -2,7 +2,7 @@
 // file), never silently passed; `baselines update` rewrites only what it is
 // asked to, atomically.
 #include "run_binary.h"
-#include "image_io.h"
+#include "images/image_io.h"
 
 #include <gtest/gtest.h>
 
@@ -82,12 +82,12 @@ TEST_F(GateInputs, CorruptBaselineIsBadInput) {
 }
 
 TEST_F(GateInputs, BaselineOfTheWrongSizeIsBadInput) {
-    ASSERT_TRUE(cavity::writeImage(image("ao.exr").string(), cavity::HostImage(80, 45, 1, 1.0f)).ok());
+    ASSERT_TRUE(cavity::images::writeImage(image("ao.exr").string(), cavity::core::HostImage(80, 45, 1, 1.0f)).ok());
     expectBad(gate(), image("ao.exr").string() + ": baseline is 80x45x1, configuration needs 160x90x1");
 }
 
 TEST_F(GateInputs, BaselineWithTheWrongChannelCountIsBadInput) {
-    ASSERT_TRUE(cavity::writeImage(image("ao.exr").string(), cavity::HostImage(160, 90, 3, 1.0f)).ok());
+    ASSERT_TRUE(cavity::images::writeImage(image("ao.exr").string(), cavity::core::HostImage(160, 90, 3, 1.0f)).ok());
     expectBad(gate(), image("ao.exr").string() + ": baseline is 160x90x3, configuration needs 160x90x1");
 }
 

@@ -1,12 +1,12 @@
-// Configuration ids (harness/config.cpp configId): distinct configurations
+// Configuration ids (harness/core/config.cpp configId): distinct configurations
 // never share one, ids at the defaults read as they always did (baseline
 // paths depend on it), and every kernel parameter sweeps in cavity run.
-#include "config.h"
-#include "config_id.h"
-#include "matrix.h"
-#include "pipeline.h"
+#include "core/config.h"
+#include "pipeline/config_id.h"
+#include "plan/matrix.h"
+#include "pipeline/pipeline.h"
 #include "run_binary.h"
-#include "sweep.h"
+#include "plan/sweep.h"
 
 #include <gtest/gtest.h>
 
@@ -20,6 +20,7 @@
 
 namespace fs = std::filesystem;
 using namespace cavity;
+using namespace cavity::harness;
 
 namespace {
 
@@ -103,7 +104,7 @@ TEST(ConfigId, DistinctInEveryMatrix) {
     std::ifstream in(std::string(CAVITY_SOURCE_DIR) + "/baselines/matrices.json");
     const auto doc = nlohmann::json::parse(in);
     for (const auto& [name, _] : doc.items()) {
-        auto m = gate::loadMatrix(std::string(CAVITY_SOURCE_DIR) + "/baselines/matrices.json", name);
+        auto m = plan::loadMatrix(std::string(CAVITY_SOURCE_DIR) + "/baselines/matrices.json", name);
         ASSERT_TRUE(m) << m.error().message;
         // The product before expand()'s de-duplication by id.
         std::vector<RunConfig> raw;

@@ -1,4 +1,4 @@
-// The imported G-buffer (--gbuffer import, harness/gbuffer_import.h).
+// The imported G-buffer (--gbuffer import, harness/images/gbuffer_import.h).
 //
 //  * Round trip, both APIs: the corner G-buffer the harness renders, written
 //    to one EXR (P.*, N.*, albedo.*, float) and imported, must come back bit
@@ -16,12 +16,12 @@
 //  * Bad input through the cavity binary: exit 2, one line naming the flag or
 //    file and the value, nothing written into --out.
 #include "run_binary.h"
-#include "camera.h"
-#include "gbuffer_import.h"
+#include "core/camera.h"
+#include "images/gbuffer_import.h"
 #include "gpu_fixture.h"
-#include "image_io.h"
-#include "pipeline.h"
-#include "sweep.h"
+#include "images/image_io.h"
+#include "pipeline/pipeline.h"
+#include "plan/sweep.h"
 
 #include <OpenImageIO/imageio.h>
 

@@ -1,7 +1,8 @@
 // The Mann-Whitney U test (mann_whitney.h).
 // Expected values come from the definitions, by arithmetic stated next to
 // them, never from the code under test. CPU only.
-#include "mann_whitney.h"
+#include "harness.h"
+#include "stats/mann_whitney.h"
 #include "image_patterns.h"
 
 #include <gtest/gtest.h>
@@ -12,6 +13,8 @@
 #include <vector>
 
 namespace cavity {
+
+using namespace cavity::harness;
 namespace {
 
 using test::Lcg;

@@ -1,7 +1,8 @@
 // Image metrics (metrics.h): the comparison numbers and the heat-map.
 // Expected values come from the definitions, by arithmetic stated next to
 // them, never from the code under test. CPU only.
-#include "metrics.h"
+#include "harness.h"
+#include "images/metrics.h"
 #include "image_patterns.h"
 
 #include <gtest/gtest.h>
@@ -12,6 +13,8 @@
 #include <vector>
 
 namespace cavity {
+
+using namespace cavity::harness;
 namespace {
 
 using test::Lcg;

@@ -1,13 +1,16 @@
 // Kernel parameters: each name declared once (kernels/params.cpp), every
 // kernel referring to that declaration, and one parse that makes an integer
 // parameter an integer.
-#include "config.h"
+#include "harness.h"
+#include "core/config.h"
 #include "kernel.h"
-#include "pipeline.h"
+#include "pipeline/pipeline.h"
 
 #include <gtest/gtest.h>
 
 #include <set>
+
+using namespace cavity::harness;
 
 namespace {
 

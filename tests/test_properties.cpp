@@ -1,8 +1,8 @@
 // Properties the seeds state, checked on the GPU kernels of both backends.
 #include "blur_weights.h"
 #include "gpu_fixture.h"
-#include "kernel_runner.h"
-#include "pipeline.h"
+#include "pipeline/kernel_runner.h"
+#include "pipeline/pipeline.h"
 #include "synthetic.h"
 
 #include <cmath>

@@ -11,12 +11,12 @@
 //    rounding boundary.
 //  * G-buffer: see kGbuffer below; the ray march is iterative, so a ray that
 //    grazes a silhouette may hit on one side and miss on the other.
-#include "camera.h"
-#include "config_id.h"
+#include "core/camera.h"
+#include "pipeline/config_id.h"
 #include "gpu_fixture.h"
-#include "kernel_runner.h"
-#include "pipeline.h"
-#include "reference.h"
+#include "pipeline/kernel_runner.h"
+#include "pipeline/pipeline.h"
+#include "reference/reference.h"
 
 #include <cmath>
 #include <cstdio>
@@ -296,7 +296,7 @@ TEST_P(KernelVsReference, FullBarriersChangeNoImage) {
 namespace cavity::test {
 namespace {
 
-// The rasterised G-buffer (meshes from harness/meshes.cpp, hardware depth)
+// The rasterised G-buffer (meshes from harness/pipeline/meshes.cpp, hardware depth)
 // against the ray-marched one of the same scene: the same surfaces, so the
 // same positions and normals away from silhouettes. Bounds, and why: the
 // sphere's 96x48 tessellation is within 3e-4 of its radius, the march stops

@@ -4,13 +4,13 @@
 // the render binary carries no OpenImageIO, and a damaged render folder is
 // refused with one line naming the file while nothing under the baselines
 // folder changes.
-#include "digest.h"
+#include "core/digest.h"
 #include "gpu_fixture.h"
-#include "image_file.h"
-#include "judge_folders.h"
-#include "render_folder.h"
-#include "rendering.h"
-#include "results.h"
+#include "render/image_file.h"
+#include "gate/judge_folders.h"
+#include "render/render_folder.h"
+#include "render/rendering.h"
+#include "measure/results.h"
 #include "run_binary.h"
 
 #include <elf.h>
@@ -273,9 +273,9 @@ TEST_F(TwoStep, EveryRepetitionIsJudgedAndMatchingOnesStoreNoImages) {
 // A defect planted in the kernel source, rendered in this process (source
 // overrides do not reach another process), judged from the folder.
 TEST_F(TwoStep, APlantedBugFailsThroughTheSplit) {
-    auto matrix = gate::loadMatrix((base / "matrices.json").string(), "ci");
+    auto matrix = plan::loadMatrix((base / "matrices.json").string(), "ci");
     ASSERT_TRUE(matrix) << matrix.error().message;
-    auto entries = gate::selectEntries(*matrix, 0, 1, "^corner/alchemy/n16/b4/full/160x90/vk/compute$");
+    auto entries = plan::selectEntries(*matrix, 0, 1, "^corner/alchemy/n16/b4/full/160x90/vk/compute$");
     ASSERT_TRUE(entries && entries->size() == 1u);
     render::RenderOptions ro;
     std::string broken = *kernels::sourceFile("ssao_alchemy.glsl");

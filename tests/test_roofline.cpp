@@ -1,11 +1,12 @@
-// Each pass's floor (harness/roofline.h): the arithmetic against numbers
+// Each pass's floor (harness/measure/roofline.h): the arithmetic against numbers
 // worked by hand for the H200's table entry, where each figure comes from,
 // the cases with no floor, every declaration's cost being complete, and
 // bench/ROOFLINE.md's table being what the code computes.
-#include "config.h"
-#include "config_id.h"
-#include "pipeline.h"
-#include "roofline.h"
+#include "harness.h"
+#include "core/config.h"
+#include "pipeline/config_id.h"
+#include "pipeline/pipeline.h"
+#include "measure/roofline.h"
 
 #include <gtest/gtest.h>
 
@@ -16,6 +17,8 @@
 #include <vector>
 
 namespace cavity {
+
+using namespace cavity::harness;
 namespace {
 
 gpu::DeviceInfo device(const std::string& name, int smCount = 0, bool software = false) {
@@ -117,7 +120,7 @@ TEST(Roofline, UnknownDeviceHasNoFloor) {
     for (const std::string name : {"AMD Radeon RX 7900 XTX", "NVIDIA H200 NVL", "NVIDIA H20"}) {
         const DeviceFloor d = deviceFloor(device(name, 78), 2100.0);
         EXPECT_FALSE(d.figures) << name;
-        EXPECT_EQ(d.reason, "device '" + name + "' is not in the floor table (harness/roofline.cpp)");
+        EXPECT_EQ(d.reason, "device '" + name + "' is not in the floor table (harness/measure/roofline.cpp)");
         EXPECT_FALSE(passFloor(d, "alchemy", {}, kPixels1080p).floor);
     }
 }

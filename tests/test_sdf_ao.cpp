@@ -3,14 +3,14 @@
 // and the properties the seeds state, on both backends. (The six SDF AO
 // kernels against their references run with every other AO kernel in
 // test_reference.cpp.)
-#include "camera.h"
-#include "config.h"
-#include "config_id.h"
+#include "core/camera.h"
+#include "core/config.h"
+#include "pipeline/config_id.h"
 #include "gpu_fixture.h"
-#include "pipeline.h"
-#include "quality.h"
-#include "reference.h"
-#include "sdf_scenes.h"
+#include "pipeline/pipeline.h"
+#include "measure/quality.h"
+#include "reference/reference.h"
+#include "reference/sdf_scenes.h"
 
 #include <cmath>
 #include <cstdio>

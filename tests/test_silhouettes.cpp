@@ -25,8 +25,8 @@
 //    hemisphere; over all pixels the half-resolution MAE went from 0.083 to
 //    0.068, the full resolution's 0.068).
 #include "gpu_fixture.h"
-#include "pipeline.h"
-#include "quality.h"
+#include "pipeline/pipeline.h"
+#include "measure/quality.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,10 +1,11 @@
 // Statistics and configuration ids: plain functions, no GPU.
-#include "config.h"
-#include "config_id.h"
-#include "hodges_lehmann.h"
-#include "mann_whitney.h"
-#include "stats.h"
-#include "timing.h"
+#include "harness.h"
+#include "core/config.h"
+#include "pipeline/config_id.h"
+#include "stats/hodges_lehmann.h"
+#include "stats/mann_whitney.h"
+#include "stats/stats.h"
+#include "measure/timing.h"
 
 #include <gtest/gtest.h>
 
@@ -13,6 +14,8 @@
 #include <cstdint>
 
 namespace cavity {
+
+using namespace cavity::harness;
 namespace {
 
 TEST(Stats, SummarizesAKnownSample) {

@@ -1,12 +1,15 @@
-// The text tables of run, quality and --help (harness/text_table.h): columns
+// The text tables of run, quality and --help (harness/core/text_table.h): columns
 // as wide as their widest cell, whatever the cells are.
-#include "text_table.h"
+#include "harness.h"
+#include "core/text_table.h"
 
 #include <gtest/gtest.h>
 
+using namespace cavity::harness;
+
 namespace {
 
-using cavity::TextTable;
+using cavity::core::TextTable;
 using A = TextTable::Align;
 
 TEST(TextTable, ColumnsFitTheirWidestCell) {

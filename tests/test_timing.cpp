@@ -3,7 +3,7 @@
 // the pixels reporting at least twice the time (a timer that misses the work,
 // like llvmpipe's GL timestamps, fails this unless the harness falls back).
 #include "gpu_fixture.h"
-#include "timing.h"
+#include "measure/timing.h"
 
 #include <algorithm>
 #include <cmath>
@@ -22,7 +22,7 @@ protected:
         c.height = h;
         return c;
     }
-    cavity::Timing measureAt(int w, int h, int frames) {
+    cavity::measure::Timing measureAt(int w, int h, int frames) {
         RunConfig c;
         c.api = api();
         c.width = w;
@@ -34,9 +34,9 @@ protected:
         o.warmup = 2;
         o.frames = frames;
         o.maxNoise = 0;
-        auto t = measure(gpu(), **chain, o);
+        auto t = measurePasses(gpu(), **chain, o);
         EXPECT_TRUE(t) << t.error().message;
-        return t ? *t : cavity::Timing{};
+        return t ? *t : cavity::measure::Timing{};
     }
 };
 
@@ -88,7 +88,7 @@ TEST_P(Timing, GpuClockIsUsedOnlyWhenItAgreesWithTheWallClock) {
 // size's fastest median so far is what is compared, for up to five rounds.
 // (One round of each failed once in CI: 320x180 read 24.3 ms, 640x360 28.4.)
 TEST_P(Timing, FourTimesThePixelsTakesAtLeastTwiceTheTime) {
-    auto aoMedian = [](const cavity::Timing& t) {
+    auto aoMedian = [](const cavity::measure::Timing& t) {
         for (const auto& p : t.passes)
             if (p.name == "ao") return p.stats.median;
         ADD_FAILURE() << "no ao pass";
@@ -121,7 +121,7 @@ TEST_P(Timing, BatchedAndDrainedGiveTheSameImagesAndSampleCounts) {
         o.frames = 7;
         o.maxNoise = 0;
         o.batchMs = 1e6;   // the whole measurement in one submission where batched
-        auto t = measure(gpu(), **chain, o);
+        auto t = measurePasses(gpu(), **chain, o);
         ASSERT_TRUE(t) << t.error().message;
         EXPECT_EQ(t->frame.ms.size(), 7u) << timingModeName(mode);
         for (const auto& p : t->passes) EXPECT_EQ(p.ms.size(), 7u) << p.name << " " << timingModeName(mode);
@@ -157,7 +157,7 @@ TEST_P(Timing, AGivenClockIsKept) {
     o.frames = 3;
     o.maxNoise = 0;
     o.clock = "wall";
-    auto t = measure(gpu(), **chain, o);
+    auto t = measurePasses(gpu(), **chain, o);
     ASSERT_TRUE(t) << t.error().message;
     EXPECT_EQ(t->clock, "wall");
     EXPECT_EQ(t->mode, TimingMode::Drained);

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """A real consumer of results.json: python3-jsonschema validates what `cavity
-run` wrote against harness/results.schema.json, and the timing record is
+run` wrote against harness/measure/results.schema.json, and the timing record is
 checked against the samples it describes. On a software renderer every floor
 is null with its reason; a pass with no declared cost (the rasterised
 G-buffer) says so; and a copy of a run given an H200's figures and floors
@@ -21,7 +21,7 @@ import jsonschema
 
 def main():
     cavity, source = sys.argv[1], sys.argv[2]
-    schema = json.load(open(os.path.join(source, "harness", "results.schema.json")))
+    schema = json.load(open(os.path.join(source, "harness", "measure", "results.schema.json")))
     jsonschema.Draft202012Validator.check_schema(schema)
     with tempfile.TemporaryDirectory() as out:
         for timing in ("batch", "drained"):

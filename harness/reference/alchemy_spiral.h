@@ -3,8 +3,9 @@
 // shared by ref_alchemy.cpp and ref_fast.cpp.
 #pragma once
 
-#include "portable_math.h"
-#include "reference.h"
+#include "reference/namespace.h"
+#include "reference/portable_math.h"
+#include "reference/reference.h"
 
 #include <cmath>
 

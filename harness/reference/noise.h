@@ -2,6 +2,7 @@
 // interleaved gradient noise, bit for bit (see there for why each is so).
 #pragma once
 
+#include "reference/namespace.h"
 #include <cmath>
 #include <cstdint>
 

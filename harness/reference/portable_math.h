@@ -4,11 +4,12 @@
 // GLSL declares the matching values `precise`.
 #pragma once
 
+#include "reference/namespace.h"
 #include <bit>
 #include <cmath>
 #include <cstdint>
 
-#include "vec.h"
+#include "reference/vec.h"
 
 namespace cavity::reference {
 

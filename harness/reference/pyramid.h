@@ -4,8 +4,9 @@
 // texel or decides a test.
 #pragma once
 
-#include "refs.h"
-#include "vec.h"
+#include "reference/namespace.h"
+#include "reference/refs.h"
+#include "reference/vec.h"
 
 #include <vector>
 

@@ -3,10 +3,10 @@
 // scale and the sample position use only correctly rounded operations
 // (portable_math.h, noise.h). What remains, pow() and the sums, differs by
 // float rounding only.
-#include "alchemy_spiral.h"
-#include "noise.h"
-#include "portable_math.h"
-#include "refs.h"
+#include "reference/alchemy_spiral.h"
+#include "reference/noise.h"
+#include "reference/portable_math.h"
+#include "reference/refs.h"
 
 namespace cavity::reference {
 

@@ -1,6 +1,6 @@
 // Reference of kernels/blur_bilateral.glsl (000_79d41de70034b569.txt).
-#include "refs.h"
-#include "vec.h"
+#include "reference/refs.h"
+#include "reference/vec.h"
 
 namespace cavity::reference {
 

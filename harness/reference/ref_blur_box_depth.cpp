@@ -2,9 +2,9 @@
 // the texels of the centre's surface. Which texels count is decided with
 // the kernel's exact operations (positions rebuilt by viewFromDepth, the
 // plane distances in the same order), so both sides average the same set.
-#include "portable_math.h"
-#include "refs.h"
-#include "vec.h"
+#include "reference/portable_math.h"
+#include "reference/refs.h"
+#include "reference/vec.h"
 
 #include <array>
 #include <cmath>

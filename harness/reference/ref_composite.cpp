@@ -1,9 +1,9 @@
 // Reference of kernels/composite.glsl. Returns the float the GPU stores
 // (dither included, clamped to [0, 1]); the 8-bit rounding of the target
 // happens in the test's quantize().
-#include "noise.h"
-#include "refs.h"
-#include "vec.h"
+#include "reference/noise.h"
+#include "reference/refs.h"
+#include "reference/vec.h"
 
 namespace cavity::reference {
 

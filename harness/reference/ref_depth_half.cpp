@@ -2,9 +2,9 @@
 // centre ray met with its texel's tangent plane, then the hardware depth,
 // in the kernel's exact operations (the hemisphere kernel's verdicts
 // depend on every bit of it).
-#include "portable_math.h"
-#include "refs.h"
-#include "vec.h"
+#include "reference/portable_math.h"
+#include "reference/refs.h"
+#include "reference/vec.h"
 
 #include <array>
 #include <cmath>

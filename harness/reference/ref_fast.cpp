@@ -3,11 +3,11 @@
 // (include/blur_separable.glsl). The pyramid's levels are rebuilt here from
 // level 0, which is all a pass's readback holds: each level keeps one real
 // texel of the level above, so the rebuild is exact.
-#include "alchemy_spiral.h"
-#include "noise.h"
-#include "portable_math.h"
-#include "pyramid.h"
-#include "refs.h"
+#include "reference/alchemy_spiral.h"
+#include "reference/noise.h"
+#include "reference/portable_math.h"
+#include "reference/pyramid.h"
+#include "reference/refs.h"
 
 #include <array>
 #include <bit>

@@ -3,8 +3,8 @@
 // scene's divisions are not exactly rounded on GPUs), so a ray grazing a
 // silhouette may hit on one side and miss on the other; interior pixels
 // agree to the hit tolerance (1e-4 of the distance).
-#include "refs.h"
-#include "sdf_scenes.h"
+#include "reference/refs.h"
+#include "reference/sdf_scenes.h"
 
 #include <algorithm>
 

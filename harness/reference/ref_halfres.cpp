@@ -7,9 +7,9 @@
 // Sizes: the downsample's frame is the half frame (frame.size = half,
 // srcSize = full), and its inputs are full size; the upsample's frame is
 // the full one, and its half-size inputs are whatever size they are.
-#include "portable_math.h"
-#include "refs.h"
-#include "vec.h"
+#include "reference/portable_math.h"
+#include "reference/refs.h"
+#include "reference/vec.h"
 
 #include <cmath>
 

@@ -3,10 +3,10 @@
 // or decides a depth test is computed with the kernels' exact operations,
 // so the verdicts agree sample for sample; what differs is only smoothstep,
 // pow and the division by n (continuous, far under the 1e-3 tolerance).
-#include "noise.h"
-#include "portable_math.h"
-#include "refs.h"
-#include "vec.h"
+#include "reference/noise.h"
+#include "reference/portable_math.h"
+#include "reference/refs.h"
+#include "reference/vec.h"
 
 #include <array>
 

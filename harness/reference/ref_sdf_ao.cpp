@@ -4,10 +4,10 @@
 // float rounding (the GPU's sqrt, pow and exp2 are not exactly rounded);
 // the ground truth's escape test is a yes/no per ray, so a ray that grazes
 // an edge may go either way, a few rays in 1024 at most.
-#include "noise.h"
-#include "portable_math.h"
-#include "refs.h"
-#include "sdf_scenes.h"
+#include "reference/noise.h"
+#include "reference/portable_math.h"
+#include "reference/refs.h"
+#include "reference/sdf_scenes.h"
 
 #include <algorithm>
 #include <cmath>

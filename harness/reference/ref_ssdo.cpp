@@ -25,11 +25,11 @@
 // The sky's levels come from the constant image's own generator, since a
 // pass chain's read-back of the constant sky returns level 0 only.
 #include "families.h"
-#include "noise.h"
-#include "portable_math.h"
-#include "pyramid.h"
-#include "refs.h"
-#include "vec.h"
+#include "reference/noise.h"
+#include "reference/portable_math.h"
+#include "reference/pyramid.h"
+#include "reference/refs.h"
+#include "reference/vec.h"
 
 #include <array>
 

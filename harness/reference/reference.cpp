@@ -1,6 +1,6 @@
 // reference::run: looks the kernel up among the references and checks what
 // goes in and comes out, so each ref_*.cpp can assume a well-formed context.
-#include "refs.h"
+#include "reference/refs.h"
 
 #include <cmath>
 

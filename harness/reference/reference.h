@@ -4,7 +4,8 @@
 // texel addressing) but share no code with them.
 #pragma once
 
-#include "image.h"
+#include "reference/namespace.h"
+#include "core/image.h"
 #include "kernel.h"
 
 #include <map>

@@ -2,7 +2,8 @@
 // mirrors one kernels/*.glsl body; reference.cpp dispatches to them.
 #pragma once
 
-#include "reference.h"
+#include "reference/namespace.h"
+#include "reference/reference.h"
 
 #include <initializer_list>
 #include <string>

@@ -5,10 +5,10 @@
 //
 // ref_hemisphere.cpp, ref_halfres.cpp and ref_ssdo.cpp declare what they use
 // of this file in a `screen` block at their top.
-#include "noise.h"
-#include "portable_math.h"
-#include "refs.h"
-#include "vec.h"
+#include "reference/noise.h"
+#include "reference/portable_math.h"
+#include "reference/refs.h"
+#include "reference/vec.h"
 
 #include <array>
 #include <bit>

@@ -1,6 +1,6 @@
 // Mirrors kernels/include/sdf_scenes.glsl line for line; the GLSL file says
 // why the scenes look as they do.
-#include "sdf_scenes.h"
+#include "reference/sdf_scenes.h"
 
 #include <algorithm>
 #include <cmath>

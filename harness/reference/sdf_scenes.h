@@ -2,7 +2,8 @@
 // and materials, for the G-buffer reference.
 #pragma once
 
-#include "vec.h"
+#include "reference/namespace.h"
+#include "reference/vec.h"
 
 namespace cavity::reference {
 

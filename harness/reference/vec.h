@@ -2,6 +2,7 @@
 // GLSL's names, so that a reference reads like the kernel it mirrors.
 #pragma once
 
+#include "reference/namespace.h"
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>

@@ -1,0 +1,48 @@
+// One row of `cavity compare`: a configuration's pass in two runs, the
+// numbers, and a verdict a pull request can gate on. "slower" needs three
+// things at once: the U test says the two samples differ (p < alpha), the
+// estimated shift is large enough to matter (>= min-change percent of the old
+// median), and the interval of the shift lies wholly above zero. GPU
+// timestamps are steady enough that the test alone flags a 0.1% move
+// (bench/results/ has one, with 5 repetitions a side); the size alone flags
+// noise when samples are few; the interval keeps the estimate honest when the
+// test and the shift disagree on a skewed sample.
+#pragma once
+
+#include "compare/namespace.h"
+#include "compare/sample_sets.h"
+
+#include <cmath>
+#include <string>
+
+namespace cavity::compare {
+
+struct CompareThresholds {
+    double alpha = 0.05;       // significance of the U test; the interval is at 1 - alpha
+    double minChangePct = 2;   // smallest shift, in percent of the old median, worth a verdict
+};
+
+// Fewer samples than this on a side gives no verdict: with 2 against 2 the
+// smallest two-sided p the U test can give is 1/3.
+constexpr size_t kMinSamples = 3;
+
+struct CompareRow {
+    std::string id, pass;
+    std::string verdict;   // slower, faster, same, mixed clocks, clocks differ, too few samples, new, gone
+    size_t nOld = 0, nNew = 0;
+    std::string oldClock, newClock;   // "" where the side is missing
+    // NaN where not computed: medians of a missing or mixed-clock side; the
+    // rest only when both sides are on one clock.
+    double oldMedianMs = NAN, newMedianMs = NAN;
+    double shiftMs = NAN, lowMs = NAN, highMs = NAN;           // Hodges-Lehmann shift and interval
+    double changePct = NAN, lowPct = NAN, highPct = NAN;       // the same in percent of the old median
+    double confidence = NAN;   // the coverage the interval has (see ShiftEstimate)
+    double p = NAN;
+    bool exact = false;        // exact U distribution for p and interval
+};
+
+// Either side may be null: the pass is new or gone.
+CompareRow compareSeries(const std::string& id, const std::string& pass, const SampleSet* before,
+                         const SampleSet* after, const CompareThresholds& t);
+
+}  // namespace cavity::compare

@@ -1,0 +1,80 @@
+#include "compare/sample_sets.h"
+
+#include "core/json_input.h"
+#include "measure/results.h"
+
+#include <cmath>
+
+namespace cavity::compare {
+
+using nlohmann::json;
+
+void SampleSet::add(double value, const std::string& sampleClock) {
+    if (ms.empty()) clock = sampleClock;
+    else if (clock != sampleClock) {
+        mixedClocks = true;
+        clock = "mixed";
+    }
+    ms.push_back(value);
+}
+
+SampleSet& SampleSets::at(const std::string& id, const std::string& pass) {
+    auto key = std::make_pair(id, pass);
+    auto it = series.find(key);
+    if (it == series.end()) {
+        order.push_back(key);
+        it = series.emplace(std::move(key), SampleSet{}).first;
+    }
+    return it->second;
+}
+
+namespace {
+
+// Numbers only: results.json writes a sample that was NaN as null, and a
+// sample that was never a time tells nothing about the change. A series with
+// no time at all would compare as "-100%", so it is bad input.
+Status addSamples(SampleSet& s, const JsonObject& owner, const std::string& clock) {
+    CAVITY_ASSIGN(const auto samples, owner.numbers("samples_ms", 0, 1e12, true));
+    size_t added = 0;
+    for (double v : samples)
+        if (std::isfinite(v)) {
+            s.add(v, clock);
+            ++added;
+        }
+    if (!added) return owner.bad("samples_ms", "holds no time (a run needs at least one finite sample)");
+    return {};
+}
+
+}  // namespace
+
+Result<SampleSets> readResultsJson(const json& doc, const std::string& path) {
+    SampleSets out;
+    out.path = path;
+    out.format = "cavity-results";
+    CAVITY_ASSIGN(const JsonObject top, JsonObject::of(path, "", doc));
+    CAVITY_ASSIGN(const auto runs, top.objects("runs"));
+    for (const auto& r : runs) {
+        CAVITY_ASSIGN(const std::string id, r.str("id"));
+        CAVITY_ASSIGN(const std::string clock, r.str("clock"));
+        // The frame first, as a table reads best whole before parts.
+        CAVITY_ASSIGN(const JsonObject frame, r.object("frame"));
+        CAVITY_TRY(addSamples(out.at(id, kFramePass), frame, clock));
+        CAVITY_ASSIGN(const auto passes, r.objects("passes"));
+        for (const auto& p : passes) {
+            CAVITY_ASSIGN(const std::string name, p.str("name"));
+            CAVITY_TRY(addSamples(out.at(id, name), p, clock));
+        }
+    }
+    return out;
+}
+
+Result<SampleSets> loadSampleSets(const std::string& path) {
+    CAVITY_ASSIGN(const json doc, readJsonFile(path));
+    if (doc.is_object() && doc.contains("schema") && doc["schema"] == kResultsSchema) return readResultsJson(doc, path);
+    if (doc.is_object() && doc.contains("benchmarks") && doc["benchmarks"].is_array())
+        return readBenchmarkJson(doc, path);
+    return badInput(path + ": neither a cavity results.json (schema " + kResultsSchema +
+                    ") nor Google Benchmark JSON (benchmarks[])");
+}
+
+}  // namespace cavity::compare

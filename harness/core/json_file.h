@@ -1,0 +1,26 @@
+// Reading a JSON file someone else wrote. Google Benchmark's JSON reporter
+// prints a non-finite double as a bare NaN or Infinity (the cv aggregate of a
+// counter that is always 0, such as cavity_bench's "half", is 0/0), which is
+// not JSON and which nlohmann::json refuses. We read those tokens as null rather than ask
+// every user to clean their files.
+#pragma once
+
+#include "result.h"
+
+#include <nlohmann/json.hpp>
+
+#include <string>
+
+namespace cavity::core {
+
+// The text with every bare NaN, Infinity or inf (any case, optionally signed)
+// outside a string replaced by null. Tokens inside strings are left alone, and
+// no newline is added or removed, so a parse error keeps its line number.
+std::string nullNonFiniteTokens(const std::string& text);
+
+// The parsed document, or a one-line bad-input error naming the file:
+// "FILE: cannot be read (no such file)", "FILE: is a folder, not a JSON file",
+// "FILE: does not parse: line L: what nlohmann::json objected to".
+Result<nlohmann::json> readJsonFile(const std::string& path);
+
+}  // namespace cavity::core

@@ -1,0 +1,53 @@
+// What the gate compares against, all under baselines/:
+//   matrices.json           named matrices of configurations (`cavity gate --matrix NAME`)
+//   manifest.json           per-pipeline tolerances for each image metric, with per-device overrides
+//   budgets.json            per-device-class timing budgets (median ms per pass) by configuration id
+//   images/<baseline key>/<image>.exr|png
+// Baseline keys, the checked images and the matrices are in matrix.h.
+#pragma once
+
+#include "gate/namespace.h"
+#include "core/config.h"
+#include "plan/matrix.h"
+
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace cavity::gate {
+
+// ---- manifest.json ----
+struct Tolerance {
+    double maxAbs = 0.02;
+    double meanAbs = 0.002;
+    double rmse = 0.005;
+    double psnrMin = 40;
+    double pixelThreshold = 0.01;       // per-pixel error counted by overThresholdShare
+    double overThresholdShare = 0.01;
+    double ssimMin = 0.98;
+    double flipMeanMax = 0.02;
+    // 8-bit images: at most this share of pixels may differ by more than
+    // differingDelta steps in any colour channel (1 allows every pixel).
+    double differingDelta = 0;
+    double differingShareMax = 1;
+};
+struct Manifest {
+    std::map<std::string, Tolerance> pipelines;   // by AO kernel name; "*" is the default
+    struct DeviceOverride { std::string pattern; std::map<std::string, std::map<std::string, double>> pipelines; };
+    std::vector<DeviceOverride> devices;
+    std::map<std::string, std::map<std::string, double>> rawPipelines;   // as written, for overrides
+    Tolerance forPipeline(const std::string& kernel, const std::string& deviceName) const;
+};
+Result<Manifest> loadManifest(const std::string& path);
+
+// ---- budgets.json ----
+struct Budgets {
+    struct Device { std::string pattern; std::map<std::string, std::map<std::string, double>> configs; };
+    std::vector<Device> devices;
+    // The budget of one pass of one configuration on this device, if any.
+    std::optional<double> find(const std::string& deviceName, const std::string& id, const std::string& pass) const;
+};
+Result<Budgets> loadBudgets(const std::string& path);
+
+}  // namespace cavity::gate

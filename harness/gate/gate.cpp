@@ -1,0 +1,172 @@
+#include "gate/gate.h"
+
+#include "pipeline/config_id.h"
+#include "core/digest.h"
+#include "gate/expectations.h"
+#include "gate/gate_judge.h"
+#include "render/rendering.h"
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <regex>
+
+namespace cavity::gate {
+
+namespace fs = std::filesystem;
+
+bool ConfigResult::imagesPassed() const {
+    for (const auto& i : images)
+        if (!i.passed()) return false;
+    return true;
+}
+
+bool ConfigResult::timingPassed() const {
+    for (const auto& t : timings)
+        if (!t.passed()) return false;
+    return true;
+}
+
+std::vector<std::string> ConfigResult::failureLines() const {
+    std::vector<std::string> lines;
+    if (!error.empty()) lines.push_back(error);
+    for (const auto& i : images)
+        for (const auto& f : i.failures) lines.push_back(i.image + ": " + f);
+    for (const auto& t : timings)
+        if (!t.passed()) {
+            char b[96];
+            std::snprintf(b, sizeof b, "time %s: median %.4g ms > budget %.4g ms", t.pass.c_str(), t.medianMs, *t.budgetMs);
+            lines.push_back(b);
+        }
+    return lines;
+}
+
+std::string ConfigResult::verdict() const {
+    if (!error.empty()) return "error";
+    if (passed()) {
+        if (attempts > 1) return "flaky";
+        return expected == "fail" ? "unexpected-pass" : "pass";
+    }
+    if (expected == "fail") return "expected-fail";
+    if (expected == "flake") return "known-flake";
+    return "fail";
+}
+
+bool ConfigResult::fatal() const {
+    const std::string v = verdict();
+    return v == "fail" || v == "error" || v == "unexpected-pass";
+}
+
+int GateRun::exitCode() const {
+    bool bad = false, backend = !backendErrors.empty(), regression = false;
+    for (const auto& r : results) {
+        bad |= r.errorCode == 2;
+        backend |= r.errorCode == 3;
+        regression |= r.fatal();
+    }
+    return bad ? 2 : backend ? 3 : regression ? 1 : 0;
+}
+
+std::map<std::string, int> GateRun::counts() const {
+    std::map<std::string, int> c;
+    for (const auto& r : results) ++c[r.verdict()];
+    return c;
+}
+
+std::string ConfigResult::label() const {
+    return repetition ? id + " (repetition " + std::to_string(repetition) + ")" : id;
+}
+
+namespace {
+
+// The test hook's perturbation: the raw AO inverted, far past any
+// tolerance, on the first attempt only.
+void perturbForTest(render::Rendering& r) {
+    const auto ao = r.images.find("ao");
+    if (ao == r.images.end()) return;
+    for (float& v : ao->second.pixels) v = 1.0f - v;
+    r.digests["ao"] = imageDigest(ao->second);
+}
+
+}  // namespace
+
+Result<GateRun> runGate(const GateOptions& o) {
+    const auto start = std::chrono::steady_clock::now();
+    CAVITY_ASSIGN(Matrix matrix, loadMatrix((fs::path(o.baselines) / "matrices.json").string(), o.matrix));
+    CAVITY_ASSIGN(auto entries, selectEntries(matrix, o.shardIndex, o.shardCount, o.filter));
+    std::vector<RunConfig> configs;
+    for (const auto& e : entries) configs.push_back(e.config);
+    CAVITY_ASSIGN(const Judge judge, prepareJudge(o.baselines, configs, o.out));
+    CAVITY_ASSIGN(const Expectations expectations,
+                  loadExpectations(o.expectations.empty() ? (fs::path(o.baselines) / "expectations").string() : o.expectations));
+    std::optional<std::regex> flaky;
+    if (!o.flakyForTest.empty()) {
+        try {
+            flaky.emplace(o.flakyForTest);
+        } catch (const std::regex_error&) {
+            return badInput("CAVITY_TEST_FLAKY=" + o.flakyForTest + ": not a regular expression");
+        }
+    }
+
+    GateRun run;
+    run.matrix = o.matrix;
+    run.shardIndex = o.shardIndex;
+    run.shardCount = o.shardCount;
+    render::RenderOptions ro;
+    ro.device = o.device;
+    ro.validation = o.validation;
+    ro.overrides = o.overrides;
+    int attempt = 0;
+    std::map<std::string, size_t> where;   // id -> index in run.results
+    auto sink = [&](render::Rendering&& rendering) -> Status {
+        if (attempt == 0 && flaky && std::regex_search(rendering.id, *flaky)) perturbForTest(rendering);
+        CAVITY_ASSIGN(ConfigResult r, judgeRendering(rendering, judge));
+        if (attempt == 0) {
+            const bool retry = !r.passed() && r.errorCode == 0 && o.retries > 0;
+            // Progress: one line a configuration, with count and ETA (the
+            // mean time per configuration so far times those left).
+            const size_t done = run.results.size() + 1;
+            const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            const double eta = elapsed / double(done) * double(entries.size() - std::min(done, entries.size()));
+            if (r.error.empty() && !o.quiet)
+                std::fprintf(stderr, "gate: [%zu/%zu] %s %s  elapsed %.1f s  ETA %.1f s\n", done, entries.size(), r.id.c_str(),
+                             r.passed() ? "pass" : retry ? "FAIL (retrying)" : "FAIL", elapsed, eta);
+            where[r.id] = run.results.size();
+            run.results.push_back(std::move(r));
+            return {};
+        }
+        ConfigResult& before = run.results[where.at(r.id)];
+        r.attempts = attempt + 1;
+        r.firstFailures = before.firstFailures.empty() ? before.failureLines() : before.firstFailures;
+        if (!o.quiet)
+            std::fprintf(stderr, "gate: %s %s\n", r.id.c_str(),
+                     r.passed() ? ("flaky (failed attempt 1, passed attempt " + std::to_string(r.attempts) + ")").c_str()
+                                : ("FAIL (attempt " + std::to_string(r.attempts) + ")").c_str());
+        before = std::move(r);
+        return {};
+    };
+    std::vector<render::BackendFailure> failures;
+    CAVITY_TRY(render::renderEntries(matrix, entries, ro, sink, &failures));
+    for (const auto& f : failures) run.backendErrors.push_back(f.message);
+    // A failing configuration is rendered again, up to o.retries times, and
+    // one that then passes is flaky: reported as such, never as a plain
+    // pass. A configuration that did not run or lacks a baseline is not
+    // retried: another render cannot change that.
+    for (attempt = 1; attempt <= o.retries; ++attempt) {
+        std::vector<plan::MatrixEntry> again;
+        for (const auto& e : entries) {
+            const auto at = where.find(configId(e.config));
+            if (at == where.end()) continue;
+            const ConfigResult& r = run.results[at->second];
+            if (!r.passed() && r.error.empty() && r.errorCode == 0) again.push_back(e);
+        }
+        if (again.empty()) break;
+        CAVITY_TRY(render::renderEntries(matrix, again, ro, sink, nullptr));
+    }
+    applyExpectations(run, expectations);
+    run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return run;
+}
+
+}  // namespace cavity::gate

@@ -1,0 +1,115 @@
+// The pull-request gate: a declared matrix of configurations, each output
+// image compared with its stored baseline and each pass's median time with
+// its budget. Verdicts go to gate.json (read by `gate merge` and
+// `baselines update`), junit.xml, summary.md and index.html (gate_report.h).
+// Two halves: rendering (harness/render/rendering.h, no OpenImageIO: cavity_render
+// runs it on the GPU machine) and judging (gate_judge.h); runGate does both
+// in one process, judge_folders.h judges what cavity_render left.
+#pragma once
+
+#include "gate/namespace.h"
+#include "gate/baselines.h"
+#include "images/metrics.h"
+#include "pipeline/pipeline.h"
+
+#include <nlohmann/json.hpp>
+
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace cavity::gate {
+
+struct ImageCheck {
+    std::string image;                 // "ao", "ao_blur", "color"
+    std::string digest;                // digest.h imageDigest() of the new image
+    std::string baseline;              // path of the baseline file (relative to the repo root or absolute)
+    std::string newPng, newExact;      // written new image: PNG to look at, and the exact file (.exr / .png)
+    std::string baselinePng, diffPng;  // for the report
+    std::optional<metrics::Report> metrics;
+    Tolerance tolerance;
+    std::vector<std::string> failures; // one line each: "rmse 0.0123 > 0.005"
+    bool passed() const { return failures.empty(); }
+};
+
+struct TimingCheck {
+    std::string pass;
+    double medianMs = 0;
+    std::optional<double> budgetMs;
+    std::string clock;
+    bool passed() const { return !budgetMs || medianMs <= *budgetMs; }
+};
+
+struct ConfigResult {
+    std::string id, key, device;
+    int repetition = 0;                // cavity_render --repeat: every repetition is judged
+    RunConfig config;
+    std::vector<ImageCheck> images;
+    std::vector<TimingCheck> timings;
+    bool deterministic = true;
+    std::string error;                 // the configuration could not run (its message)
+    int errorCode = 0;
+    // Retries (GateOptions::retries): how many times it was rendered and
+    // judged, and what the first failing attempt said when a later one
+    // passed. The checks above are the last attempt's.
+    int attempts = 1;
+    std::vector<std::string> firstFailures;
+    // Listed in the device's expectations file (expectations.h): "fail" or
+    // "flake", and "FILE:LINE: reason".
+    std::string expected, expectedWhy;
+    bool imagesPassed() const;
+    bool timingPassed() const;
+    bool passed() const { return error.empty() && imagesPassed() && timingPassed(); }
+    // pass, fail, error, flaky (failed, then passed on a retry),
+    // expected-fail, known-flake (listed as a flake and failed every
+    // attempt) or unexpected-pass (listed as an expected failure, passed).
+    std::string verdict() const;
+    // Whether the verdict fails the gate: fail, error and unexpected-pass.
+    bool fatal() const;
+    // Every failure line of the checks above, for the report of a retry.
+    std::vector<std::string> failureLines() const;
+    // The id, and "(repetition K)" after it for a later repetition.
+    std::string label() const;
+};
+
+struct GateOptions {
+    std::string matrix = "ci";
+    std::string baselines = "baselines";   // folder with matrices.json, manifest.json, budgets.json, images/
+    std::string out = "out/gate";
+    int shardIndex = 0, shardCount = 1;
+    int device = 0;
+    bool validation = false;
+    bool quiet = false;                    // no progress lines on stderr
+    std::string filter;                    // regex on configuration ids; empty: all
+    int retries = 2;                       // renders of a failing configuration after the first
+    std::string expectations;              // folder of expectation files; empty: <baselines>/expectations
+    SourceOverrides overrides;             // planted-bug tests
+    // Test hook (CAVITY_TEST_FLAKY): configurations whose id this regex
+    // finds have their first attempt's AO perturbed, so they fail once and
+    // pass on a retry. Empty: none.
+    std::string flakyForTest;
+};
+
+struct GateRun {
+    std::string matrix;
+    int shardIndex = 0, shardCount = 1;
+    std::vector<ConfigResult> results;
+    std::vector<std::string> backendErrors;   // backends that could not start
+    double seconds = 0;
+    // 0 all pass (flaky, expected-fail and known-flake included), 1 a
+    // regression or an unexpected pass, 2 bad input (a baseline missing or
+    // unreadable), 3 a backend could not start.
+    int exitCode() const;
+    // Configurations per verdict().
+    std::map<std::string, int> counts() const;
+};
+
+// Validates every input file first (exit 2 before any GPU work), then
+// renders and judges each configuration in turn.
+Result<GateRun> runGate(const GateOptions& o);
+
+nlohmann::json toJson(const GateRun& run);
+Result<GateRun> fromJson(const nlohmann::json& j, const std::string& path);
+
+}  // namespace cavity::gate

@@ -1,0 +1,172 @@
+// gate.json ("cavity.gate/1"): the verdicts `gate merge` joins and
+// `baselines update` accepts from.
+#include "gate/namespace.h"
+#include "gate/gate.h"
+#include "core/json_input.h"
+
+#include <cmath>
+
+namespace cavity::gate {
+
+using nlohmann::json;
+
+namespace {
+
+json toJson(const Tolerance& t) {
+    return {{"max_abs", t.maxAbs}, {"mean_abs", t.meanAbs}, {"rmse", t.rmse}, {"psnr_min", t.psnrMin},
+            {"pixel_threshold", t.pixelThreshold}, {"over_threshold_share", t.overThresholdShare},
+            {"ssim_min", t.ssimMin}, {"flip_mean_max", t.flipMeanMax}, {"differing_delta", t.differingDelta},
+            {"differing_share_max", t.differingShareMax}};
+}
+
+double num(double x) { return std::isfinite(x) ? x : (x > 0 ? 1e300 : -1e300); }
+
+}  // namespace
+
+json toJson(const GateRun& run) {
+    json results = json::array();
+    for (const auto& r : run.results) {
+        json images = json::array();
+        for (const auto& i : r.images) {
+            json m = nullptr;
+            if (i.metrics)
+                m = {{"max_abs", num(i.metrics->maxAbs)}, {"mean_abs", num(i.metrics->meanAbs)}, {"rmse", num(i.metrics->rmse)},
+                     {"psnr", num(i.metrics->psnr)}, {"over_threshold_share", i.metrics->overThresholdShare},
+                     {"ssim", i.metrics->ssim}, {"flip_mean", i.metrics->flipMean},
+                     {"non_finite", i.metrics->nonFinite}, {"differing_pixels", i.metrics->differingPixels},
+                     {"differing_share", i.metrics->differingShare}, {"channels_compared", i.metrics->channelsCompared}};
+            images.push_back({{"image", i.image}, {"digest", i.digest}, {"baseline", i.baseline}, {"new", i.newExact}, {"new_png", i.newPng},
+                              {"baseline_png", i.baselinePng}, {"diff_png", i.diffPng}, {"metrics", m},
+                              {"tolerance", toJson(i.tolerance)}, {"failures", i.failures}, {"passed", i.passed()}});
+        }
+        json timings = json::array();
+        for (const auto& t : r.timings)
+            timings.push_back({{"pass", t.pass}, {"median_ms", t.medianMs}, {"clock", t.clock},
+                               {"budget_ms", t.budgetMs ? json(*t.budgetMs) : json(nullptr)}, {"passed", t.passed()}});
+        results.push_back({{"id", r.id}, {"repetition", r.repetition}, {"baseline_key", r.key}, {"device", r.device}, {"kernel", r.config.kernel},
+                           {"passed", r.passed()}, {"verdict", r.verdict()}, {"fatal", r.fatal()}, {"attempts", r.attempts},
+                           {"first_failures", r.firstFailures}, {"expected", r.expected}, {"expected_reason", r.expectedWhy},
+                           {"deterministic", r.deterministic}, {"error", r.error},
+                           {"error_code", r.errorCode}, {"images", images}, {"timings", timings}});
+    }
+    return {{"schema", "cavity.gate/1"}, {"matrix", run.matrix}, {"shard", {run.shardIndex, run.shardCount}},
+            {"seconds", run.seconds}, {"exit_code", run.exitCode()}, {"counts", run.counts()},
+            {"backend_errors", run.backendErrors},
+            {"results", results}};
+}
+
+namespace {
+
+constexpr double kAny = 1e300;   // gate.json writes a non-finite metric as +-1e300 (num() above)
+
+Result<Tolerance> readTolerance(const JsonObject& t) {
+    Tolerance out;
+    CAVITY_ASSIGN(out.maxAbs, t.number("max_abs", 0, kAny));
+    CAVITY_ASSIGN(out.meanAbs, t.number("mean_abs", 0, kAny));
+    CAVITY_ASSIGN(out.rmse, t.number("rmse", 0, kAny));
+    CAVITY_ASSIGN(out.psnrMin, t.number("psnr_min", -kAny, kAny));
+    CAVITY_ASSIGN(out.pixelThreshold, t.number("pixel_threshold", 0, kAny));
+    CAVITY_ASSIGN(out.overThresholdShare, t.number("over_threshold_share", 0, kAny));
+    CAVITY_ASSIGN(out.ssimMin, t.number("ssim_min", -kAny, kAny));
+    CAVITY_ASSIGN(out.flipMeanMax, t.number("flip_mean_max", 0, kAny));
+    // Absent from gate.json files written before the differing-pixel count.
+    CAVITY_ASSIGN(out.differingDelta, t.number("differing_delta", 0, 255, 0));
+    CAVITY_ASSIGN(out.differingShareMax, t.number("differing_share_max", 0, 1, 1));
+    return out;
+}
+
+Result<metrics::Report> readMetrics(const JsonObject& m) {
+    metrics::Report rep{};
+    CAVITY_ASSIGN(rep.maxAbs, m.number("max_abs", 0, kAny));
+    CAVITY_ASSIGN(rep.meanAbs, m.number("mean_abs", 0, kAny));
+    CAVITY_ASSIGN(rep.rmse, m.number("rmse", 0, kAny));
+    CAVITY_ASSIGN(rep.psnr, m.number("psnr", -kAny, kAny));
+    CAVITY_ASSIGN(rep.overThresholdShare, m.number("over_threshold_share", 0, 1));
+    CAVITY_ASSIGN(rep.ssim, m.number("ssim", -kAny, kAny));
+    CAVITY_ASSIGN(rep.flipMean, m.number("flip_mean", -1, kAny));
+    CAVITY_ASSIGN(const double nonFinite, m.number("non_finite", 0, 1e18));
+    rep.nonFinite = (long long)nonFinite;
+    CAVITY_ASSIGN(const double differing, m.number("differing_pixels", 0, 1e18, 0));
+    rep.differingPixels = (long long)differing;
+    CAVITY_ASSIGN(rep.differingShare, m.number("differing_share", 0, 1, 0));
+    CAVITY_ASSIGN(rep.channelsCompared, m.integer("channels_compared", 0, 4, 0));
+    return rep;
+}
+
+Result<ImageCheck> readImage(const JsonObject& ij) {
+    ImageCheck i;
+    CAVITY_ASSIGN(i.image, ij.str("image"));
+    CAVITY_ASSIGN(i.digest, ij.str("digest", ""));
+    CAVITY_ASSIGN(i.baseline, ij.str("baseline"));
+    CAVITY_ASSIGN(i.newExact, ij.str("new"));
+    CAVITY_ASSIGN(i.newPng, ij.str("new_png"));
+    CAVITY_ASSIGN(i.baselinePng, ij.str("baseline_png"));
+    CAVITY_ASSIGN(i.diffPng, ij.str("diff_png"));
+    CAVITY_ASSIGN(i.failures, ij.strings("failures"));
+    CAVITY_ASSIGN(const JsonObject t, ij.object("tolerance"));
+    CAVITY_ASSIGN(i.tolerance, readTolerance(t));
+    if (!ij.has("metrics")) return ij.bad("metrics", "missing");
+    if (!ij.raw()["metrics"].is_null()) {
+        CAVITY_ASSIGN(const JsonObject m, ij.object("metrics"));
+        CAVITY_ASSIGN(i.metrics, readMetrics(m));
+    }
+    return i;
+}
+
+Result<ConfigResult> readResult(const JsonObject& rj) {
+    ConfigResult r;
+    CAVITY_ASSIGN(r.id, rj.str("id"));
+    CAVITY_ASSIGN(r.repetition, rj.integer("repetition", 0, 1 << 20, 0));   // absent before cavity_render --repeat
+    CAVITY_ASSIGN(r.key, rj.str("baseline_key"));
+    CAVITY_ASSIGN(r.device, rj.str("device"));
+    CAVITY_ASSIGN(r.config.kernel, rj.str("kernel"));
+    CAVITY_ASSIGN(r.deterministic, rj.boolean("deterministic"));
+    CAVITY_ASSIGN(r.error, rj.str("error"));
+    CAVITY_ASSIGN(r.errorCode, rj.integer("error_code", 0, 255));
+    // Absent before retries and expectations: one attempt, none listed.
+    CAVITY_ASSIGN(r.attempts, rj.integer("attempts", 1, 1000, 1));
+    if (rj.has("first_failures")) {
+        CAVITY_ASSIGN(r.firstFailures, rj.strings("first_failures"));
+    }
+    CAVITY_ASSIGN(r.expected, rj.str("expected", ""));
+    CAVITY_ASSIGN(r.expectedWhy, rj.str("expected_reason", ""));
+    CAVITY_ASSIGN(const auto images, rj.objects("images"));
+    for (const auto& ij : images) {
+        CAVITY_ASSIGN(auto i, readImage(ij));
+        r.images.push_back(std::move(i));
+    }
+    CAVITY_ASSIGN(const auto timings, rj.objects("timings"));
+    for (const auto& tj : timings) {
+        TimingCheck t;
+        CAVITY_ASSIGN(t.pass, tj.str("pass"));
+        CAVITY_ASSIGN(t.medianMs, tj.number("median_ms", 0, kAny));
+        CAVITY_ASSIGN(t.clock, tj.str("clock"));
+        CAVITY_ASSIGN(t.budgetMs, tj.numberOrNull("budget_ms", 0, kAny));
+        r.timings.push_back(t);
+    }
+    return r;
+}
+
+}  // namespace
+
+Result<GateRun> fromJson(const json& j, const std::string& path) {
+    if (!j.is_object() || j.value("schema", "") != "cavity.gate/1")
+        return badInput(path + ": not a cavity gate.json (schema cavity.gate/1)");
+    CAVITY_ASSIGN(const JsonObject top, JsonObject::of(path, "", j));
+    GateRun run;
+    CAVITY_ASSIGN(run.matrix, top.str("matrix"));
+    CAVITY_ASSIGN(const auto shard, top.integers("shard", 0, 1 << 20));
+    if (shard.size() != 2 || shard[1] < 1 || shard[0] >= shard[1]) return top.bad("shard", "must be [I, N] with 0 <= I < N");
+    run.shardIndex = shard[0];
+    run.shardCount = shard[1];
+    CAVITY_ASSIGN(run.seconds, top.number("seconds", 0, kAny));
+    CAVITY_ASSIGN(run.backendErrors, top.strings("backend_errors"));
+    CAVITY_ASSIGN(const auto results, top.objects("results"));
+    for (const auto& rj : results) {
+        CAVITY_ASSIGN(auto r, readResult(rj));
+        run.results.push_back(std::move(r));
+    }
+    return run;
+}
+
+}  // namespace cavity::gate

@@ -1,0 +1,144 @@
+#include "gate/gate_judge.h"
+
+#include "core/digest.h"
+#include "images/image_io.h"
+#include "measure/runner.h"
+
+#include <cstdio>
+#include <filesystem>
+
+namespace cavity::gate {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string fmt(double x) {
+    char b[32];
+    std::snprintf(b, sizeof b, "%.4g", x);
+    return b;
+}
+
+std::vector<std::string> verdict(const metrics::Report& m, const Tolerance& t, bool perceptual) {
+    std::vector<std::string> f;
+    if (m.nonFinite > 0)
+        f.push_back(std::to_string(m.nonFinite) + " non-finite pixels, first at (" + std::to_string(m.firstNonFiniteX) +
+                    "," + std::to_string(m.firstNonFiniteY) + ")");
+    if (m.maxAbs > t.maxAbs) f.push_back("max abs error " + fmt(m.maxAbs) + " > " + fmt(t.maxAbs) + " at (" +
+                                         std::to_string(m.worstX) + "," + std::to_string(m.worstY) + ")");
+    if (m.meanAbs > t.meanAbs) f.push_back("mean abs error " + fmt(m.meanAbs) + " > " + fmt(t.meanAbs));
+    if (m.rmse > t.rmse) f.push_back("RMSE " + fmt(m.rmse) + " > " + fmt(t.rmse));
+    if (m.psnr < t.psnrMin) f.push_back("PSNR " + fmt(m.psnr) + " dB < " + fmt(t.psnrMin) + " dB");
+    if (m.overThresholdShare > t.overThresholdShare)
+        f.push_back(fmt(100 * m.overThresholdShare) + "% of pixels over " + fmt(t.pixelThreshold) + " > " +
+                    fmt(100 * t.overThresholdShare) + "%");
+    if (m.ssim < t.ssimMin) f.push_back("SSIM " + fmt(m.ssim) + " < " + fmt(t.ssimMin));
+    if (perceptual && m.flipMean > t.flipMeanMax) f.push_back("FLIP mean " + fmt(m.flipMean) + " > " + fmt(t.flipMeanMax));
+    if (perceptual && m.differingShare > t.differingShareMax)
+        f.push_back(fmt(100 * m.differingShare) + "% of pixels (" + std::to_string(m.differingPixels) + ") differ by more than " +
+                    fmt(t.differingDelta) + " steps > " + fmt(100 * t.differingShareMax) + "%");
+    return f;
+}
+
+// A baseline that exists must be readable and of the configuration's shape.
+Status checkBaseline(const std::string& path, const RunConfig& c, const std::string& image) {
+    if (!fs::exists(path)) return {};
+    CAVITY_ASSIGN(HostImage b, readImage(path));
+    const ImageShape need = checkedShape(c, image), have{b.width, b.height, b.channels};
+    if (!(have == need))
+        return badInput(path + ": baseline is " + shapeText(have) + ", configuration needs " + shapeText(need));
+    return {};
+}
+
+}  // namespace
+
+Result<Judge> prepareJudge(const std::string& baselines, const std::vector<RunConfig>& configs, const std::string& out) {
+    const fs::path root(baselines);
+    Judge j;
+    j.baselines = baselines;
+    j.out = out;
+    CAVITY_ASSIGN(j.manifest, loadManifest((root / "manifest.json").string()));
+    CAVITY_ASSIGN(j.budgets, loadBudgets((root / "budgets.json").string()));
+    for (const auto& c : configs)
+        for (const auto& img : checkedImages())
+            CAVITY_TRY(checkBaseline((root / "images" / baselineKey(c) / (img.name + img.extension)).string(), c, img.name));
+    CAVITY_TRY(checkWritableDir("--out", out));
+    return j;
+}
+
+Result<ConfigResult> judgeRendering(const render::Rendering& rend, const Judge& j, const ConfigResult* first) {
+    ConfigResult r;
+    r.id = rend.id;
+    r.key = rend.key;
+    r.config = rend.config;
+    r.repetition = rend.repetition;
+    r.device = rend.device.deviceName;
+    if (!rend.error.empty()) {
+        r.error = rend.error;
+        r.errorCode = rend.errorCode;
+        return r;
+    }
+    r.deterministic = rend.deterministic;
+    const Tolerance tol = j.manifest.forPipeline(rend.config.kernel, r.device);
+    const fs::path root(j.baselines);
+    fs::path dir = fs::path(j.out) / "images" / r.id;
+    if (rend.repetition > 0) dir /= "rep" + std::to_string(rend.repetition);
+    for (const auto& ci : checkedImages()) {
+        const std::string& digest = rend.digests.at(ci.name);
+        const auto pixels = rend.images.find(ci.name);
+        if (pixels == rend.images.end()) {
+            const ImageCheck* same = nullptr;
+            if (first)
+                for (const auto& i : first->images)
+                    if (i.image == ci.name && i.digest == digest) same = &i;
+            if (!same) return internal(r.label() + ": " + ci.name + " has neither pixels nor repetition 0's digest");
+            r.images.push_back(*same);
+            continue;
+        }
+        const HostImage& now = pixels->second;
+        ImageCheck check;
+        check.image = ci.name;
+        check.digest = digest;
+        check.tolerance = tol;
+        const fs::path basePath = root / "images" / r.key / (ci.name + ci.extension);
+        check.baseline = basePath.string();
+        std::error_code ec;
+        fs::create_directories(dir, ec);
+        check.newExact = (dir / (ci.name + ".new" + ci.extension)).string();
+        check.newPng = (dir / (ci.name + ".new.png")).string();
+        CAVITY_TRY(writeImage(check.newExact, now));
+        if (ci.extension != ".png") CAVITY_TRY(writeImage(check.newPng, now));
+        if (!fs::exists(basePath)) {
+            // Never a silent pass: the configuration fails, the gate exits 2,
+            // and the new image is there to accept.
+            check.failures.push_back("baseline missing: " + basePath.string() +
+                                     " (accept the new image with `cavity baselines update`)");
+            r.errorCode = int(ErrorCode::BadInput);
+        } else {
+            CAVITY_ASSIGN(HostImage base, readImage(basePath.string()));
+            metrics::Options mo;
+            mo.threshold = tol.pixelThreshold;
+            mo.flip = ci.perceptual;
+            mo.eightBit = ci.extension == ".png";
+            mo.differingDelta = int(tol.differingDelta);
+            CAVITY_ASSIGN(check.metrics, metrics::compare(base, now, mo));
+            check.failures = verdict(*check.metrics, tol, ci.perceptual);
+            check.baselinePng = (dir / (ci.name + ".baseline.png")).string();
+            check.diffPng = (dir / (ci.name + ".diff.png")).string();
+            CAVITY_TRY(writeImage(check.baselinePng, base));
+            CAVITY_TRY(writeImage(check.diffPng, metrics::heatmap(base, now, 2 * tol.pixelThreshold)));
+        }
+        r.images.push_back(std::move(check));
+    }
+    for (const auto& p : rend.timings) {
+        TimingCheck t;
+        t.pass = p.pass;
+        t.medianMs = p.medianMs;
+        t.clock = p.clock;
+        t.budgetMs = j.budgets.find(r.device, r.id, p.pass);
+        r.timings.push_back(t);
+    }
+    return r;
+}
+
+}  // namespace cavity::gate

@@ -1,0 +1,37 @@
+// The judging half of the gate, shared by `cavity gate` (Renderings straight
+// from the GPU) and `cavity gate judge` (Renderings read back from render
+// folders): each checked image against its baseline (metrics.h, with the
+// tolerances of baselines/manifest.json), each pass's median time against
+// baselines/budgets.json, and the determinism check. Both paths hand the same
+// floats to the same function, so their verdicts and metrics are equal.
+#pragma once
+
+#include "gate/namespace.h"
+#include "gate/gate.h"
+#include "render/rendering.h"
+
+#include <string>
+#include <vector>
+
+namespace cavity::gate {
+
+struct Judge {
+    std::string baselines;   // folder with manifest.json, budgets.json, images/
+    Manifest manifest;
+    Budgets budgets;
+    std::string out;         // the gate's output folder
+};
+
+// Reads the tolerances and budgets, checks every baseline `configs` will be
+// compared with (present ones must be readable and of the configuration's
+// shape; a missing one is judged, not refused) and that `out` can be
+// written. Writes nothing.
+Result<Judge> prepareJudge(const std::string& baselines, const std::vector<RunConfig>& configs, const std::string& out);
+
+// Judges one Rendering, writing its new images, the baselines as PNG and the
+// diff heat-maps under out/images/<id>/ (out/images/<id>/rep<K>/ for a later
+// repetition with pixels of its own). An image a later repetition holds only
+// as a digest equal to repetition 0's takes repetition 0's check, `first`.
+Result<ConfigResult> judgeRendering(const render::Rendering& r, const Judge& j, const ConfigResult* first = nullptr);
+
+}  // namespace cavity::gate

@@ -1,0 +1,218 @@
+#include "gate/judge_folders.h"
+
+#include "pipeline/config_id.h"
+#include "gate/gate_judge.h"
+#include "render/image_file.h"
+#include "core/json_input.h"
+#include "render/render_manifest.h"
+#include "measure/results.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+
+namespace cavity::gate {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Folder {
+    std::string dir, path;   // the folder, its manifest.json
+    render::RenderManifest m;
+};
+
+Result<Folder> readFolder(const std::string& dir) {
+    Folder f;
+    f.dir = dir;
+    f.path = (fs::path(dir) / "manifest.json").string();
+    if (!fs::exists(f.path))
+        return badInput(f.path + ": missing (not a render folder, or its cavity_render did not finish)");
+    CAVITY_ASSIGN(auto j, readJsonFile(f.path));
+    CAVITY_ASSIGN(f.m, render::parseManifest(j, f.path));
+    return f;
+}
+
+std::string label(const render::ConfigEntry& c, const render::RenderEntry& r) {
+    return c.id + (r.repetition ? " (repetition " + std::to_string(r.repetition) + ")" : "");
+}
+
+// A file named by a manifest must lie inside its folder.
+bool inside(const std::string& file) {
+    const fs::path p(file);
+    if (p.empty() || p.is_absolute()) return false;
+    for (const auto& part : p)
+        if (part == "..") return false;
+    return true;
+}
+
+// Everything but the pixels: the entries belong to the matrix and the
+// folder's shard, no entry is in two folders, every repetition is there,
+// each image has the configuration's shape, and an image without a file
+// is one whose digest repetition 0 has.
+Status checkEntries(const Folder& f, const std::vector<RunConfig>& all, std::map<std::string, std::string>& owner) {
+    const auto& m = f.m;
+    const std::string shard = std::to_string(m.shardIndex) + "/" + std::to_string(m.shardCount);
+    for (const auto& c : m.configs) {
+        if (c.index >= all.size() || configId(all[c.index]) != c.id)
+            return badInput(f.path + ": " + c.id + " is not entry " + std::to_string(c.index) + " of matrix " + m.matrix +
+                            (c.index < all.size() ? " (that is " + configId(all[c.index]) + ")" : ""));
+        const RunConfig& cfg = all[c.index];
+        if (c.key != baselineKey(cfg) || c.api != gpu::apiName(cfg.api))
+            return badInput(f.path + ": " + c.id + ": baseline_key " + c.key + " and api " + c.api + " (the id gives " +
+                            baselineKey(cfg) + " and " + gpu::apiName(cfg.api) + ")");
+        if (!inShard(c.index, m.shardIndex, m.shardCount))
+            return badInput(f.path + ": " + c.id + " (entry " + std::to_string(c.index) + ") is not in shard " + shard);
+        if (auto [it, fresh] = owner.emplace(c.id, f.path); !fresh)
+            return badInput(f.path + ": " + c.id + " is also in " + it->second + " (the folders' shards overlap)");
+        if (c.renders.size() != size_t(m.repeat))
+            return badInput(f.path + ": " + c.id + " has " + std::to_string(c.renders.size()) + " renders, repeat is " +
+                            std::to_string(m.repeat));
+        for (size_t k = 0; k < c.renders.size(); ++k) {
+            const auto& r = c.renders[k];
+            if (r.repetition != int(k))
+                return badInput(f.path + ": " + c.id + ": render " + std::to_string(k) + " says repetition " +
+                                std::to_string(r.repetition));
+            if (!r.error.empty()) continue;
+            if (r.images.size() != checkedImages().size())
+                return badInput(f.path + ": " + label(c, r) + " has " + std::to_string(r.images.size()) + " images (needs " +
+                                std::to_string(checkedImages().size()) + ": ao, ao_blur, color)");
+            for (const auto& ci : checkedImages()) {
+                const auto i = std::find_if(r.images.begin(), r.images.end(), [&](const auto& e) { return e.name == ci.name; });
+                if (i == r.images.end()) return badInput(f.path + ": " + label(c, r) + " lacks image " + ci.name);
+                const ImageShape need = checkedShape(cfg, ci.name), have{i->stored.width, i->stored.height, i->stored.channels};
+                if (!(have == need))
+                    return badInput(f.path + ": " + label(c, r) + ": " + ci.name + " is " + shapeText(have) +
+                                    ", the configuration renders " + shapeText(need));
+                if (!i->file.empty() && !inside(i->file))
+                    return badInput(f.path + ": " + label(c, r) + ": " + ci.name + " file " + i->file + " is outside the folder");
+                if (i->file.empty()) {
+                    bool same = false;
+                    if (k > 0)
+                        for (const auto& first : c.renders[0].images)
+                            same |= first.name == ci.name && first.stored.digest == i->stored.digest;
+                    if (!same)
+                        return badInput(f.path + ": " + label(c, r) + ": " + ci.name +
+                                        " has no file and is not repetition 0's image");
+                }
+            }
+        }
+    }
+    return {};
+}
+
+// Every stored image inflates to the recorded shape and digest. The pixels
+// are dropped again: a 1920x1080 matrix does not fit in memory at once.
+Status checkFiles(const Folder& f) {
+    for (const auto& c : f.m.configs)
+        for (const auto& r : c.renders)
+            for (const auto& i : r.images) {
+                if (i.file.empty()) continue;
+                auto image = render::readImageFile((fs::path(f.dir) / i.file).string(), i.stored);
+                if (!image) return image.error();
+            }
+    return {};
+}
+
+}  // namespace
+
+Result<GateRun> judgeFolders(const std::vector<std::string>& dirs, const std::string& baselines, const std::string& out,
+                             bool quiet) {
+    const auto start = std::chrono::steady_clock::now();
+    if (dirs.empty()) return badInput("needs one or more render folders (cavity_render --out DIR)");
+    std::vector<Folder> folders;
+    for (const auto& d : dirs) {
+        CAVITY_ASSIGN(Folder f, readFolder(d));
+        if (!folders.empty()) {
+            const Folder& first = folders.front();
+            if (f.m.matrix != first.m.matrix)
+                return badInput(f.path + ": matrix " + f.m.matrix + ", but " + first.path + " has " + first.m.matrix +
+                                " (judge one matrix at a time)");
+            if (f.m.gitCommit != first.m.gitCommit)
+                return badInput(f.path + ": rendered by build " + f.m.gitCommit + ", but " + first.path + " by build " +
+                                first.m.gitCommit + " (render every shard with one build)");
+        }
+        folders.push_back(std::move(f));
+    }
+    const Folder& first = folders.front();
+    const std::string matrices = (fs::path(baselines) / "matrices.json").string();
+    CAVITY_ASSIGN(const Matrix matrix, loadMatrix(matrices, first.m.matrix));
+    for (const auto& f : folders) {
+        if (f.m.matrixHash != matrix.hash)
+            return badInput(f.path + ": matrix " + f.m.matrix + " was rendered from another declaration (" + f.m.matrixHash +
+                            "; " + matrices + " now gives " + matrix.hash + "): render it again");
+        if (f.m.gitCommit != gitCommit())
+            return badInput(f.path + ": rendered by build " + f.m.gitCommit + ", this cavity is build " + gitCommit() +
+                            " (judge with the cavity of the build that rendered it, or render again)");
+    }
+    const auto all = matrix.expand();
+    std::map<std::string, std::string> owner;
+    for (const auto& f : folders) CAVITY_TRY(checkEntries(f, all, owner));
+    for (const auto& f : folders) CAVITY_TRY(checkFiles(f));
+    std::vector<RunConfig> configs;
+    for (const auto& f : folders)
+        for (const auto& c : f.m.configs) configs.push_back(all[c.index]);
+    CAVITY_ASSIGN(const Judge judge, prepareJudge(baselines, configs, out));
+
+    // The order `cavity gate` renders in: OpenGL first, then matrix order.
+    struct Item { const Folder* f; const render::ConfigEntry* c; };
+    std::vector<Item> items;
+    for (const auto& f : folders)
+        for (const auto& c : f.m.configs) items.push_back({&f, &c});
+    std::stable_sort(items.begin(), items.end(), [](const Item& a, const Item& b) {
+        return std::pair(a.c->api != "gl", a.c->index) < std::pair(b.c->api != "gl", b.c->index);
+    });
+    GateRun run;
+    run.matrix = matrix.name;
+    if (folders.size() == 1) {
+        run.shardIndex = first.m.shardIndex;
+        run.shardCount = first.m.shardCount;
+    }
+    double rendered = 0;
+    for (const auto& f : folders) {
+        rendered = std::max(rendered, f.m.seconds);
+        for (const auto& e : f.m.backendErrors)
+            if (std::find(run.backendErrors.begin(), run.backendErrors.end(), e.message) == run.backendErrors.end())
+                run.backendErrors.push_back(e.message);
+    }
+    size_t renders = 0;
+    for (const auto& [f, c] : items) renders += c->renders.size();
+    for (const auto& [f, c] : items) {
+        ConfigResult rep0;
+        for (const auto& entry : c->renders) {
+            render::Rendering r;
+            r.index = c->index;
+            r.repetition = entry.repetition;
+            r.config = all[c->index];
+            r.id = c->id;
+            r.key = c->key;
+            if (auto d = f->m.devices.find(c->api); d != f->m.devices.end()) r.device = d->second;
+            r.device.deviceName = c->device;
+            r.error = entry.error;
+            r.errorCode = entry.errorCode;
+            r.deterministic = entry.deterministic;
+            r.timings = entry.timings;
+            for (const auto& i : entry.images) {
+                r.digests[i.name] = i.stored.digest;
+                if (i.file.empty()) continue;
+                CAVITY_ASSIGN(r.images[i.name], render::readImageFile((fs::path(f->dir) / i.file).string(), i.stored));
+            }
+            CAVITY_ASSIGN(ConfigResult res, judgeRendering(r, judge, entry.repetition ? &rep0 : nullptr));
+            // Progress as `cavity gate` prints it: count, elapsed, ETA.
+            const size_t done = run.results.size() + 1;
+            const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            const double eta = elapsed / double(done) * double(renders - std::min(done, renders));
+            if (res.error.empty() && !quiet)
+                std::fprintf(stderr, "gate: [%zu/%zu] %s %s  elapsed %.1f s  ETA %.1f s\n", done, renders, res.label().c_str(),
+                             res.passed() ? "pass" : "FAIL", elapsed, eta);
+            if (entry.repetition == 0) rep0 = res;
+            run.results.push_back(std::move(res));
+        }
+    }
+    run.seconds = rendered + std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return run;
+}
+
+}  // namespace cavity::gate

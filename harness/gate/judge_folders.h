@@ -1,0 +1,23 @@
+// `cavity gate judge RENDER_DIR... [--baselines DIR] --out DIR`: the judging
+// half of the gate on render folders that cavity_render wrote
+// (harness/render/render_folder.h), one per shard or machine. Every folder is checked
+// whole first (the manifest's schema and fields, its matrix declaration
+// against the current baselines/matrices.json, its build against this one,
+// shards that do not overlap, and every image file's header, size, zlib
+// stream and digest), so that a bad folder is refused (exit 2, one line
+// naming the file) before anything is written. Then each repetition of each
+// configuration goes through gate_judge.h as in `cavity gate`.
+#pragma once
+
+#include "gate/namespace.h"
+#include "gate/gate.h"
+
+#include <string>
+#include <vector>
+
+namespace cavity::gate {
+
+Result<GateRun> judgeFolders(const std::vector<std::string>& dirs, const std::string& baselines, const std::string& out,
+                             bool quiet = false);
+
+}  // namespace cavity::gate

@@ -1,0 +1,28 @@
+// The front ends (cli/, render/, bench/, tests/) use every harness folder:
+// `using namespace cavity::harness;` inside their own namespace makes the
+// folders' names visible there without qualification.
+#pragma once
+
+namespace cavity::core {}
+namespace cavity::stats {}
+namespace cavity::pipeline {}
+namespace cavity::images {}
+namespace cavity::plan {}
+namespace cavity::measure {}
+namespace cavity::render {}
+namespace cavity::gate {}
+namespace cavity::compare {}
+namespace cavity::report {}
+
+namespace cavity::harness {
+using namespace cavity::core;
+using namespace cavity::stats;
+using namespace cavity::pipeline;
+using namespace cavity::images;
+using namespace cavity::plan;
+using namespace cavity::measure;
+using namespace cavity::render;
+using namespace cavity::gate;
+using namespace cavity::compare;
+using namespace cavity::report;
+}  // namespace cavity::harness

@@ -1,0 +1,319 @@
+#include "images/metrics.h"
+
+#include "images/flip.h"
+#include "images/image_module.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+namespace cavity::images::metrics {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+std::string shape(const HostImage& i) {
+    return std::to_string(i.width) + "x" + std::to_string(i.height) + "x" + std::to_string(i.channels);
+}
+
+// OIIO's compare counts a NaN as matching a NaN and an Inf an Inf; keep that,
+// but only for Infs of the same sign.
+bool sameNonFinite(float a, float b) {
+    return (std::isnan(a) && std::isnan(b)) || (std::isinf(a) && a == b);
+}
+
+// The metrics OIIO's compare gives, for images without non-finite values.
+// Its PSNR is left out: it uses max(1, largest value seen) as the peak, and
+// ours is for a signal range of 1.0 whatever the values.
+//
+// nfail (OIIO 2.4, imagebufalgo_compare.cpp) counts each pixel once when any
+// of its channels has |a-b| > failthresh (and a relative error above
+// failrelative, 0 here). CompareResults::error is true whenever nfail > 0,
+// so it says nothing about whether the comparison ran.
+struct Sums {
+    double maxAbs = 0, meanAbs = 0, rmse = 0;
+    long long overThreshold = 0;
+    int worstX = 0, worstY = 0;
+};
+
+// OIIO's compare, in the image module (image_module.h).
+Sums oiioCompare(const ImageModule& oiio, const HostImage& a, const HostImage& b, double threshold) {
+    const OiioCompareSums cr = oiio.compare(a, b, threshold);
+    return {cr.maxError, cr.meanError, cr.rmsError, cr.failing, cr.maxX, cr.maxY};
+}
+
+// With non-finite values present, compare copies in which every pair holding
+// one is zeroed in both images, then take those pairs out of the averages and
+// put the mismatched ones back in as infinite, over-threshold errors.
+Sums compareWithNonFinite(const ImageModule& oiio, const HostImage& a, const HostImage& b, double threshold) {
+    HostImage sa = a, sb = b;
+    const size_t npix = size_t(a.width) * a.height;
+    const int ch = a.channels;
+    size_t excluded = 0;
+    long long firstMismatch = -1;
+    std::vector<size_t> mismatchedPixels;
+    for (size_t p = 0; p < npix; ++p) {
+        bool mismatch = false;
+        for (int c = 0; c < ch; ++c) {
+            const size_t i = p * ch + c;
+            const float x = a.pixels[i], y = b.pixels[i];
+            if (std::isfinite(x) && std::isfinite(y)) continue;
+            mismatch |= !sameNonFinite(x, y);
+            sa.pixels[i] = sb.pixels[i] = 0.0f;
+            ++excluded;
+        }
+        if (mismatch) {
+            if (firstMismatch < 0) firstMismatch = (long long)p;
+            mismatchedPixels.push_back(p);
+        }
+    }
+    Sums s = oiioCompare(oiio, sa, sb, threshold);
+    const double nvals = double(npix) * ch, used = nvals - double(excluded);
+    s.meanAbs = used > 0 ? s.meanAbs * nvals / used : 0.0;
+    s.rmse = used > 0 ? std::sqrt(s.rmse * s.rmse * nvals / used) : 0.0;
+    for (size_t p : mismatchedPixels) {
+        bool counted = false;   // by OIIO, through another channel of the pixel
+        for (int c = 0; c < ch; ++c)
+            counted |= std::fabs(sa.pixels[p * ch + c] - sb.pixels[p * ch + c]) > float(threshold);
+        s.overThreshold += !counted;
+    }
+    if (firstMismatch >= 0) {
+        s.maxAbs = kInf;
+        s.worstX = int(firstMismatch % a.width);
+        s.worstY = int(firstMismatch / a.width);
+    }
+    return s;
+}
+
+// What SSIM and FLIP see: non-finite values as 0 (OIIO's NONFINITE_BLACK).
+HostImage finiteCopy(const ImageModule& oiio, const HostImage& img) {
+    HostImage out = img;
+    oiio.zeroNonFinite(out);
+    return out;
+}
+
+// The 11-tap Gaussian window of Wang et al. 2004 (sigma 1.5), normalised; as
+// a separable filter it is the paper's 11x11 circular-symmetric window.
+constexpr int kSsimRadius = 5;
+
+std::array<double, 2 * kSsimRadius + 1> ssimWindow() {
+    std::array<double, 2 * kSsimRadius + 1> w{};
+    double sum = 0;
+    for (int i = -kSsimRadius; i <= kSsimRadius; ++i) sum += w[i + kSsimRadius] = std::exp(-i * i / (2 * 1.5 * 1.5));
+    for (double& x : w) x /= sum;
+    return w;
+}
+
+// Horizontal pass of the window over one row of each of the five moment
+// images (x, y, x^2, y^2, xy), edges clamped; out holds 5 rows of w. The loop
+// over x is innermost so that it vectorises.
+void blurRowMoments(const float* a, const float* b, int stride, int w, double* out) {
+    static const auto win = ssimWindow();
+    constexpr int r = kSsimRadius;
+    std::fill(out, out + 5 * size_t(w), 0.0);
+    thread_local std::vector<double> px, py;
+    px.resize(size_t(w) + 2 * r);
+    py.resize(size_t(w) + 2 * r);
+    for (int x = -r; x < w + r; ++x) {
+        const size_t i = size_t(std::clamp(x, 0, w - 1)) * stride;
+        px[size_t(x + r)] = a[i];
+        py[size_t(x + r)] = b[i];
+    }
+    for (int i = 0; i <= 2 * r; ++i) {
+        const double k = win[size_t(i)];
+        const double* sx = &px[size_t(i)];
+        const double* sy = &py[size_t(i)];
+        for (int x = 0; x < w; ++x) {
+            out[x] += k * sx[x];
+            out[w + x] += k * sy[x];
+            out[2 * w + x] += k * sx[x] * sx[x];
+            out[3 * w + x] += k * sy[x] * sy[x];
+            out[4 * w + x] += k * sx[x] * sy[x];
+        }
+    }
+}
+
+}  // namespace
+
+// Z. Wang, A. C. Bovik, H. R. Sheikh, E. P. Simoncelli, "Image quality
+// assessment: from error visibility to structural similarity", IEEE TIP 13(4),
+// 2004: local means, variances and covariance under a Gaussian window
+// (11x11, sigma 1.5), SSIM = (2 ux uy + C1)(2 sxy + C2) / ((ux^2 + uy^2 + C1)(sx^2 + sy^2 + C2)),
+// C1 = (0.01 L)^2, C2 = (0.03 L)^2 with L = 1, averaged over the pixels
+// where the whole window lies inside the image (the 'valid' region of the
+// authors' ssim_index.m, also what scikit-image averages). Images smaller
+// than the window are averaged over every pixel, with clamped edges.
+double ssim(const HostImage& a, const HostImage& b) {
+    constexpr double C1 = 0.01 * 0.01, C2 = 0.03 * 0.03;
+    static const auto win = ssimWindow();
+    const int w = a.width, h = a.height, ch = a.channels;
+    if (w <= 0 || h <= 0 || ch <= 0) return 1.0;
+    const bool valid = w > 2 * kSsimRadius && h > 2 * kSsimRadius;
+    const int x0 = valid ? kSsimRadius : 0, x1 = valid ? w - kSsimRadius : w;
+    const int y0 = valid ? kSsimRadius : 0, y1 = valid ? h - kSsimRadius : h;
+    const size_t row = 5 * size_t(w);
+    std::vector<double> horizontal(row * h), m(row);
+    double total = 0;
+    for (int c = 0; c < ch; ++c) {
+        for (int y = 0; y < h; ++y) {
+            const size_t first = size_t(y) * w * ch + c;
+            blurRowMoments(&a.pixels[first], &b.pixels[first], ch, w, &horizontal[row * y]);
+        }
+        double sum = 0;
+        for (int y = y0; y < y1; ++y) {
+            std::fill(m.begin(), m.end(), 0.0);
+            for (int i = -kSsimRadius; i <= kSsimRadius; ++i) {
+                const double k = win[size_t(i + kSsimRadius)];
+                const double* t = &horizontal[row * size_t(std::clamp(y + i, 0, h - 1))];
+                for (size_t j = 0; j < row; ++j) m[j] += k * t[j];
+            }
+            for (int x = x0; x < x1; ++x) {
+                const double ux = m[size_t(x)], uy = m[size_t(w + x)];
+                const double sx = m[size_t(2 * w + x)] - ux * ux, sy = m[size_t(3 * w + x)] - uy * uy;
+                const double sxy = m[size_t(4 * w + x)] - ux * uy;
+                // Written so that x == y gives exactly 1: 2*ux*uy == ux*ux + uy*uy
+                // and 2*sxy == sx + sy hold bit for bit then.
+                sum += ((2 * ux * uy + C1) * (2 * sxy + C2)) / ((ux * ux + uy * uy + C1) * (sx + sy + C2));
+            }
+        }
+        total += sum / (double(x1 - x0) * (y1 - y0));
+    }
+    return total / ch;
+}
+
+namespace {
+
+// RGBA whose alpha holds one value in both images: the RGB channels alone.
+bool constantAlpha(const HostImage& a, const HostImage& b) {
+    if (a.channels != 4) return false;
+    const float alpha = a.pixels[3];
+    for (const HostImage* img : {&a, &b})
+        for (size_t i = 3; i < img->pixels.size(); i += 4)
+            if (!(img->pixels[i] == alpha)) return false;
+    return true;
+}
+
+HostImage colourOnly(const HostImage& img) {
+    HostImage out(img.width, img.height, 3);
+    for (size_t p = 0; p < size_t(img.width) * size_t(img.height); ++p)
+        for (int c = 0; c < 3; ++c) out.pixels[p * 3 + size_t(c)] = img.pixels[p * 4 + size_t(c)];
+    return out;
+}
+
+long long differing(const HostImage& a, const HostImage& b, int delta) {
+    long long n = 0;
+    const size_t channels = size_t(a.channels);
+    for (size_t p = 0; p * channels < a.pixels.size(); ++p)
+        for (size_t c = 0; c < channels; ++c) {
+            const float x = a.pixels[p * channels + c], y = b.pixels[p * channels + c];
+            // Both were stored as 8-bit codes; a non-finite value differs.
+            const bool differs = !std::isfinite(x) || !std::isfinite(y) ||
+                                 std::abs(std::lround(x * 255.0f) - std::lround(y * 255.0f)) > delta;
+            if (differs) {
+                ++n;
+                break;
+            }
+        }
+    return n;
+}
+
+}  // namespace
+
+Result<Report> compare(const HostImage& baselineIn, const HostImage& candidateIn, const Options& options) {
+    if (!baselineIn.sameShape(candidateIn))
+        return badInput("baseline is " + shape(baselineIn) + ", new image is " + shape(candidateIn));
+    for (const HostImage* img : {&baselineIn, &candidateIn})
+        if (img->pixels.size() != size_t(img->width) * img->height * img->channels)
+            return internal("image " + shape(*img) + " holds " + std::to_string(img->pixels.size()) + " floats");
+    if (baselineIn.width <= 0 || baselineIn.height <= 0 || baselineIn.channels <= 0)
+        return badInput("cannot compare empty images (" + shape(baselineIn) + ")");
+    CAVITY_ASSIGN(const ImageModule* oiio, imageModule());
+    const bool dropAlpha = constantAlpha(baselineIn, candidateIn);
+    const HostImage rgbBaseline = dropAlpha ? colourOnly(baselineIn) : HostImage{};
+    const HostImage rgbCandidate = dropAlpha ? colourOnly(candidateIn) : HostImage{};
+    const HostImage& baseline = dropAlpha ? rgbBaseline : baselineIn;
+    const HostImage& candidate = dropAlpha ? rgbCandidate : candidateIn;
+
+    Report r{};
+    r.channelsCompared = candidate.channels;
+    if (options.eightBit) {
+        r.differingPixels = differing(baseline, candidate, options.differingDelta);
+        r.differingShare = double(r.differingPixels) / (double(baseline.width) * baseline.height);
+    }
+    r.nonFinite = oiio->nonFinitePixels(candidate);
+    if (r.nonFinite > 0) {
+        const size_t at = size_t(std::find_if(candidate.pixels.begin(), candidate.pixels.end(),
+                                              [](float v) { return !std::isfinite(v); }) -
+                                 candidate.pixels.begin()) / candidate.channels;
+        r.firstNonFiniteX = int(at % candidate.width);
+        r.firstNonFiniteY = int(at / candidate.width);
+    }
+    const bool anyNonFinite = r.nonFinite > 0 || oiio->nonFinitePixels(baseline) > 0;
+
+    const Sums s = anyNonFinite ? compareWithNonFinite(*oiio, baseline, candidate, options.threshold)
+                                : oiioCompare(*oiio, baseline, candidate, options.threshold);
+    r.maxAbs = s.maxAbs;
+    r.meanAbs = s.meanAbs;
+    r.rmse = s.rmse;
+    r.worstX = s.worstX;
+    r.worstY = s.worstY;
+    r.psnr = r.rmse > 0 ? -20.0 * std::log10(r.rmse) : kInf;   // 20 log10(1 / rmse)
+    r.overThresholdShare = double(s.overThreshold) / (double(baseline.width) * baseline.height);
+
+    const HostImage fa = anyNonFinite ? finiteCopy(*oiio, baseline) : HostImage{};
+    const HostImage fb = anyNonFinite ? finiteCopy(*oiio, candidate) : HostImage{};
+    const HostImage& a = anyNonFinite ? fa : baseline;
+    const HostImage& b = anyNonFinite ? fb : candidate;
+    r.ssim = ssim(a, b);
+    if (options.flip) {
+        CAVITY_ASSIGN(const flip::FlipResult f, flip::ldrFlip(a, b));
+        r.flipMean = f.mean;
+    }
+    return r;
+}
+
+// Stops of a magma-like map (after matplotlib's magma, van der Walt & Smith
+// 2015): dark to bright with CIE L* rising about evenly (0, 10, 21, 30, 39,
+// 48, 60, 73, 98), so brighter always reads as "more error", in grey too.
+std::array<float, 3> heatColor(double t) {
+    static constexpr float stops[][3] = {
+        {0.001462f, 0.000466f, 0.013866f}, {0.113094f, 0.065492f, 0.276784f}, {0.271305f, 0.069022f, 0.485810f},
+        {0.445163f, 0.122724f, 0.506901f}, {0.616293f, 0.180653f, 0.497912f}, {0.784779f, 0.238928f, 0.465089f},
+        {0.944006f, 0.377643f, 0.365136f}, {0.995131f, 0.608815f, 0.413293f}, {0.987053f, 0.991438f, 0.749504f},
+    };
+    constexpr int last = int(std::size(stops)) - 1;
+    if (!(t > 0)) return {stops[0][0], stops[0][1], stops[0][2]};
+    if (!(t < 1)) return {stops[last][0], stops[last][1], stops[last][2]};
+    const double f = t * last;
+    const int i = std::min(int(f), last - 1);
+    const float u = float(f - i);
+    std::array<float, 3> c{};
+    for (int k = 0; k < 3; ++k) c[k] = stops[i][k] + u * (stops[i + 1][k] - stops[i][k]);
+    return c;
+}
+
+HostImage heatmap(const HostImage& baseline, const HostImage& candidate, double scale) {
+    HostImage out(candidate.width, candidate.height, 3);
+    const int ch = std::min(baseline.channels, candidate.channels);
+    for (int y = 0; y < candidate.height; ++y)
+        for (int x = 0; x < candidate.width; ++x) {
+            double err = kInf;
+            if (x < baseline.width && y < baseline.height && ch > 0) {
+                err = 0;
+                for (int c = 0; c < ch; ++c) {
+                    const float a = baseline.at(x, y, c), b = candidate.at(x, y, c);
+                    if (sameNonFinite(a, b)) continue;   // as compare() counts them
+                    const double d = std::fabs(double(a) - b);
+                    err = std::isnan(d) ? kInf : std::max(err, d);
+                }
+            }
+            const double t = err == 0 ? 0.0 : scale > 0 ? err / scale : 1.0;
+            const auto col = heatColor(t);
+            for (int c = 0; c < 3; ++c) out.at(x, y, c) = col[c];
+        }
+    return out;
+}
+
+}  // namespace cavity::images::metrics

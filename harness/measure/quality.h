@@ -1,0 +1,67 @@
+// Quality against the ground truth: every AO kernel's mean absolute error
+// against the ray-traced reference (kernels/ground_truth.glsl) on the same
+// G-buffer, the measure the issues quote and `cavity quality` prints.
+//
+// The compared image is what the AO pipeline hands to the bilateral blur,
+// with the bilateral off (--blur 0, unless QualityOptions::blur says else): the raw AO, after the 4x4 box blur for
+// the hemisphere kernel (that blur is part of the method, seed 004), after
+// the bilateral upsample at half resolution. Background pixels (no
+// surface) are left out.
+#pragma once
+
+#include "measure/namespace.h"
+#include "backend.h"
+#include "core/image.h"
+#include "result.h"
+
+#include <string>
+#include <vector>
+
+namespace cavity::measure {
+
+struct QualityOptions {
+    std::vector<std::string> scenes{"corner", "slats"};
+    std::vector<std::string> kernels;        // empty: every kernel of role "ao"
+    std::vector<int> samples{16, 64};
+    int width = 160, height = 90;
+    int rays = 1024;                         // the ground truth's
+    bool half = false;
+    gpu::Stage stage = gpu::Stage::Compute;
+    // The reach every kernel and the truth use. "seed": each kernel at its
+    // own declared default (the screen-space kernels' R = 0.5, the SDF
+    // kernels' seed constants, e.g. sdf_multiscale's 6.4), the truth at
+    // 0.5. "shared": every kernel and the truth at `radius`, which compares
+    // estimators of one quantity rather than of each seed's.
+    bool sharedReach = false;
+    double radius = 0.5;
+    // The pipeline's blur radius before the comparison (--blur): 0, the
+    // default, compares the raw AO; r > 0 the AO after the kernel's own blur
+    // (the 2-D bilateral, or alchemy_fast's separable pair), against the same
+    // unblurred truth, which is how a blur's cost in accuracy shows.
+    int blur = 0;
+};
+
+struct QualityRow {
+    std::string scene, kernel;
+    int samples = 0;
+    double meanAbsError = 0;   // over surface pixels, AO in [0, 1]
+    double maxAbsError = 0;
+    double meanAo = 0, meanTruth = 0;   // signed bias is meanAo - meanTruth
+    long long pixels = 0;
+};
+
+// The ground-truth AO of a scene at a size on one backend, and the mask of
+// surface pixels (1 where the G-buffer holds a surface).
+struct GroundTruth {
+    HostImage ao, surface;
+};
+// radius <= 0: the ground truth's declared default reach.
+Result<GroundTruth> groundTruth(gpu::Backend& gpu, const std::string& scene, int width, int height, int rays,
+                                double radius = 0);
+
+// MAE of one AO image against the truth over its surface pixels.
+QualityRow compareToTruth(const HostImage& ao, const GroundTruth& truth);
+
+Result<std::vector<QualityRow>> measureQuality(gpu::Backend& gpu, const QualityOptions& options);
+
+}  // namespace cavity::measure

@@ -1,0 +1,60 @@
+// results.json: what a run measured and on what, in the schema documented in
+// harness/measure/results.schema.json (and README.md, "results.json").
+#pragma once
+
+#include "measure/namespace.h"
+#include "backend.h"
+#include "core/config.h"
+#include "core/image.h"
+#include "measure/roofline.h"
+#include "measure/timing.h"
+
+#include <nlohmann/json.hpp>
+
+#include <map>
+#include <string>
+#include <vector>
+
+namespace cavity::measure {
+
+constexpr const char* kResultsSchema = "cavity.results/1";
+
+struct RunRecord {
+    RunConfig config;
+    gpu::DeviceInfo device;
+    TimingOptions timingOptions;      // what was asked for
+    Timing timing;                    // what was measured
+    std::vector<PassSpec> passes;
+    std::vector<std::pair<int, int>> passSizes;
+    DeviceFloor floorDevice;          // the figures each pass's floor is computed from
+    std::map<std::string, std::string> shaderPaths;
+    std::map<std::string, std::map<std::string, std::string>> images;   // image -> {"exr": path, "png": path}
+    std::vector<std::string> debugMessages;
+    // Kept only when RunOptions::keepImages: the user outputs, read back.
+    std::map<std::string, HostImage> pixels;
+    // With RunOptions::checkDeterminism: the outputs of a second frame were
+    // bit-identical to the first.
+    bool deterministic = true;
+    // PassChain::findNonFinite after the measurement: empty when every float
+    // image of every pass is finite.
+    std::vector<NonFinite> nonFinite;
+};
+
+struct RunError {
+    std::string backend;
+    int code = 0;
+    std::string message;
+};
+
+nlohmann::json toJson(const Stats& s);
+nlohmann::json toJson(const RunRecord& r);
+nlohmann::json resultsDocument(const std::vector<RunRecord>& runs, const std::vector<RunError>& errors,
+                               const std::string& command);
+
+// Atomic: a temporary file renamed into place.
+Status writeJson(const std::string& path, const nlohmann::json& doc);
+
+std::string gitCommit();
+std::string utcTimestamp();
+
+}  // namespace cavity::measure

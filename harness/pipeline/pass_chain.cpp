@@ -1,0 +1,330 @@
+#include "pipeline/namespace.h"
+#include "core/camera.h"
+#include "pipeline/meshes.h"
+#include "pipeline/pipeline.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace cavity::pipeline {
+
+namespace {
+
+// Each image asks for what the chain does with it (ImageDesc::usage): the use
+// of the pass that writes it, sampling when a later pass reads it, and
+// transfers for uploads and readbacks (read, findNonFinite, the tests).
+uint32_t outputUsage(const std::vector<PassSpec>& specs, const std::string& image, uint32_t written) {
+    uint32_t usage = written | gpu::ImageTransfer;
+    for (const auto& spec : specs)
+        if (std::find(spec.inputs.begin(), spec.inputs.end(), image) != spec.inputs.end()) usage |= gpu::ImageSampled;
+    return usage;
+}
+
+constexpr uint32_t kUploaded = gpu::ImageSampled | gpu::ImageTransfer;
+
+}  // namespace
+
+struct PassChain::Pass {
+    // A dispatch after the first of a pass that writes a mip chain
+    // (kernels::OutputDecl::mipLevels): its level's frame and bindings.
+    struct Level {
+        gpu::Buffer frameUbo;
+        std::vector<gpu::Bind> binds;
+        int width = 0, height = 0;
+    };
+    const kernels::KernelDecl* kernel = nullptr;
+    gpu::Stage stage = gpu::Stage::Compute;
+    gpu::Pipeline pipeline;
+    gpu::Buffer frameUbo, paramsUbo;
+    std::vector<gpu::Bind> binds;
+    gpu::RenderTargets targets;          // fragment stage, raster
+    gpu::Buffer mesh;                    // raster
+    gpu::Image depth;                    // raster
+    int vertexCount = 3;
+    int width = 0, height = 0;
+    std::vector<Level> levels;           // levels 1.. of a mip-chain pass
+};
+
+// The rasterised G-buffer: a graphics pass over the scene mesh with a depth
+// target, writing the images gbuffer_sdf would (kernels/gbuffer_raster.glsl).
+Status PassChain::createRaster(const PassSpec& spec, const RunConfig& c) {
+    auto pass = std::make_unique<Pass>();
+    pass->stage = gpu::Stage::Fragment;
+    pass->width = c.width;
+    pass->height = c.height;
+    const auto mesh = sceneMesh(int(c.params.count("scene") ? c.params.at("scene") : 0),
+                                int(c.params.count("view") ? c.params.at("view") : 0));
+    if (mesh.empty()) return badInput("--gbuffer raster: scene " + c.scene() + " has no mesh");
+    pass->vertexCount = int(mesh.size());
+    CAVITY_ASSIGN(pass->mesh, gpu_.createBuffer({mesh.size() * sizeof(MeshVertex), gpu::BufferUsage::Storage, "mesh"}));
+    CAVITY_TRY(gpu_.updateBuffer(pass->mesh, std::as_bytes(std::span(mesh))));
+    const auto frame = frameUniforms(c.width, c.height, c.width, c.height);
+    CAVITY_ASSIGN(pass->frameUbo, gpu_.createBuffer({sizeof(frame), gpu::BufferUsage::Uniform, "gbuffer.frame"}));
+    CAVITY_TRY(gpu_.updateBuffer(pass->frameUbo, std::as_bytes(std::span(&frame, 1))));
+    const gpu::Format formats[3] = {gpu::Format::RGBA32F, gpu::Format::RGBA16F, gpu::Format::RGBA8};
+    gpu::GraphicsPipelineDesc d;
+    const std::string* text = kernels::sourceFile("gbuffer_raster.glsl");
+    if (!text) return internal("kernels/gbuffer_raster.glsl is not embedded");
+    d.vertex = {"gbuffer_raster", gpu::Stage::Vertex, "#version 450\n#define CAVITY_STAGE_VERTEX 1\n#line 1 1\n" + *text,
+                {"<raster preamble>", "kernels/gbuffer_raster.glsl"}};
+    d.fragment = {"gbuffer_raster", gpu::Stage::Fragment,
+                  "#version 450\n#define CAVITY_STAGE_FRAGMENT 1\n#line 1 1\n" + *text,
+                  {"<raster preamble>", "kernels/gbuffer_raster.glsl"}};
+    d.layout = {{0, gpu::BindingKind::UniformBuffer, {}}, {1, gpu::BindingKind::StorageBuffer, {}}};
+    d.colorFormats = {formats[0], formats[1], formats[2]};
+    d.depthFormat = gpu::Format::D32;
+    d.depthTest = true;
+    d.label = spec.name;
+    CAVITY_ASSIGN(pass->pipeline, gpu_.createGraphicsPipeline(d));
+    CAVITY_ASSIGN(pass->depth,
+                  gpu_.createImage({c.width, c.height, gpu::Format::D32, 1, "hardware depth", gpu::ImageDepthTarget}));
+    for (size_t o = 0; o < 3; ++o) {
+        const uint32_t usage = outputUsage(specs_, spec.outputs[o], gpu::ImageColorTarget);
+        CAVITY_ASSIGN(gpu::Image img, gpu_.createImage({c.width, c.height, formats[o], 1, spec.outputs[o], usage}));
+        images_[spec.outputs[o]] = {img, c.width, c.height, formats[o]};
+        pass->targets.colors.push_back(img);
+    }
+    pass->targets.depth = pass->depth;
+    pass->binds = {{0, {}, pass->frameUbo, {}}, {1, {}, pass->mesh, {}}};
+    passes_.push_back(std::move(pass));
+    return {};
+}
+
+// The imported G-buffer (harness/images/gbuffer_import.h): the three images
+// uploaded in the formats gbuffer_sdf writes, so every later pass reads them
+// as it reads a rendered G-buffer.
+Status PassChain::uploadGBuffer(const RunConfig& c) {
+    if (!c.gbufferImages) return internal("imported G-buffer " + c.gbufferFile + " was not loaded");
+    const auto* decl = kernels::find("gbuffer_sdf");
+    if (!decl || decl->outputs.size() != 3) return internal("no gbuffer_sdf declaration to take the G-buffer formats from");
+    const HostImage* src[3] = {&c.gbufferImages->position, &c.gbufferImages->normal, &c.gbufferImages->albedo};
+    for (size_t o = 0; o < 3; ++o) {
+        const auto& out = decl->outputs[o];
+        const HostImage& img = *src[o];
+        if (img.width != c.width || img.height != c.height || img.channels != gpu::channelCount(out.format) ||
+            img.pixels.size() != size_t(img.width) * img.height * img.channels)
+            return badInput("--gbuffer-file " + c.gbufferFile + ": " + out.name + " is " + std::to_string(img.width) +
+                            "x" + std::to_string(img.height) + "x" + std::to_string(img.channels) + ": must be " +
+                            std::to_string(c.width) + "x" + std::to_string(c.height) + "x" +
+                            std::to_string(gpu::channelCount(out.format)));
+        CAVITY_ASSIGN(gpu::Image image, gpu_.createImage({c.width, c.height, out.format, 1, out.name, kUploaded}));
+        images_[out.name] = {image, c.width, c.height, out.format};
+        CAVITY_TRY(gpu_.uploadImage(image, 0, img.pixels));
+    }
+    return {};
+}
+
+Result<std::unique_ptr<PassChain>> PassChain::create(gpu::Backend& gpu, const RunConfig& c,
+                                                     const SourceOverrides& overrides, const PlantedSlowdown& plant) {
+    std::unique_ptr<PassChain> chain(new PassChain(gpu));
+    chain->specs_ = buildPasses(c);
+    const int halfW = (c.width + 1) / 2, halfH = (c.height + 1) / 2;
+    if (c.imported()) CAVITY_TRY(chain->uploadGBuffer(c));
+    for (const auto& spec : chain->specs_) {
+        if (spec.kernel == "gbuffer_raster") {
+            CAVITY_TRY(chain->createRaster(spec, c));
+            continue;
+        }
+        auto pass = std::make_unique<Pass>();
+        pass->kernel = kernels::find(spec.kernel);
+        if (!pass->kernel) return internal("pipeline names an unknown kernel '" + spec.kernel + "'");
+        const auto& k = *pass->kernel;
+        if (k.inputs.size() != spec.inputs.size() || k.outputs.size() != spec.outputs.size())
+            return internal("pass '" + spec.name + "' wires the wrong number of images for kernel " + k.name);
+        const int mipLevels = k.outputs.empty() ? 1 : k.outputs[0].mipLevels;
+        pass->stage = mipLevels > 1 ? gpu::Stage::Compute : c.stage;
+        pass->width = spec.half ? halfW : c.width;
+        pass->height = spec.half ? halfH : c.height;
+
+        // Outputs are created by the pass that writes them.
+        for (size_t o = 0; o < spec.outputs.size(); ++o) {
+            const uint32_t written = pass->stage == gpu::Stage::Compute ? gpu::ImageStorage : gpu::ImageColorTarget;
+            gpu::ImageDesc d{pass->width, pass->height, k.outputs[o].format, k.outputs[o].mipLevels, spec.outputs[o],
+                             outputUsage(chain->specs_, spec.outputs[o], written)};
+            CAVITY_ASSIGN(gpu::Image img, gpu.createImage(d));
+            chain->images_[spec.outputs[o]] = {img, d.width, d.height, d.format};
+        }
+
+        const auto frame = frameUniforms(pass->width, pass->height, c.width, c.height);
+        CAVITY_ASSIGN(pass->frameUbo, gpu.createBuffer({sizeof(frame), gpu::BufferUsage::Uniform, spec.name + ".frame"}));
+        CAVITY_TRY(gpu.updateBuffer(pass->frameUbo, std::as_bytes(std::span(&frame, 1))));
+        const auto params = kernels::packParams(k, c.params);
+        CAVITY_ASSIGN(pass->paramsUbo, gpu.createBuffer({params.size(), gpu::BufferUsage::Uniform, spec.name + ".params"}));
+        CAVITY_TRY(gpu.updateBuffer(pass->paramsUbo, params));
+
+        pass->binds.push_back({kernels::kFrameBinding, {}, pass->frameUbo, {}});
+        pass->binds.push_back({kernels::kParamsBinding, {}, pass->paramsUbo, {}});
+        uint32_t b = kernels::kFirstImageBinding;
+        for (size_t i = 0; i < spec.inputs.size(); ++i) {
+            const ImageRef& in = spec.inputs[i];
+            const bool constant = in.source == ImageSource::Constant;
+            if (constant && !chain->constants_.count(in.name)) CAVITY_TRY(chain->createConstant(in.name, c.params));
+            auto& table = constant ? chain->constants_ : chain->images_;
+            auto it = table.find(in.name);
+            if (it == table.end())
+                return internal("pass '" + spec.name + "' reads image '" + in.name + "' before any pass writes it");
+            pass->binds.push_back({b++, it->second.image, {}, k.inputs[i].sampler});
+        }
+        const auto planted = plant.find(spec.name);
+        CAVITY_ASSIGN(auto body, kernels::assemble(k, pass->stage, overrides, &c.params,
+                                                   planted == plant.end() ? 0 : planted->second));
+        const auto layout = kernels::bindingLayout(k, pass->stage);
+        if (pass->stage == gpu::Stage::Compute) {
+            for (const auto& out : spec.outputs) pass->binds.push_back({b++, chain->images_[out].image, {}, {}});
+            gpu::ComputePipelineDesc d{std::move(body), layout, 8, 8, spec.name};
+            CAVITY_ASSIGN(pass->pipeline, gpu.createComputePipeline(d));
+            // Levels 1..: the same pipeline, each with its level's size in
+            // the frame block and its first output bound at that level.
+            for (int l = 1; l < mipLevels; ++l) {
+                Pass::Level level;
+                level.width = std::max(1, pass->width >> l);
+                level.height = std::max(1, pass->height >> l);
+                auto lf = frameUniforms(level.width, level.height, c.width, c.height);
+                lf.level = l;
+                CAVITY_ASSIGN(level.frameUbo, gpu.createBuffer({sizeof(lf), gpu::BufferUsage::Uniform,
+                                                                spec.name + ".frame" + std::to_string(l)}));
+                CAVITY_TRY(gpu.updateBuffer(level.frameUbo, std::as_bytes(std::span(&lf, 1))));
+                level.binds = pass->binds;
+                level.binds[0].buffer = level.frameUbo;
+                level.binds[level.binds.size() - spec.outputs.size()].mipLevel = l;
+                pass->levels.push_back(std::move(level));
+            }
+        } else {
+            gpu::GraphicsPipelineDesc d;
+            d.vertex = kernels::fullscreenVertex();
+            d.fragment = std::move(body);
+            d.layout = layout;
+            for (size_t o = 0; o < spec.outputs.size(); ++o) {
+                d.colorFormats.push_back(k.outputs[o].format);
+                pass->targets.colors.push_back(chain->images_[spec.outputs[o]].image);
+            }
+            d.label = spec.name;
+            CAVITY_ASSIGN(pass->pipeline, gpu.createGraphicsPipeline(d));
+        }
+        chain->passes_.push_back(std::move(pass));
+    }
+    return chain;
+}
+
+PassChain::PassChain(gpu::Backend& gpu) : gpu_(gpu) {}
+
+Status PassChain::createConstant(const std::string& name, const kernels::ParamValues& params) {
+    const auto* decl = kernels::findConstant(name);
+    if (!decl) return internal("no constant image '" + name + "' (kernels/decl_screen_space.cpp)");
+    const auto levels = decl->make(params);
+    if (levels.empty()) return internal("constant image '" + name + "' has no levels");
+    gpu::ImageDesc d{levels[0].width, levels[0].height, decl->format, int(levels.size()), "constant " + name, kUploaded};
+    CAVITY_ASSIGN(gpu::Image img, gpu_.createImage(d));
+    constants_[name] = {img, d.width, d.height, d.format};
+    for (size_t l = 0; l < levels.size(); ++l) CAVITY_TRY(gpu_.uploadImage(img, int(l), levels[l].pixels));
+    return {};
+}
+
+PassChain::~PassChain() {
+    for (auto& p : passes_) {
+        if (p->pipeline) gpu_.destroy(p->pipeline);
+        if (p->frameUbo) gpu_.destroy(p->frameUbo);
+        if (p->paramsUbo) gpu_.destroy(p->paramsUbo);
+        if (p->mesh) gpu_.destroy(p->mesh);
+        if (p->depth) gpu_.destroy(p->depth);
+        for (auto& l : p->levels) gpu_.destroy(l.frameUbo);
+    }
+    for (auto& [name, t] : images_) gpu_.destroy(t.image);
+    for (auto& [name, t] : constants_) gpu_.destroy(t.image);
+}
+
+void PassChain::recordPass(size_t i) {
+    auto& p = *passes_[i];
+    gpu_.beginScope(specs_[i].name);
+    if (p.stage == gpu::Stage::Compute) {
+        gpu_.dispatch(p.pipeline, p.binds, (p.width + 7) / 8, (p.height + 7) / 8);
+        // A mip chain's level l reads level l - 1: one scope, a barrier apart.
+        for (const auto& l : p.levels) {
+            gpu_.barrier();
+            gpu_.dispatch(p.pipeline, l.binds, (l.width + 7) / 8, (l.height + 7) / 8);
+        }
+    } else
+        gpu_.draw(p.pipeline, p.binds, p.targets, p.vertexCount);
+    gpu_.endScope();
+}
+
+void PassChain::record() {
+    for (size_t i = 0; i < passes_.size(); ++i) {
+        // A backend records the barrier at the next pass, inside its scope;
+        // the scope's begin timestamp is taken once every earlier command has
+        // finished (BOTTOM_OF_PIPE, GL_TIMESTAMP), so it still follows the
+        // completion of the pass before.
+        if (i) gpu_.barrier();
+        recordPass(i);
+    }
+}
+
+Result<HostImage> PassChain::read(const std::string& image, int level) const {
+    auto it = images_.find(image);
+    if (it == images_.end()) return internal("no image '" + image + "' in this pipeline");
+    const auto& t = it->second;
+    CAVITY_ASSIGN(auto px, gpu_.readImage(t.image, level));
+    HostImage img(std::max(1, t.width >> level), std::max(1, t.height >> level), gpu::channelCount(t.format));
+    if (px.size() != img.pixels.size()) return internal("readback of '" + image + "' returned the wrong size");
+    img.pixels = std::move(px);
+    return img;
+}
+
+std::string NonFinite::message() const {
+    return "pass " + pass + " wrote " + std::to_string(count) + " pixel" + (count == 1 ? "" : "s") +
+           " of NaN or infinity to " + image + " (first at pixel " + std::to_string(x) + "," + std::to_string(y) + ")";
+}
+
+Result<std::vector<NonFinite>> PassChain::findNonFinite() const {
+    std::vector<NonFinite> found;
+    for (const auto& spec : specs_)
+        for (const auto& name : spec.outputs) {
+            auto it = images_.find(name);
+            if (it == images_.end()) continue;
+            const gpu::Format f = it->second.format;
+            if (f == gpu::Format::R8 || f == gpu::Format::RGBA8) continue;
+            CAVITY_ASSIGN(const HostImage img, read(name));
+            NonFinite n{spec.name, name};
+            const size_t channels = size_t(img.channels);
+            for (size_t pixel = 0; pixel * channels < img.pixels.size(); ++pixel) {
+                bool finite = true;
+                for (size_t c = 0; c < channels; ++c) finite &= std::isfinite(img.pixels[pixel * channels + c]);
+                if (finite) continue;
+                if (n.count++ == 0) {
+                    n.x = int(pixel % size_t(img.width));
+                    n.y = int(pixel / size_t(img.width));
+                }
+            }
+            if (n.count) found.push_back(std::move(n));
+        }
+    return found;
+}
+
+std::map<std::string, std::string> PassChain::shaderPaths() const {
+    std::map<std::string, std::string> m;
+    for (size_t i = 0; i < passes_.size(); ++i) {
+        const auto info = gpu_.pipelineInfo(passes_[i]->pipeline);
+        m[specs_[i].name] = info.path == gpu::ShaderPath::Spirv ? "spirv" : "glsl-fallback";
+    }
+    return m;
+}
+
+long long PassChain::passPixels(size_t i) const {
+    return (long long)passes_[i]->width * passes_[i]->height;
+}
+
+Result<std::map<std::string, HostImage>> renderImages(gpu::Backend& gpu, const RunConfig& c,
+                                                      const std::vector<std::string>& images) {
+    CAVITY_TRY(validate(c));
+    CAVITY_ASSIGN(auto chain, PassChain::create(gpu, c));
+    gpu.beginFrame();
+    chain->record();
+    CAVITY_TRY(gpu.endFrame());
+    std::map<std::string, HostImage> out;
+    for (const auto& name : images) {
+        CAVITY_ASSIGN(out[name], chain->read(name));
+    }
+    return out;
+}
+
+}  // namespace cavity::pipeline

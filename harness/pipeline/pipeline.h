@@ -1,0 +1,120 @@
+// A kernel pipeline: the passes one configuration runs, in order, wired by
+// image name. pipelines.cpp builds the list for a RunConfig; PassChain
+// creates the GPU resources and records the passes on any backend.
+#pragma once
+
+#include "pipeline/namespace.h"
+#include "backend.h"
+#include "core/config.h"
+#include "core/image.h"
+
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace cavity::pipeline {
+
+// Where a pass's input comes from: an image a pass wrote (or the uploaded
+// G-buffer), or one the CPU makes (kernels::ConstantImageDecl: the noise
+// tile, the sky panorama).
+enum class ImageSource { Pass, Constant };
+
+struct ImageRef {
+    std::string name;
+    ImageSource source = ImageSource::Pass;
+    ImageRef(std::string n, ImageSource s = ImageSource::Pass) : name(std::move(n)), source(s) {}
+    ImageRef(const char* n) : name(n) {}
+};
+// True for the image a pass wrote under that name (never a constant).
+inline bool operator==(const ImageRef& r, const std::string& passImage) {
+    return r.source == ImageSource::Pass && r.name == passImage;
+}
+
+struct PassSpec {
+    std::string name;                  // timestamp scope and results key: "gbuffer", "ao", ...
+    std::string kernel;                // a kernels::all() name
+    std::vector<ImageRef> inputs;      // in the kernel's input order
+    std::vector<std::string> outputs;  // image names, in the kernel's output order
+    bool half = false;                 // runs at half the configuration's resolution
+};
+
+std::vector<PassSpec> buildPasses(const RunConfig& c);
+// Whether a kernel has a half-resolution pipeline (SSDO does not: its
+// radiance would need an upsample of its own).
+bool supportsHalf(const std::string& kernel);
+
+// Validates the whole configuration against the pipeline it builds: kernel
+// known and of role "ao", every parameter in range for every kernel of the
+// pipeline, sizes; with an imported G-buffer, no pass that evaluates the
+// analytic scene.
+Status validate(const RunConfig& c);
+
+// The images a user looks at, in the order they are written: name and what it is.
+struct OutputSpec { std::string image; std::string description; };
+std::vector<OutputSpec> userOutputs(const RunConfig& c);
+
+// Validates c, renders one frame of its pipeline and reads back the named
+// images (tests, cavity quality: where the images matter, not the timing).
+Result<std::map<std::string, HostImage>> renderImages(gpu::Backend& gpu, const RunConfig& c,
+                                                      const std::vector<std::string>& images);
+
+// Replacement kernel sources by file name (planted-bug tests).
+using SourceOverrides = std::map<std::string, std::string>;
+// A planted slowdown: dependent FMAs per pixel by pass name (kernels::assemble).
+using PlantedSlowdown = std::map<std::string, int>;
+
+// Non-finite values a pass wrote into one of its images.
+struct NonFinite {
+    std::string pass, image;
+    long long count = 0;        // pixels with a NaN or infinite channel
+    int x = -1, y = -1;         // the first pixel, in row order
+    std::string message() const;
+};
+
+class PassChain {
+public:
+    // With an imported G-buffer (c.imported()), c.gbufferImages must be set:
+    // its images are uploaded as "position", "normal" and "albedo".
+    static Result<std::unique_ptr<PassChain>> create(gpu::Backend& gpu, const RunConfig& c,
+                                                     const SourceOverrides& overrides = {},
+                                                     const PlantedSlowdown& plant = {});
+    ~PassChain();
+    PassChain(const PassChain&) = delete;
+    PassChain& operator=(const PassChain&) = delete;
+
+    // Records every pass, each in a timestamp scope named after it, with a
+    // barrier between passes. The caller owns beginFrame/endFrame.
+    void record();
+    // Records pass i alone (the wall-clock fallback times passes one by one).
+    void recordPass(size_t i);
+    size_t passCount() const { return passes_.size(); }
+    const std::vector<PassSpec>& passes() const { return specs_; }
+
+    // An image's pixels; `level` > 0 for a level of a mip-chain output.
+    Result<HostImage> read(const std::string& image, int level = 0) const;
+    // Every image a pass of this chain wrote in a float format (positions,
+    // normals, depth, raw and blurred AO, radiance...), read back and
+    // scanned: one finding per image that holds a NaN or an infinity. An
+    // 8-bit image cannot hold one; its inputs are all scanned here.
+    Result<std::vector<NonFinite>> findNonFinite() const;
+    // How each pass's shader reached the driver ("spirv" or "glsl-fallback").
+    std::map<std::string, std::string> shaderPaths() const;
+    // Pixels each pass writes (for throughput counters).
+    long long passPixels(size_t i) const;
+
+private:
+    explicit PassChain(gpu::Backend& gpu);
+    Status createConstant(const std::string& name, const kernels::ParamValues& params);
+    Status createRaster(const PassSpec& spec, const RunConfig& c);
+    Status uploadGBuffer(const RunConfig& c);
+    struct Pass;
+    struct Target { gpu::Image image; int width, height; gpu::Format format; };
+    gpu::Backend& gpu_;
+    std::vector<PassSpec> specs_;
+    std::vector<std::unique_ptr<Pass>> passes_;
+    std::map<std::string, Target> images_;      // by name: what passes wrote, the uploaded G-buffer
+    std::map<std::string, Target> constants_;   // by name: CPU-made images
+};
+
+}  // namespace cavity::pipeline

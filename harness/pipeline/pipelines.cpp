@@ -1,0 +1,195 @@
+// Which passes each configuration runs, wired by image name. Any kernel of
+// role "ao" slots in: its inputs are matched by name to the G-buffer images
+// ("position", "normal", "depth" — which adds a depth pass — and CPU-made
+// constants such as "noise4x4" or "sky"); a kernel with "visibility" and
+// "radiance" outputs runs the SSDO chain (003_9aa4a2c3c5c6ee23.txt).
+#include "pipeline/namespace.h"
+#include "pipeline/pipeline.h"
+
+namespace cavity::pipeline {
+
+namespace {
+
+bool isConstant(const std::string& name) { return kernels::findConstant(name) != nullptr; }
+
+bool isSsdo(const kernels::KernelDecl& k) {
+    return k.outputs.size() >= 2 && k.outputs[0].name == "visibility" && k.outputs[1].name == "radiance";
+}
+
+// A kernel that packs its AO (or visibility) with the depth key the
+// separable blur reads: its last output, "ao_key".
+bool packsKey(const kernels::KernelDecl& k) { return k.outputs.size() >= 2 && k.outputs.back().name == "ao_key"; }
+
+std::string aoKernelNames() {
+    std::string s;
+    for (const auto& k : kernels::all())
+        if (k.role == kernels::Role::Ao || k.role == kernels::Role::Reference) s += (s.empty() ? "" : ", ") + k.name;
+    return s;
+}
+
+// The AO kernels that read only the G-buffer.
+std::string screenSpaceAoNames() {
+    std::string s;
+    for (const auto& k : kernels::all())
+        if (k.role == kernels::Role::Ao && !kernels::evaluatesScene(k)) s += (s.empty() ? "" : ", ") + k.name;
+    return s;
+}
+
+}  // namespace
+
+bool supportsHalf(const std::string& kernel) {
+    const auto* k = kernels::find(kernel);
+    return k && !isSsdo(*k);
+}
+
+std::vector<PassSpec> buildPasses(const RunConfig& c) {
+    const auto* k = kernels::find(c.kernel);
+    std::vector<PassSpec> p;
+    // An imported G-buffer is uploaded once by PassChain::create: no pass, so
+    // nothing is timed for it.
+    if (!c.imported())
+        p.push_back({"gbuffer", c.raster ? "gbuffer_raster" : "gbuffer_sdf", {}, {"position", "normal", "albedo"}, false});
+    if (!k) return p;
+
+    if (isSsdo(*k)) {
+        std::vector<ImageRef> in;
+        for (const auto& i : k->inputs) {
+            in.push_back({i.name, isConstant(i.name) ? ImageSource::Constant : ImageSource::Pass});
+            if (i.name == "zmip") p.push_back({"pyramid", "depth_pyramid", {"position", "zmip"}, {"zmip"}, false});
+        }
+        // A variant's bounce pass is "<kernel>_indirect" (ssdo_marched_indirect): it
+        // must walk the very points the direct pass did, so it carries the
+        // variant's defaults. It reads what the direct pass read, plus the
+        // albedo and the blurred radiance.
+        const std::string indirectKernel = kernels::find(k->name + "_indirect") ? k->name + "_indirect" : "ssdo_indirect";
+        std::vector<ImageRef> indirectIn;
+        for (const auto& i : kernels::find(indirectKernel)->inputs)
+            indirectIn.push_back(i.name == "radiance" ? ImageRef{"radiance_blur"} : ImageRef{i.name});
+        // Visibility plays the part of AO in the outputs a user and the gate see.
+        // The bounce is filtered too, as seed 003's lighting pass reads a
+        // blurred indirect map: one sample meeting a sender at the distance
+        // clamp carries up to (R / clamp)^2 times the others' weight, a
+        // single-pixel firefly along every crease when left raw. The blur's
+        // visibility output there is not used.
+        if (packsKey(*k)) {
+            // The separable pair, weighted by the direct pass's key for both.
+            p.push_back({"ao", k->name, in, {"ao", "radiance", "ao_key"}, false});
+            p.push_back({"blur_x", "blur_separable_ssdo_x", {"ao_key", "radiance"}, {"ao_key_x", "radiance_x"}, false});
+            p.push_back({"blur_y", "blur_separable_ssdo_y", {"ao_key_x", "radiance_x"}, {"ao_blur", "radiance_blur"}, false});
+            p.push_back({"indirect", indirectKernel, indirectIn, {"indirect"}, false});
+            p.push_back({"indirect_blur_x", "blur_separable_ssdo_x", {"ao_key", "indirect"}, {"indirect_key_x", "indirect_x"}, false});
+            p.push_back({"indirect_blur_y", "blur_separable_ssdo_y", {"indirect_key_x", "indirect_x"}, {"indirect_vis", "indirect_blur"}, false});
+        } else {
+            p.push_back({"ao", k->name, in, {"ao", "radiance"}, false});
+            p.push_back({"blur", "blur_bilateral_ssdo", {"ao", "radiance", "position", "normal"}, {"ao_blur", "radiance_blur"}, false});
+            p.push_back({"indirect", indirectKernel, indirectIn, {"indirect"}, false});
+            p.push_back({"indirect_blur", "blur_bilateral_ssdo", {"ao_blur", "indirect", "position", "normal"}, {"indirect_vis", "indirect_blur"}, false});
+        }
+        p.push_back({"composite", "composite_ssdo", {"ao_blur", "radiance_blur", "indirect_blur", "normal", "albedo"}, {"color"}, false});
+        return p;
+    }
+
+    // Half resolution: a depth-aware 2x2 downsample of the G-buffer, AO and
+    // blur at half size, then a joint bilateral upsample guided by the full
+    // G-buffer so no AO crosses a silhouette (000_79d41de70034b569.txt).
+    const bool half = c.half && supportsHalf(c.kernel);
+    const std::string suffix = half ? "_half" : "";
+    const std::string position = "position" + suffix, normal = "normal" + suffix;
+    if (half) p.push_back({"downsample", "downsample_depth", {"position", "normal"}, {position, normal}, true});
+    std::vector<ImageRef> in;
+    for (const auto& i : k->inputs) {
+        if (i.name == "position") in.push_back(position);
+        else if (i.name == "normal") in.push_back(normal);
+        else if (i.name == "depth") in.push_back("depth" + suffix);
+        else if (i.name == "zmip") in.push_back("zmip" + suffix);
+        else if (isConstant(i.name)) in.push_back({i.name, ImageSource::Constant});
+        else in.push_back(i.name);
+    }
+    for (const auto& i : k->inputs) {
+        // At half resolution the depth is put back on each half texel's own
+        // ray (depth_from_position_half.glsl says why).
+        if (i.name == "depth") {
+            if (half)
+                p.push_back({"depth", "depth_from_position_half", {position, normal}, {"depth" + suffix}, true});
+            else
+                p.push_back({"depth", "depth_from_position", {position}, {"depth"}, false});
+        }
+        // The linear-depth pyramid of the fast kernels, all its levels in one pass.
+        if (i.name == "zmip")
+            p.push_back({"pyramid", "depth_pyramid", {position, "zmip" + suffix}, {"zmip" + suffix}, half});
+    }
+    // A kernel that packs AO with its depth key ("ao_key") is blurred by the
+    // separable pair, which reads only that; the others by the 2-D bilateral.
+    if (packsKey(*k)) {
+        p.push_back({"ao", k->name, in, {"ao", "ao_key"}, half});
+        p.push_back({"blur_x", "blur_separable_x", {"ao_key"}, {"ao_key_x"}, half});
+        if (half) {
+            p.push_back({"blur_y", "blur_separable_y", {"ao_key_x"}, {"ao_half_blur"}, true});
+            p.push_back({"upsample", "upsample_bilateral", {"ao_half_blur", position, "position", "normal", normal}, {"ao_blur"}, false});
+        } else {
+            p.push_back({"blur_y", "blur_separable_y", {"ao_key_x"}, {"ao_blur"}, false});
+        }
+        p.push_back({"composite", "composite", {"ao_blur", "normal", "albedo"}, {"color"}, false});
+        return p;
+    }
+    p.push_back({"ao", k->name, in, {"ao"}, half});
+    std::string raw = "ao";
+    // The hemisphere kernel's 4x4 rotation tile is cancelled by a box blur of
+    // exactly one tile period (004_94976db8e6612027.txt) before the bilateral.
+    // With depth_aware_box, blur_box_depth keeps the box to one surface so
+    // that no silhouette's AO spreads onto the wall behind it.
+    for (const auto& i : k->inputs)
+        if (i.name == "noise4x4") {
+            const auto v = kernels::withDefaults(*k, c.params);
+            if (v.count("depth_aware_box") && v.at("depth_aware_box") != 0)
+                p.push_back({"box", "blur_box_depth", {"ao", "depth" + suffix, normal}, {"ao_box"}, half});
+            else
+                p.push_back({"box", "blur_box", {"ao"}, {"ao_box"}, half});
+            raw = "ao_box";
+        }
+    if (half) {
+        p.push_back({"blur", "blur_bilateral", {raw, position, normal}, {"ao_half_blur"}, true});
+        p.push_back({"upsample", "upsample_bilateral", {"ao_half_blur", position, "position", "normal", normal}, {"ao_blur"}, false});
+    } else {
+        p.push_back({"blur", "blur_bilateral", {raw, position, normal}, {"ao_blur"}, false});
+    }
+    p.push_back({"composite", "composite", {"ao_blur", "normal", "albedo"}, {"color"}, false});
+    return p;
+}
+
+std::vector<OutputSpec> userOutputs(const RunConfig& c) {
+    return {{"ao", c.half && supportsHalf(c.kernel) ? "raw ambient occlusion (half resolution)" : "raw ambient occlusion"},
+            {"ao_blur", "blurred ambient occlusion"},
+            {"color", "composited image"},
+            {"normal", "G-buffer view-space normal"}};
+}
+
+Status validate(const RunConfig& c) {
+    const auto* k = kernels::find(c.kernel);
+    // "reference" kernels (the ground truth) run in the AO slot when named;
+    // sweeps over "every AO kernel" leave them out (they are slow by design).
+    if (!k || (k->role != kernels::Role::Ao && k->role != kernels::Role::Reference)) return badInput("--kernel " + c.kernel + ": unknown kernel (have: " + aoKernelNames() + ")");
+    if (c.width < 1 || c.height < 1 || c.width > kMaxResolution || c.height > kMaxResolution)
+        return badInput("--res " + std::to_string(c.width) + "x" + std::to_string(c.height) +
+                        ": must be WIDTHxHEIGHT with each in 1.." + std::to_string(kMaxResolution));
+    if (c.raster && c.imported()) return badInput("--gbuffer: raster and import exclude each other");
+    // A pass that evaluates the analytic scene itself has no scene to
+    // evaluate when the G-buffer is a capture.
+    if (c.imported())
+        for (const auto& spec : buildPasses(c))
+            if (const auto* d = kernels::find(spec.kernel); d && kernels::evaluatesScene(*d))
+                return badInput("--kernel " + c.kernel + ": pass " + spec.name + " (" + d->name +
+                                        ") evaluates the analytic scene, so it cannot run on an imported G-buffer "
+                                        "(--gbuffer import); use a screen-space kernel (have: " + screenSpaceAoNames() + ")");
+    if (c.half && !supportsHalf(c.kernel))
+        return badInput("--resolution half: kernel " + c.kernel + " has no half-resolution pipeline (use full)");
+    // Values set in code (sweeps, matrices, tests) rather than parsed.
+    for (const auto& [name, v] : c.params) {
+        const auto* p = kernels::findParam(name);
+        if (!p) return badInput("--" + name + ": unknown flag");
+        CAVITY_TRY(kernels::checkValue(*p, v));
+    }
+    return {};
+}
+
+}  // namespace cavity::pipeline

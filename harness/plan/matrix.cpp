@@ -1,0 +1,168 @@
+#include "plan/matrix.h"
+
+#include "pipeline/config_id.h"
+#include "core/digest.h"
+#include "core/json_input.h"
+#include "pipeline/pipeline.h"
+#include "plan/sweep.h"
+
+#include <optional>
+#include <regex>
+#include <set>
+
+namespace cavity::plan {
+
+using nlohmann::json;
+
+std::string baselineKey(const RunConfig& c) {
+    const std::string id = configId(c);
+    // Drop "/<api>/<stage>".
+    const auto stage = id.rfind('/');
+    const auto api = id.rfind('/', stage - 1);
+    return id.substr(0, api);
+}
+
+const std::vector<CheckedImage>& checkedImages() {
+    static const std::vector<CheckedImage> images = {
+        {"ao", ".exr", false},
+        {"ao_blur", ".exr", false},
+        {"color", ".png", true},
+    };
+    return images;
+}
+
+ImageShape checkedShape(const RunConfig& c, const std::string& image) {
+    const bool half = c.half && supportsHalf(c.kernel) && image == "ao";
+    return {half ? (c.width + 1) / 2 : c.width, half ? (c.height + 1) / 2 : c.height, image == "color" ? 4 : 1};
+}
+
+std::string shapeText(const ImageShape& s) {
+    return std::to_string(s.width) + "x" + std::to_string(s.height) + "x" + std::to_string(s.channels);
+}
+
+
+std::vector<RunConfig> Matrix::expand() const {
+    std::vector<RunConfig> out;
+    std::set<std::string> seen;
+    for (const auto& g : groups) {
+        std::vector<std::string> kernels = g.kernels;
+        if (kernels.size() == 1 && kernels[0] == "all") kernels = aoKernels();
+        for (const auto& scene : g.scenes)
+            for (const auto& k : kernels)
+                for (int n : g.samples)
+                    for (int b : g.blurs)
+                        for (bool half : g.half)
+                            for (auto [w, h] : g.sizes)
+                                for (auto api : g.apis)
+                                    for (auto stage : g.stages) {
+                                        RunConfig c;
+                                        c.kernel = k;
+                                        (void)setParam(c, "scene", scene);
+                                        c.params["samples"] = n;
+                                        c.params["blur"] = b;
+                                        c.half = half;
+                                        c.width = w;
+                                        c.height = h;
+                                        c.api = api;
+                                        c.stage = stage;
+                                        if (half && !supportsHalf(k)) continue;
+                                        if (seen.insert(configId(c)).second) out.push_back(c);
+                                    }
+    }
+    return out;
+}
+
+Result<Matrix> loadMatrix(const std::string& path, const std::string& name) {
+    CAVITY_ASSIGN(json doc, readJsonFile(path));
+    if (!doc.is_object() || !doc.contains(name)) {
+        std::string have;
+        if (doc.is_object())
+            for (const auto& [k, v] : doc.items()) have += (have.empty() ? "" : ", ") + k;
+        return badInput("--matrix " + name + ": no such matrix in " + path + " (have: " + have + ")");
+    }
+    const json& m = doc[name];
+    const std::string where = name;
+    CAVITY_TRY(onlyKeys(path, where, m, {"description", "frames", "warmup", "groups"}));
+    Matrix matrix;
+    matrix.name = name;
+    const std::string text = m.dump();
+    matrix.hash = digestText(fnv1a64(text.data(), text.size()));
+    // The same ranges as cavity run's --frames and --warmup.
+    CAVITY_ASSIGN(const JsonObject fields, JsonObject::of(path, where, m));
+    CAVITY_ASSIGN(matrix.frames, fields.integer("frames", 1, 100000, matrix.frames));
+    CAVITY_ASSIGN(matrix.warmup, fields.integer("warmup", 0, 10000, matrix.warmup));
+    if (!m.contains("groups") || !m["groups"].is_array()) return badInput(path + ": " + where + ".groups must be a list");
+    int gi = 0;
+    for (const auto& g : m["groups"]) {
+        const std::string gw = where + ".groups[" + std::to_string(gi++) + "]";
+        CAVITY_TRY(onlyKeys(path, gw, g,
+                            {"scenes", "kernels", "samples", "blurs", "resolutions", "sizes", "apis", "stages"}));
+        for (const char* key : {"scenes", "kernels", "samples", "blurs", "resolutions", "sizes", "apis", "stages"})
+            if (!g.contains(key)) return badInput(path + ": " + gw + " lacks '" + key + "'");
+        MatrixGroup grp;
+        CAVITY_ASSIGN(const JsonObject gf, JsonObject::of(path, gw, g));
+        CAVITY_ASSIGN(grp.scenes, gf.strings("scenes"));
+        CAVITY_ASSIGN(grp.kernels, gf.strings("kernels"));
+        // Ranges are the declarations' (validate() below checks each configuration again).
+        CAVITY_ASSIGN(grp.samples, gf.integers("samples", 1, 1 << 20));
+        CAVITY_ASSIGN(grp.blurs, gf.integers("blurs", 0, 1 << 20));
+        CAVITY_ASSIGN(auto res, gf.strings("resolutions"));
+        for (const auto& r : res) {
+            if (r != "full" && r != "half") return badInput(path + ": " + gw + ".resolutions has '" + r + "' (full or half)");
+            grp.half.push_back(r == "half");
+        }
+        CAVITY_ASSIGN(auto sizes, gf.strings("sizes"));
+        for (const auto& s : sizes) {
+            CAVITY_ASSIGN(auto wh, parseResolution(path + ": " + gw + ".sizes", s));
+            grp.sizes.push_back(wh);
+        }
+        CAVITY_ASSIGN(auto apis, gf.strings("apis"));
+        for (const auto& a : apis) {
+            if (a != "gl" && a != "vk") return badInput(path + ": " + gw + ".apis has '" + a + "' (gl or vk)");
+            grp.apis.push_back(a == "gl" ? gpu::Api::OpenGL : gpu::Api::Vulkan);
+        }
+        CAVITY_ASSIGN(auto stages, gf.strings("stages"));
+        for (const auto& s : stages) {
+            if (s != "compute" && s != "fragment") return badInput(path + ": " + gw + ".stages has '" + s + "'");
+            grp.stages.push_back(s == "compute" ? gpu::Stage::Compute : gpu::Stage::Fragment);
+        }
+        matrix.groups.push_back(std::move(grp));
+    }
+    for (const auto& c : matrix.expand()) {
+        if (auto s = validate(c); !s) return badInput(path + ": matrix " + name + ": " + s.error().message);
+    }
+    return matrix;
+}
+
+bool inShard(size_t index, int shardIndex, int shardCount) {
+    return shardCount <= 1 || int(index % size_t(shardCount)) == shardIndex;
+}
+
+Result<std::vector<MatrixEntry>> selectEntries(const Matrix& m, int shardIndex, int shardCount,
+                                               const std::string& filter) {
+    std::optional<std::regex> re;
+    if (!filter.empty()) {
+        try {
+            re.emplace(filter);
+        } catch (const std::regex_error& e) {
+            return badInput("--filter " + filter + ": not a regular expression (" + e.what() + ")");
+        }
+    }
+    std::vector<MatrixEntry> out;
+    const auto all = m.expand();
+    size_t matches = 0;
+    for (size_t i = 0; i < all.size(); ++i) {
+        if (re && !std::regex_search(configId(all[i]), *re)) continue;
+        ++matches;
+        if (inShard(i, shardIndex, shardCount)) out.push_back({i, all[i]});
+    }
+    // A filter that selects nothing would pass as "all 0 configurations
+    // passed"; an empty shard of a larger matrix is fine.
+    if (re && matches == 0)
+        return badInput("--filter " + filter + ": matches none of the " + std::to_string(all.size()) +
+                        " configurations of matrix " + m.name + " (ids read like " +
+                        (all.empty() ? std::string("?") : configId(all.front())) + ")");
+    return out;
+}
+
+}  // namespace cavity::plan

@@ -1,0 +1,116 @@
+#include "render/render_manifest.h"
+
+namespace cavity::render {
+
+using nlohmann::json;
+
+namespace {
+
+json toJson(const gpu::DeviceInfo& d) {
+    return {{"name", d.deviceName}, {"driver", d.driver}, {"api_version", d.apiVersion}, {"vendor", d.vendor},
+            {"software_renderer", d.softwareRenderer}, {"uuid", d.uuid}};
+}
+
+json toJson(const RenderEntry& r) {
+    json timings = json::array(), images = json::array();
+    for (const auto& t : r.timings) timings.push_back({{"pass", t.pass}, {"median_ms", t.medianMs}, {"clock", t.clock}});
+    for (const auto& i : r.images)
+        images.push_back({{"name", i.name}, {"file", i.file.empty() ? json(nullptr) : json(i.file)},
+                          {"width", i.stored.width}, {"height", i.stored.height}, {"channels", i.stored.channels},
+                          {"digest", i.stored.digest}, {"bytes", i.stored.bytes}});
+    return {{"repetition", r.repetition}, {"error", r.error}, {"error_code", r.errorCode},
+            {"deterministic", r.deterministic}, {"timings", timings}, {"images", images}};
+}
+
+}  // namespace
+
+json toJson(const RenderManifest& m) {
+    json devices = json::object(), errors = json::array(), configs = json::array();
+    for (const auto& [api, d] : m.devices) devices[api] = toJson(d);
+    for (const auto& e : m.backendErrors) errors.push_back({{"api", e.api}, {"code", e.code}, {"message", e.message}});
+    for (const auto& c : m.configs) {
+        json renders = json::array();
+        for (const auto& r : c.renders) renders.push_back(toJson(r));
+        configs.push_back({{"index", c.index}, {"id", c.id}, {"baseline_key", c.key}, {"api", c.api},
+                           {"device", c.device}, {"renders", renders}});
+    }
+    return {{"schema", kRenderSchema},
+            {"matrix", m.matrix},
+            {"matrix_hash", m.matrixHash},
+            {"git_commit", m.gitCommit},
+            {"created_utc", m.createdUtc},
+            {"command", m.command},
+            {"shard", {m.shardIndex, m.shardCount}},
+            {"filter", m.filter},
+            {"repeat", m.repeat},
+            {"seconds", m.seconds},
+            {"image_format", kImageFormat},
+            {"devices", devices},
+            {"backend_errors", errors},
+            {"configurations", configs}};
+}
+
+Result<RenderManifest> parseManifest(const json& j, const std::string& path) {
+    if (!j.is_object() || !j.contains("schema") || j["schema"] != kRenderSchema)
+        return badInput(path + ": not a render manifest (schema must be " + std::string(kRenderSchema) + ", found " +
+                        (j.is_object() && j.contains("schema") ? j["schema"].dump() : std::string("none")) + ")");
+    if (j.value("image_format", "") != kImageFormat)
+        return badInput(path + ": image_format " + j.value("image_format", "(none)") + " (this build reads " +
+                        kImageFormat + ")");
+    RenderManifest m;
+    // nlohmann's messages name the missing key or the wrong type; the
+    // configuration named in front says where.
+    std::string where = "the top level";
+    try {
+        m.matrix = j.at("matrix");
+        m.matrixHash = j.at("matrix_hash");
+        m.gitCommit = j.at("git_commit");
+        m.createdUtc = j.at("created_utc");
+        m.command = j.at("command");
+        m.shardIndex = j.at("shard").at(0);
+        m.shardCount = j.at("shard").at(1);
+        m.filter = j.at("filter");
+        m.repeat = j.at("repeat");
+        m.seconds = j.at("seconds");
+        for (const auto& [api, d] : j.at("devices").items())
+            m.devices[api] = {api, d.at("name"), d.at("driver"), d.at("api_version"), d.at("vendor"),
+                              d.at("software_renderer"), d.value("uuid", std::string())};
+        for (const auto& e : j.at("backend_errors")) m.backendErrors.push_back({e.at("api"), e.at("code"), e.at("message")});
+        for (const auto& cj : j.at("configurations")) {
+            ConfigEntry c;
+            where = "a configuration";
+            c.id = cj.at("id");
+            where = c.id;
+            c.index = cj.at("index");
+            c.key = cj.at("baseline_key");
+            c.api = cj.at("api");
+            c.device = cj.at("device");
+            for (const auto& rj : cj.at("renders")) {
+                RenderEntry r;
+                r.repetition = rj.at("repetition");
+                r.error = rj.at("error");
+                r.errorCode = rj.at("error_code");
+                r.deterministic = rj.at("deterministic");
+                for (const auto& t : rj.at("timings")) r.timings.push_back({t.at("pass"), t.at("median_ms"), t.at("clock")});
+                for (const auto& ij : rj.at("images")) {
+                    ImageEntry i;
+                    i.name = ij.at("name");
+                    if (!ij.at("file").is_null()) i.file = ij.at("file");
+                    i.stored = {ij.at("width"), ij.at("height"), ij.at("channels"), ij.at("digest"), ij.at("bytes")};
+                    r.images.push_back(std::move(i));
+                }
+                c.renders.push_back(std::move(r));
+            }
+            m.configs.push_back(std::move(c));
+        }
+    } catch (const json::exception& e) {
+        return badInput(path + ": malformed at " + where + ": " + e.what());
+    }
+    if (m.shardCount < 1 || m.shardIndex < 0 || m.shardIndex >= m.shardCount)
+        return badInput(path + ": shard " + std::to_string(m.shardIndex) + "/" + std::to_string(m.shardCount) +
+                        " (must be I/N with 0 <= I < N)");
+    if (m.repeat < 1) return badInput(path + ": repeat " + std::to_string(m.repeat) + " (must be >= 1)");
+    return m;
+}
+
+}  // namespace cavity::render
