@@ -2,19 +2,19 @@
 """Medians per configuration and pass, with each pass's floor and
 measured/floor, from cavity_bench JSON files with repetitions (what
 scripts/gpu_floor.sh leaves). Markdown on stdout.
-  scripts/floor_table.py BENCH.json [BENCH.json ...]"""
+  scripts/floor_table.py BENCH.json[.gz] [BENCH.json[.gz] ...]"""
 import collections
-import json
 import statistics
 import sys
+
+import cavity_json   # scripts/cavity_json.py: plain or gzip (X.json.gz)
 
 
 def main(paths):
     rows = collections.defaultdict(lambda: collections.defaultdict(list))
     for path in paths:
         try:
-            with open(path) as f:
-                data = json.load(f)
+            data = cavity_json.load(path)
         except (OSError, ValueError) as e:
             sys.exit(f"floor_table.py: {path}: {e}")
         for b in data.get("benchmarks", []):

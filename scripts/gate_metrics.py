@@ -8,10 +8,11 @@ from: for each pipeline (kernel, full|half) and API, over every configuration,
 repetition and image, the largest max/mean absolute error, RMSE and share over
 the pixel threshold, the smallest PSNR and SSIM, the largest FLIP (composite).
 """
-import json
 import math
 import sys
 from collections import defaultdict
+
+import cavity_json   # scripts/cavity_json.py: plain or gzip (X.json.gz)
 
 WORST = {"max_abs": max, "mean_abs": max, "rmse": max, "over_threshold_share": max, "psnr": min, "ssim": min,
          "flip_mean": max}
@@ -23,7 +24,7 @@ def main():
     rows = defaultdict(dict)
     counts = defaultdict(int)
     for path in sys.argv[1:]:
-        doc = json.load(open(path))
+        doc = cavity_json.load(path)
         for r in doc["results"]:
             if r.get("error"):
                 continue

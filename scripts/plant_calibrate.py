@@ -20,6 +20,8 @@ import re
 import statistics
 import sys
 
+import cavity_json   # scripts/cavity_json.py: plain or gzip (X.json.gz)
+
 SUFFIX = re.compile(r"(/[a-z_]+:[^/]*|/manual_time|/real_time)+$")
 
 
@@ -30,8 +32,8 @@ def config_id(name):
 def medians(path):
     """{(configuration id, pass): median over repetitions of pass_<pass>_ms}."""
     try:
-        doc = json.load(open(path))
-    except (OSError, json.JSONDecodeError) as e:
+        doc = cavity_json.load(path)
+    except (OSError, ValueError) as e:
         sys.exit(f"plant_calibrate: {path}: {e}")
     values = {}
     for b in doc.get("benchmarks", []):
@@ -76,8 +78,8 @@ def main():
     for p in a.point_file:
         plant_path, _, path = p.partition(":")
         try:
-            plant = json.load(open(plant_path))
-        except (OSError, json.JSONDecodeError) as e:
+            plant = cavity_json.load(plant_path)
+        except (OSError, ValueError) as e:
             sys.exit(f"plant_calibrate: --point-file {plant_path}: {e}")
         points.append((lambda key, plant=plant: plant.get(key[0], {}).get(key[1]), medians(path)))
     if not points:

@@ -2,22 +2,22 @@
 """What the narrow barriers buy: frame medians per configuration with the
 narrow barriers and with CAVITY_FULL_BARRIERS=1, from the folder
 scripts/gpu_sync.sh leaves (narrow_1.json, full_1.json, narrow_2.json,
-full_2.json). Each round's median beside the pooled one, so the spread
+full_2.json, or each .json.gz). Each round's median beside the pooled one, so the spread
 between two rounds of the same mode shows what a difference must beat.
 Markdown on stdout.
   scripts/sync_table.py FOLDER"""
 import collections
-import json
 import os
 import statistics
 import sys
+
+import cavity_json   # scripts/cavity_json.py: plain or gzip (X.json.gz)
 
 
 def frames(path):
     out = collections.defaultdict(list)
     try:
-        with open(path) as f:
-            data = json.load(f)
+        data = cavity_json.load(path)
     except (OSError, ValueError) as e:
         sys.exit(f"sync_table.py: {path}: {e}")
     for b in data.get("benchmarks", []):

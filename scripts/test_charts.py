@@ -1,14 +1,17 @@
 #!/usr/bin/env python3
-"""Tests for scripts/charts.py.
+"""Tests for scripts/charts.py and its package, scripts/cavity_charts/.
 
     python3 -m unittest scripts/test_charts.py
     python3 scripts/test_charts.py
 
 Drawing needs matplotlib (Debian's python3-matplotlib); charts.py re-runs
 itself under /usr/bin/python3 when the python3 on PATH lacks it, so these
-tests run from either.
+tests run from either. Every chart kind is drawn from committed results in
+bench/results/ (stored gzip, X.json.gz) and from the small synthetic files in
+bench/testdata/.
 """
 
+import gzip
 import json
 import os
 import re
@@ -22,11 +25,17 @@ ROOT = os.path.dirname(HERE)
 CHARTS = os.path.join(HERE, "charts.py")
 SAMPLE = os.path.join(ROOT, "bench", "testdata", "sample_benchmark.json")
 SAMPLE_OLD = os.path.join(ROOT, "bench", "testdata", "sample_benchmark_old.json")
+RESULTS = os.path.join(ROOT, "bench", "results")
+SWEEPS = [os.path.join(RESULTS, n) for n in ("2026-11-24_h100_full_sweep.json.gz", "2026-11-30_h200_full_sweep.json.gz")]
+QUALITY_COST = os.path.join(RESULTS, "2026-12-02_h200_quality_cost")
+FLOOR_LIFT = os.path.join(RESULTS, "2026-12-02_h200_floor3", "lift.json.gz")
 SINGLE_FILE_CHARTS = ("time_vs_samples", "time_vs_blur", "full_vs_half", "time_vs_megapixels",
                       "gl_vs_vk", "compute_vs_fragment")
 
 sys.path.insert(0, HERE)
 import charts  # noqa: E402  (pure functions only; matplotlib is imported when drawing)
+import cavity_json  # noqa: E402
+from cavity_charts import cli  # noqa: E402
 
 
 def run_charts(*args):
@@ -224,6 +233,108 @@ class Command(unittest.TestCase):
             self.assertEqual(len(r.stderr.strip().splitlines()), 1)
             self.assertIn(f"charts: {missing}: cannot read", r.stderr)
             self.assertFalse(os.path.exists(out))
+
+
+class Package(unittest.TestCase):
+    """charts.py is the command line of scripts/cavity_charts/: --help names every chart and
+    subcommand, and every chart kind draws from committed (gzip) results."""
+
+    def check_index(self, out, names):
+        with open(os.path.join(out, "index.json")) as f:
+            index = json.load(f)
+        self.assertEqual([c["name"] for c in index["charts"]], list(names))
+        for c in index["charts"]:
+            for kind in ("png", "svg"):
+                self.assertGreater(os.path.getsize(os.path.join(out, c[kind])), 1000)
+        return index
+
+    def test_help_lists_every_subcommand(self):
+        r = run_charts("--help")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        for name in cli.CHART_NAMES + ("quality-cost", "floor"):
+            self.assertRegex(r.stdout, rf"(?m)^  {re.escape(name)} ", name)
+        self.assertEqual(cli.CHART_NAMES, SINGLE_FILE_CHARTS + ("history",))
+        self.assertEqual(sorted(cli.SUBCOMMANDS), ["floor", "quality-cost"])
+        for sub in cli.SUBCOMMANDS:
+            r = run_charts(sub, "--help")
+            self.assertEqual(r.returncode, 0, r.stderr)
+            self.assertIn("--out DIR", r.stdout)
+
+    def test_main_charts_from_committed_results(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            r = run_charts(*SWEEPS, "--out", tmp)
+            self.assertEqual(r.returncode, 0, r.stderr)
+            index = self.check_index(tmp, cli.CHART_NAMES)
+            self.assertEqual([s["file"] for s in index["sources"]], SWEEPS)
+            self.assertIn("NVIDIA H200", index["sources"][1]["device"])
+            with open(os.path.join(tmp, "history.svg")) as f:
+                svg = f.read()
+            self.assertIn("2026-11-30_h200_full_sweep", svg)
+            self.assertNotIn("full_sweep.json", svg)   # the file label drops .json.gz as it did .json
+
+    def test_quality_cost_from_committed_results(self):
+        bench = [os.path.join(QUALITY_COST, f"bench_{i}.json.gz") for i in range(3)]
+        quality = [os.path.join(QUALITY_COST, q, "quality.json") for q in ("quality_full", "quality_half")]
+        with tempfile.TemporaryDirectory() as tmp:
+            r = run_charts("quality-cost", "--quality", *quality, "--bench", *bench, "--out", tmp)
+            self.assertEqual(r.returncode, 0, r.stderr)
+            with open(os.path.join(tmp, "quality_cost.json")) as f:
+                points = json.load(f)["points"]
+            self.assertGreater(len(points), 10)
+            self.assertTrue(any(p["pareto"] for p in points))
+            self.assertGreater(os.path.getsize(os.path.join(tmp, "quality_cost.png")), 1000)
+
+    def test_floor_from_committed_results(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            r = run_charts("floor", FLOOR_LIFT, "--filter", "/n16/b4/full/", "--out", tmp)
+            self.assertEqual(r.returncode, 0, r.stderr)
+            with open(os.path.join(tmp, "floor.svg")) as f:
+                self.assertRegex(f.read(), r"\d\.\d\dx floor")
+            self.assertGreater(os.path.getsize(os.path.join(tmp, "floor.png")), 1000)
+
+    def test_synthetic_gzip_reads_as_plain(self):
+        """A .json.gz, and gzip bytes under a .json name, give the charts of the plain file."""
+        with tempfile.TemporaryDirectory() as tmp:
+            with open(SAMPLE, "rb") as f:
+                packed = gzip.compress(f.read(), mtime=0)
+            gz, disguised = os.path.join(tmp, "sample.json.gz"), os.path.join(tmp, "gzip_bytes.json")
+            for path in (gz, disguised):
+                with open(path, "wb") as f:
+                    f.write(packed)
+            self.assertEqual(charts.load_results(gz)["records"], charts.load_results(SAMPLE)["records"])
+            self.assertEqual(charts.load_results(disguised)["records"], charts.load_results(SAMPLE)["records"])
+            r = run_charts(SAMPLE_OLD, gz, "--out", os.path.join(tmp, "out"))
+            self.assertEqual(r.returncode, 0, r.stderr)
+            self.check_index(os.path.join(tmp, "out"), cli.CHART_NAMES)
+            # a name that is gone but whose .gz is there (a note written before compression) reads that
+            self.assertEqual(cavity_json.resolve(gz[:-3]), gz)
+            self.assertEqual(cavity_json.load(gz[:-3]), cavity_json.load(SAMPLE))
+
+    def test_broken_gzip(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            with open(SAMPLE, "rb") as f:
+                packed = gzip.compress(f.read())
+            bad = os.path.join(tmp, "cut.json.gz")
+            with open(bad, "wb") as f:
+                f.write(packed[: len(packed) // 2])
+            out = os.path.join(tmp, "out")
+            r = run_charts(SAMPLE, bad, "--out", out)
+            self.assertEqual(r.returncode, 2)
+            self.assertEqual(len(r.stderr.strip().splitlines()), 1, r.stderr)
+            self.assertIn(f"charts: {bad}: not a whole gzip file", r.stderr)
+            self.assertFalse(os.path.exists(out))
+
+    def test_table_scripts_read_gzip(self):
+        floor3 = os.path.join(RESULTS, "2026-12-02_h200_floor3")
+        r = subprocess.run([sys.executable, os.path.join(HERE, "floor_table.py"), os.path.join(floor3, "fragment.json.gz")],
+                           capture_output=True, text=True, timeout=120)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertIn("| measured / floor |", r.stdout)
+        self.assertGreater(len(r.stdout.splitlines()), 10)
+        r = subprocess.run([sys.executable, os.path.join(HERE, "sync_table.py"), os.path.join(RESULTS, "2026-12-02_h200_sync")],
+                           capture_output=True, text=True, timeout=120)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertGreater(len(r.stdout.splitlines()), 3)
 
 
 class QualityCost(unittest.TestCase):

@@ -26,6 +26,8 @@ import statistics
 import sys
 import tempfile
 
+import cavity_json   # scripts/cavity_json.py: plain or gzip (X.json.gz)
+
 
 def from_bench(doc, a):
     """Budgets from the repetitions of a cavity_bench run: median + noise-derived margin."""
@@ -74,9 +76,9 @@ def main():
     if a.factor <= 1:
         sys.exit(f"update_budgets: --factor {a.factor}: must be > 1")
     try:
-        gate = json.load(open(a.gate_json))
+        gate = cavity_json.load(a.gate_json)
         budgets = json.load(open(a.budgets))
-    except (OSError, json.JSONDecodeError) as e:
+    except (OSError, ValueError) as e:
         sys.exit(f"update_budgets: {e}")
     if "benchmarks" in gate:
         table, note = from_bench(gate, a)

@@ -4,7 +4,7 @@
     python3 scripts/verdict_table.py DIR [--cavity build/harness/cavity] > table.md
 
 DIR holds a1.json, a2.json (unchanged build), b5.json, b2.json (AO pass
-planted +5%, +2%), b10.json (every pass +10%), *.clocks.csv (nvidia-smi
+planted +5%, +2%), b10.json (every pass +10%) (each may be .json.gz), *.clocks.csv (nvidia-smi
 every 200 ms) and the plant files. Runs `cavity compare --json` for A/A and
 each A/B, and prints: repetition CV per pass, the A/A table, each A/B's
 detection table (planted pass called slower, untouched passes called
@@ -18,6 +18,9 @@ import re
 import statistics
 import subprocess
 import sys
+import tempfile
+
+import cavity_json   # scripts/cavity_json.py: plain or gzip (X.json.gz)
 
 SUFFIX = re.compile(r"(/[a-z_]+:[^/]*|/manual_time|/real_time)+$")
 
@@ -25,7 +28,7 @@ SUFFIX = re.compile(r"(/[a-z_]+:[^/]*|/manual_time|/real_time)+$")
 def reps(path):
     """{(id, pass): [per-repetition medians]}, pass 'pipeline' for the benchmark time."""
     out = {}
-    for b in json.load(open(path))["benchmarks"]:
+    for b in cavity_json.load(path)["benchmarks"]:
         if b.get("run_type") != "iteration" or "@" in b["name"] or b.get("error_occurred"):
             continue
         cid = SUFFIX.sub("", b["run_name"])
@@ -40,10 +43,24 @@ def cv(v):
     return statistics.stdev(v) / statistics.mean(v) if len(v) > 1 and statistics.mean(v) else 0.0
 
 
+def run_json(d, name):
+    """DIR/NAME.json, or DIR/NAME.json.gz where only that exists."""
+    return cavity_json.resolve(os.path.join(d, name + ".json"))
+
+
 def compare(cavity, d, old, new):
     out = os.path.join(d, f"compare_{old}_{new}.json")
-    subprocess.run([cavity, "compare", os.path.join(d, old + ".json"), os.path.join(d, new + ".json"), "--json", out],
-                   check=True, stdout=subprocess.DEVNULL)
+    with tempfile.TemporaryDirectory() as tmp:
+        inputs = []
+        for name in (old, new):
+            path = run_json(d, name)
+            if path.endswith(".gz"):   # cavity compare reads plain JSON
+                inputs.append(os.path.join(tmp, name + ".json"))
+                with open(inputs[-1], "wb") as f:
+                    f.write(cavity_json.read_bytes(path))
+            else:
+                inputs.append(path)
+        subprocess.run([cavity, "compare", *inputs, "--json", out], check=True, stdout=subprocess.DEVNULL)
     return {(r["id"], r["pass"]): r for r in json.load(open(out))["rows"]}
 
 
@@ -67,8 +84,7 @@ def main():
     ap.add_argument("--pattern", default="NVIDIA H200")
     a = ap.parse_args()
     d = a.dir
-    runs = {n: reps(os.path.join(d, n + ".json")) for n in ("a1", "a2", "b5", "b2", "b10")
-            if os.path.exists(os.path.join(d, n + ".json"))}
+    runs = {n: reps(run_json(d, n)) for n in ("a1", "a2", "b5", "b2", "b10") if os.path.exists(run_json(d, n))}
     a1 = runs["a1"]
     a2 = runs.get("a2", {})
     ids = sorted({k[0] for k in a1})
@@ -104,7 +120,7 @@ def main():
         if name not in runs:
             continue
         ab = compare(a.cavity, d, "a1", name)
-        plant = json.load(open(os.path.join(d, {"b5": "plant5", "b2": "plant2", "b10": "plant10"}[name] + ".json")))
+        plant = cavity_json.load(run_json(d, {"b5": "plant5", "b2": "plant2", "b10": "plant10"}[name]))
         print(f"## A/B: {', '.join(planted_passes)} planted +{size}% ({name})\n")
         print("| configuration | pass | FMAs | measured change [95% interval] | p | verdict |")
         print("|---|---|---:|---|---:|---|")
@@ -141,7 +157,7 @@ def budgets_and_clocks(a, d, runs, passes):
         budgets = None
     if budgets:
         print(f"## Budgets ({a.pattern} class in baselines/budgets.json), one check per repetition\n")
-        plant10 = json.load(open(os.path.join(d, "plant10.json"))) if os.path.exists(os.path.join(d, "plant10.json")) else {}
+        plant10 = cavity_json.load(run_json(d, "plant10")) if os.path.exists(run_json(d, "plant10")) else {}
         print("| run | pass | repetitions over budget | of | largest median / budget |")
         print("|---|---|---:|---:|---:|")
         for name in ("a1" if "a2" not in runs else "a2", "b10"):

@@ -1,9 +1,12 @@
-import json,glob,statistics,collections,sys
+import json,glob,gzip,statistics,collections,sys
+def load(f):  # plain or gzip (X.json.gz)
+    raw=open(f,'rb').read()
+    return json.loads(gzip.decompress(raw) if f.endswith('.gz') or raw[:2]==b'\x1f\x8b' else raw)
 root=sys.argv[1]
 res=collections.defaultdict(lambda: collections.defaultdict(list)); dig={}
-for f in sorted(glob.glob(root+'/*.r*/manifest.json')):
+for f in sorted(glob.glob(root+'/*.r*/manifest.json')+glob.glob(root+'/*.r*/manifest.json.gz')):
     v,r=f.split('/')[-2].rsplit('.',1)
-    m=json.load(open(f))
+    m=load(f)
     for c in m['configurations']:
         key=(v,c['id'].split('/')[1],c['api']); rr=c['renders'][0]
         if rr['error']: print(v,key,rr['error'][:200])

@@ -1,0 +1,186 @@
+"""Shared plotting: which slice of the data a chart draws (pick_slice), and
+Canvas, what every chart of the main command draws with (matplotlib set up
+once, a colour per kernel, a line style per API, the title block, the
+legend, log axes written plainly, and the PNG + SVG written and listed)."""
+
+import os
+import sys
+import textwrap
+from collections import Counter, defaultdict
+
+from .inputs import DIMS
+from .labels import device_line
+
+DPI = 150
+LEGEND_MAX = 12
+
+
+def setup_matplotlib():
+    """pyplot on the Agg backend (no display)."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    return matplotlib, plt
+
+
+def pick_slice(records, vary, series=("kernel", "api"), need=2, prefer=None):
+    """The records of one slice of the data: every dimension but `vary` and the
+    `series` dimensions fixed at one value. Slices where no series has `need`
+    distinct values of `vary` are not considered. Prefers 1920x1080 and the
+    compute stage (unless varied), then the slice with most series complete,
+    then most points, then the most common values. Returns (fixed dict,
+    {series key: {vary value: record}}) or (None, {})."""
+    recs = list(records)
+    fixed_dims = [d for d in DIMS if d != vary and d not in series]
+    freq = {d: Counter(r[d] for r in recs) for d in DIMS}
+    slices = defaultdict(lambda: defaultdict(dict))
+    for r in recs:
+        key = tuple(r[d] for d in fixed_dims)
+        slices[key][tuple(r[s] for s in series)][r[vary]] = r
+    # ties go to values in the middle of each numeric axis (n16 rather than n1)
+    middling = {}
+    for d in ("samples", "blur"):
+        vals = sorted(freq[d])
+        middling[d] = {v: abs(i - (len(vals) - 1) / 2) for i, v in enumerate(vals)}
+    best, best_score = None, None
+    prefer = prefer or {}
+    for key, by_series in slices.items():
+        fixed = dict(zip(fixed_dims, key))
+        full_series = sum(1 for pts in by_series.values() if len(pts) >= need)
+        if full_series == 0:
+            continue
+        score = (
+            tuple(fixed.get(d) == v for d, v in prefer.items()),
+            fixed.get("size") == (1920, 1080),
+            fixed.get("stage") == "compute",
+            full_series,
+            sum(len(p) for p in by_series.values()),
+            sum(freq[d][fixed[d]] for d in fixed_dims),
+            -sum(middling[d].get(fixed[d], 0) for d in fixed_dims if d in middling),
+        )
+        if best_score is None or score > best_score:
+            best, best_score = key, score
+    if best is None:
+        return None, {}
+    fixed = dict(zip(fixed_dims, best))
+    by_series = {s: dict(sorted(p.items())) for s, p in slices[best].items() if len(p) >= need}
+    return fixed, dict(sorted(by_series.items(), key=lambda kv: series_sort_key(kv[0])))
+
+
+def series_sort_key(key):
+    kernel, api = key[0], key[1] if len(key) > 1 else ""
+    return (kernel, 0 if api == "vk" else 1, api)
+
+
+class Canvas:
+    """The files, the records of the last one, the output folder and what was written or skipped."""
+
+    def __init__(self, files, outdir, title_prefix):
+        matplotlib, plt = setup_matplotlib()
+        from matplotlib import ticker
+        matplotlib.rcParams.update({
+            "svg.fonttype": "none",      # text stays text in the SVG (searchable, linkable)
+            "font.size": 10,
+            "axes.titlesize": 9,
+            "axes.titlecolor": "#444444",
+            "figure.titlesize": 13,
+            "figure.titleweight": "bold",
+            "legend.fontsize": 9,
+            "legend.framealpha": 0.9,
+            "axes.spines.top": False,
+            "axes.spines.right": False,
+        })
+        self.plt = plt
+        self.ticker = ticker
+        self.files = files
+        self.current = files[-1]
+        self.records = list(self.current["records"].values())
+        self.context = self.current["context"]
+        self.outdir = outdir
+        self.prefix = title_prefix
+        self.written = []
+        self.skipped = []
+        kernels = sorted({r["kernel"] for f in files for r in f["records"].values()})
+        palette = ["#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2",
+                   "#7f7f7f", "#bcbd22", "#17becf"]
+        fixed = {"alchemy": palette[0], "hemisphere": palette[1], "ssdo": palette[2]}
+        rest = [c for c in palette if c not in fixed.values()]
+        self.kcolor = {}
+        for k in kernels:
+            self.kcolor[k] = fixed.get(k) or rest[len([1 for v in self.kcolor if v not in fixed]) % len(rest)]
+
+    # -- helpers
+    def style(self, key):
+        kernel, api = key
+        return dict(color=self.kcolor.get(kernel, "#333333"),
+                    linestyle="-" if api == "vk" else "--",
+                    marker="o" if api == "vk" else "s",
+                    markersize=6, linewidth=2)
+
+    def figure(self, width=8.5, height=5.2):
+        fig, ax = self.plt.subplots(figsize=(width, height))
+        return fig, ax
+
+    def title(self, text):
+        return f"{self.prefix}: {text}" if self.prefix else text
+
+    def finish(self, name, fig, ax, title, subtitle_extra=None, legend=True, legend_kw=None, extra=None,
+               device=True):
+        axes = ax if isinstance(ax, (list, tuple)) else [ax]
+        ax = axes[0]
+        dev = device_line(self.context) if device else ""
+        if dev and any(r["wall"] for r in self.records):
+            dev += "  ·  some times are drained wall clock (timestamps unusable)"
+        sub = "\n".join(t for t in (dev, subtitle_extra) if t)
+        # 9 pt text: about 14 characters an inch
+        cols = int(fig.get_figwidth() * 14)
+        sub = "\n".join(textwrap.fill(line, cols, subsequent_indent="  ") for line in sub.split("\n"))
+        height = fig.get_figheight()
+        fig.text(0.012, 1 - 0.10 / height, self.title(title), ha="left", va="top", fontsize=13, fontweight="bold")
+        fig.text(0.012, 1 - 0.42 / height, sub, ha="left", va="top", fontsize=9, color="#444444",
+                 linespacing=1.4)
+        header = 0.42 + 0.19 * (sub.count("\n") + 1) + 0.04
+        for a in axes:
+            a.grid(True, which="major", alpha=0.35)
+            a.grid(True, which="minor", alpha=0.12)
+        if legend:
+            handles, labels = ax.get_legend_handles_labels()
+            if handles:
+                kw = dict(loc="best", ncol=1 if len(handles) <= 6 else 2 if len(handles) <= LEGEND_MAX else 3)
+                kw.update(legend_kw or {})
+                if len(handles) > LEGEND_MAX:
+                    kw.update(ncol=3, fontsize=7.5)
+                ax.legend(handles, labels, **kw)
+        fig.tight_layout(rect=(0, 0, 1, 1 - header / height))
+        png = os.path.join(self.outdir, name + ".png")
+        svg = os.path.join(self.outdir, name + ".svg")
+        fig.savefig(png, dpi=DPI)
+        fig.savefig(svg)
+        self.plt.close(fig)
+        entry = {"name": name, "title": self.title(title), "png": name + ".png", "svg": name + ".svg"}
+        entry.update(extra or {})
+        self.written.append(entry)
+        print(png)
+        print(svg)
+
+    def skip(self, name, why):
+        self.skipped.append({"name": name, "reason": why})
+        print(f"charts: note: skipped {name}: {why}", file=sys.stderr)
+
+    def plain_log(self, axis):
+        """Log axis ticks written 0.05, 0.1, 0.2, 0.5, 1 ... rather than 10^-1."""
+        t = self.ticker
+        axis.set_major_locator(t.LogLocator(base=10, subs=(1.0, 2.0, 5.0)))
+        axis.set_major_formatter(t.FuncFormatter(lambda v, _: f"{v:g}"))
+        axis.set_minor_locator(t.LogLocator(base=10, subs=(3.0, 4.0, 6.0, 7.0, 8.0, 9.0)))
+        axis.set_minor_formatter(t.NullFormatter())
+
+    def ms_axis(self, ax, values, log_if=40.0):
+        lo, hi = min(values), max(values)
+        if lo > 0 and hi / lo > log_if:
+            ax.set_yscale("log")
+            self.plain_log(ax.yaxis)
+            ax.set_ylabel("GPU time (ms, log scale)")
+        else:
+            ax.set_ylim(0, hi * 1.12)
+            ax.set_ylabel("GPU time (ms)")

@@ -1,0 +1,30 @@
+"""time_vs_blur: GPU time against the bilateral blur radius, a line per (kernel, API).
+
+draw(c) draws it on a plotting.Canvas (or says on stderr why it is skipped).
+"""
+
+from .labels import fixed_line, series_label
+from .plotting import pick_slice
+
+NAME = "time_vs_blur"
+
+
+def draw(c):
+    fixed, by_series = pick_slice(c.records, "blur")
+    if not by_series:
+        return c.skip("time_vs_blur", "no configurations that differ only in blur radius")
+    fig, ax = c.figure()
+    xs_all, ys_all = set(), []
+    for key, pts in by_series.items():
+        xs = list(pts)
+        ys = [pts[x]["ms"] for x in xs]
+        xs_all.update(xs)
+        ys_all += ys
+        ax.plot(xs, ys, label=series_label(key), **c.style(key))
+    ticks = sorted(xs_all)
+    ax.set_xticks(ticks)
+    ax.set_xticklabels(["0 (off)" if t == 0 else str(t) for t in ticks])
+    ax.set_xlabel("blur radius (px)")
+    c.ms_axis(ax, ys_all)
+    c.finish("time_vs_blur", fig, ax, "AO GPU time vs bilateral blur radius", fixed_line(fixed),
+             legend_kw=dict(loc="lower right"))
