@@ -90,6 +90,11 @@ const cavity::cli::CommandSpec& benchSpec() {
         };
         c.footer = "\n" + cavity::cli::kernelHelp("Kernels (the sweep's AO pipelines; select by id with --benchmark_filter)") +
                    "\nExit codes: 0 ok, 2 bad usage (or no benchmark matches the filter), 3 no backend, 4 GPU error.";
+        c.examples = {
+            "cavity_bench --backend vk --benchmark_filter=/alchemy_fast/",
+            "cavity_bench --sweep cpu --benchmark_repetitions=5 --benchmark_out=out/bench.json",
+            "cavity_bench --benchmark_list_tests",
+        };
         return c;
     }();
     return spec;

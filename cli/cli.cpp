@@ -36,6 +36,14 @@ Result<double> parseNumber(const std::string& flag, const std::string& text, dou
     return parseNumber(flag, text, [&](double v) { return v >= lo && v <= hi; }, range.str());
 }
 
+Result<std::regex> parseFilter(const std::string& flag, const std::string& text) {
+    try {
+        return std::regex(text);
+    } catch (const std::regex_error& e) {
+        return badInput(flag + " " + text + ": not a regular expression (" + e.what() + ")");
+    }
+}
+
 Result<std::vector<std::string>> splitList(const std::string& flag, const std::string& text) {
     std::vector<std::string> out;
     size_t start = 0;
@@ -128,15 +136,15 @@ std::string kernelHelp(const std::string& heading) {
     for (const auto& k : kernels::all()) {
         if (k.role != kernels::Role::Ao && k.role != kernels::Role::Reference) continue;
         std::string text = k.summary;
-        for (size_t i = 0; i < k.seeds.size(); ++i) {
-            text += i == 0 ? " [seed " : ", ";
-            text += k.seeds[i];
+        for (size_t i = 0; i < k.sources.size(); ++i) {
+            text += i == 0 ? " [after " : "; ";
+            text += k.sources[i];
         }
-        if (!k.seeds.empty()) text += "]";
+        if (!k.sources.empty()) text += "]";
         if (k.role == kernels::Role::Reference) text += " [reference: never in an \"every AO kernel\" sweep]";
         table.add({"  " + k.name, text});
     }
-    return heading + ", each with its one-line summary and the seed files it follows:\n" + table.str();
+    return heading + ", each with its one-line summary and the published sources it follows\n(docs/kernels.md, \"Sources\"):\n" + table.str();
 }
 
 Result<std::string> defaultBaselines() {

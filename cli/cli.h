@@ -8,6 +8,7 @@
 #include "result.h"
 
 #include <functional>
+#include <regex>
 #include <set>
 #include <string>
 #include <vector>
@@ -26,6 +27,9 @@ Result<double> parseNumber(const std::string& flag, const std::string& text, con
 // "8,16,32" -> {"8", "16", "32"}; an empty list, an empty item ("8,,16")
 // and an item given twice ("8,8": the same configuration twice) are errors.
 Result<std::vector<std::string>> splitList(const std::string& flag, const std::string& text);
+// --filter REGEX: an ECMAScript regex, searched in configuration ids; one
+// that does not compile is an error naming the flag and why.
+Result<std::regex> parseFilter(const std::string& flag, const std::string& text);
 // "--shard I/N": (I, N) with 0 <= I < N.
 Result<std::pair<int, int>> parseShard(const std::string& text);
 

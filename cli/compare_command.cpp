@@ -27,6 +27,11 @@ const CommandSpec& compareSpec() {
         "OLD.json NEW.json",
         "a results.json (cavity run) or Google Benchmark JSON (cavity_bench --benchmark_out), each",
         "\nExit codes: 0 compared, 1 slower with --fail-on-slower, 2 bad usage or input.",
+        {
+            "cavity compare main/results.json pr/results.json",
+            "cavity compare --min-change 1 --fail-on-slower main.json pr.json",
+            "cavity compare --json out/compare.json old.json new.json",
+        },
     };
     return spec;
 }

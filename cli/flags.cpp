@@ -41,7 +41,6 @@ std::unique_ptr<CLI::App> makeApp(const CommandSpec& spec, std::map<std::string,
     auto app = std::make_unique<CLI::App>(spec.description, spec.program);
     app->set_help_flag("-h,--help", "print this help on stdout and exit 0");
     app->footer(spec.footer);
-    app->get_formatter()->column_width(34);
     for (const auto& f : spec.flags) {
         if (f.valueName.empty()) {
             app->add_flag(f.name, f.help)->group(f.group);
@@ -69,10 +68,75 @@ std::string nearest(const std::string& word, const std::vector<std::string>& can
     return bestDistance <= std::max<size_t>(2, word.size() / 3) ? best : "";
 }
 
+namespace {
+
+constexpr size_t kFlagColumn = 34;   // where a flag's help starts
+
+std::string wrapLine(const std::string& line, size_t width) {
+    if (line.size() <= width) return line;
+    const size_t lead = line.find_first_not_of(' ');
+    size_t hang = lead + 2;
+    const size_t gap = line.find("  ", lead);
+    if (gap != std::string::npos) {
+        const size_t column = line.find_first_not_of(' ', gap);
+        if (column != std::string::npos && column <= width / 2) hang = column;
+    }
+    std::string out, rest = line;
+    while (rest.size() > width) {
+        size_t cut = rest.rfind(' ', width);
+        if (cut == std::string::npos || cut <= hang) cut = rest.find(' ', width);   // a word wider than the line
+        if (cut == std::string::npos) break;
+        const size_t next = rest.find_first_not_of(' ', cut);
+        if (next == std::string::npos) break;
+        out += rest.substr(0, rest.find_last_not_of(' ', cut) + 1) + "\n";
+        rest = std::string(hang, ' ') + rest.substr(next);
+    }
+    return out + rest;
+}
+
+std::string flagLine(const FlagSpec& f) {
+    std::string left = "  " + f.name + (f.valueName.empty() ? "" : " " + f.valueName);
+    if (left.size() + 2 > kFlagColumn) left += "\n" + std::string(kFlagColumn, ' ');
+    else left.resize(kFlagColumn, ' ');
+    return left + f.help;
+}
+
+}  // namespace
+
+std::string wrapText(const std::string& text, size_t width) {
+    std::string out;
+    size_t start = 0;
+    while (start <= text.size()) {
+        size_t end = text.find('\n', start);
+        if (end == std::string::npos) end = text.size();
+        out += wrapLine(text.substr(start, end - start), width);
+        if (end == text.size()) break;
+        out += "\n";
+        start = end + 1;
+    }
+    return out;
+}
+
 std::string helpText(const CommandSpec& spec) {
-    std::map<std::string, std::vector<std::string>> values;
-    std::vector<std::string> positionals;
-    return makeApp(spec, values, positionals)->help();
+    std::string text = spec.description + "\n\nUsage: " + spec.program + " [OPTIONS]";
+    if (!spec.positional.empty()) text += " " + spec.positional;
+    text += "\n\nOptions:\n" + flagLine({"-h, --help", "", "print this help on stdout and exit 0"});
+    if (!spec.positional.empty()) text += "\n" + flagLine({spec.positional, "", spec.positionalHelp});
+    std::vector<std::string> groups;
+    for (const auto& f : spec.flags)
+        if (std::find(groups.begin(), groups.end(), f.group) == groups.end()) groups.push_back(f.group);
+    for (const auto& g : groups) {
+        if (g != "Options") text += "\n\n" + g + ":";
+        for (const auto& f : spec.flags)
+            if (f.group == g) text += "\n" + flagLine(f);
+    }
+    text += "\n";
+    if (!spec.footer.empty()) text += spec.footer + (spec.footer.back() == '\n' ? "" : "\n");
+    if (!spec.examples.empty()) {
+        text += "\nExamples:\n";
+        for (const auto& e : spec.examples) text += "  " + e + "\n";
+    }
+    return wrapText(text);
 }
 
 Result<ParsedFlags> parseFlags(const CommandSpec& spec, const std::vector<std::string>& argv) {

@@ -38,6 +38,7 @@ struct CommandSpec {
     std::string positional;    // "DIR...": the positional arguments' name; empty: none allowed
     std::string positionalHelp;
     std::string footer;        // after the flags (kernels and their summaries for run)
+    std::vector<std::string> examples;   // command lines --help ends with, two or three
 };
 
 struct ParsedFlags {
@@ -50,8 +51,14 @@ struct ParsedFlags {
 };
 
 Result<ParsedFlags> parseFlags(const CommandSpec& spec, const std::vector<std::string>& argv);
-// The --help text of a command.
+// The --help text of a command: description, usage, the flags by group, the
+// footer and the examples, every line within kHelpWidth columns.
+constexpr size_t kHelpWidth = 100;
 std::string helpText(const CommandSpec& spec);
+// `text` with each line longer than `width` wrapped at spaces; continuation
+// lines hang under the line's second column (two or more spaces after its
+// first word, as in a table), or under its indentation.
+std::string wrapText(const std::string& text, size_t width = kHelpWidth);
 // The candidate nearest to `word` by edit distance, or "" when none is close.
 std::string nearest(const std::string& word, const std::vector<std::string>& candidates);
 

@@ -53,6 +53,11 @@ const CommandSpec& gateSpec() {
         "",
         "",
         "\nExit codes: 0 all pass, 1 a regression or an unexpected pass, 2 bad input, 3 a backend could not start.",
+        {
+            "cavity gate",
+            "cavity gate --matrix ci --filter '/alchemy_fast/' --out out/gate",
+            "cavity gate --shard 0/2 --out out/gate0",
+        },
     };
     return spec;
 }
@@ -71,6 +76,10 @@ const CommandSpec& judgeSpec() {
         "RENDER_DIR...",
         "folders written by cavity_render",
         "",
+        {
+            "cavity gate judge out/render",
+            "cavity gate judge --out out/gate out/render-gl out/render-vk",
+        },
     };
     return spec;
 }
@@ -83,6 +92,10 @@ const CommandSpec& mergeSpec() {
         "SHARD_DIR...",
         "output folders of cavity gate --shard runs",
         "",
+        {
+            "cavity gate merge --out out/gate out/gate0 out/gate1",
+            "cavity gate merge out/shard-*",
+        },
     };
     return spec;
 }
@@ -100,6 +113,10 @@ const CommandSpec& updateSpec() {
         "",
         "",
         "",
+        {
+            "cavity baselines update --from out/gate",
+            "cavity baselines update --from out/gate --filter '^corner/alchemy/'",
+        },
     };
     return spec;
 }
@@ -272,11 +289,9 @@ int baselinesCommand(const std::vector<std::string>& argv) {
     }
     std::optional<std::regex> filter;
     if (!filterText.empty()) {
-        try {
-            filter.emplace(filterText);
-        } catch (const std::regex_error& e) {
-            return fail("cavity baselines update", badInput("--filter " + filterText + ": not a regular expression"));
-        }
+        auto r = parseFilter("--filter", filterText);
+        if (!r) return fail("cavity baselines update", r.error());
+        filter = std::move(*r);
     }
     if (auto st = gate::recoverBaselineUpdate(root); !st) return fail("cavity baselines update", st.error());
     auto run = loadGateJson(from);

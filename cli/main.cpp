@@ -18,7 +18,12 @@ constexpr const char* kUsage =
     "  compare    two runs (results.json or cavity_bench JSON) pass by pass: change, interval, verdict\n"
     "  quality    each AO kernel's mean absolute error against the ray-traced ground truth\n"
     "`cavity COMMAND --help` lists a command's flags. `cavity` alone prints this and exits 2;\n"
-    "`cavity --help` prints it and exits 0.\n";
+    "`cavity --help` prints it and exits 0.\n"
+    "\n"
+    "Examples:\n"
+    "  cavity run --kernel alchemy_fast --backend gl,vk --res 1920x1080\n"
+    "  cavity gate --filter '/alchemy/'\n"
+    "  cavity compare main/results.json pr/results.json\n";
 
 }  // namespace
 

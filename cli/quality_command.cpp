@@ -8,6 +8,8 @@
 #include "measure/results.h"
 #include "measure/runner.h"
 #include "core/text_table.h"
+#include "plan/axes.h"
+#include "plan/sweep.h"
 
 #include <cstdio>
 #include <filesystem>
@@ -41,196 +43,167 @@ CommandSpec qualitySpec(const std::string& program) {
         {"--list", "", "print the configuration ids this would measure, one a line, and measure nothing"},
         {"--quiet", "", "no progress lines on stderr"},
     };
+    c.examples = {
+        program + " --kernel alchemy_fast,hemisphere_fast --samples 16 --reach shared",
+        program + " --scene slats --res 640x360 --blur 4 --out out/quality",
+    };
     return c;
 }
 
-}  // namespace
-
-// Shared by `cavity quality` and `cavity_render quality` (which runs on the
-// GPU machine): one parser, one table, one quality.json.
-int qualityCommand(const std::vector<std::string>& argv, const std::string& program) {
-    auto fail = [&](const Error& e) {
-        std::cerr << program << ": " << e.message << "\n";
-        return exitCode(e);
-    };
-    QualityOptions o;
+// What `cavity quality` was asked for.
+struct QualityRequest {
+    QualityOptions options;
     gpu::Api api = gpu::Api::Vulkan;
     gpu::BackendOptions backend;
     std::string out;
     std::optional<std::regex> filter;
-    auto parsed = parseFlags(qualitySpec(program), argv);
-    if (!parsed) return fail(parsed.error());
-    if (parsed->help) {
-        std::cout << parsed->helpText;
-        return 0;
-    }
     bool reachGiven = false, radiusGiven = false;
-    for (const auto& [flag, value] : parsed->values) {
-        const std::optional<std::string> v = value;
-        if (flag == "--reach") {
-            if (*v != "seed" && *v != "shared") return fail(badInput("--reach " + *v + ": must be seed or shared"));
-            o.sharedReach = *v == "shared";
-            reachGiven = true;
-        } else if (flag == "--radius") {
-            auto r = kernels::parseValue(*kernels::findParam("radius"), *v);
-            if (!r) return fail(r.error());
-            o.radius = *r;
-            radiusGiven = true;
-        } else if (flag == "--backend") {
-            if (*v != "gl" && *v != "vk") return fail(badInput("--backend " + *v + ": must be gl or vk"));
-            api = *v == "gl" ? gpu::Api::OpenGL : gpu::Api::Vulkan;
-        } else if (flag == "--scene") {
-            auto items = splitList(flag, *v);
-            if (!items) return fail(items.error());
-            o.scenes = *items;
-            for (const auto& s : o.scenes) {
-                RunConfig probe;
-                if (auto st = setParam(probe, "scene", s); !st) return fail(st.error());
-            }
-        } else if (flag == "--kernel") {
-            auto items = splitList(flag, *v);
-            if (!items) return fail(items.error());
-            o.kernels = *items;
-            for (const auto& k : o.kernels) {
-                const auto* d = kernels::find(k);
-                if (!d || d->role != kernels::Role::Ao) return fail(badInput("--kernel " + k + ": not an AO kernel (see cavity run --help)"));
-            }
-        } else if (flag == "--samples") {
-            o.samples.clear();
-            auto items = splitList(flag, *v);
-            if (!items) return fail(items.error());
-            for (const auto& s : *items) {
-                auto n = kernels::parseValue(*kernels::findParam("samples"), s);
-                if (!n) return fail(n.error());
-                o.samples.push_back(kernels::asInt(*n));
-            }
-        } else if (flag == "--res") {
-            auto wh = parseResolution("--res", *v);
-            if (!wh) return fail(wh.error());
-            std::tie(o.width, o.height) = *wh;
-        } else if (flag == "--blur") {
-            auto r = kernels::parseValue(*kernels::findParam("blur"), *v);
-            if (!r) return fail(r.error());
-            o.blur = kernels::asInt(*r);
-        } else if (flag == "--rays") {
-            auto n = kernels::parseValue(*kernels::findParam("rays"), *v);
-            if (!n) return fail(n.error());
-            o.rays = kernels::asInt(*n);
-        } else if (flag == "--resolution") {
-            if (*v != "full" && *v != "half") return fail(badInput("--resolution " + *v + ": must be full or half"));
-            o.half = *v == "half";
-        } else if (flag == "--device") {
-            auto n = parseInt("--device", *v, 0, 64);
-            if (!n) return fail(n.error());
-            backend.deviceIndex = *n;
-        } else if (flag == "--out") {
-            out = *v;
-        } else if (flag == "--filter") {
-            try {
-                filter.emplace(*v);
-            } catch (const std::regex_error& e) {
-                return fail(badInput("--filter " + *v + ": not a regular expression (" + e.what() + ")"));
-            }
-        }
-    }
-    if (radiusGiven) {
-        if (reachGiven && !o.sharedReach)
-            return fail(badInput("--radius " + std::to_string(o.radius) + ": only with --reach shared"));
-        o.sharedReach = true;
-    }
-    // The configurations measured, as ids: what measureQuality renders for
-    // each (scene, kernel, samples), the raw AO with the bilateral off.
-    std::vector<std::string> names = o.kernels;
-    if (names.empty())
-        for (const auto& k : kernels::all())
-            if (k.role == kernels::Role::Ao) names.push_back(k.name);
-    struct Step {
-        QualityOptions options;   // one scene, one kernel or all, the selected sample counts
-        std::vector<std::string> ids;
-    };
-    std::vector<Step> steps;
-    size_t total = 0;
-    for (const auto& scene : o.scenes) {
-        // Without --filter one step a scene (its ground truth is rendered
-        // once); with it one step a kernel, holding the sample counts selected.
-        Step whole{o, {}};
-        whole.options.scenes = {scene};
-        whole.options.kernels = names;
-        for (const auto& kernel : names) {
-            Step step{o, {}};
-            step.options.scenes = {scene};
-            step.options.kernels = {kernel};
-            step.options.samples.clear();
-            for (int n : o.samples) {
-                RunConfig c;
-                c.api = api;
-                c.kernel = kernel;
-                c.width = o.width;
-                c.height = o.height;
-                c.params["blur"] = o.blur;
-                c.params["samples"] = n;
-                if (auto st = setParam(c, "scene", scene); !st) return fail(st.error());
-                c.half = o.half && supportsHalf(kernel);
-                c.stage = o.stage;
-                const std::string id = configId(c);
-                if (filter && !std::regex_search(id, *filter)) continue;
-                step.options.samples.push_back(n);
-                step.ids.push_back(id);
-                whole.ids.push_back(id);
-            }
-            if (filter && !step.ids.empty()) steps.push_back(step);
-        }
-        if (!filter) steps.push_back(whole);
-        total += whole.ids.size();
-    }
-    if (filter && total == 0) return fail(badInput("--filter: matches none of the configurations (see " + program + " --list)"));
-    if (parsed->has("--list")) {
-        for (const auto& step : steps)
-            for (const auto& id : step.ids) std::cout << id << "\n";
-        return 0;
-    }
-    if (!out.empty())
-        if (auto st = checkWritableDir("--out", out); !st) return fail(st.error());
+};
 
-    auto gpu = gpu::createBackend(api, backend);
-    if (!gpu) return fail(gpu.error());
-    std::cerr << program << ": " << gpu::apiName(api) << ": " << (*gpu)->info().deviceName << "\n";
+// A kernel parameter's value from its flag, checked by its declaration.
+Result<double> paramFlag(const std::string& name, const std::string& v) {
+    return kernels::parseValue(*kernels::findParam(name), v);
+}
+
+// --scene, --kernel, --samples: the configurations' axes, each item checked.
+Status axisFlag(QualityRequest& q, const std::string& flag, const std::string& v) {
+    CAVITY_ASSIGN(const auto items, splitList(flag, v));
+    if (flag == "--scene") {
+        for (const auto& s : items) {
+            RunConfig probe;
+            CAVITY_TRY(setParam(probe, "scene", s));
+        }
+        q.options.scenes = items;
+    } else if (flag == "--kernel") {
+        for (const auto& k : items) {
+            const auto* d = kernels::find(k);
+            if (!d || d->role != kernels::Role::Ao) return badInput("--kernel " + k + ": not an AO kernel (see cavity run --help)");
+        }
+        q.options.kernels = items;
+    } else {
+        q.options.samples.clear();
+        for (const auto& item : items) {
+            CAVITY_ASSIGN(const double n, paramFlag("samples", item));
+            q.options.samples.push_back(kernels::asInt(n));
+        }
+    }
+    return {};
+}
+
+Status qualityFlag(QualityRequest& q, const std::string& flag, const std::string& v) {
+    auto& o = q.options;
+    if (flag == "--scene" || flag == "--kernel" || flag == "--samples") return axisFlag(q, flag, v);
+    if (flag == "--reach") {
+        if (v != "seed" && v != "shared") return badInput("--reach " + v + ": must be seed or shared");
+        o.sharedReach = v == "shared";
+        q.reachGiven = true;
+    } else if (flag == "--radius") {
+        CAVITY_ASSIGN(o.radius, paramFlag("radius", v));
+        q.radiusGiven = true;
+    } else if (flag == "--backend") {
+        if (v != "gl" && v != "vk") return badInput("--backend " + v + ": must be gl or vk");
+        q.api = v == "gl" ? gpu::Api::OpenGL : gpu::Api::Vulkan;
+    } else if (flag == "--res") {
+        CAVITY_ASSIGN(std::tie(o.width, o.height), parseResolution("--res", v));
+    } else if (flag == "--blur" || flag == "--rays") {
+        CAVITY_ASSIGN(const double n, paramFlag(flag.substr(2), v));
+        (flag == "--blur" ? o.blur : o.rays) = kernels::asInt(n);
+    } else if (flag == "--resolution") {
+        if (v != "full" && v != "half") return badInput("--resolution " + v + ": must be full or half");
+        o.half = v == "half";
+    } else if (flag == "--device") {
+        CAVITY_ASSIGN(q.backend.deviceIndex, parseInt("--device", v, 0, 64));
+    } else if (flag == "--out") {
+        q.out = v;
+    } else if (flag == "--filter") {
+        CAVITY_ASSIGN(q.filter, parseFilter(flag, v));
+    }
+    return {};
+}
+
+Result<QualityRequest> parseQuality(const ParsedFlags& parsed) {
+    QualityRequest q;
+    for (const auto& [flag, value] : parsed.values) CAVITY_TRY(qualityFlag(q, flag, value));
+    if (q.radiusGiven) {
+        if (q.reachGiven && !q.options.sharedReach)
+            return badInput("--radius " + std::to_string(q.options.radius) + ": only with --reach shared");
+        q.options.sharedReach = true;
+    }
+    return q;
+}
+
+// One measureQuality call and the configuration ids it measures: one scene
+// with every kernel (its ground truth rendered once), or with --filter one
+// kernel and the sample counts selected.
+struct QualityStep {
+    QualityOptions options;
+    std::vector<std::string> ids;
+};
+
+// The configurations measured, as ids: what measureQuality renders for each
+// (scene, kernel, samples), the raw AO with the bilateral off.
+Result<std::vector<QualityStep>> planQuality(const QualityRequest& q) {
+    const auto& o = q.options;
+    plan::Axes axes;
+    axes.scenes = o.scenes;
+    axes.kernels = o.kernels.empty() ? plan::aoKernels() : o.kernels;
+    axes.params = {{"samples", std::vector<double>(o.samples.begin(), o.samples.end())}};
+    RunConfig base;
+    base.api = q.api;
+    std::tie(base.width, base.height) = std::pair{o.width, o.height};
+    base.params["blur"] = o.blur;
+    base.stage = o.stage;
+    std::vector<QualityStep> steps;
+    CAVITY_TRY(plan::forEachConfig(axes, base, [&](RunConfig c) -> Status {
+        c.half = o.half && supportsHalf(c.kernel);
+        const std::string id = configId(c);
+        if (q.filter && !std::regex_search(id, *q.filter)) return {};
+        const bool sameStep = !steps.empty() && steps.back().options.scenes[0] == c.scene() &&
+                              (!q.filter || steps.back().options.kernels[0] == c.kernel);
+        if (!sameStep) {
+            steps.push_back({o, {}});
+            steps.back().options.scenes = {c.scene()};
+            steps.back().options.kernels = q.filter ? std::vector{c.kernel} : axes.kernels;
+            steps.back().options.samples.clear();
+        }
+        auto& step = steps.back();
+        if (q.filter) step.options.samples.push_back(c.samples());
+        else step.options.samples = o.samples;
+        step.ids.push_back(id);
+        return {};
+    }));
+    return steps;
+}
+
+Result<std::vector<QualityRow>> runQuality(gpu::Backend& gpu, const std::vector<QualityStep>& steps, bool quiet) {
     std::vector<QualityRow> rows;
-    {
-        Progress progress(steps.size(), parsed->has("--quiet"));
-        for (const auto& step : steps) {
-            progress.start(step.ids.front() + (step.ids.size() > 1 ? " (+" + std::to_string(step.ids.size() - 1) + ")" : ""));
-            auto some = measureQuality(**gpu, step.options);
-            if (!some) {
-                progress.interrupt();
-                return fail(some.error());
-            }
-            rows.insert(rows.end(), some->begin(), some->end());
+    Progress progress(steps.size(), quiet);
+    for (const auto& step : steps) {
+        progress.start(step.ids.front() + (step.ids.size() > 1 ? " (+" + std::to_string(step.ids.size() - 1) + ")" : ""));
+        auto some = measureQuality(gpu, step.options);
+        if (!some) {
+            progress.interrupt();
+            return some.error();
         }
+        rows.insert(rows.end(), some->begin(), some->end());
     }
+    return rows;
+}
 
-    const std::string reach = o.sharedReach ? "shared" : "seed";
-    if (o.sharedReach)
-        std::printf("reach: shared, every kernel and the truth at R = %g\n", o.radius);
-    else
-        std::printf("reach: seed, each kernel at its own default reach, the truth at R = 0.5\n");
-    using A = TextTable::Align;
-    TextTable table({{"scene", A::Left}, {"kernel", A::Left}, {"samples", A::Right}, {"MAE", A::Right}, {"max", A::Right},
-                     {"mean AO", A::Right}, {"truth", A::Right}});
-    nlohmann::json doc = {{"schema", "cavity-quality/1"},
-                          {"backend", gpu::apiName(api)},
-                          {"device", (*gpu)->info().deviceName},
+nlohmann::json qualityJson(const QualityRequest& q, const std::string& device, const std::vector<QualityRow>& rows) {
+    const auto& o = q.options;
+    nlohmann::json doc = {{"schema", "cavity.quality/1"},
+                          {"backend", gpu::apiName(q.api)},
+                          {"device", device},
                           {"width", o.width},
                           {"height", o.height},
                           {"rays", o.rays},
                           {"blur", o.blur},
                           {"resolution", o.half ? "half" : "full"},
-                          {"reach", reach},
+                          {"reach", o.sharedReach ? "shared" : "seed"},
                           {"radius", o.sharedReach ? nlohmann::json(o.radius) : nlohmann::json(nullptr)},
                           {"rows", nlohmann::json::array()}};
-    for (const auto& r : rows) {
-        table.add({r.scene, r.kernel, std::to_string(r.samples), TextTable::number(r.meanAbsError, 4),
-                   TextTable::number(r.maxAbsError, 4), TextTable::number(r.meanAo, 4), TextTable::number(r.meanTruth, 4)});
+    for (const auto& r : rows)
         doc["rows"].push_back({{"scene", r.scene},
                                {"kernel", r.kernel},
                                {"samples", r.samples},
@@ -239,15 +212,61 @@ int qualityCommand(const std::vector<std::string>& argv, const std::string& prog
                                {"mean_ao", r.meanAo},
                                {"mean_truth", r.meanTruth},
                                {"pixels", r.pixels}});
-    }
+    return doc;
+}
+
+void printQuality(const QualityOptions& o, const std::vector<QualityRow>& rows) {
+    if (o.sharedReach)
+        std::printf("reach: shared, every kernel and the truth at R = %g\n", o.radius);
+    else
+        std::printf("reach: seed, each kernel at its own default reach, the truth at R = 0.5\n");
+    using A = TextTable::Align;
+    TextTable table({{"scene", A::Left}, {"kernel", A::Left}, {"samples", A::Right}, {"MAE", A::Right}, {"max", A::Right},
+                     {"mean AO", A::Right}, {"truth", A::Right}});
+    for (const auto& r : rows)
+        table.add({r.scene, r.kernel, std::to_string(r.samples), TextTable::number(r.meanAbsError, 4),
+                   TextTable::number(r.maxAbsError, 4), TextTable::number(r.meanAo, 4), TextTable::number(r.meanTruth, 4)});
     table.print();
-    if (!out.empty()) {
-        std::error_code ec;
-        std::filesystem::create_directories(out, ec);
-        const std::string path = (std::filesystem::path(out) / "quality.json").string();
-        if (auto st = writeJson(path, doc); !st) return fail(st.error());
-        std::printf("\nwrote %s\n", path.c_str());
+}
+
+}  // namespace
+
+// Shared by `cavity quality` and `cavity_render quality` (which runs on the
+// GPU machine): one parser, one table, one quality.json.
+int qualityCommand(const std::vector<std::string>& argv, const std::string& program) {
+    auto failed = [&](const Error& e) { return fail(program, e); };
+    auto parsed = parseFlags(qualitySpec(program), argv);
+    if (!parsed) return failed(parsed.error());
+    if (parsed->help) {
+        std::cout << parsed->helpText;
+        return 0;
     }
+    auto q = parseQuality(*parsed);
+    if (!q) return failed(q.error());
+    auto steps = planQuality(*q);
+    if (!steps) return failed(steps.error());
+    if (q->filter && steps->empty())
+        return failed(badInput("--filter: matches none of the configurations (see " + program + " --list)"));
+    if (parsed->has("--list")) {
+        for (const auto& step : *steps)
+            for (const auto& id : step.ids) std::cout << id << "\n";
+        return 0;
+    }
+    if (!q->out.empty())
+        if (auto st = checkWritableDir("--out", q->out); !st) return failed(st.error());
+    auto gpu = gpu::createBackend(q->api, q->backend);
+    if (!gpu) return failed(gpu.error());
+    const std::string device = (*gpu)->info().deviceName;
+    std::cerr << program << ": " << gpu::apiName(q->api) << ": " << device << "\n";
+    auto rows = runQuality(**gpu, *steps, parsed->has("--quiet"));
+    if (!rows) return failed(rows.error());
+    printQuality(q->options, *rows);
+    if (q->out.empty()) return 0;
+    std::error_code ec;
+    std::filesystem::create_directories(q->out, ec);
+    const std::string path = (std::filesystem::path(q->out) / "quality.json").string();
+    if (auto st = writeJson(path, qualityJson(*q, device, *rows)); !st) return failed(st.error());
+    std::printf("\nwrote %s\n", path.c_str());
     return 0;
 }
 

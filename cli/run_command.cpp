@@ -1,6 +1,6 @@
 // `cavity run`: a sweep of configurations on one or both backends, with
 // images, results.json and a timing table on stdout.
-#include "cli.h"
+#include "run_sweep.h"
 #include "pipeline/config_id.h"
 #include "images/gbuffer_import.h"
 #include "core/progress.h"
@@ -19,215 +19,6 @@
 namespace cavity::cli {
 
 namespace {
-
-// The flags of cavity run, declared once: --help, the parse and the README's
-// flag table (tests/readme_flags.py checks it against --help) read this.
-const CommandSpec& runSpec() {
-    static const CommandSpec spec = [] {
-        CommandSpec c;
-        c.program = "cavity run";
-        c.description =
-            "Runs a sweep of kernel configurations on one or both backends: images under --out/<id>/, "
-            "results.json, a timing table on stdout, progress on stderr. Every list flag takes "
-            "VALUE[,VALUE..] and the sweep is the product of all lists.";
-        const std::string sweep = "Sweep", timing = "Timing", output = "Device and output";
-        const std::string scenes = kernels::findParam("scene")->help;
-        c.flags = {
-            {"--backend", "gl|vk|all[,..]", "backends to run on (default all)", sweep},
-            {"--kernel", "K[,K..]", "AO kernels (default alchemy; listed below)", sweep},
-            {"--scene", "S[,S..]", scenes + " (default corner)", sweep},
-            {"--resolution", "full|half[,..]", "AO at full or half resolution with a bilateral upsample (default full)", sweep},
-            {"--res", "WxH[,WxH..]", "image sizes (default 320x180; with --gbuffer import, the capture's)", sweep},
-            {"--stage", "compute|fragment[,..]", "shader stage of every pass (default compute)", sweep},
-            {"--gbuffer", "sdf|raster|import[,..]", "G-buffer source: ray-marched, rasterised meshes, or a capture (default sdf)", sweep},
-            {"--gbuffer-file", "FILE.exr", "the capture for --gbuffer import (multi-channel OpenEXR)", sweep},
-            {"--filter", "REGEX", "run only the configurations whose id matches (searched, as gate and cavity_bench do)", sweep},
-            {"--frames", "N", "measured frames, at least (1..100000; default 50)", timing},
-            {"--warmup", "N", "warm-up frames, at least (0..10000; default 5)", timing},
-            {"--timing", "batch|drained", "batch: back-to-back frames; drained: wait for the GPU after each (default: the device's)", timing},
-            {"--max-noise", "PCT", "stop measuring once the median's noise is under PCT percent (0..100; 0: a fixed count)", timing},
-            {"--max-time", "S", "stop measuring after S seconds (0.001..3600)", timing},
-            {"--device", "K", "device index (0..64; default 0)", output},
-            {"--validation", "", "enable the Vulkan validation layers and the GL debug output", output},
-            {"--out", "DIR", "output folder (default out)", output},
-            {"--list", "", "print the configuration ids this run would measure, one a line, and run nothing", output},
-            {"--quiet", "", "no progress lines on stderr", output},
-        };
-        for (auto& f : kernelParamFlags({"scene"})) c.flags.push_back(std::move(f));
-        c.footer = "\n" + kernelHelp() +
-                   "\nIds read scene/kernel/nSAMPLES/bBLUR[/param=value..]/full|half/WxH/api/stage "
-                   "(README, Configuration ids). Exit codes: 0 ok, 1 NaN written, 2 bad usage, 3 no backend, 4 GPU error.";
-        return c;
-    }();
-    return spec;
-}
-
-struct Sweep {
-    std::vector<std::string> backends{"all"};
-    std::vector<std::string> kernels{"alchemy"};
-    std::vector<std::string> scenes{"corner"};
-    // Every kernel parameter given (--samples, --blur, --radius, ...): one
-    // axis each, its values in the order given.
-    std::map<std::string, std::vector<double>> params;
-    std::vector<std::string> resolutions{"full"};
-    std::vector<std::pair<int, int>> sizes{{320, 180}};
-    std::vector<gpu::Stage> stages{gpu::Stage::Compute};
-    std::vector<std::string> gbuffers{"sdf"};
-    std::string gbufferFile;          // --gbuffer-file
-    bool sizeGiven = false, sceneGiven = false;
-    RunConfig base;
-    RunOptions options;
-    gpu::BackendOptions backend;
-    std::string out = "out";
-    bool list = false, quiet = false;
-    std::optional<std::regex> filter;   // --filter
-    std::string filterText;
-    std::string helpText;               // --help: print this, run nothing
-};
-
-Result<Sweep> parse(const std::vector<std::string>& argv) {
-    Sweep s;
-    CAVITY_ASSIGN(const ParsedFlags parsed, parseFlags(runSpec(), argv));
-    if (parsed.help) {
-        s.helpText = parsed.helpText;
-        return s;
-    }
-    s.backend.validation = parsed.has("--validation");
-    s.list = parsed.has("--list");
-    s.quiet = parsed.has("--quiet");
-    for (const auto& [flag, v] : parsed.values) {
-        if (flag == "--backend") {
-            CAVITY_ASSIGN(s.backends, splitList(flag, v));
-            for (const auto& b : s.backends)
-                if (b != "gl" && b != "vk" && b != "all") return badInput("--backend " + b + ": must be gl, vk or all");
-        } else if (flag == "--kernel") {
-            CAVITY_ASSIGN(s.kernels, splitList(flag, v));
-        } else if (flag == "--scene") {
-            CAVITY_ASSIGN(s.scenes, splitList(flag, v));
-            s.sceneGiven = true;
-        } else if (flag == "--resolution") {
-            CAVITY_ASSIGN(s.resolutions, splitList(flag, v));
-            for (const auto& r : s.resolutions)
-                if (r != "full" && r != "half") return badInput("--resolution " + r + ": must be full or half");
-        } else if (flag == "--res") {
-            s.sizeGiven = true;
-            s.sizes.clear();
-            CAVITY_ASSIGN(const auto items, splitList(flag, v));
-            for (const auto& r : items) {
-                CAVITY_ASSIGN(auto wh, parseResolution("--res", r));
-                s.sizes.push_back(wh);
-            }
-        } else if (flag == "--gbuffer") {
-            CAVITY_ASSIGN(s.gbuffers, splitList(flag, v));
-            for (const auto& g : s.gbuffers)
-                if (g != "sdf" && g != "raster" && g != "import")
-                    return badInput("--gbuffer " + g + ": must be sdf, raster or import");
-        } else if (flag == "--gbuffer-file") {
-            if (v.empty()) return badInput("--gbuffer-file: missing value");
-            s.gbufferFile = v;
-        } else if (flag == "--stage") {
-            s.stages.clear();
-            CAVITY_ASSIGN(const auto items, splitList(flag, v));
-            for (const auto& st : items) {
-                if (st == "compute") s.stages.push_back(gpu::Stage::Compute);
-                else if (st == "fragment") s.stages.push_back(gpu::Stage::Fragment);
-                else return badInput("--stage " + st + ": must be compute or fragment");
-            }
-        } else if (flag == "--frames") {
-            CAVITY_ASSIGN(s.options.frames, parseInt(flag, v, 1, 100000));
-        } else if (flag == "--warmup") {
-            CAVITY_ASSIGN(s.options.warmup, parseInt(flag, v, 0, 10000));
-        } else if (flag == "--timing") {
-            if (v != "batch" && v != "drained") return badInput("--timing " + v + ": must be batch or drained");
-            s.options.mode = v == "batch" ? TimingMode::Batch : TimingMode::Drained;
-        } else if (flag == "--max-noise") {
-            CAVITY_ASSIGN(const double pct, parseNumber(flag, v, 0, 100));
-            s.options.maxNoise = pct / 100;
-        } else if (flag == "--max-time") {
-            CAVITY_ASSIGN(s.options.maxSeconds, parseNumber(flag, v, 0.001, 3600));
-        } else if (flag == "--device") {
-            CAVITY_ASSIGN(s.backend.deviceIndex, parseInt(flag, v, 0, 64));
-        } else if (flag == "--out") s.out = v;
-        else if (flag == "--filter") {
-            try {
-                s.filter.emplace(v);
-            } catch (const std::regex_error& e) {
-                return badInput("--filter " + v + ": not a regular expression (" + e.what() + ")");
-            }
-            s.filterText = v;
-        } else if (isKernelParam(flag.substr(2))) {
-            // Every kernel parameter sweeps: --radius 0.5,1.0 is two configurations.
-            // Each value is parsed and checked once, here (kernels/params.h).
-            CAVITY_ASSIGN(auto items, splitList(flag, v));
-            const auto& decl = *kernels::findParam(flag.substr(2));
-            std::vector<double> values;
-            for (const auto& item : items) {
-                CAVITY_ASSIGN(double x, kernels::parseValue(decl, item));
-                if (std::find(values.begin(), values.end(), x) != values.end())
-                    return badInput(flag + " '" + v + "': " + item + " is a value given twice");
-                values.push_back(x);
-            }
-            s.params[flag.substr(2)] = std::move(values);
-        }
-    }
-    const bool import = std::find(s.gbuffers.begin(), s.gbuffers.end(), "import") != s.gbuffers.end();
-    if (import && s.gbufferFile.empty())
-        return badInput("--gbuffer import: needs --gbuffer-file FILE (a multi-channel OpenEXR capture)");
-    if (!import && !s.gbufferFile.empty())
-        return badInput("--gbuffer-file " + s.gbufferFile + ": only used with --gbuffer import");
-    const bool onlyImport =
-        std::all_of(s.gbuffers.begin(), s.gbuffers.end(), [](const std::string& g) { return g == "import"; });
-    if (onlyImport && s.sceneGiven)
-        return badInput("--scene " + s.scenes[0] + ": not used with --gbuffer import (the capture is the scene)");
-    return s;
-}
-
-// Expands the sweep axes into validated configurations (API left unset).
-Result<std::vector<RunConfig>> expand(const Sweep& s) {
-    // The kernel parameters' product, each point a set of (name, value) pairs.
-    std::vector<std::vector<std::pair<std::string, double>>> points{{}};
-    for (const auto& [name, values] : s.params) {
-        std::vector<std::vector<std::pair<std::string, double>>> next;
-        for (const auto& point : points)
-            for (const auto& v : values) {
-                auto p = point;
-                p.emplace_back(name, v);
-                next.push_back(std::move(p));
-            }
-        points = std::move(next);
-    }
-    std::vector<RunConfig> out;
-    for (const auto& scene : s.scenes)
-        for (const auto& kernel : s.kernels)
-            for (const auto& point : points)
-                for (const auto& res : s.resolutions)
-                    for (const auto& [w, h] : s.sizes)
-                        for (auto stage : s.stages)
-                            for (const auto& gbuffer : s.gbuffers) {
-                                RunConfig c = s.base;
-                                c.raster = gbuffer == "raster";
-                                c.kernel = kernel;
-                                if (gbuffer == "import") {
-                                    // The capture is the scene: one configuration, whatever --scene says.
-                                    if (scene != s.scenes.front()) continue;
-                                    c.gbufferFile = s.gbufferFile;
-                                } else {
-                                    CAVITY_TRY(setParam(c, "scene", scene));
-                                }
-                                for (const auto& [name, v] : point) c.params[name] = v;
-                                c.half = res == "half";
-                                c.width = w;
-                                c.height = h;
-                                c.stage = stage;
-                                // A sweep skips the combinations a kernel lacks (SSDO at
-                                // half resolution); asked for alone, they are an error.
-                                const bool alone = s.kernels.size() == 1 && s.resolutions.size() == 1;
-                                if (c.half && !supportsHalf(c.kernel) && !alone) continue;
-                                CAVITY_TRY(validate(c));
-                                out.push_back(c);
-                            }
-    return out;
-}
 
 // A CV above this is flagged in the table: the timing was noisy enough that
 // the median may move by more than a kernel change one wants to see.
@@ -287,132 +78,154 @@ void printTable(const std::vector<RunRecord>& runs) {
                         r.device.deviceName.c_str(), r.timing.clockNote.c_str());
 }
 
-}  // namespace
+// Imported G-buffers by size, each read once, before anything runs or is written.
+using Captures = std::map<std::pair<int, int>, std::shared_ptr<const GBufferImages>>;
 
-int runCommand(const std::vector<std::string>& argv) {
-    auto parsed = parse(argv);
-    if (!parsed) {
-        std::cerr << "cavity run: " << parsed.error().message << "\n";
-        return exitCode(parsed.error());
-    }
-    Sweep& s = *parsed;
-    if (!s.helpText.empty()) {
-        std::cout << s.helpText;
-        return 0;
-    }
-    // An imported G-buffer is read here, before anything runs or is written;
-    // without --res the run takes the capture's size.
-    std::map<std::pair<int, int>, std::shared_ptr<const GBufferImages>> captures;
-    if (!s.gbufferFile.empty() && !s.sizeGiven) {
-        auto g = importGBuffer(s.gbufferFile);
-        if (!g) {
-            std::cerr << "cavity run: " << g.error().message << "\n";
-            return exitCode(g.error());
-        }
-        const std::pair<int, int> size{g->position.width, g->position.height};
-        s.sizes = {size};
-        captures[size] = std::make_shared<const GBufferImages>(std::move(*g));
-    }
-    auto configs = expand(s);
-    if (!configs) {
-        std::cerr << "cavity run: " << configs.error().message << "\n";
-        return exitCode(configs.error());
-    }
-    for (auto& c : *configs) {
+// Without --res, a run with --gbuffer import takes the capture's size.
+Status readCaptureSize(Sweep& s, Captures& captures) {
+    if (s.gbufferFile.empty() || s.sizeGiven) return {};
+    CAVITY_ASSIGN(auto g, importGBuffer(s.gbufferFile));
+    const std::pair<int, int> size{g.position.width, g.position.height};
+    s.sizes = {size};
+    captures[size] = std::make_shared<const GBufferImages>(std::move(g));
+    return {};
+}
+
+Status attachCaptures(std::vector<RunConfig>& configs, Captures& captures) {
+    for (auto& c : configs) {
         if (!c.imported()) continue;
         auto& images = captures[{c.width, c.height}];
         if (!images) {
-            auto g = importGBuffer(c.gbufferFile, c.width, c.height);
-            if (!g) {
-                std::cerr << "cavity run: " << g.error().message << "\n";
-                return exitCode(g.error());
-            }
-            images = std::make_shared<const GBufferImages>(std::move(*g));
+            CAVITY_ASSIGN(auto g, importGBuffer(c.gbufferFile, c.width, c.height));
+            images = std::make_shared<const GBufferImages>(std::move(g));
         }
         c.gbufferImages = images;
     }
+    return {};
+}
+
+// What runs, in the order it runs: every configuration on each API, those
+// --filter selects. --list prints exactly these ids.
+Result<std::vector<RunConfig>> planRuns(const Sweep& s, const std::vector<RunConfig>& configs,
+                                        const std::vector<gpu::Api>& apis) {
+    std::vector<RunConfig> plan;
+    for (auto api : apis)
+        for (auto c : configs) {
+            c.api = api;
+            if (s.filter && !std::regex_search(configId(c), *s.filter)) continue;
+            plan.push_back(std::move(c));
+        }
+    if (s.filter && plan.empty())
+        return badInput("--filter " + s.filterText + ": matches none of the " + std::to_string(configs.size() * apis.size()) +
+                        " configurations of this sweep");
+    return plan;
+}
+
+std::vector<gpu::Api> sweepApis(const Sweep& s) {
     std::vector<gpu::Api> apis;
     for (const auto& b : s.backends) {
         if (b == "gl" || b == "all") apis.push_back(gpu::Api::OpenGL);
         if (b == "vk" || b == "all") apis.push_back(gpu::Api::Vulkan);
     }
-    // What runs, in the order it runs: every configuration on each API,
-    // those --filter selects. --list prints exactly these ids.
-    std::vector<std::pair<gpu::Api, RunConfig>> plan;
-    for (auto api : apis)
-        for (auto c : *configs) {
-            c.api = api;
-            if (s.filter && !std::regex_search(configId(c), *s.filter)) continue;
-            plan.emplace_back(api, std::move(c));
-        }
-    if (s.filter && plan.empty()) {
-        std::cerr << "cavity run: --filter " << s.filterText << ": matches none of the " << configs->size() * apis.size()
-                  << " configurations of this sweep\n";
-        return int(ErrorCode::BadInput);
-    }
-    if (s.list) {
-        for (const auto& [api, c] : plan) std::cout << configId(c) << "\n";
-        return 0;
-    }
-    if (auto st = checkWritableDir("--out", s.out); !st) {
-        std::cerr << "cavity run: " << st.error().message << "\n";
-        return exitCode(st.error());
-    }
+    return apis;
+}
+
+// What the runs gave: their records, the errors, and the worst exit code.
+struct RunOutcome {
     std::vector<RunRecord> runs;
     std::vector<RunError> errors;
     int worst = 0;
-    std::string command = "cavity run";
-    for (const auto& a : argv) command += " " + a;
-    s.options.outDir = s.out;
+    void failed(const std::string& api, const std::string& what, const Error& e) {
+        std::cerr << "cavity run: " << what << e.message << "\n";
+        errors.push_back({api, exitCode(e), what + e.message});
+        worst = std::max(worst, exitCode(e));
+    }
+};
+
+// The plan's configurations of one API on its backend, in plan order.
+void runOnBackend(gpu::Backend& gpu, gpu::Api api, const std::vector<RunConfig>& plan, const RunOptions& options,
+                  Progress& progress, RunOutcome& out) {
+    for (const auto& c : plan) {
+        if (c.api != api) continue;
+        progress.start(configId(c));
+        auto r = runConfig(gpu, c, options);
+        if (!r) {
+            progress.interrupt();
+            out.failed(gpu::apiName(api), configId(c) + ": ", r.error());
+            continue;
+        }
+        if (!r->debugMessages.empty() || !r->nonFinite.empty()) progress.interrupt();
+        for (const auto& m : r->debugMessages) std::cerr << "cavity run: " << gpu::apiName(api) << " debug: " << m << "\n";
+        // Exit 1: the run finished, but a pass wrote NaN or infinity
+        // (README, Exit codes); its images and results are still written.
+        for (const auto& n : r->nonFinite) {
+            std::cerr << "cavity run: " << configId(c) << ": " << n.message() << "\n";
+            out.worst = std::max(out.worst, int(ErrorCode::Regression));
+        }
+        out.runs.push_back(std::move(*r));
+    }
+}
+
+RunOutcome runPlan(const Sweep& s, const std::vector<gpu::Api>& apis, const std::vector<RunConfig>& plan) {
+    RunOutcome out;
+    RunOptions options = s.options;
+    options.outDir = s.out;
     Progress progress(plan.size(), s.quiet);
     for (auto api : apis) {
         auto backend = gpu::createBackend(api, s.backend);
+        progress.interrupt();
         if (!backend) {
-            progress.interrupt();
-            std::cerr << "cavity run: " << backend.error().message << "\n";
-            errors.push_back({gpu::apiName(api), exitCode(backend.error()), backend.error().message});
-            worst = std::max(worst, exitCode(backend.error()));
+            out.failed(gpu::apiName(api), "", backend.error());
             continue;
         }
-        auto& gpu = **backend;
-        progress.interrupt();
-        std::cerr << "cavity run: " << gpu::apiName(api) << ": " << gpu.info().deviceName << " (" << gpu.info().driver
-                  << ")\n";
-        for (const auto& [planApi, c] : plan) {
-            if (planApi != api) continue;
-            progress.start(configId(c));
-            auto r = runConfig(gpu, c, s.options);
-            if (!r) {
-                progress.interrupt();
-                std::cerr << "cavity run: " << configId(c) << ": " << r.error().message << "\n";
-                errors.push_back({gpu::apiName(api), exitCode(r.error()), configId(c) + ": " + r.error().message});
-                worst = std::max(worst, exitCode(r.error()));
-                continue;
-            }
-            if (!r->debugMessages.empty() || !r->nonFinite.empty()) progress.interrupt();
-            for (const auto& m : r->debugMessages) std::cerr << "cavity run: " << gpu::apiName(api) << " debug: " << m << "\n";
-            // Exit 1: the run finished, but a pass wrote NaN or infinity
-            // (README, Exit codes); its images and results are still written.
-            for (const auto& n : r->nonFinite) {
-                std::cerr << "cavity run: " << configId(c) << ": " << n.message() << "\n";
-                worst = std::max(worst, int(ErrorCode::Regression));
-            }
-            runs.push_back(std::move(*r));
-        }
+        std::cerr << "cavity run: " << gpu::apiName(api) << ": " << (*backend)->info().deviceName << " ("
+                  << (*backend)->info().driver << ")\n";
+        runOnBackend(**backend, api, plan, options, progress, out);
     }
     progress.interrupt();
-    if (!runs.empty()) printTable(runs);
-    if (!runs.empty() || !errors.empty()) {
-        std::error_code ec;
-        std::filesystem::create_directories(s.out, ec);
-        const std::string path = (std::filesystem::path(s.out) / "results.json").string();
-        if (auto st = writeJson(path, resultsDocument(runs, errors, command)); !st) {
-            std::cerr << "cavity run: " << st.error().message << "\n";
-            return exitCode(st.error());
-        }
-        std::printf("\nwrote %s\n", path.c_str());
+    return out;
+}
+
+Status writeResults(const Sweep& s, const RunOutcome& out, const std::vector<std::string>& argv) {
+    std::string command = "cavity run";
+    for (const auto& a : argv) command += " " + a;
+    std::error_code ec;
+    std::filesystem::create_directories(s.out, ec);
+    const std::string path = (std::filesystem::path(s.out) / "results.json").string();
+    CAVITY_TRY(writeJson(path, resultsDocument(out.runs, out.errors, command)));
+    std::printf("\nwrote %s\n", path.c_str());
+    return {};
+}
+
+}  // namespace
+
+int runCommand(const std::vector<std::string>& argv) {
+    auto fail = [](const Error& e) { return cli::fail("cavity run", e); };
+    auto parsed = parseSweep(argv);
+    if (!parsed) return fail(parsed.error());
+    Sweep& s = *parsed;
+    if (!s.helpText.empty()) {
+        std::cout << s.helpText;
+        return 0;
     }
-    return worst;
+    Captures captures;
+    if (auto st = readCaptureSize(s, captures); !st) return fail(st.error());
+    auto configs = expandSweep(s);
+    if (!configs) return fail(configs.error());
+    if (auto st = attachCaptures(*configs, captures); !st) return fail(st.error());
+    const auto apis = sweepApis(s);
+    auto plan = planRuns(s, *configs, apis);
+    if (!plan) return fail(plan.error());
+    if (s.list) {
+        for (const auto& c : *plan) std::cout << configId(c) << "\n";
+        return 0;
+    }
+    if (auto st = checkWritableDir("--out", s.out); !st) return fail(st.error());
+    const RunOutcome out = runPlan(s, apis, *plan);
+    if (!out.runs.empty()) printTable(out.runs);
+    if (out.runs.empty() && out.errors.empty()) return out.worst;
+    if (auto st = writeResults(s, out, argv); !st) return fail(st.error());
+    return out.worst;
 }
 
 }  // namespace cavity::cli

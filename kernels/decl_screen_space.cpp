@@ -44,7 +44,7 @@ KernelDecl hemisphere() {
     k.name = "hemisphere";
     k.file = "ssao_hemisphere.glsl";
     k.summary = "hemisphere-kernel SSAO (Crytek / Chapman): n points in the normal hemisphere tested against depth";
-    k.seeds = {"004_94976db8e6612027.txt", "002_fea56af43bca7c1b.txt"};
+    k.sources = {"Mittring, SIGGRAPH 2007 course", "Chapman, SSAO tutorial 2013"};
     k.role = Role::Ao;
     k.params = {
         use("samples", "kernel points in the normal hemisphere"),
@@ -83,7 +83,7 @@ KernelDecl hemisphereCosine() {
     KernelDecl k = hemisphere();
     k.name = "hemisphere_cosine";
     k.summary = "hemisphere-kernel SSAO walking n/steps cosine-weighted rays in `steps` (4) steps to R (blocked if any step is)";
-    k.seeds = {"004_94976db8e6612027.txt", "001_8103f59163db3ce3.txt"};
+    k.sources = {"Mittring, SIGGRAPH 2007 course", "Evans, SIGGRAPH 2006 course"};
     for (auto& p : k.params) {
         if (p.name() == "samples") p.note = "ceil(n / steps) cosine-weighted rays of up to `steps` points";
         if (p.name() == "step_jitter") p.def = 1;
@@ -167,7 +167,7 @@ KernelDecl ssdo() {
     k.name = "ssdo";
     k.file = "ssdo_direct.glsl";
     k.summary = "screen-space directional occlusion (Ritschel et al. 2009): sky visibility and direct sky radiance";
-    k.seeds = {"003_9aa4a2c3c5c6ee23.txt"};
+    k.sources = {"Ritschel et al., I3D 2009"};
     k.role = Role::Ao;
     k.params = {
         use("samples", "hemisphere directions"),

@@ -32,7 +32,7 @@ KernelDecl sdfKernel(std::string name, std::string file, std::string summary, do
     k.file = std::move(file);
     k.summary = std::move(summary);
     k.role = Role::Ao;
-    k.seeds = {"001_8103f59163db3ce3.txt"};
+    k.sources = {"Evans, SIGGRAPH 2006 course"};
     k.params = {
         use("scene"),
         use("view"),
@@ -57,7 +57,7 @@ KernelDecl groundTruth() {
     // Named with --kernel it runs in the AO slot; sweeps over every AO
     // kernel leave it out (seconds per frame at 320x180 on a CPU renderer).
     k.role = Role::Reference;
-    k.seeds = {"001_8103f59163db3ce3.txt"};
+    k.sources = {"Evans, SIGGRAPH 2006 course"};
     k.params = {
         use("scene"),
         use("view"),

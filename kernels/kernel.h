@@ -95,9 +95,9 @@ struct KernelDecl {
     std::string name;                   // "alchemy"
     std::string file;                   // "ssao_alchemy.glsl", relative to kernels/
     std::string summary;                // one line for --help
-    // The seed files (/work/shared/seeds, README "Kernels") the kernel
-    // follows, for --help: "004_94976db8e6612027.txt". Empty: our own.
-    std::vector<std::string> seeds;
+    // The published sources the kernel follows, for --help ("McGuire et al.,
+    // HPG 2011"; docs/kernels.md, "Sources", says what each gives). Empty: our own.
+    std::vector<std::string> sources;
     std::vector<KernelParam> params;   // uniform-block order
     std::vector<InputDecl> inputs;
     std::vector<OutputDecl> outputs;

@@ -39,7 +39,7 @@ KernelDecl alchemy() {
     k.name = "alchemy";
     k.file = "ssao_alchemy.glsl";
     k.summary = "Alchemy screen-space ambient obscurance (McGuire et al. 2011): spiral samples in a world-radius disc";
-    k.seeds = {"000_79d41de70034b569.txt"};
+    k.sources = {"McGuire et al., HPG 2011"};
     k.role = Role::Ao;
     // scale and contrast: the seed (000_79d41de70034b569.txt) tunes them per
     // camera distance (s = 2.0, k = 3.0 for a room seen from afar, 1.7 and
@@ -149,7 +149,7 @@ KernelDecl alchemyFast() {
     k.name = "alchemy_fast";
     k.file = "ssao_alchemy_fast.glsl";
     k.summary = "Alchemy obscurance on a linear-depth mip pyramid with a separable blur (after SAO, McGuire et al. 2012)";
-    k.seeds = {"000_79d41de70034b569.txt"};
+    k.sources = {"McGuire et al., HPG 2011"};
     k.inputs = {{"zmip", {gpu::Filter::Nearest, gpu::Address::ClampToEdge, true}}, {"normal", {}}};
     k.outputs = {{"ao", Format::R16F}, {"ao_key", Format::RGBA16F}};
     // Sample i's spiral direction at phase 0, (cos, sin) of (i + 0.5) 7/9
@@ -179,7 +179,7 @@ KernelDecl hemisphereFast() {
     k.name = "hemisphere_fast";
     k.file = "ssao_hemisphere_fast.glsl";
     k.summary = "hemisphere_cosine on a linear-depth mip pyramid, tested along the receiver's normal, with a separable blur";
-    k.seeds = {"004_94976db8e6612027.txt", "001_8103f59163db3ce3.txt"};
+    k.sources = {"Mittring, SIGGRAPH 2007 course", "Evans, SIGGRAPH 2006 course"};
     k.role = Role::Ao;
     k.params = {
         use("samples", "ceil(n / steps) cosine-weighted rays of up to `steps` points"),

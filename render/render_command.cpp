@@ -50,6 +50,11 @@ const cli::CommandSpec& renderSpec() {
         "",
         "\nExit codes: 0 every configuration rendered, 2 bad input (nothing written), 3 a backend did not start, "
         "4 a configuration failed on the GPU.",
+        {
+            "cavity_render --matrix gpu --out out/render",
+            "cavity_render --matrix ci --backend vk --kernel-source ssao_alchemy.glsl=my_alchemy.glsl --out out/edit",
+            "cavity_render quality --kernel alchemy_fast --res 1920x1080",
+        },
     };
     return spec;
 }

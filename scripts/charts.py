@@ -40,7 +40,7 @@ Subcommand: quality against cost
 
 plots each AO kernel x sample count x full/half as one point: the error
 against the ground truth (mean over the scenes of each `cavity quality`
-row's MAE; quality.json, schema cavity-quality/1, one file per resolution)
+row's MAE; quality.json, schema cavity.quality/1, one file per resolution)
 against the AO passes' GPU time from cavity_bench JSON (the median over
 repetitions of pass_ao_ms plus the passes that belong to the AO estimate:
 depth, pyramid, box, downsample, upsample; the bilateral blur and composite are the

@@ -350,7 +350,7 @@ class QualityCost(unittest.TestCase):
         def quality(res, maes):
             rows = [{"scene": sc, "kernel": k, "samples": n, "mae": m, "max_abs": 1, "mean_ao": 0.9,
                      "mean_truth": 0.9, "pixels": 10} for (sc, k, n), m in maes.items()]
-            doc = {"schema": "cavity-quality/1", "backend": "vk", "device": "Test GPU", "width": 1920, "height": 1080,
+            doc = {"schema": "cavity.quality/1", "backend": "vk", "device": "Test GPU", "width": 1920, "height": 1080,
                    "rays": 1024, "resolution": res, "reach": "shared", "radius": 0.5, "rows": rows}
             path = os.path.join(d, f"quality_{res}.json")
             with open(path, "w") as f:

@@ -57,7 +57,7 @@ TEST(ToolFlags, RenderHelpNamesEveryFlag) {
         EXPECT_NE(o.output.find(f), std::string::npos) << f;
 }
 
-// The flags --help prints, as README's sections name them.
+// The flags --help prints, as the docs name them.
 std::set<std::string> helpFlags(const std::string& help) {
     std::set<std::string> flags;
     const std::regex flag(R"(\n  (--[a-z-]+))");
@@ -67,24 +67,26 @@ std::set<std::string> helpFlags(const std::string& help) {
     return flags;
 }
 
-std::string readmeSection(const std::string& from, const std::string& to) {
-    std::ifstream f(std::string(CAVITY_SOURCE_DIR) + "/README.md");
+// The text of a docs/ page between two markers (empty when either is missing).
+std::string docSection(const std::string& page, const std::string& from, const std::string& to) {
+    std::ifstream f(std::string(CAVITY_SOURCE_DIR) + "/docs/" + page);
     const std::string text((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
     const size_t a = text.find(from), b = text.find(to, a);
     return a == std::string::npos || b == std::string::npos ? "" : text.substr(a, b - a);
 }
 
-TEST(ToolFlags, ReadmeNamesEveryFlagHelpPrints) {
-    const std::string bench = readmeSection("## Benchmarks and charts", "`--benchmark_filter`, `--benchmark_repetitions`");
-    const std::string render = readmeSection("    cavity_render --matrix NAME", "    cavity gate judge RENDER_DIR");
+TEST(ToolFlags, DocsNameEveryFlagHelpPrints) {
+    const std::string bench = docSection("benchmarking.md", "- Own flags:", "a `--benchmark_filter` that matches");
+    const std::string render = docSection("gate.md", "    cavity_render --matrix NAME", "    cavity gate judge RENDER_DIR");
     ASSERT_FALSE(bench.empty());
     ASSERT_FALSE(render.empty());
     const auto benchFlags = helpFlags(runBinary(CAVITY_BENCH_EXE, "--help", "", "2>/dev/null").output);
     const auto renderFlags = helpFlags(runBinary(CAVITY_RENDER_EXE, "--help", "", "2>/dev/null").output);
     EXPECT_GE(benchFlags.size(), 10u);
     EXPECT_GE(renderFlags.size(), 12u);
-    for (const auto& f : benchFlags) EXPECT_NE(bench.find("`" + f), std::string::npos) << f << ": not in README, Benchmarks";
-    for (const auto& f : renderFlags) EXPECT_NE(render.find(f), std::string::npos) << f << ": not in README's cavity_render usage";
+    for (const auto& f : benchFlags)
+        EXPECT_NE(bench.find("`" + f), std::string::npos) << f << ": not in docs/benchmarking.md, \"Own flags\"";
+    for (const auto& f : renderFlags) EXPECT_NE(render.find(f), std::string::npos) << f << ": not in docs/gate.md's cavity_render usage";
 }
 
 struct BadCase {

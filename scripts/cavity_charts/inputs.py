@@ -194,8 +194,11 @@ def load_quality(path):
         raise BadInput(f"charts: {path}: cannot read ({e.strerror or e})")
     except ValueError as e:   # not UTF-8, not JSON, a broken gzip
         raise BadInput(f"charts: {path}: not JSON ({e})")
-    if not isinstance(data, dict) or data.get("schema") != "cavity-quality/1" or not isinstance(data.get("rows"), list):
-        raise BadInput(f"charts: {path}: not a cavity quality.json (schema cavity-quality/1 with rows)")
+    # cavity-quality/1 is the same document under its first name (the results
+    # committed before every schema was named cavity.X/N).
+    schemas = ("cavity.quality/1", "cavity-quality/1")
+    if not isinstance(data, dict) or data.get("schema") not in schemas or not isinstance(data.get("rows"), list):
+        raise BadInput(f"charts: {path}: not a cavity quality.json (schema cavity.quality/1 with rows)")
     res = data.get("resolution", "full")
     rows = []
     for i, r in enumerate(data["rows"]):

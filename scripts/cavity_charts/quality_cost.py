@@ -4,7 +4,7 @@
                            [--api vk|gl] [--size WxH] [--note TEXT]
 
 One point per AO kernel x sample count x full/half: the mean over the scenes
-of each `cavity quality` row's MAE (quality.json, schema cavity-quality/1)
+of each `cavity quality` row's MAE (quality.json, schema cavity.quality/1)
 against the median over repetitions of pass_ao_ms plus the passes that belong
 to the AO estimate (AO_COST_PASSES) of corner/<kernel>/n<N>/b4/<res>/<size>/
 <api>/compute in cavity_bench JSON. The Pareto front is drawn and ringed.
@@ -163,7 +163,7 @@ def main(argv):
     plt.close(fig)
     path = os.path.join(args.out, "quality_cost.json")
     with open(path, "w") as f:
-        json.dump({"schema": "cavity-quality-cost/1", "api": args.api, "size": args.size, "device": device,
+        json.dump({"schema": "cavity.quality_cost/1", "api": args.api, "size": args.size, "device": device,
                    "quality": [{"file": q, "header": {k: v for k, v in h.items() if k != "rows"}}
                                for q, h in zip(args.quality, headers)],
                    "points": points, "unmatched": unmatched}, f, indent=2)
