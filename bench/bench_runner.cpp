@@ -51,6 +51,68 @@ std::map<std::string, std::string>& configurationClocks() {
     return clocks;
 }
 
+// Each pass's floor and its median over it; no counters where the
+// pass has no floor (results.json's floor_reason says why).
+void setFloorCounters(benchmark::State& state, const gpu::Backend& gpu, const PassChain& chain, const RunConfig& c,
+                      const Timing& t) {
+    const auto& passes = chain.passes();
+    const GpuClocks* gpuClocks = GpuClocks::forDevice(gpu.info());
+    const DeviceFloor device = deviceFloor(gpu.info(), gpuClocks ? gpuClocks->maxSmMhz() : std::nullopt);
+    for (size_t i = 0; i < passes.size(); ++i) {
+        const auto f = passFloor(device, passes[i].kernel, c.params, double(chain.passPixels(i)));
+        if (!f.floor) continue;
+        state.counters["floor_" + passes[i].name + "_ms"] = f.floor->ms();
+        state.counters["over_floor_" + passes[i].name] = t.passes[i].stats.median / f.floor->ms();
+    }
+}
+
+// Each pass's median, the AO pipeline's throughput, and the configuration.
+void setWorkCounters(benchmark::State& state, const PassChain& chain, const RunConfig& c, const Timing& t) {
+    const auto& passes = chain.passes();
+    double pixels = 0, samples = 0, bytes = 0;
+    for (size_t i = 0; i < passes.size(); ++i) {
+        if (passes[i].name == "gbuffer") {
+            state.counters["pass_gbuffer_ms"] = t.passes[i].stats.median;
+            continue;
+        }
+        const double px = double(chain.passPixels(i));
+        samples += px * aoSamplesPerPixel(passes[i], c);
+        bytes += px * bytesPerPixel(passes[i], c);
+        state.counters["pass_" + passes[i].name + "_ms"] = t.passes[i].stats.median;
+    }
+    pixels = double(c.width) * c.height;
+    using benchmark::Counter;
+    state.counters["MP/s"] = Counter(pixels / 1e6, Counter::kIsIterationInvariantRate);
+    state.counters["samples/s"] = Counter(samples, Counter::kIsIterationInvariantRate);
+    state.counters["bytes/s"] = Counter(bytes, Counter::kIsIterationInvariantRate, Counter::kIs1024);
+    state.counters["width"] = c.width;
+    state.counters["height"] = c.height;
+    state.counters["samples"] = c.samples();
+    state.counters["blur"] = c.blur();
+    state.counters["half"] = c.half;
+    state.counters["fragment"] = c.stage == gpu::Stage::Fragment;
+}
+
+// How this repetition was measured, and at which clocks.
+void setTimingCounters(benchmark::State& state, const Timing& t) {
+    state.counters["frames"] = double(t.frame.ms.size());
+    state.counters["batch_frames"] = t.batchFrames;
+    state.counters["noise_pct"] = std::isfinite(t.noise) ? 100.0 * t.noise : -1.0;
+    state.counters["rejected_frames"] = t.rejectedFrames;
+    state.counters["warmup_s"] = t.warmupSeconds;
+    if (!t.clocks.source.empty()) {
+        state.counters["sm_mhz_min"] = t.clocks.smMin;
+        state.counters["sm_mhz_median"] = t.clocks.smMedian;
+        state.counters["sm_mhz_max"] = t.clocks.smMax;
+        state.counters["mem_mhz_median"] = t.clocks.memMedian;
+    }
+    std::string label = "clock=" + t.clock + " mode=" + timingModeName(t.mode) + " stop=" + t.stop;
+    if (t.steadyChecked && !t.steady) label += " unsteady-warmup";
+    if (t.clocks.moved()) label += " sm-clock-moved";
+    if (t.rejectedFrames) label += " rejected=" + std::to_string(t.rejectedFrames);
+    state.SetLabel(label);
+}
+
 // One benchmark iteration is one whole measurement (harness/measure/timing.h: batched
 // frames after a steady warm-up, stopped on noise), so every Google Benchmark
 // repetition is an independent measurement and the repetitions' spread is the
@@ -94,55 +156,9 @@ void run(benchmark::State& state, const Bench& b) {
         state.SetIterationTime(summarize(pipeline).median / 1000.0);
     }
     const RunConfig& c = b.config;
-    // Each pass's floor and its median over it; no counters where the
-    // pass has no floor (results.json's floor_reason says why).
-    const GpuClocks* gpuClocks = GpuClocks::forDevice(gpu.info());
-    const DeviceFloor device = deviceFloor(gpu.info(), gpuClocks ? gpuClocks->maxSmMhz() : std::nullopt);
-    for (size_t i = 0; i < passes.size(); ++i) {
-        const auto f = passFloor(device, passes[i].kernel, c.params, double(chains[0]->passPixels(i)));
-        if (!f.floor) continue;
-        state.counters["floor_" + passes[i].name + "_ms"] = f.floor->ms();
-        state.counters["over_floor_" + passes[i].name] = t.passes[i].stats.median / f.floor->ms();
-    }
-    double pixels = 0, samples = 0, bytes = 0;
-    for (size_t i = 0; i < passes.size(); ++i) {
-        if (passes[i].name == "gbuffer") {
-            state.counters["pass_gbuffer_ms"] = t.passes[i].stats.median;
-            continue;
-        }
-        const double px = double(chains[0]->passPixels(i));
-        samples += px * aoSamplesPerPixel(passes[i], c);
-        bytes += px * bytesPerPixel(passes[i], c);
-        state.counters["pass_" + passes[i].name + "_ms"] = t.passes[i].stats.median;
-    }
-    pixels = double(c.width) * c.height;
-    using benchmark::Counter;
-    state.counters["MP/s"] = Counter(pixels / 1e6, Counter::kIsIterationInvariantRate);
-    state.counters["samples/s"] = Counter(samples, Counter::kIsIterationInvariantRate);
-    state.counters["bytes/s"] = Counter(bytes, Counter::kIsIterationInvariantRate, Counter::kIs1024);
-    state.counters["width"] = c.width;
-    state.counters["height"] = c.height;
-    state.counters["samples"] = c.samples();
-    state.counters["blur"] = c.blur();
-    state.counters["half"] = c.half;
-    state.counters["fragment"] = c.stage == gpu::Stage::Fragment;
-    // How this repetition was measured, and at which clocks.
-    state.counters["frames"] = double(t.frame.ms.size());
-    state.counters["batch_frames"] = t.batchFrames;
-    state.counters["noise_pct"] = std::isfinite(t.noise) ? 100.0 * t.noise : -1.0;
-    state.counters["rejected_frames"] = t.rejectedFrames;
-    state.counters["warmup_s"] = t.warmupSeconds;
-    if (!t.clocks.source.empty()) {
-        state.counters["sm_mhz_min"] = t.clocks.smMin;
-        state.counters["sm_mhz_median"] = t.clocks.smMedian;
-        state.counters["sm_mhz_max"] = t.clocks.smMax;
-        state.counters["mem_mhz_median"] = t.clocks.memMedian;
-    }
-    std::string label = "clock=" + t.clock + " mode=" + timingModeName(t.mode) + " stop=" + t.stop;
-    if (t.steadyChecked && !t.steady) label += " unsteady-warmup";
-    if (t.clocks.moved()) label += " sm-clock-moved";
-    if (t.rejectedFrames) label += " rejected=" + std::to_string(t.rejectedFrames);
-    state.SetLabel(label);
+    setFloorCounters(state, gpu, *chains[0], c, t);
+    setWorkCounters(state, *chains[0], c, t);
+    setTimingCounters(state, t);
 }
 
 // What an empty timestamp pair reads: the floor under every pass time.

@@ -32,6 +32,39 @@ SyncScope shaderScope(const PipelineRes& pipe, VkPipelineStageFlags2 stages) {
     return s;
 }
 
+// What a draw may touch. Bindings are shared by both stages (backend.h); a
+// load or clear and the store of an attachment run in its attachment stage.
+SyncScope drawScope(const PipelineRes& pipe, bool clear) {
+    SyncScope scope = shaderScope(pipe, VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT);
+    scope |= {VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+              VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT | (clear ? 0 : VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT)};
+    if (pipe.depth)
+        scope |= {VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
+                  VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT};
+    return scope;
+}
+
+// The draw itself, inside dynamic rendering over the whole target area.
+void recordRendering(const Device& d, VkCommandBuffer cmd, const PipelineRes& pipe,
+                     const std::vector<VkRenderingAttachmentInfo>& colors, const VkRenderingAttachmentInfo& depth,
+                     int width, int height, int vertexCount) {
+    auto rendering = vkStruct<VkRenderingInfo>(VK_STRUCTURE_TYPE_RENDERING_INFO);
+    rendering.renderArea = {{0, 0}, {uint32_t(width), uint32_t(height)}};
+    rendering.layerCount = 1;
+    rendering.colorAttachmentCount = uint32_t(colors.size());
+    rendering.pColorAttachments = colors.data();
+    rendering.pDepthAttachment = pipe.depth ? &depth : nullptr;
+    d.cmdBeginRendering(cmd, &rendering);
+    // Viewport y = 0 at row 0 with positive height: NDC y = -1 lands on row 0,
+    // the first row in memory, as backend.h promises.
+    const VkViewport viewport{0, 0, float(width), float(height), 0.0f, 1.0f};
+    vkCmdSetViewport(cmd, 0, 1, &viewport);
+    vkCmdSetScissor(cmd, 0, 1, &rendering.renderArea);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe.pipeline);
+    vkCmdDraw(cmd, uint32_t(vertexCount), 1, 0, 0);
+    d.cmdEndRendering(cmd);
+}
+
 }  // namespace
 
 void VulkanBackend::fail(Error e) {
@@ -216,30 +249,9 @@ Status VulkanBackend::recordDraw(const PipelineRes& pipe, std::span<const Bind> 
     if (width == 0) return internal(who + ": no render targets");
 
     CAVITY_TRY(bindResources(pipe, binds, VK_PIPELINE_BIND_POINT_GRAPHICS, who));
-    // Bindings are shared by both stages (backend.h); a load or clear and the
-    // store of an attachment run in its attachment stage.
-    SyncScope scope = shaderScope(pipe, VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT);
-    scope |= {VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
-              VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT | (t.clear ? 0 : VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT)};
-    if (pipe.depth)
-        scope |= {VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
-                  VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT};
+    const SyncScope scope = drawScope(pipe, t.clear);
     barriers_.before(*d_, frameCmd_, scope);
-    auto rendering = vkStruct<VkRenderingInfo>(VK_STRUCTURE_TYPE_RENDERING_INFO);
-    rendering.renderArea = {{0, 0}, {uint32_t(width), uint32_t(height)}};
-    rendering.layerCount = 1;
-    rendering.colorAttachmentCount = uint32_t(colors.size());
-    rendering.pColorAttachments = colors.data();
-    rendering.pDepthAttachment = pipe.depth ? &depth : nullptr;
-    d_->cmdBeginRendering(frameCmd_, &rendering);
-    // Viewport y = 0 at row 0 with positive height: NDC y = -1 lands on row 0,
-    // the first row in memory, as backend.h promises.
-    const VkViewport viewport{0, 0, float(width), float(height), 0.0f, 1.0f};
-    vkCmdSetViewport(frameCmd_, 0, 1, &viewport);
-    vkCmdSetScissor(frameCmd_, 0, 1, &rendering.renderArea);
-    vkCmdBindPipeline(frameCmd_, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe.pipeline);
-    vkCmdDraw(frameCmd_, uint32_t(vertexCount), 1, 0, 0);
-    d_->cmdEndRendering(frameCmd_);
+    recordRendering(*d_, frameCmd_, pipe, colors, depth, width, height, vertexCount);
     barriers_.recorded(scope.stages, scope.access & kWrites);
     return {};
 }

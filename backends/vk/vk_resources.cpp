@@ -78,7 +78,8 @@ Status createView(Device& d, const ImageRes& img, int first, int levels, VkImage
     return {};
 }
 
-Status initImage(Device& d, ImageRes& img) {
+// The size and level count against what the device and the image allow.
+Status checkImageSize(const Device& d, const ImageRes& img) {
     const ImageDesc& desc = img.desc;
     const uint32_t maxDim = d.props.limits.maxImageDimension2D;
     if (desc.width <= 0 || desc.height <= 0 || uint32_t(desc.width) > maxDim || uint32_t(desc.height) > maxDim)
@@ -87,12 +88,16 @@ Status initImage(Device& d, ImageRes& img) {
     if (img.levels < 1 || img.levels > maxLevels)
         return badInput("createImage " + img.describe() + ": " + std::to_string(desc.mipLevels) +
                         " mip levels, at most " + std::to_string(maxLevels));
+    return {};
+}
 
-    // Usage is what the description asks for (every use by default) that the
-    // format's features allow on this device: e.g. R8 storage is optional in
-    // Vulkan. By default a missing use fails at the dispatch or draw that
-    // needs it, naming the image; one asked for fails here. TRANSFER_DST is
-    // always there for the clear below.
+// Usage is what the description asks for (every use by default) that the
+// format's features allow on this device: e.g. R8 storage is optional in
+// Vulkan. By default a missing use fails at the dispatch or draw that
+// needs it, naming the image; one asked for fails here. TRANSFER_DST is
+// always there for clearToGeneral's clear.
+Status chooseUsage(const Device& d, ImageRes& img) {
+    const ImageDesc& desc = img.desc;
     const VkFormat format = toVkFormat(desc.format);
     VkFormatProperties fp;
     vkGetPhysicalDeviceFormatProperties(d.physical, format, &fp);
@@ -121,7 +126,14 @@ Status initImage(Device& d, ImageRes& img) {
             return internal("createImage " + img.describe() + ": '" + d.props.deviceName + "' cannot use " +
                             formatName(desc.format) + " as a " + o.what);
     }
+    return {};
+}
 
+// The image at img.usage, its device-local memory, and its views (the whole
+// chain and each level).
+Status createImageAndViews(Device& d, ImageRes& img) {
+    const ImageDesc& desc = img.desc;
+    const VkFormat format = toVkFormat(desc.format);
     auto ci = vkStruct<VkImageCreateInfo>(VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO);
     ci.imageType = VK_IMAGE_TYPE_2D;
     ci.format = format;
@@ -146,14 +158,18 @@ Status initImage(Device& d, ImageRes& img) {
         img.levelViews.assign(size_t(img.levels), VK_NULL_HANDLE);
         for (int l = 0; l < img.levels; ++l) CAVITY_TRY(createView(d, img, l, 1, img.levelViews[size_t(l)]));
     }
+    return {};
+}
 
-    // The image's one and only layout change. GENERAL stays for every use:
-    // compute passes store to images that later passes sample, and GENERAL is
-    // the layout for storage. Colour targets of fragment passes could go to
-    // COLOR_ATTACHMENT_OPTIMAL and then SHADER_READ_ONLY_OPTIMAL, which lets a
-    // driver compress them; that takes per-image, per-level layout tracking
-    // through frames, uploads and readbacks, and is left until a GPU run
-    // shows it pays (lavapipe has no compression to show it).
+// The image's one and only layout change. GENERAL stays for every use:
+// compute passes store to images that later passes sample, and GENERAL is
+// the layout for storage. Colour targets of fragment passes could go to
+// COLOR_ATTACHMENT_OPTIMAL and then SHADER_READ_ONLY_OPTIMAL, which lets a
+// driver compress them; that takes per-image, per-level layout tracking
+// through frames, uploads and readbacks, and is left until a GPU run
+// shows it pays (lavapipe has no compression to show it).
+Status clearToGeneral(Device& d, const ImageRes& img) {
+    const ImageDesc& desc = img.desc;
     return d.submitOnce("creating " + img.describe(), [&](VkCommandBuffer cmd) {
         const VkImageSubresourceRange all{aspectOf(desc.format), 0, uint32_t(img.levels), 0, 1};
         auto b = vkStruct<VkImageMemoryBarrier>(VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER);
@@ -173,6 +189,13 @@ Status initImage(Device& d, ImageRes& img) {
             vkCmdClearColorImage(cmd, img.image, VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &all);
         }
     });
+}
+
+Status initImage(Device& d, ImageRes& img) {
+    CAVITY_TRY(checkImageSize(d, img));
+    CAVITY_TRY(chooseUsage(d, img));
+    CAVITY_TRY(createImageAndViews(d, img));
+    return clearToGeneral(d, img);
 }
 
 Status checkLevel(const ImageRes& img, int level, const char* op) {

@@ -119,6 +119,34 @@ Result<Capture> open(const std::string& path) {
     return Capture(path, std::move(in));
 }
 
+// The channels the import uses, by name; which groups the file has.
+struct Channels {
+    std::map<std::string, std::vector<float>> planes;
+    bool hasP = false;
+    bool hasAlbedo = false;
+};
+
+// Which channels: all missing ones are reported before any is read.
+Result<Channels> readChannels(Capture& cap) {
+    CAVITY_ASSIGN(const bool hasP, cap.group({"P.X", "P.Y", "P.Z"}, true));
+    if (!hasP && !cap.has("Z"))
+        return cap.error("no position: need channels P.X, P.Y, P.Z or a channel Z (the file has: " + cap.channelList() + ")");
+    CAVITY_ASSIGN(const bool hasN, cap.group({"N.X", "N.Y", "N.Z"}, false));
+    (void)hasN;
+    CAVITY_ASSIGN(const bool hasAlbedo, cap.group({"albedo.R", "albedo.G", "albedo.B"}, true));
+    Channels c;
+    c.hasP = hasP;
+    c.hasAlbedo = hasAlbedo;
+    auto& ch = c.planes;
+    for (const char* n : {"P.X", "P.Y", "P.Z"})
+        if (hasP) { CAVITY_ASSIGN(ch[n], cap.read(n)); }
+    if (!hasP) { CAVITY_ASSIGN(ch["Z"], cap.read("Z")); }
+    for (const char* n : {"N.X", "N.Y", "N.Z"}) { CAVITY_ASSIGN(ch[n], cap.read(n)); }
+    if (hasAlbedo)
+        for (const char* n : {"albedo.R", "albedo.G", "albedo.B"}) { CAVITY_ASSIGN(ch[n], cap.read(n)); }
+    return c;
+}
+
 }  // namespace
 
 Result<GBufferImages> importGBuffer(const std::string& path, int width, int height, FrameFn frameOf) {
@@ -131,21 +159,9 @@ Result<GBufferImages> importGBuffer(const std::string& path, int width, int heig
         return cap.error("wrong size " + size + ": must be the run's --res " + std::to_string(width) + "x" +
                          std::to_string(height) + " (leave out --res to take the file's size)");
 
-    // Which channels: all missing ones are reported before any is read.
-    CAVITY_ASSIGN(const bool hasP, cap.group({"P.X", "P.Y", "P.Z"}, true));
-    if (!hasP && !cap.has("Z"))
-        return cap.error("no position: need channels P.X, P.Y, P.Z or a channel Z (the file has: " + cap.channelList() + ")");
-    CAVITY_ASSIGN(const bool hasN, cap.group({"N.X", "N.Y", "N.Z"}, false));
-    (void)hasN;
-    CAVITY_ASSIGN(const bool hasAlbedo, cap.group({"albedo.R", "albedo.G", "albedo.B"}, true));
-
-    std::map<std::string, std::vector<float>> ch;
-    for (const char* n : {"P.X", "P.Y", "P.Z"})
-        if (hasP) { CAVITY_ASSIGN(ch[n], cap.read(n)); }
-    if (!hasP) { CAVITY_ASSIGN(ch["Z"], cap.read("Z")); }
-    for (const char* n : {"N.X", "N.Y", "N.Z"}) { CAVITY_ASSIGN(ch[n], cap.read(n)); }
-    if (hasAlbedo)
-        for (const char* n : {"albedo.R", "albedo.G", "albedo.B"}) { CAVITY_ASSIGN(ch[n], cap.read(n)); }
+    CAVITY_ASSIGN(Channels channels, readChannels(cap));
+    const bool hasP = channels.hasP, hasAlbedo = channels.hasAlbedo;
+    auto& ch = channels.planes;
 
     GBufferImages g;
     g.position = HostImage(w, h, 4);

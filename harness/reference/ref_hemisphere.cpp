@@ -41,6 +41,40 @@ Result<std::vector<HostImage>> depthFromPosition(const Context& ctx) {
     return out;
 }
 
+namespace {
+
+// One sample s of the receiver at p (normal nrm): 1 where the stored surface
+// at its texel occludes it, times the range weight; 0 off screen.
+float sampleHit(const kernels::FrameUniforms& f, const HostImage& depthIn, const HostImage& normal, Vec3 p, Vec3 nrm,
+                Vec3 s, float radius, float bias, bool rangeCheck) {
+    float hit = 0.0f;
+    int tx, ty;
+    if (screen::texelOfView(f, s, tx, ty)) {
+        tx = std::clamp(tx, 0, f.size[0] - 1);
+        ty = std::clamp(ty, 0, f.size[1] - 1);
+        const Vec3 q = screen::viewFromDepth(f, tx, ty, depthIn.at(tx, ty));
+        // Behind the stored surface's plane (see the kernel), or
+        // behind its depth where the normal faces away or is 0.
+        // Below the receiver's tangent plane: never in front of the sample.
+        Vec3 nq = screen::texel3(normal, tx, ty);
+        bool occluded = false;
+        if (dot(nrm, q - p) <= 0.0f) {
+            occluded = false;
+        } else if (lengthSquared(nq) > 0.0f && dot(nq, q) < 0.0f) {
+            nq = screen::normalizeExact(nq);
+            occluded = dot(nq, s - q) < -bias;
+        } else {
+            occluded = q.z >= s.z + bias;
+        }
+        float rangeWeight = 1.0f;
+        if (rangeCheck) rangeWeight = screen::smoothstep01(radius / std::max(std::fabs(p.z - q.z), 1e-6f));
+        hit = (occluded ? 1.0f : 0.0f) * rangeWeight;
+    }
+    return hit;
+}
+
+}  // namespace
+
 Result<std::vector<HostImage>> hemisphere(const Context& ctx) {
     const auto& f = ctx.frame;
     CAVITY_TRY(screen::requireInput(ctx, 0, f.size[0], f.size[1], 1));
@@ -91,29 +125,7 @@ Result<std::vector<HostImage>> hemisphere(const Context& ctx) {
                 if (stepJitter)
                     lengthScale = radius * (1.0f - screen::sampleHash(x, y, int(directions)) * portableReciprocal(float(inGroup + 1)));
                 const Vec3 s = p + (t * k[0] + b * k[1] + nrm * k[2]) * lengthScale;
-                float hit = 0.0f;
-                int tx, ty;
-                if (screen::texelOfView(f, s, tx, ty)) {
-                    tx = std::clamp(tx, 0, f.size[0] - 1);
-                    ty = std::clamp(ty, 0, f.size[1] - 1);
-                    const Vec3 q = screen::viewFromDepth(f, tx, ty, depthIn.at(tx, ty));
-                    // Behind the stored surface's plane (see the kernel), or
-                    // behind its depth where the normal faces away or is 0.
-                    // Below the receiver's tangent plane: never in front of the sample.
-                    Vec3 nq = screen::texel3(normal, tx, ty);
-                    bool occluded = false;
-                    if (dot(nrm, q - p) <= 0.0f) {
-                        occluded = false;
-                    } else if (lengthSquared(nq) > 0.0f && dot(nq, q) < 0.0f) {
-                        nq = screen::normalizeExact(nq);
-                        occluded = dot(nq, s - q) < -bias;
-                    } else {
-                        occluded = q.z >= s.z + bias;
-                    }
-                    float rangeWeight = 1.0f;
-                    if (rangeCheck) rangeWeight = screen::smoothstep01(radius / std::max(std::fabs(p.z - q.z), 1e-6f));
-                    hit = (occluded ? 1.0f : 0.0f) * rangeWeight;
-                }
+                const float hit = sampleHit(f, depthIn, normal, p, nrm, s, radius, bias, rangeCheck);
                 blocked = std::max(blocked, hit);
                 ++inGroup;
                 if (k[3] > 0.5f || i == n - 1) {
