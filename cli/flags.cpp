@@ -75,7 +75,7 @@ constexpr size_t kFlagColumn = 34;   // where a flag's help starts
 std::string wrapLine(const std::string& line, size_t width) {
     if (line.size() <= width) return line;
     const size_t lead = line.find_first_not_of(' ');
-    size_t hang = lead + 2;
+    size_t hang = lead;
     const size_t gap = line.find("  ", lead);
     if (gap != std::string::npos) {
         const size_t column = line.find_first_not_of(' ', gap);

@@ -42,11 +42,11 @@ const CommandSpec& runSpec() {
         for (auto& f : kernelParamFlags({"scene"})) c.flags.push_back(std::move(f));
         c.footer = "\n" + kernelHelp() +
                    "\nIds read scene/kernel/nSAMPLES/bBLUR[/param=value..]/full|half/WxH/api/stage "
-                   "(docs/benchmarking.md, \"Configuration ids\"). Exit codes: 0 ok, 1 NaN written, 2 bad usage, 3 no backend,\n"
+                   "(docs/benchmarking.md, \"Configuration ids\"). Exit codes: 0 ok, 1 NaN written, 2 bad usage, 3 no backend, "
                    "4 GPU error.";
         c.examples = {
             "cavity run --kernel alchemy_fast --backend gl,vk --res 1920x1080",
-            "cavity run --kernel alchemy,hemisphere_fast --samples 8,16,32 --resolution full,half --out out/sweep",
+            "cavity run --kernel alchemy,hemisphere_fast --samples 8,16,32 --resolution full,half",
             "cavity run --scene slats --blur 0,4 --list",
         };
         return c;

@@ -64,7 +64,7 @@ void marchEveryStep(KernelDecl& k) {
 KernelDecl ssdoMarched(const std::vector<KernelDecl>& seeds) {
     KernelDecl k = copyOf(seeds, "ssdo");
     k.name = "ssdo_marched";
-    k.summary = "SSDO with each of the n directions marched in 4 steps to R (seed 003 tests one point at a random length)";
+    k.summary = "SSDO with each of the n directions marched in 4 steps to R (published SSDO tests one point at a random length)";
     marchEveryStep(k);
     return k;
 }

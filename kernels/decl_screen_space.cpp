@@ -173,9 +173,9 @@ KernelDecl ssdo() {
         use("samples", "hemisphere directions"),
         use("radius", "world-space hemisphere radius R (sample lengths are drawn in (0, R])"),
         use("bias"),
-        use("contrast", "power curve on the visibility fraction: V^k (seed 003's contrast)"),
+        use("contrast", "power curve on the visibility fraction: V^k (published SSDO's contrast)"),
         use("sky_lod"),
-        use("steps", 1, "1: seed 003's one point at a random length in (0, R]"),
+        use("steps", 1, "1: published SSDO's one point at a random length in (0, R]"),
     };
     k.inputs = {{"position", {}}, {"normal", {}}, {"sky", skySampler()}};
     k.outputs = {{"visibility", Format::R16F}, {"radiance", Format::RGBA16F}};

@@ -73,12 +73,12 @@ std::vector<ParamDecl> declare() {
         // (cosineKernel) and SSDO's (include/ssdo.glsl), where 1 is seed 003's
         // one point at a random length; ssdo_marched marches 4.
         make("steps", T::Int, 4, 1, 16, "points",
-             "points tested along each ray, marched out to R (1: one point at a random length in (0, R], seed 003)"),
+             "points tested along each ray, marched out to R (1: one point at a random length in (0, R], as published SSDO)"),
         // The box blur pass after the hemisphere kernels: seed 004's plain 4x4
         // box, or blur_box_depth (decl_quality_variants.cpp), which keeps to
         // the centre's surface.
         flag("depth_aware_box", false,
-             "box-blur only the texels of the centre's surface (blur_box_depth), not all 16 (seed 004)"),
+             "box-blur only the texels of the centre's surface (blur_box_depth), not all 16 (as the published hemisphere SSAO)"),
         // Level 5 of the 256x128 panorama is 8x4 texels of 45 degrees, about
         // 0.5 sr each: the 0.4 sr that each of the default 16 samples stands
         // for (2 pi / n). At level 4 or lower the sun is a lobe that only a
@@ -88,7 +88,7 @@ std::vector<ParamDecl> declare() {
         // choice for a panorama 8-32 times wider. An integer level also keeps
         // the GPU's quantised mip blend out of the reference comparison.
         make("sky_lod", T::Float, 5, 0, 8, "mip level", "level of the sky panorama the SSDO samples read (0: 256x128, 8: 1x1)"),
-        make("bounce_strength", T::Float, 1, 0, 100, "", "scale of the indirect bounce (seed 003's strength)"),
+        make("bounce_strength", T::Float, 1, 0, 100, "", "scale of the indirect bounce (published SSDO's strength)"),
         // R / 5 at the default R. With Alchemy's 0.1 R, senders almost
         // touching their receiver at a crease gave single-pixel sparks of
         // up to 2.6 on the corner and slats scenes (direct radiance is about

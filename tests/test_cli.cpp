@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <regex>
 #include <string>
 
 namespace fs = std::filesystem;
@@ -169,30 +170,52 @@ TEST_F(Cli, HelpOnEveryCommandPrintsToStdoutAndExitsZero) {
     EXPECT_NE(bare.output.find("quality"), std::string::npos) << bare.output;
 }
 
+// Text with every run of spaces and line breaks as one space: --help wraps
+// its lines at 100 columns, so a summary may span two of them.
+std::string oneLine(const std::string& text) { return std::regex_replace(text, std::regex(R"(\s+)"), " "); }
+
 TEST_F(Cli, RunHelpNamesEveryKernelAndParameterWithDefaultAndRange) {
     const Outcome o = stdoutOf("run --help");
     ASSERT_EQ(o.code, 0);
+    const std::string help = oneLine(o.output);
     for (const auto& k : cavity::kernels::all()) {
         if (k.role != cavity::kernels::Role::Ao && k.role != cavity::kernels::Role::Reference) continue;
-        EXPECT_NE(o.output.find(k.name), std::string::npos) << k.name;
-        EXPECT_NE(o.output.find(k.summary), std::string::npos) << k.name << " summary";
-        // The kernel's line: its summary, then its seed files.
-        const size_t line = o.output.find(k.summary);
-        const std::string kernelLine = line == std::string::npos ? "" : o.output.substr(line, o.output.find('\n', line) - line);
-        if (!k.seeds.empty()) {
-            EXPECT_NE(kernelLine.find(" [seed " + k.seeds[0]), std::string::npos) << kernelLine;
+        EXPECT_NE(help.find(k.name), std::string::npos) << k.name;
+        const std::string summary = oneLine(k.summary);
+        EXPECT_NE(help.find(summary), std::string::npos) << k.name << " summary";
+        // The kernel's entry: its summary, then the published sources it follows.
+        if (!k.sources.empty()) {
+            std::string sources = " [after " + k.sources[0];
+            for (size_t i = 1; i < k.sources.size(); ++i) sources += "; " + k.sources[i];
+            EXPECT_NE(help.find(summary + sources + "]"), std::string::npos) << k.name << ": " << sources;
         }
-        for (const auto& seed : k.seeds) EXPECT_NE(kernelLine.find(seed), std::string::npos) << k.name << " " << seed;
         for (const auto& p : k.params) {
-            EXPECT_NE(o.output.find("--" + p.name() + " "), std::string::npos) << "--" << p.name();
-            EXPECT_NE(o.output.find(p.decl->help), std::string::npos) << "--" << p.name() << " help";
+            EXPECT_NE(help.find("--" + p.name() + " "), std::string::npos) << "--" << p.name();
+            EXPECT_NE(help.find(oneLine(p.decl->help)), std::string::npos) << "--" << p.name() << " help";
             if (!p.note.empty()) {
-                EXPECT_NE(o.output.find(p.note), std::string::npos) << k.name << " --" << p.name();
+                EXPECT_NE(help.find(oneLine(p.note)), std::string::npos) << k.name << " --" << p.name();
             }
         }
     }
-    EXPECT_NE(o.output.find("default 0.5, 0.13 (sdf_classic)"), std::string::npos);   // --radius: a kernel's own default
-    EXPECT_NE(o.output.find("integer 1..256 samples"), std::string::npos);  // --samples
+    EXPECT_NE(help.find("default 0.5, 0.13 (sdf_classic)"), std::string::npos);   // --radius: a kernel's own default
+    EXPECT_NE(help.find("integer 1..256 samples"), std::string::npos);  // --samples
+}
+
+TEST_F(Cli, EveryHelpWrapsAt100ColumnsAndEndsWithExamples) {
+    for (const std::string command : {"run", "gate", "gate judge", "gate merge", "baselines update", "compare", "quality"}) {
+        const Outcome o = stdoutOf(command + " --help");
+        ASSERT_EQ(o.code, 0) << command;
+        std::istringstream lines(o.output);
+        std::string line, last;
+        while (std::getline(lines, line)) {
+            EXPECT_LE(line.size(), 100u) << command << ": " << line;
+            EXPECT_EQ(line.find(" ..."), std::string::npos) << command << ": a parser leftover: " << line;
+            if (!line.empty()) last = line;
+        }
+        const size_t examples = o.output.rfind("\nExamples:\n");
+        ASSERT_NE(examples, std::string::npos) << command;
+        EXPECT_EQ(last.rfind("  cavity " + command, 0), 0u) << command << ": ends with " << last;
+    }
 }
 
 TEST_F(Cli, UnknownFlagNamesItsNearestNeighbour) {

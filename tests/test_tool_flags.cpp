@@ -9,6 +9,7 @@
 #include <fstream>
 #include <regex>
 #include <set>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -37,15 +38,36 @@ TEST(ToolFlags, HelpPrintsOnStdoutAndExitsZero) {
     }
 }
 
+// Text with every run of spaces and line breaks as one space: --help wraps
+// its lines at 100 columns, so a summary may span two of them.
+std::string oneLine(const std::string& text) { return std::regex_replace(text, std::regex(R"(\s+)"), " "); }
+
 TEST(ToolFlags, BenchHelpNamesEveryFlagAndEveryKernelWithItsSummary) {
     const auto o = runBinary(CAVITY_BENCH_EXE, "--help", "", "2>/dev/null");
     ASSERT_EQ(o.code, 0);
+    const std::string help = oneLine(o.output);
     for (const char* f : {"--backend", "--sweep", "--frames", "--warmup", "--timing", "--max-noise", "--max-time",
                           "--plant", "--plant-file", "--device", "--benchmark_filter"})
         EXPECT_NE(o.output.find(f), std::string::npos) << f;
     for (const auto& k : cavity::kernels::all()) {
         if (k.role != cavity::kernels::Role::Ao && k.role != cavity::kernels::Role::Reference) continue;
-        EXPECT_NE(o.output.find(k.summary), std::string::npos) << k.name;
+        EXPECT_NE(help.find(oneLine(k.summary)), std::string::npos) << k.name;
+    }
+}
+
+TEST(ToolFlags, HelpWrapsAt100ColumnsAndEndsWithExamples) {
+    for (const std::string tool : {CAVITY_BENCH_EXE, CAVITY_RENDER_EXE}) {
+        const auto o = runBinary(tool, "--help", "", "2>/dev/null");
+        ASSERT_EQ(o.code, 0) << tool;
+        std::istringstream lines(o.output);
+        std::string line, last;
+        while (std::getline(lines, line)) {
+            EXPECT_LE(line.size(), 100u) << tool << ": " << line;
+            EXPECT_EQ(line.find(" ..."), std::string::npos) << tool << ": a parser leftover: " << line;
+            if (!line.empty()) last = line;
+        }
+        EXPECT_NE(o.output.find("\nExamples:\n"), std::string::npos) << tool;
+        EXPECT_EQ(last.rfind("  cavity_", 0), 0u) << tool << ": ends with " << last;
     }
 }
 

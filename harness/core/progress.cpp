@@ -1,29 +1,41 @@
 #include "core/progress.h"
 
+#include <algorithm>
 #include <cstdio>
 
 #include <unistd.h>
 
 namespace cavity::core {
 
-Progress::Progress(size_t total, bool quiet)
-    : total_(total), quiet_(quiet), terminal_(::isatty(2) == 1), t0_(std::chrono::steady_clock::now()) {}
+Progress::Progress(size_t total, bool quiet, std::string prefix)
+    : total_(total), prefix_(std::move(prefix)), quiet_(quiet), terminal_(::isatty(2) == 1),
+      t0_(std::chrono::steady_clock::now()) {}
 
 Progress::~Progress() { interrupt(); }
+
+void Progress::print(size_t count, const std::string& label, size_t finished, bool inPlace) {
+    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0_).count();
+    char eta[48] = "ETA ?";
+    if (finished > 0)
+        std::snprintf(eta, sizeof eta, "ETA %.1f s", elapsed / double(finished) * double(total_ - std::min(finished, total_)));
+    // \033[K clears what a longer previous line left behind.
+    std::fprintf(stderr, "%s%s[%zu/%zu] %s  elapsed %.1f s  %s%s", inPlace ? "\r" : "", prefix_.c_str(), count, total_,
+                 label.c_str(), elapsed, eta, inPlace ? "\033[K" : "\n");
+    std::fflush(stderr);
+}
 
 void Progress::start(const std::string& id) {
     if (quiet_) return;
     ++begun_;
-    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0_).count();
-    const size_t finished = begun_ - 1;
-    char eta[48] = "ETA ?";
-    if (finished > 0)
-        std::snprintf(eta, sizeof eta, "ETA %.1f s", elapsed / double(finished) * double(total_ - finished));
-    // \033[K clears what a longer previous line left behind.
-    std::fprintf(stderr, "%s[%zu/%zu] %s  elapsed %.1f s  %s%s", terminal_ ? "\r" : "", begun_, total_, id.c_str(),
-                 elapsed, eta, terminal_ ? "\033[K" : "\n");
-    std::fflush(stderr);
+    print(begun_, id, begun_ - 1, terminal_);
     open_ = terminal_;
+}
+
+void Progress::done(const std::string& label, bool show) {
+    ++finished_;
+    if (quiet_ || !show) return;
+    interrupt();
+    print(finished_, label, finished_, false);
 }
 
 void Progress::interrupt() {

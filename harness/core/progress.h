@@ -1,4 +1,5 @@
-// Progress on stderr for the commands that measure (run, gate, quality):
+// Progress on stderr for the commands that measure (run, gate, quality), the
+// one progress line of every command:
 //     [3/12] corner/alchemy/n16/b4/full/320x180/vk/compute  elapsed 4.1 s  ETA 12.3 s
 // one line rewritten in place (\r) when stderr is a terminal, a plain line
 // per step otherwise (a pipe, a CI log); --quiet gives a Progress that says
@@ -13,16 +14,23 @@ namespace cavity::core {
 
 class Progress {
 public:
-    Progress(size_t total, bool quiet);
+    // `prefix` starts every line ("gate: ").
+    Progress(size_t total, bool quiet, std::string prefix = "");
     ~Progress();
     // Step `id` starts: the count shown is the steps begun so far.
     void start(const std::string& id);
+    // A step has finished, its verdict in `label`: a line of its own with the
+    // count finished so far (the gate's form). With show false the step
+    // counts but prints nothing (an error, reported on its own line).
+    void done(const std::string& label, bool show = true);
     // Ends the in-place line, so that a message can follow on a line of its own.
     void interrupt();
     size_t total() const { return total_; }
 
 private:
-    size_t total_, begun_ = 0;
+    void print(size_t count, const std::string& label, size_t finished, bool inPlace);
+    size_t total_, begun_ = 0, finished_ = 0;
+    std::string prefix_;
     bool quiet_, terminal_, open_ = false;
     std::chrono::steady_clock::time_point t0_;
 };

@@ -1,5 +1,7 @@
 #include "gate/gate.h"
 
+#include "core/progress.h"
+
 #include "pipeline/config_id.h"
 #include "core/digest.h"
 #include "gate/expectations.h"
@@ -119,19 +121,13 @@ Result<GateRun> runGate(const GateOptions& o) {
     ro.overrides = o.overrides;
     int attempt = 0;
     std::map<std::string, size_t> where;   // id -> index in run.results
+    Progress progress(entries.size(), o.quiet, "gate: ");
     auto sink = [&](render::Rendering&& rendering) -> Status {
         if (attempt == 0 && flaky && std::regex_search(rendering.id, *flaky)) perturbForTest(rendering);
         CAVITY_ASSIGN(ConfigResult r, judgeRendering(rendering, judge));
         if (attempt == 0) {
             const bool retry = !r.passed() && r.errorCode == 0 && o.retries > 0;
-            // Progress: one line a configuration, with count and ETA (the
-            // mean time per configuration so far times those left).
-            const size_t done = run.results.size() + 1;
-            const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-            const double eta = elapsed / double(done) * double(entries.size() - std::min(done, entries.size()));
-            if (r.error.empty() && !o.quiet)
-                std::fprintf(stderr, "gate: [%zu/%zu] %s %s  elapsed %.1f s  ETA %.1f s\n", done, entries.size(), r.id.c_str(),
-                             r.passed() ? "pass" : retry ? "FAIL (retrying)" : "FAIL", elapsed, eta);
+            progress.done(r.id + " " + (r.passed() ? "pass" : retry ? "FAIL (retrying)" : "FAIL"), r.error.empty());
             where[r.id] = run.results.size();
             run.results.push_back(std::move(r));
             return {};

@@ -6,6 +6,7 @@
 #include "core/json_input.h"
 #include "render/render_manifest.h"
 #include "measure/results.h"
+#include "core/progress.h"
 
 #include <algorithm>
 #include <chrono>
@@ -116,11 +117,8 @@ Status checkFiles(const Folder& f) {
     return {};
 }
 
-}  // namespace
-
-Result<GateRun> judgeFolders(const std::vector<std::string>& dirs, const std::string& baselines, const std::string& out,
-                             bool quiet) {
-    const auto start = std::chrono::steady_clock::now();
+// The folders, read; one matrix and one build across them.
+Result<std::vector<Folder>> readFolders(const std::vector<std::string>& dirs) {
     if (dirs.empty()) return badInput("needs one or more render folders (cavity_render --out DIR)");
     std::vector<Folder> folders;
     for (const auto& d : dirs) {
@@ -136,9 +134,14 @@ Result<GateRun> judgeFolders(const std::vector<std::string>& dirs, const std::st
         }
         folders.push_back(std::move(f));
     }
-    const Folder& first = folders.front();
+    return folders;
+}
+
+// The matrix as declared now, which every folder must have been rendered
+// from, by this build.
+Result<Matrix> renderedMatrix(const std::vector<Folder>& folders, const std::string& baselines) {
     const std::string matrices = (fs::path(baselines) / "matrices.json").string();
-    CAVITY_ASSIGN(const Matrix matrix, loadMatrix(matrices, first.m.matrix));
+    CAVITY_ASSIGN(Matrix matrix, loadMatrix(matrices, folders.front().m.matrix));
     for (const auto& f : folders) {
         if (f.m.matrixHash != matrix.hash)
             return badInput(f.path + ": matrix " + f.m.matrix + " was rendered from another declaration (" + f.m.matrixHash +
@@ -147,6 +150,75 @@ Result<GateRun> judgeFolders(const std::vector<std::string>& dirs, const std::st
             return badInput(f.path + ": rendered by build " + f.m.gitCommit + ", this cavity is build " + gitCommit() +
                             " (judge with the cavity of the build that rendered it, or render again)");
     }
+    return matrix;
+}
+
+struct Item {
+    const Folder* f;
+    const render::ConfigEntry* c;
+};
+
+// The order `cavity gate` renders in: OpenGL first, then matrix order.
+std::vector<Item> gateOrder(const std::vector<Folder>& folders) {
+    std::vector<Item> items;
+    for (const auto& f : folders)
+        for (const auto& c : f.m.configs) items.push_back({&f, &c});
+    std::stable_sort(items.begin(), items.end(), [](const Item& a, const Item& b) {
+        return std::pair(a.c->api != "gl", a.c->index) < std::pair(b.c->api != "gl", b.c->index);
+    });
+    return items;
+}
+
+// The run's header: its shard when one folder is judged, the backends that
+// did not start, and the longest render's time.
+GateRun runHeader(const std::vector<Folder>& folders, const Matrix& matrix, double& rendered) {
+    GateRun run;
+    run.matrix = matrix.name;
+    if (folders.size() == 1) {
+        run.shardIndex = folders.front().m.shardIndex;
+        run.shardCount = folders.front().m.shardCount;
+    }
+    rendered = 0;
+    for (const auto& f : folders) {
+        rendered = std::max(rendered, f.m.seconds);
+        for (const auto& e : f.m.backendErrors)
+            if (std::find(run.backendErrors.begin(), run.backendErrors.end(), e.message) == run.backendErrors.end())
+                run.backendErrors.push_back(e.message);
+    }
+    return run;
+}
+
+// One render of a folder as the gate's in-memory rendering, its stored
+// images read back.
+Result<render::Rendering> readRendering(const Item& item, const render::RenderEntry& entry, const RunConfig& config) {
+    const auto& [f, c] = item;
+    render::Rendering r;
+    r.index = c->index;
+    r.repetition = entry.repetition;
+    r.config = config;
+    r.id = c->id;
+    r.key = c->key;
+    if (auto d = f->m.devices.find(c->api); d != f->m.devices.end()) r.device = d->second;
+    r.device.deviceName = c->device;
+    r.error = entry.error;
+    r.errorCode = entry.errorCode;
+    r.deterministic = entry.deterministic;
+    r.timings = entry.timings;
+    for (const auto& i : entry.images) {
+        r.digests[i.name] = i.stored.digest;
+        if (i.file.empty()) continue;
+        CAVITY_ASSIGN(r.images[i.name], render::readImageFile((fs::path(f->dir) / i.file).string(), i.stored));
+    }
+    return r;
+}
+
+}  // namespace
+
+Result<GateRun> judgeFolders(const std::vector<std::string>& dirs, const std::string& baselines, const std::string& out,
+                             bool quiet) {
+    const auto start = std::chrono::steady_clock::now();
+    CAVITY_ASSIGN(const auto folders, readFolders(dirs));
+    CAVITY_ASSIGN(const Matrix matrix, renderedMatrix(folders, baselines));
     const auto all = matrix.expand();
     std::map<std::string, std::string> owner;
     for (const auto& f : folders) CAVITY_TRY(checkEntries(f, all, owner));
@@ -155,58 +227,18 @@ Result<GateRun> judgeFolders(const std::vector<std::string>& dirs, const std::st
     for (const auto& f : folders)
         for (const auto& c : f.m.configs) configs.push_back(all[c.index]);
     CAVITY_ASSIGN(const Judge judge, prepareJudge(baselines, configs, out));
-
-    // The order `cavity gate` renders in: OpenGL first, then matrix order.
-    struct Item { const Folder* f; const render::ConfigEntry* c; };
-    std::vector<Item> items;
-    for (const auto& f : folders)
-        for (const auto& c : f.m.configs) items.push_back({&f, &c});
-    std::stable_sort(items.begin(), items.end(), [](const Item& a, const Item& b) {
-        return std::pair(a.c->api != "gl", a.c->index) < std::pair(b.c->api != "gl", b.c->index);
-    });
-    GateRun run;
-    run.matrix = matrix.name;
-    if (folders.size() == 1) {
-        run.shardIndex = first.m.shardIndex;
-        run.shardCount = first.m.shardCount;
-    }
+    const auto items = gateOrder(folders);
     double rendered = 0;
-    for (const auto& f : folders) {
-        rendered = std::max(rendered, f.m.seconds);
-        for (const auto& e : f.m.backendErrors)
-            if (std::find(run.backendErrors.begin(), run.backendErrors.end(), e.message) == run.backendErrors.end())
-                run.backendErrors.push_back(e.message);
-    }
+    GateRun run = runHeader(folders, matrix, rendered);
     size_t renders = 0;
-    for (const auto& [f, c] : items) renders += c->renders.size();
-    for (const auto& [f, c] : items) {
+    for (const auto& item : items) renders += item.c->renders.size();
+    Progress progress(renders, quiet, "gate: ");
+    for (const auto& item : items) {
         ConfigResult rep0;
-        for (const auto& entry : c->renders) {
-            render::Rendering r;
-            r.index = c->index;
-            r.repetition = entry.repetition;
-            r.config = all[c->index];
-            r.id = c->id;
-            r.key = c->key;
-            if (auto d = f->m.devices.find(c->api); d != f->m.devices.end()) r.device = d->second;
-            r.device.deviceName = c->device;
-            r.error = entry.error;
-            r.errorCode = entry.errorCode;
-            r.deterministic = entry.deterministic;
-            r.timings = entry.timings;
-            for (const auto& i : entry.images) {
-                r.digests[i.name] = i.stored.digest;
-                if (i.file.empty()) continue;
-                CAVITY_ASSIGN(r.images[i.name], render::readImageFile((fs::path(f->dir) / i.file).string(), i.stored));
-            }
+        for (const auto& entry : item.c->renders) {
+            CAVITY_ASSIGN(const render::Rendering r, readRendering(item, entry, all[item.c->index]));
             CAVITY_ASSIGN(ConfigResult res, judgeRendering(r, judge, entry.repetition ? &rep0 : nullptr));
-            // Progress as `cavity gate` prints it: count, elapsed, ETA.
-            const size_t done = run.results.size() + 1;
-            const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-            const double eta = elapsed / double(done) * double(renders - std::min(done, renders));
-            if (res.error.empty() && !quiet)
-                std::fprintf(stderr, "gate: [%zu/%zu] %s %s  elapsed %.1f s  ETA %.1f s\n", done, renders, res.label().c_str(),
-                             res.passed() ? "pass" : "FAIL", elapsed, eta);
+            progress.done(res.label() + " " + (res.passed() ? "pass" : "FAIL"), res.error.empty());
             if (entry.repetition == 0) rep0 = res;
             run.results.push_back(std::move(res));
         }

@@ -118,92 +118,116 @@ Result<std::unique_ptr<PassChain>> PassChain::create(gpu::Backend& gpu, const Ru
                                                      const SourceOverrides& overrides, const PlantedSlowdown& plant) {
     std::unique_ptr<PassChain> chain(new PassChain(gpu));
     chain->specs_ = buildPasses(c);
-    const int halfW = (c.width + 1) / 2, halfH = (c.height + 1) / 2;
     if (c.imported()) CAVITY_TRY(chain->uploadGBuffer(c));
     for (const auto& spec : chain->specs_) {
-        if (spec.kernel == "gbuffer_raster") {
-            CAVITY_TRY(chain->createRaster(spec, c));
-            continue;
-        }
-        auto pass = std::make_unique<Pass>();
-        pass->kernel = kernels::find(spec.kernel);
-        if (!pass->kernel) return internal("pipeline names an unknown kernel '" + spec.kernel + "'");
-        const auto& k = *pass->kernel;
-        if (k.inputs.size() != spec.inputs.size() || k.outputs.size() != spec.outputs.size())
-            return internal("pass '" + spec.name + "' wires the wrong number of images for kernel " + k.name);
-        const int mipLevels = k.outputs.empty() ? 1 : k.outputs[0].mipLevels;
-        pass->stage = mipLevels > 1 ? gpu::Stage::Compute : c.stage;
-        pass->width = spec.half ? halfW : c.width;
-        pass->height = spec.half ? halfH : c.height;
-
-        // Outputs are created by the pass that writes them.
-        for (size_t o = 0; o < spec.outputs.size(); ++o) {
-            const uint32_t written = pass->stage == gpu::Stage::Compute ? gpu::ImageStorage : gpu::ImageColorTarget;
-            gpu::ImageDesc d{pass->width, pass->height, k.outputs[o].format, k.outputs[o].mipLevels, spec.outputs[o],
-                             outputUsage(chain->specs_, spec.outputs[o], written)};
-            CAVITY_ASSIGN(gpu::Image img, gpu.createImage(d));
-            chain->images_[spec.outputs[o]] = {img, d.width, d.height, d.format};
-        }
-
-        const auto frame = frameUniforms(pass->width, pass->height, c.width, c.height);
-        CAVITY_ASSIGN(pass->frameUbo, gpu.createBuffer({sizeof(frame), gpu::BufferUsage::Uniform, spec.name + ".frame"}));
-        CAVITY_TRY(gpu.updateBuffer(pass->frameUbo, std::as_bytes(std::span(&frame, 1))));
-        const auto params = kernels::packParams(k, c.params);
-        CAVITY_ASSIGN(pass->paramsUbo, gpu.createBuffer({params.size(), gpu::BufferUsage::Uniform, spec.name + ".params"}));
-        CAVITY_TRY(gpu.updateBuffer(pass->paramsUbo, params));
-
-        pass->binds.push_back({kernels::kFrameBinding, {}, pass->frameUbo, {}});
-        pass->binds.push_back({kernels::kParamsBinding, {}, pass->paramsUbo, {}});
-        uint32_t b = kernels::kFirstImageBinding;
-        for (size_t i = 0; i < spec.inputs.size(); ++i) {
-            const ImageRef& in = spec.inputs[i];
-            const bool constant = in.source == ImageSource::Constant;
-            if (constant && !chain->constants_.count(in.name)) CAVITY_TRY(chain->createConstant(in.name, c.params));
-            auto& table = constant ? chain->constants_ : chain->images_;
-            auto it = table.find(in.name);
-            if (it == table.end())
-                return internal("pass '" + spec.name + "' reads image '" + in.name + "' before any pass writes it");
-            pass->binds.push_back({b++, it->second.image, {}, k.inputs[i].sampler});
-        }
-        const auto planted = plant.find(spec.name);
-        CAVITY_ASSIGN(auto body, kernels::assemble(k, pass->stage, overrides, &c.params,
-                                                   planted == plant.end() ? 0 : planted->second));
-        const auto layout = kernels::bindingLayout(k, pass->stage);
-        if (pass->stage == gpu::Stage::Compute) {
-            for (const auto& out : spec.outputs) pass->binds.push_back({b++, chain->images_[out].image, {}, {}});
-            gpu::ComputePipelineDesc d{std::move(body), layout, 8, 8, spec.name};
-            CAVITY_ASSIGN(pass->pipeline, gpu.createComputePipeline(d));
-            // Levels 1..: the same pipeline, each with its level's size in
-            // the frame block and its first output bound at that level.
-            for (int l = 1; l < mipLevels; ++l) {
-                Pass::Level level;
-                level.width = std::max(1, pass->width >> l);
-                level.height = std::max(1, pass->height >> l);
-                auto lf = frameUniforms(level.width, level.height, c.width, c.height);
-                lf.level = l;
-                CAVITY_ASSIGN(level.frameUbo, gpu.createBuffer({sizeof(lf), gpu::BufferUsage::Uniform,
-                                                                spec.name + ".frame" + std::to_string(l)}));
-                CAVITY_TRY(gpu.updateBuffer(level.frameUbo, std::as_bytes(std::span(&lf, 1))));
-                level.binds = pass->binds;
-                level.binds[0].buffer = level.frameUbo;
-                level.binds[level.binds.size() - spec.outputs.size()].mipLevel = l;
-                pass->levels.push_back(std::move(level));
-            }
-        } else {
-            gpu::GraphicsPipelineDesc d;
-            d.vertex = kernels::fullscreenVertex();
-            d.fragment = std::move(body);
-            d.layout = layout;
-            for (size_t o = 0; o < spec.outputs.size(); ++o) {
-                d.colorFormats.push_back(k.outputs[o].format);
-                pass->targets.colors.push_back(chain->images_[spec.outputs[o]].image);
-            }
-            d.label = spec.name;
-            CAVITY_ASSIGN(pass->pipeline, gpu.createGraphicsPipeline(d));
-        }
-        chain->passes_.push_back(std::move(pass));
+        if (spec.kernel == "gbuffer_raster") CAVITY_TRY(chain->createRaster(spec, c));
+        else CAVITY_TRY(chain->createPass(spec, c, overrides, plant));
     }
     return chain;
+}
+
+Status PassChain::createPass(const PassSpec& spec, const RunConfig& c, const SourceOverrides& overrides,
+                             const PlantedSlowdown& plant) {
+    auto pass = std::make_unique<Pass>();
+    pass->kernel = kernels::find(spec.kernel);
+    if (!pass->kernel) return internal("pipeline names an unknown kernel '" + spec.kernel + "'");
+    const auto& k = *pass->kernel;
+    if (k.inputs.size() != spec.inputs.size() || k.outputs.size() != spec.outputs.size())
+        return internal("pass '" + spec.name + "' wires the wrong number of images for kernel " + k.name);
+    const int mipLevels = k.outputs.empty() ? 1 : k.outputs[0].mipLevels;
+    pass->stage = mipLevels > 1 ? gpu::Stage::Compute : c.stage;
+    pass->width = spec.half ? (c.width + 1) / 2 : c.width;
+    pass->height = spec.half ? (c.height + 1) / 2 : c.height;
+    CAVITY_TRY(createOutputs(*pass, spec));
+    CAVITY_TRY(createUniforms(*pass, spec, c));
+    CAVITY_TRY(bindInputs(*pass, spec, c));
+    const auto planted = plant.find(spec.name);
+    CAVITY_ASSIGN(auto body, kernels::assemble(k, pass->stage, overrides, &c.params,
+                                               planted == plant.end() ? 0 : planted->second));
+    const auto layout = kernels::bindingLayout(k, pass->stage);
+    if (pass->stage == gpu::Stage::Compute) {
+        auto b = uint32_t(kernels::kFirstImageBinding + spec.inputs.size());
+        for (const auto& out : spec.outputs) pass->binds.push_back({b++, images_[out].image, {}, {}});
+        gpu::ComputePipelineDesc d{std::move(body), layout, 8, 8, spec.name};
+        CAVITY_ASSIGN(pass->pipeline, gpu_.createComputePipeline(d));
+        CAVITY_TRY(createComputeLevels(*pass, spec, c, mipLevels));
+    } else {
+        gpu::GraphicsPipelineDesc d;
+        d.vertex = kernels::fullscreenVertex();
+        d.fragment = std::move(body);
+        d.layout = layout;
+        for (size_t o = 0; o < spec.outputs.size(); ++o) {
+            d.colorFormats.push_back(k.outputs[o].format);
+            pass->targets.colors.push_back(images_[spec.outputs[o]].image);
+        }
+        d.label = spec.name;
+        CAVITY_ASSIGN(pass->pipeline, gpu_.createGraphicsPipeline(d));
+    }
+    passes_.push_back(std::move(pass));
+    return {};
+}
+
+// Outputs are created by the pass that writes them.
+Status PassChain::createOutputs(Pass& pass, const PassSpec& spec) {
+    const auto& k = *pass.kernel;
+    for (size_t o = 0; o < spec.outputs.size(); ++o) {
+        const uint32_t written = pass.stage == gpu::Stage::Compute ? gpu::ImageStorage : gpu::ImageColorTarget;
+        gpu::ImageDesc d{pass.width, pass.height, k.outputs[o].format, k.outputs[o].mipLevels, spec.outputs[o],
+                         outputUsage(specs_, spec.outputs[o], written)};
+        CAVITY_ASSIGN(gpu::Image img, gpu_.createImage(d));
+        images_[spec.outputs[o]] = {img, d.width, d.height, d.format};
+    }
+    return {};
+}
+
+// The frame block (sizes) and the kernel's parameter block, bound first.
+Status PassChain::createUniforms(Pass& pass, const PassSpec& spec, const RunConfig& c) {
+    const auto frame = frameUniforms(pass.width, pass.height, c.width, c.height);
+    CAVITY_ASSIGN(pass.frameUbo, gpu_.createBuffer({sizeof(frame), gpu::BufferUsage::Uniform, spec.name + ".frame"}));
+    CAVITY_TRY(gpu_.updateBuffer(pass.frameUbo, std::as_bytes(std::span(&frame, 1))));
+    const auto params = kernels::packParams(*pass.kernel, c.params);
+    CAVITY_ASSIGN(pass.paramsUbo, gpu_.createBuffer({params.size(), gpu::BufferUsage::Uniform, spec.name + ".params"}));
+    CAVITY_TRY(gpu_.updateBuffer(pass.paramsUbo, params));
+    pass.binds.push_back({kernels::kFrameBinding, {}, pass.frameUbo, {}});
+    pass.binds.push_back({kernels::kParamsBinding, {}, pass.paramsUbo, {}});
+    return {};
+}
+
+// The inputs in the kernel's order: images earlier passes wrote, and the
+// CPU-made constants, created on first use.
+Status PassChain::bindInputs(Pass& pass, const PassSpec& spec, const RunConfig& c) {
+    uint32_t b = kernels::kFirstImageBinding;
+    for (size_t i = 0; i < spec.inputs.size(); ++i) {
+        const ImageRef& in = spec.inputs[i];
+        const bool constant = in.source == ImageSource::Constant;
+        if (constant && !constants_.count(in.name)) CAVITY_TRY(createConstant(in.name, c.params));
+        auto& table = constant ? constants_ : images_;
+        auto it = table.find(in.name);
+        if (it == table.end())
+            return internal("pass '" + spec.name + "' reads image '" + in.name + "' before any pass writes it");
+        pass.binds.push_back({b++, it->second.image, {}, pass.kernel->inputs[i].sampler});
+    }
+    return {};
+}
+
+// Levels 1..: the same pipeline, each with its level's size in the frame
+// block and its first output bound at that level.
+Status PassChain::createComputeLevels(Pass& pass, const PassSpec& spec, const RunConfig& c, int mipLevels) {
+    for (int l = 1; l < mipLevels; ++l) {
+        Pass::Level level;
+        level.width = std::max(1, pass.width >> l);
+        level.height = std::max(1, pass.height >> l);
+        auto lf = frameUniforms(level.width, level.height, c.width, c.height);
+        lf.level = l;
+        CAVITY_ASSIGN(level.frameUbo, gpu_.createBuffer({sizeof(lf), gpu::BufferUsage::Uniform,
+                                                         spec.name + ".frame" + std::to_string(l)}));
+        CAVITY_TRY(gpu_.updateBuffer(level.frameUbo, std::as_bytes(std::span(&lf, 1))));
+        level.binds = pass.binds;
+        level.binds[0].buffer = level.frameUbo;
+        level.binds[level.binds.size() - spec.outputs.size()].mipLevel = l;
+        pass.levels.push_back(std::move(level));
+    }
+    return {};
 }
 
 PassChain::PassChain(gpu::Backend& gpu) : gpu_(gpu) {}

@@ -109,6 +109,13 @@ private:
     Status createRaster(const PassSpec& spec, const RunConfig& c);
     Status uploadGBuffer(const RunConfig& c);
     struct Pass;
+    // One pass of create(): its outputs, uniform blocks, bindings and pipeline.
+    Status createPass(const PassSpec& spec, const RunConfig& c, const SourceOverrides& overrides,
+                      const PlantedSlowdown& plant);
+    Status createOutputs(Pass& pass, const PassSpec& spec);
+    Status createUniforms(Pass& pass, const PassSpec& spec, const RunConfig& c);
+    Status bindInputs(Pass& pass, const PassSpec& spec, const RunConfig& c);
+    Status createComputeLevels(Pass& pass, const PassSpec& spec, const RunConfig& c, int mipLevels);
     struct Target { gpu::Image image; int width, height; gpu::Format format; };
     gpu::Backend& gpu_;
     std::vector<PassSpec> specs_;

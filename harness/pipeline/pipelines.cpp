@@ -2,7 +2,8 @@
 // role "ao" slots in: its inputs are matched by name to the G-buffer images
 // ("position", "normal", "depth" — which adds a depth pass — and CPU-made
 // constants such as "noise4x4" or "sky"); a kernel with "visibility" and
-// "radiance" outputs runs the SSDO chain (003_9aa4a2c3c5c6ee23.txt).
+// "radiance" outputs runs the SSDO chain (Ritschel et al., I3D 2009;
+// docs/kernels.md, "Sources").
 #include "pipeline/namespace.h"
 #include "pipeline/pipeline.h"
 
@@ -42,6 +43,121 @@ bool supportsHalf(const std::string& kernel) {
     return k && !isSsdo(*k);
 }
 
+namespace {
+
+// The SSDO chain: direct pass, its blur, the one-bounce indirect pass and its
+// blur, the composite. Visibility plays the part of AO in the outputs a user
+// and the gate see.
+void ssdoPasses(const kernels::KernelDecl& k, std::vector<PassSpec>& p) {
+    std::vector<ImageRef> in;
+    for (const auto& i : k.inputs) {
+        in.push_back({i.name, isConstant(i.name) ? ImageSource::Constant : ImageSource::Pass});
+        if (i.name == "zmip") p.push_back({"pyramid", "depth_pyramid", {"position", "zmip"}, {"zmip"}, false});
+    }
+    // A variant's bounce pass is "<kernel>_indirect" (ssdo_marched_indirect): it
+    // must walk the very points the direct pass did, so it carries the
+    // variant's defaults. It reads what the direct pass read, plus the
+    // albedo and the blurred radiance.
+    const std::string indirectKernel = kernels::find(k.name + "_indirect") ? k.name + "_indirect" : "ssdo_indirect";
+    std::vector<ImageRef> indirectIn;
+    for (const auto& i : kernels::find(indirectKernel)->inputs)
+        indirectIn.push_back(i.name == "radiance" ? ImageRef{"radiance_blur"} : ImageRef{i.name});
+    // The bounce is filtered too, as SSDO's lighting pass reads a blurred
+    // indirect map (Ritschel et al.): one sample meeting a sender at the
+    // distance clamp carries up to (R / clamp)^2 times the others' weight, a
+    // single-pixel firefly along every crease when left raw. The blur's
+    // visibility output there is not used.
+    if (packsKey(k)) {
+        // The separable pair, weighted by the direct pass's key for both.
+        p.push_back({"ao", k.name, in, {"ao", "radiance", "ao_key"}, false});
+        p.push_back({"blur_x", "blur_separable_ssdo_x", {"ao_key", "radiance"}, {"ao_key_x", "radiance_x"}, false});
+        p.push_back({"blur_y", "blur_separable_ssdo_y", {"ao_key_x", "radiance_x"}, {"ao_blur", "radiance_blur"}, false});
+        p.push_back({"indirect", indirectKernel, indirectIn, {"indirect"}, false});
+        p.push_back({"indirect_blur_x", "blur_separable_ssdo_x", {"ao_key", "indirect"}, {"indirect_key_x", "indirect_x"}, false});
+        p.push_back({"indirect_blur_y", "blur_separable_ssdo_y", {"indirect_key_x", "indirect_x"}, {"indirect_vis", "indirect_blur"}, false});
+    } else {
+        p.push_back({"ao", k.name, in, {"ao", "radiance"}, false});
+        p.push_back({"blur", "blur_bilateral_ssdo", {"ao", "radiance", "position", "normal"}, {"ao_blur", "radiance_blur"}, false});
+        p.push_back({"indirect", indirectKernel, indirectIn, {"indirect"}, false});
+        p.push_back({"indirect_blur", "blur_bilateral_ssdo", {"ao_blur", "indirect", "position", "normal"}, {"indirect_vis", "indirect_blur"}, false});
+    }
+    p.push_back({"composite", "composite_ssdo", {"ao_blur", "radiance_blur", "indirect_blur", "normal", "albedo"}, {"color"}, false});
+}
+
+// A screen-space AO kernel's inputs at its resolution, and the passes that
+// make them: the depth (put back on each half texel's own ray at half
+// resolution: depth_from_position_half.glsl says why) and the linear-depth
+// pyramid of the fast kernels, all its levels in one pass.
+std::vector<ImageRef> aoInputs(const kernels::KernelDecl& k, bool half, std::vector<PassSpec>& p) {
+    const std::string suffix = half ? "_half" : "";
+    const std::string position = "position" + suffix, normal = "normal" + suffix;
+    std::vector<ImageRef> in;
+    for (const auto& i : k.inputs) {
+        if (i.name == "position") in.push_back(position);
+        else if (i.name == "normal") in.push_back(normal);
+        else if (i.name == "depth") in.push_back("depth" + suffix);
+        else if (i.name == "zmip") in.push_back("zmip" + suffix);
+        else if (isConstant(i.name)) in.push_back({i.name, ImageSource::Constant});
+        else in.push_back(i.name);
+    }
+    for (const auto& i : k.inputs) {
+        if (i.name == "depth") {
+            if (half)
+                p.push_back({"depth", "depth_from_position_half", {position, normal}, {"depth" + suffix}, true});
+            else
+                p.push_back({"depth", "depth_from_position", {position}, {"depth"}, false});
+        }
+        if (i.name == "zmip")
+            p.push_back({"pyramid", "depth_pyramid", {position, "zmip" + suffix}, {"zmip" + suffix}, half});
+    }
+    return in;
+}
+
+// The joint bilateral upsample of a half-resolution pipeline, guided by the
+// full G-buffer so that no AO crosses a silhouette.
+PassSpec upsamplePass() {
+    return {"upsample", "upsample_bilateral", {"ao_half_blur", "position_half", "position", "normal", "normal_half"}, {"ao_blur"}, false};
+}
+
+// A kernel that packs AO with its depth key ("ao_key") is blurred by the
+// separable pair, which reads only that.
+void separableTail(const kernels::KernelDecl& k, const std::vector<ImageRef>& in, bool half, std::vector<PassSpec>& p) {
+    p.push_back({"ao", k.name, in, {"ao", "ao_key"}, half});
+    p.push_back({"blur_x", "blur_separable_x", {"ao_key"}, {"ao_key_x"}, half});
+    if (half) {
+        p.push_back({"blur_y", "blur_separable_y", {"ao_key_x"}, {"ao_half_blur"}, true});
+        p.push_back(upsamplePass());
+    } else {
+        p.push_back({"blur_y", "blur_separable_y", {"ao_key_x"}, {"ao_blur"}, false});
+    }
+}
+
+// The other kernels by the 2-D bilateral. The hemisphere kernel's 4x4
+// rotation tile is cancelled first by a box blur of exactly one tile period
+// (the hemisphere SSAO lesson's); with depth_aware_box, blur_box_depth keeps
+// the box to one surface so that no silhouette's AO spreads onto the wall
+// behind it.
+void bilateralTail(const kernels::KernelDecl& k, const RunConfig& c, const std::vector<ImageRef>& in, bool half,
+                   std::vector<PassSpec>& p) {
+    const std::string suffix = half ? "_half" : "";
+    const std::string position = "position" + suffix, normal = "normal" + suffix;
+    p.push_back({"ao", k.name, in, {"ao"}, half});
+    std::string raw = "ao";
+    for (const auto& i : k.inputs)
+        if (i.name == "noise4x4") {
+            const auto v = kernels::withDefaults(k, c.params);
+            if (v.count("depth_aware_box") && v.at("depth_aware_box") != 0)
+                p.push_back({"box", "blur_box_depth", {"ao", "depth" + suffix, normal}, {"ao_box"}, half});
+            else
+                p.push_back({"box", "blur_box", {"ao"}, {"ao_box"}, half});
+            raw = "ao_box";
+        }
+    p.push_back({"blur", "blur_bilateral", {raw, position, normal}, {half ? "ao_half_blur" : "ao_blur"}, half});
+    if (half) p.push_back(upsamplePass());
+}
+
+}  // namespace
+
 std::vector<PassSpec> buildPasses(const RunConfig& c) {
     const auto* k = kernels::find(c.kernel);
     std::vector<PassSpec> p;
@@ -50,109 +166,18 @@ std::vector<PassSpec> buildPasses(const RunConfig& c) {
     if (!c.imported())
         p.push_back({"gbuffer", c.raster ? "gbuffer_raster" : "gbuffer_sdf", {}, {"position", "normal", "albedo"}, false});
     if (!k) return p;
-
     if (isSsdo(*k)) {
-        std::vector<ImageRef> in;
-        for (const auto& i : k->inputs) {
-            in.push_back({i.name, isConstant(i.name) ? ImageSource::Constant : ImageSource::Pass});
-            if (i.name == "zmip") p.push_back({"pyramid", "depth_pyramid", {"position", "zmip"}, {"zmip"}, false});
-        }
-        // A variant's bounce pass is "<kernel>_indirect" (ssdo_marched_indirect): it
-        // must walk the very points the direct pass did, so it carries the
-        // variant's defaults. It reads what the direct pass read, plus the
-        // albedo and the blurred radiance.
-        const std::string indirectKernel = kernels::find(k->name + "_indirect") ? k->name + "_indirect" : "ssdo_indirect";
-        std::vector<ImageRef> indirectIn;
-        for (const auto& i : kernels::find(indirectKernel)->inputs)
-            indirectIn.push_back(i.name == "radiance" ? ImageRef{"radiance_blur"} : ImageRef{i.name});
-        // Visibility plays the part of AO in the outputs a user and the gate see.
-        // The bounce is filtered too, as seed 003's lighting pass reads a
-        // blurred indirect map: one sample meeting a sender at the distance
-        // clamp carries up to (R / clamp)^2 times the others' weight, a
-        // single-pixel firefly along every crease when left raw. The blur's
-        // visibility output there is not used.
-        if (packsKey(*k)) {
-            // The separable pair, weighted by the direct pass's key for both.
-            p.push_back({"ao", k->name, in, {"ao", "radiance", "ao_key"}, false});
-            p.push_back({"blur_x", "blur_separable_ssdo_x", {"ao_key", "radiance"}, {"ao_key_x", "radiance_x"}, false});
-            p.push_back({"blur_y", "blur_separable_ssdo_y", {"ao_key_x", "radiance_x"}, {"ao_blur", "radiance_blur"}, false});
-            p.push_back({"indirect", indirectKernel, indirectIn, {"indirect"}, false});
-            p.push_back({"indirect_blur_x", "blur_separable_ssdo_x", {"ao_key", "indirect"}, {"indirect_key_x", "indirect_x"}, false});
-            p.push_back({"indirect_blur_y", "blur_separable_ssdo_y", {"indirect_key_x", "indirect_x"}, {"indirect_vis", "indirect_blur"}, false});
-        } else {
-            p.push_back({"ao", k->name, in, {"ao", "radiance"}, false});
-            p.push_back({"blur", "blur_bilateral_ssdo", {"ao", "radiance", "position", "normal"}, {"ao_blur", "radiance_blur"}, false});
-            p.push_back({"indirect", indirectKernel, indirectIn, {"indirect"}, false});
-            p.push_back({"indirect_blur", "blur_bilateral_ssdo", {"ao_blur", "indirect", "position", "normal"}, {"indirect_vis", "indirect_blur"}, false});
-        }
-        p.push_back({"composite", "composite_ssdo", {"ao_blur", "radiance_blur", "indirect_blur", "normal", "albedo"}, {"color"}, false});
+        ssdoPasses(*k, p);
         return p;
     }
-
     // Half resolution: a depth-aware 2x2 downsample of the G-buffer, AO and
-    // blur at half size, then a joint bilateral upsample guided by the full
-    // G-buffer so no AO crosses a silhouette (000_79d41de70034b569.txt).
+    // blur at half size, then the bilateral upsample (Alchemy's reason: a
+    // plain upsample leaves halos at silhouettes).
     const bool half = c.half && supportsHalf(c.kernel);
-    const std::string suffix = half ? "_half" : "";
-    const std::string position = "position" + suffix, normal = "normal" + suffix;
-    if (half) p.push_back({"downsample", "downsample_depth", {"position", "normal"}, {position, normal}, true});
-    std::vector<ImageRef> in;
-    for (const auto& i : k->inputs) {
-        if (i.name == "position") in.push_back(position);
-        else if (i.name == "normal") in.push_back(normal);
-        else if (i.name == "depth") in.push_back("depth" + suffix);
-        else if (i.name == "zmip") in.push_back("zmip" + suffix);
-        else if (isConstant(i.name)) in.push_back({i.name, ImageSource::Constant});
-        else in.push_back(i.name);
-    }
-    for (const auto& i : k->inputs) {
-        // At half resolution the depth is put back on each half texel's own
-        // ray (depth_from_position_half.glsl says why).
-        if (i.name == "depth") {
-            if (half)
-                p.push_back({"depth", "depth_from_position_half", {position, normal}, {"depth" + suffix}, true});
-            else
-                p.push_back({"depth", "depth_from_position", {position}, {"depth"}, false});
-        }
-        // The linear-depth pyramid of the fast kernels, all its levels in one pass.
-        if (i.name == "zmip")
-            p.push_back({"pyramid", "depth_pyramid", {position, "zmip" + suffix}, {"zmip" + suffix}, half});
-    }
-    // A kernel that packs AO with its depth key ("ao_key") is blurred by the
-    // separable pair, which reads only that; the others by the 2-D bilateral.
-    if (packsKey(*k)) {
-        p.push_back({"ao", k->name, in, {"ao", "ao_key"}, half});
-        p.push_back({"blur_x", "blur_separable_x", {"ao_key"}, {"ao_key_x"}, half});
-        if (half) {
-            p.push_back({"blur_y", "blur_separable_y", {"ao_key_x"}, {"ao_half_blur"}, true});
-            p.push_back({"upsample", "upsample_bilateral", {"ao_half_blur", position, "position", "normal", normal}, {"ao_blur"}, false});
-        } else {
-            p.push_back({"blur_y", "blur_separable_y", {"ao_key_x"}, {"ao_blur"}, false});
-        }
-        p.push_back({"composite", "composite", {"ao_blur", "normal", "albedo"}, {"color"}, false});
-        return p;
-    }
-    p.push_back({"ao", k->name, in, {"ao"}, half});
-    std::string raw = "ao";
-    // The hemisphere kernel's 4x4 rotation tile is cancelled by a box blur of
-    // exactly one tile period (004_94976db8e6612027.txt) before the bilateral.
-    // With depth_aware_box, blur_box_depth keeps the box to one surface so
-    // that no silhouette's AO spreads onto the wall behind it.
-    for (const auto& i : k->inputs)
-        if (i.name == "noise4x4") {
-            const auto v = kernels::withDefaults(*k, c.params);
-            if (v.count("depth_aware_box") && v.at("depth_aware_box") != 0)
-                p.push_back({"box", "blur_box_depth", {"ao", "depth" + suffix, normal}, {"ao_box"}, half});
-            else
-                p.push_back({"box", "blur_box", {"ao"}, {"ao_box"}, half});
-            raw = "ao_box";
-        }
-    if (half) {
-        p.push_back({"blur", "blur_bilateral", {raw, position, normal}, {"ao_half_blur"}, true});
-        p.push_back({"upsample", "upsample_bilateral", {"ao_half_blur", position, "position", "normal", normal}, {"ao_blur"}, false});
-    } else {
-        p.push_back({"blur", "blur_bilateral", {raw, position, normal}, {"ao_blur"}, false});
-    }
+    if (half) p.push_back({"downsample", "downsample_depth", {"position", "normal"}, {"position_half", "normal_half"}, true});
+    const auto in = aoInputs(*k, half, p);
+    if (packsKey(*k)) separableTail(*k, in, half, p);
+    else bilateralTail(*k, c, in, half, p);
     p.push_back({"composite", "composite", {"ao_blur", "normal", "albedo"}, {"color"}, false});
     return p;
 }

@@ -1,0 +1,151 @@
+// index.html: the embedded page with the report's data inlined
+// (report/gate_report.h).
+#include "report/gate_report.h"
+
+#include "report/verdict_text.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+
+namespace cavity::report {
+
+namespace fs = std::filesystem;
+
+// harness/report/'s files by name, embedded at build time (cmake/embed.cmake).
+const std::map<std::string, std::string>& reportFiles();
+
+namespace {
+
+std::string base64File(const std::string& path) {
+    std::ifstream f(path, std::ios::binary);
+    if (!f) return "";
+    const std::string data((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+    static const char* t = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    std::string o;
+    size_t i = 0;
+    for (; i + 2 < data.size(); i += 3) {
+        const unsigned v = (unsigned char)data[i] << 16 | (unsigned char)data[i + 1] << 8 | (unsigned char)data[i + 2];
+        o += t[v >> 18 & 63];
+        o += t[v >> 12 & 63];
+        o += t[v >> 6 & 63];
+        o += t[v & 63];
+    }
+    if (i < data.size()) {
+        unsigned v = (unsigned char)data[i] << 16;
+        if (i + 1 < data.size()) v |= (unsigned char)data[i + 1] << 8;
+        o += t[v >> 18 & 63];
+        o += t[v >> 12 & 63];
+        o += i + 1 < data.size() ? t[v >> 6 & 63] : '=';
+        o += '=';
+    }
+    return o;
+}
+
+std::string dataUri(const std::string& png) {
+    const std::string b = png.empty() ? "" : base64File(png);
+    return b.empty() ? "" : "data:image/png;base64," + b;
+}
+
+// The heat-map's colour scale as a CSS gradient, from the colours it is drawn with.
+std::string heatScaleCss() {
+    std::string g = "linear-gradient(to right";
+    for (int k = 0; k <= 8; ++k) {
+        const auto c = metrics::heatColor(k / 8.0);
+        char b[48];
+        std::snprintf(b, sizeof b, ",rgb(%d,%d,%d)", int(255 * c[0] + 0.5f), int(255 * c[1] + 0.5f), int(255 * c[2] + 0.5f));
+        g += b;
+    }
+    return g + ")";
+}
+
+// The PNG files the page shows, by the path gate.json names them: a passing
+// configuration's new images (thumbnails), a failing or noted one's
+// baseline, new image and heat-map. Every image of every passing ci
+// configuration embedded in full made 8.4 MB.
+nlohmann::json shownImages(const GateRun& run) {
+    nlohmann::json images = nlohmann::json::object();
+    auto add = [&](const std::string& png) {
+        if (png.empty() || images.contains(png)) return;
+        if (const std::string uri = dataUri(png); !uri.empty()) images[png] = uri;
+    };
+    for (const auto& r : run.results)
+        for (const auto& i : r.images) {
+            add(i.newPng);
+            if (r.passed()) continue;
+            add(i.baselinePng);
+            add(i.diffPng);
+        }
+    return images;
+}
+
+// Charts from scripts/charts.py, when a benchmark run left them (and their
+// index.json) next to the report; by name.
+nlohmann::json charts(const std::string& chartsDir) {
+    nlohmann::json out = nlohmann::json::array();
+    std::error_code ec;
+    if (!fs::exists(fs::path(chartsDir) / "index.json", ec)) return out;
+    std::vector<fs::path> pngs;
+    for (const auto& entry : fs::directory_iterator(chartsDir, ec))
+        if (entry.path().extension() == ".png") pngs.push_back(entry.path());
+    std::sort(pngs.begin(), pngs.end());
+    for (const auto& png : pngs) out.push_back({{"name", png.stem().string()}, {"src", dataUri(png.string())}});
+    return out;
+}
+
+// JSON inside <script>: every '<', '>' and '&' (which JSON holds only inside
+// strings) as a \u escape, so that no "</script>" or "<!--" in a message or
+// a path can end the block or change how it is parsed.
+std::string scriptSafe(const std::string& json) {
+    std::string o;
+    o.reserve(json.size());
+    for (char ch : json) {
+        switch (ch) {
+        case '<': o += "\\u003c"; break;
+        case '>': o += "\\u003e"; break;
+        case '&': o += "\\u0026"; break;
+        default: o += ch;
+        }
+    }
+    return o;
+}
+
+// Replaces the one occurrence of `marker` in `page`.
+Status fill(std::string& page, const std::string& marker, const std::string& text) {
+    const auto at = page.find(marker);
+    if (at == std::string::npos || page.find(marker, at + 1) != std::string::npos)
+        return internal("harness/report/index.html: needs " + marker + " exactly once");
+    page.replace(at, marker.size(), text);
+    return {};
+}
+
+}  // namespace
+
+nlohmann::json reportData(const GateRun& run, const std::string& chartsDir) {
+    nlohmann::json order = nlohmann::json::array(), results = nlohmann::json::array();
+    for (const auto* r : ordered(run)) order.push_back(r - run.results.data());
+    for (const auto& r : run.results) results.push_back({{"label", r.label()}, {"note", verdictNote(r)}});
+    return {{"gate", toJson(run)},
+            {"view",
+             {{"counts", countsText(run)},
+              {"order", order},
+              {"results", results},
+              {"images", shownImages(run)},
+              {"heat_scale", heatScaleCss()},
+              {"charts", charts(chartsDir)}}}};
+}
+
+Result<std::string> reportHtml(const GateRun& run, const std::string& chartsDir) {
+    const auto& files = reportFiles();
+    std::string page = files.at("index.html");
+    // A message or a path that is not UTF-8 is written with U+FFFD rather
+    // than failing the report.
+    const std::string data = reportData(run, chartsDir).dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+    CAVITY_TRY(fill(page, "<script src=\"report.js\"></script>", "<script>\n" + files.at("report.js") + "</script>"));
+    CAVITY_TRY(fill(page, "@GATE_DATA@", scriptSafe(data)));
+    return page;
+}
+
+}  // namespace cavity::report

@@ -1,0 +1,27 @@
+// What every gate report says the same way: the order failures come in,
+// the note of a verdict that is not a plain pass or fail, the counts line,
+// numbers. Shared by junit.xml, summary.md and index.html.
+#pragma once
+
+#include "report/namespace.h"
+#include "gate/gate.h"
+
+#include <string>
+#include <vector>
+
+namespace cavity::report {
+
+// A number in `digits` significant digits; "inf" for infinity and the
+// sentinel of "no finite value".
+std::string num(double x, int digits = 4);
+// The results, failures first (what fails the gate, then what is reported
+// but not fatal: flaky, expected failures, known flakes), by id within.
+std::vector<const ConfigResult*> ordered(const GateRun& run);
+// Lines joined with "; ".
+std::string joined(const std::vector<std::string>& lines);
+// One line for a verdict that is not a plain pass or fail; empty otherwise.
+std::string verdictNote(const ConfigResult& r);
+// "3 passed, 1 flaky, ...": every verdict that occurred, in a fixed order.
+std::string countsText(const GateRun& run);
+
+}  // namespace cavity::report
