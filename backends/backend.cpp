@@ -41,20 +41,6 @@ int channelCount(Format f) {
     }
 }
 
-int bytesPerPixel(Format f) {
-    switch (f) {
-    case Format::R8: return 1;
-    case Format::R16F: return 2;
-    case Format::R32F: return 4;
-    case Format::RG16F: return 4;
-    case Format::RGBA8: return 4;
-    case Format::RGBA16F: return 8;
-    case Format::RGBA32F: return 16;
-    case Format::D32: return 4;
-    }
-    return 4;
-}
-
 const char* formatName(Format f) {
     switch (f) {
     case Format::R8: return "R8";

@@ -74,7 +74,7 @@ const cavity::cli::CommandSpec& benchSpec() {
             "One Google Benchmark per configuration of the sweep (harness/plan/sweep.h), named by its configuration id; "
             "each iteration is one whole measurement, its time the median per-frame GPU time of the AO pipeline. "
             "Google Benchmark's own flags (--benchmark_filter=REGEX, --benchmark_out=FILE, "
-            "--benchmark_repetitions=N, --benchmark_list_tests, ...) are passed to it; give them as --name=value.";
+            "--benchmark_repetitions=N, --benchmark_list_tests and the rest) are passed to it; give them as --name=value.";
         c.flags = {
             {"--backend", "gl|vk|all", "backends to measure (default all)"},
             {"--sweep", "gpu|cpu|auto", "the configurations: the GPU sweep, the smaller CPU-renderer one, or by device (default auto)"},

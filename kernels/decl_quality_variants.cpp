@@ -24,8 +24,6 @@ namespace {
 
 using gpu::Format;
 
-constexpr double kRgba32f = 16, kR32f = 4, kRgba16f = 8, kR16f = 2;
-
 // 4 points a direction: within 0.1 of the truth in every distance band at a
 // 90 degree crease (tests/test_analytic.cpp, README Kernels); each step is
 // a position and a normal fetch more, so the cost grows with it.

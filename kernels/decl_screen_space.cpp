@@ -21,8 +21,6 @@ namespace {
 
 using gpu::Format;
 
-constexpr double kRgba32f = 16, kRgba16f = 8, kRgba8 = 4, kR32f = 4, kR16f = 2;
-
 const int kMaxSamples = maxKernelPoints();
 
 // --- kernels -------------------------------------------------------------------

@@ -18,8 +18,6 @@ namespace {
 
 using gpu::Format;
 
-constexpr double kRgba32f = 16, kRgba16f = 8, kR16f = 2;
-
 // One position and one normal read, one R16F AO written.
 Cost gbufferPixelCost() {
     return Cost{2, kRgba32f + kRgba16f + kR16f, fetchSlots(kRgba32f) + fetchSlots(kRgba16f), kRgba32f + kRgba16f + kR16f};

@@ -16,4 +16,12 @@ std::vector<ConstantImageDecl> screenSpaceConstants();   // decl_screen_space.cp
 // 4 (bilinear) or 8 (trilinear between two levels). decl_screen_space.cpp.
 double skyTexels(const ParamValues& v);
 
+// Texel sizes in bytes for the declarations' costs, from the backend's one
+// table (gpu::bytesPerPixel).
+constexpr double kRgba32f = gpu::bytesPerPixel(gpu::Format::RGBA32F);
+constexpr double kRgba16f = gpu::bytesPerPixel(gpu::Format::RGBA16F);
+constexpr double kRgba8 = gpu::bytesPerPixel(gpu::Format::RGBA8);
+constexpr double kR32f = gpu::bytesPerPixel(gpu::Format::R32F);
+constexpr double kR16f = gpu::bytesPerPixel(gpu::Format::R16F);
+
 }  // namespace cavity::kernels

@@ -16,9 +16,6 @@ namespace {
 
 using gpu::Format;
 
-// Bytes per texel of the formats below, for the cost model.
-constexpr double kRgba32f = 16, kRgba16f = 8, kRgba8 = 4, kR16f = 2;
-
 KernelDecl gbufferSdf() {
     KernelDecl k;
     k.name = "gbuffer_sdf";
@@ -113,7 +110,6 @@ KernelDecl composite() {
 // largest sample offsets at R = 0.5 on our cameras are about 250 px, which
 // ssao_alchemy_fast.glsl's level rule puts on level 4.
 constexpr int kPyramidLevels = 5;
-constexpr double kR32f = 4;
 
 KernelDecl depthPyramid() {
     KernelDecl k;

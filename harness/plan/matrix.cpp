@@ -1,5 +1,7 @@
 #include "plan/matrix.h"
 
+#include "plan/axes.h"
+
 #include "pipeline/config_id.h"
 #include "core/digest.h"
 #include "core/json_input.h"
@@ -45,29 +47,24 @@ std::vector<RunConfig> Matrix::expand() const {
     std::vector<RunConfig> out;
     std::set<std::string> seen;
     for (const auto& g : groups) {
-        std::vector<std::string> kernels = g.kernels;
-        if (kernels.size() == 1 && kernels[0] == "all") kernels = aoKernels();
-        for (const auto& scene : g.scenes)
-            for (const auto& k : kernels)
-                for (int n : g.samples)
-                    for (int b : g.blurs)
-                        for (bool half : g.half)
-                            for (auto [w, h] : g.sizes)
-                                for (auto api : g.apis)
-                                    for (auto stage : g.stages) {
-                                        RunConfig c;
-                                        c.kernel = k;
-                                        (void)setParam(c, "scene", scene);
-                                        c.params["samples"] = n;
-                                        c.params["blur"] = b;
-                                        c.half = half;
-                                        c.width = w;
-                                        c.height = h;
-                                        c.api = api;
-                                        c.stage = stage;
-                                        if (half && !supportsHalf(k)) continue;
-                                        if (seen.insert(configId(c)).second) out.push_back(c);
-                                    }
+        Axes axes;
+        axes.scenes = g.scenes;
+        axes.kernels = g.kernels.size() == 1 && g.kernels[0] == "all" ? aoKernels() : g.kernels;
+        axes.params = {{"samples", std::vector<double>(g.samples.begin(), g.samples.end())},
+                       {"blur", std::vector<double>(g.blurs.begin(), g.blurs.end())}};
+        axes.half = g.half;
+        axes.sizes = g.sizes;
+        axes.apis = g.apis;
+        axes.stages = g.stages;
+        // An empty list is an empty product (the expander would keep the
+        // default there); loadMatrix has checked every scene name.
+        if (g.scenes.empty() || axes.kernels.empty() || g.samples.empty() || g.blurs.empty() || g.half.empty() ||
+            g.sizes.empty() || g.apis.empty() || g.stages.empty())
+            continue;
+        auto configs = expandAxes(axes);
+        if (!configs) continue;
+        for (auto& c : *configs)
+            if (seen.insert(configId(c)).second) out.push_back(std::move(c));
     }
     return out;
 }

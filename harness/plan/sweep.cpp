@@ -1,5 +1,7 @@
 #include "plan/sweep.h"
 
+#include "plan/axes.h"
+
 #include "pipeline/config_id.h"
 #include "pipeline/pipeline.h"
 
@@ -40,10 +42,22 @@ bool sdfFamily(const std::string& kernel) {
 std::vector<RunConfig> benchmarkSweep(const SweepAxes& axes, const std::vector<gpu::Api>& apis) {
     std::vector<RunConfig> out;
     std::set<std::string> seen;
-    auto add = [&](RunConfig c) {
-        if (c.half && !supportsHalf(c.kernel)) return;
-        if (seen.insert(configId(c)).second) out.push_back(std::move(c));
+    auto add = [&](const Axes& a, const RunConfig& base) {
+        auto configs = expandAxes(a, base);
+        if (!configs) return;   // no scene axis here: nothing can fail
+        for (auto& c : *configs)
+            if (seen.insert(configId(c)).second) out.push_back(std::move(c));
     };
+    const std::vector<double> samples(axes.samples.begin(), axes.samples.end()), blurs(axes.blurs.begin(), axes.blurs.end());
+    // Axes of parameters and full/half; every other axis at the base's value.
+    auto around = [](std::vector<std::pair<std::string, std::vector<double>>> params, std::vector<bool> half = {}) {
+        Axes a;
+        a.params = std::move(params);
+        a.half = std::move(half);
+        return a;
+    };
+    Axes sizes;
+    sizes.sizes = axes.sizes;
     for (const auto& kernel : aoKernels())
         for (auto api : apis)
             for (auto stage : {gpu::Stage::Compute, gpu::Stage::Fragment}) {
@@ -51,51 +65,20 @@ std::vector<RunConfig> benchmarkSweep(const SweepAxes& axes, const std::vector<g
                 base.kernel = kernel;
                 base.api = api;
                 base.stage = stage;
-                base.width = axes.defaultSize.first;
-                base.height = axes.defaultSize.second;
-                add(base);
+                std::tie(base.width, base.height) = axes.defaultSize;
+                add(Axes{}, base);
                 if (stage == gpu::Stage::Fragment && (!axes.fragmentAxes || sdfFamily(kernel))) continue;
-                for (int n : axes.samples) {
-                    RunConfig c = base;
-                    c.params["samples"] = n;
-                    add(c);
-                }
-                for (int b : axes.blurs) {
-                    RunConfig c = base;
-                    c.params["blur"] = b;
-                    add(c);
-                }
-                {
-                    RunConfig c = base;
-                    c.half = true;
-                    add(c);
-                }
-                for (auto [w, h] : axes.sizes) {
-                    RunConfig c = base;
-                    c.width = w;
-                    c.height = h;
-                    add(c);
-                }
+                // One axis at a time around the default configuration.
+                add(around({{"samples", samples}}), base);
+                add(around({{"blur", blurs}}), base);
+                add(around({}, {true}), base);
+                add(sizes, base);
+                if (!axes.product || stage != gpu::Stage::Compute) continue;
                 // The SDF family shares the blur, so its product is samples x
                 // full/half at the default blur: enough for the quality-cost
                 // chart's every kernel x sample count x full/half.
-                if (axes.product && stage == gpu::Stage::Compute && sdfFamily(kernel))
-                    for (int n : axes.samples) {
-                        RunConfig c = base;
-                        c.params["samples"] = n;
-                        c.half = true;
-                        add(c);
-                    }
-                if (axes.product && stage == gpu::Stage::Compute && !sdfFamily(kernel))
-                    for (int n : axes.samples)
-                        for (int b : axes.blurs)
-                            for (bool half : {false, true}) {
-                                RunConfig c = base;
-                                c.params["samples"] = n;
-                                c.params["blur"] = b;
-                                c.half = half;
-                                add(c);
-                            }
+                if (sdfFamily(kernel)) add(around({{"samples", samples}}, {true}), base);
+                else add(around({{"samples", samples}, {"blur", blurs}}, {false, true}), base);
             }
     return out;
 }
