@@ -1,4 +1,4 @@
-// 4x4 box blur of the hemisphere AO (seed 004_94976db8e6612027.txt, "Box
+// 4x4 box blur of the hemisphere AO (seed the hemisphere SSAO lesson (docs/kernels.md), "Box
 // blur"). The raw AO repeats with the 4x4 rotation tile; a window of exactly
 // one tile period holds every rotation once, so the pattern averages out to
 // the underlying signal. A Gaussian would weight the tile unevenly and leave

@@ -3,7 +3,7 @@
 // other's tangent planes. Seed 004's box ignores depth, so at a silhouette
 // it averages the AO of the object in front with that of the wall behind:
 // the sphere's contact darkening spreads over the wall texels beside its
-// outline, a grey ring round it (issue 11). The box stays a box (equal
+// outline, a grey ring round it. The box stays a box (equal
 // weights, the same window) so that, away from edges, one whole period of
 // the 4x4 rotation tile is still averaged and the tile cancels; at an edge
 // the window holds part of a period and some of the tile's pattern stays,

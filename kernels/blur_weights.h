@@ -1,6 +1,6 @@
 // The 1-D Gaussian of the bilateral blur, computed on the CPU once per
 // radius and handed to the kernel as a uniform array, so that changing the
-// radius needs no recompile (000_79d41de70034b569.txt).
+// radius needs no recompile (McGuire et al., HPG 2011).
 #pragma once
 
 #include <vector>

@@ -1,6 +1,6 @@
 // The lit image: a sky-and-ground ambient term, darkened by the AO, on
 // albedo; background shows the sky. AO multiplies the whole ambient term
-// (000_79d41de70034b569.txt): 1 leaves open surfaces alone, 0 blacks out a
+// (McGuire et al., HPG 2011): 1 leaves open surfaces alone, 0 blacks out a
 // fully enclosed point.
 #include "include/common.glsl"
 #include "include/noise.glsl"
@@ -29,7 +29,7 @@ void cavity_main(ivec2 pixel) {
     }
     // An 8-bit target has 256 levels, and the slow gradients of blurred AO
     // band visibly between them; +-half a level of IGN dither turns the
-    // bands into noise too fine to see (004_94976db8e6612027.txt).
+    // bands into noise too fine to see (the hemisphere SSAO lesson (docs/kernels.md)).
     if (P.dither != 0) {
         precise float offset = (ign(vec2(pixel) + 0.5) - 0.5) * 0.003921569;   // 1/255
         color += vec3(offset);

@@ -1,4 +1,4 @@
-// The SSDO lit image (003_9aa4a2c3c5c6ee23.txt, "Integration into the
+// The SSDO lit image (Ritschel et al., I3D 2009, "Integration into the
 // lighting pass"), diffuse only (the scenes have no specular term), in one
 // of two modes (P.ssdo_mode):
 //   visibility (0): albedo * ambient(N) * visibility + albedo * L_ind.

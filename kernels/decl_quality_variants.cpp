@@ -1,4 +1,4 @@
-// Issue 11's fixed variants of the screen-space seeds, declared beside the
+// The fixed variants of the screen-space seeds, declared beside the
 // seeds' own kernels (decl_screen_space.cpp), which stay as the named
 // references every stored baseline and quality row was made against:
 //

@@ -1,7 +1,7 @@
 // Declarations of the screen-space family: hemisphere-kernel SSAO with its
-// 4x4 box blur (004_94976db8e6612027.txt), the half-resolution pair
+// 4x4 box blur (the hemisphere SSAO lesson (docs/kernels.md)), the half-resolution pair
 // (downsample / bilateral upsample), and SSDO with its blur, bounce and
-// composite (003_9aa4a2c3c5c6ee23.txt); and the images they read that the
+// composite (Ritschel et al., I3D 2009); and the images they read that the
 // CPU makes (the 4x4 rotation-noise tile, the sky panorama with its mips),
 // whose generators are in noise_tables.cpp, sky_panorama.cpp and sky_sh.cpp.
 //

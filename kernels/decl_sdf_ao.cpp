@@ -1,4 +1,4 @@
-// Declarations of the signed-distance AO family (001_8103f59163db3ce3.txt):
+// Declarations of the signed-distance AO family (the SDF AO reference (docs/kernels.md)):
 // the classic five-tap normal probe and its five variants, and the ray-traced
 // ground truth the quality measurements compare every AO kernel against.
 //

@@ -1,7 +1,7 @@
 // The hardware depth value a raster G-buffer pass would have written,
 // (proj p).z / (proj p).w in [0, 1], from the ray-marched view position. It
 // lets the hemisphere kernel reconstruct positions from depth with
-// frame.invProj exactly as 004_94976db8e6612027.txt teaches, whichever
+// frame.invProj exactly as the hemisphere SSAO lesson (docs/kernels.md) teaches, whichever
 // G-buffer pass ran. Background (position.w = 0) gets 1.0, the cleared depth.
 #include "include/screen_space.glsl"
 

@@ -10,7 +10,7 @@
 // the nearest-depth texels of the checkerboard and the other way on the
 // farthest: on a wall seen obliquely, points a texel apart stood in front
 // of and behind each other's planes, and samples near the surface read as
-// occluded, a blotchy grey haze over open walls (issue 11,
+// occluded, a blotchy grey haze over open walls (seen at
 // corner/hemisphere/n16/b4/half/320x180). Intersected with the texel's
 // tangent plane (its position and normal), the ray finds the surface where
 // the kernel will look for it.

@@ -1,5 +1,5 @@
 // Depth-aware 2x2 downsample of the G-buffer for half-resolution AO. Seed
-// 000_79d41de70034b569.txt warns that upsampled half-resolution AO leaves
+// McGuire et al., HPG 2011 warns that upsampled half-resolution AO leaves
 // halos at silhouettes; averaging positions across a depth edge would make
 // it worse, inventing surfaces floating between foreground and background.
 // So each half texel copies one real full-resolution texel of its 2x2 block.

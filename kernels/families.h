@@ -9,7 +9,7 @@
 namespace cavity::kernels {
 
 std::vector<KernelDecl> screenSpaceKernels();   // decl_screen_space.cpp: hemisphere, box blur, SSDO, half resolution
-std::vector<KernelDecl> qualityVariantKernels();   // decl_quality_variants.cpp: ssdo_marched, blur_box_depth (issue 11)
+std::vector<KernelDecl> qualityVariantKernels();   // decl_quality_variants.cpp: ssdo_marched, blur_box_depth
 std::vector<KernelDecl> sdfAoKernels();         // decl_sdf_ao.cpp: the SDF AO variants and the ground truth
 std::vector<ConstantImageDecl> screenSpaceConstants();   // decl_screen_space.cpp: noise tile, sky panorama
 // Texels of the sky panorama one SSDO direction's textureLod reads at `sky_lod`:

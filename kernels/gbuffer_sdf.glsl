@@ -1,5 +1,5 @@
 // G-buffer of a signed-distance scene by sphere tracing
-// (001_8103f59163db3ce3.txt): march each pixel's ray by the scene distance,
+// (the SDF AO reference (docs/kernels.md)): march each pixel's ray by the scene distance,
 // which can never overshoot a surface, until the distance is negligible.
 // Writes view-space position (w = linear depth), view-space normal and
 // albedo; a ray that misses leaves all three zero, which every later kernel

@@ -2,7 +2,7 @@
 // cosine-weighted fraction of the normal's hemisphere from which a ray
 // escapes the signed-distance scene within the radius R, estimated with
 // `rays` rays (1024 or more) sphere-traced against the scene itself
-// (001_8103f59163db3ce3.txt's map). With cosine-weighted directions the
+// (the SDF AO reference (docs/kernels.md)'s map). With cosine-weighted directions the
 // estimator is the plain fraction of rays that escape. Directions form a
 // Fibonacci lattice on the unit square (u = (i + 0.5) / N, v = i / phi),
 // mapped to the hemisphere by r = sqrt(u), and rotated in azimuth by the

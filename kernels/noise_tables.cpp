@@ -1,5 +1,5 @@
 // The random tables the hemisphere SSAO kernels read (seed
-// 004_94976db8e6612027.txt): the sample kernels and the 4x4 rotation noise,
+// the hemisphere SSAO lesson (docs/kernels.md)): the sample kernels and the 4x4 rotation noise,
 // from a fixed seed so that every run makes the same ones.
 #include "screen_space_tables.h"
 
@@ -31,7 +31,7 @@ double unit(uint32_t seed, uint32_t a, uint32_t b, uint32_t c) {
 
 // n points in the unit +Z hemisphere, as vec4s (w = 1: each point is its
 // own direction, see ssao_hemisphere.glsl), for a kernel of n
-// samples (004_94976db8e6612027.txt, "Generate the sampling kernel"). A
+// samples (the hemisphere SSAO lesson (docs/kernels.md), "Generate the sampling kernel"). A
 // fixed seed gives the same kernel every run, so the image does not flicker
 // between runs or frames. Directions come from rejection sampling in the
 // half ball, so they are uniform (normalising points of a cube, as the seed

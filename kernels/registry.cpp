@@ -38,7 +38,7 @@ KernelDecl alchemy() {
     k.summary = "Alchemy screen-space ambient obscurance (McGuire et al. 2011): spiral samples in a world-radius disc";
     k.sources = {"McGuire et al., HPG 2011"};
     k.role = Role::Ao;
-    // scale and contrast: the seed (000_79d41de70034b569.txt) tunes them per
+    // scale and contrast: the seed (McGuire et al., HPG 2011) tunes them per
     // camera distance (s = 2.0, k = 3.0 for a room seen from afar, 1.7 and
     // 2.2 close up) and says to expect to retune. Our cameras sit 1.5-4.5
     // units away with R = 0.5: at s = 1 the sphere's floor contact barely
@@ -104,7 +104,7 @@ KernelDecl composite() {
     return k;
 }
 
-// --- the fast variants (issue 10): the same estimators on a depth pyramid --
+// --- the fast variants: the same estimators on a depth pyramid --
 
 // Levels of the linear-depth pyramid: 1920x1080 down to 120x67. Alchemy's
 // largest sample offsets at R = 0.5 on our cameras are about 250 px, which

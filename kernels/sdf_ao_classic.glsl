@@ -1,4 +1,4 @@
-// Classic SDF ambient occlusion (001_8103f59163db3ce3.txt, step 3): probe
+// Classic SDF ambient occlusion (the SDF AO reference (docs/kernels.md), step 3): probe
 // the distance field at n heights h along the normal, from 0.01 to the
 // reach R, and add up the shortfall h - map(p + h N), nearer probes
 // weighted more (0.95 per fifth of the reach); AO = 1 - k * sum, clamped.

@@ -1,4 +1,4 @@
-// Fibonacci-hemisphere SDF AO (001_8103f59163db3ce3.txt, variant 5): the
+// Fibonacci-hemisphere SDF AO (the SDF AO reference (docs/kernels.md), variant 5): the
 // n points of a Fibonacci sphere (azimuth i / phi turns, z evenly spaced)
 // are a near-uniform set of directions with none of random sampling's
 // clumps; each is flipped into the normal's hemisphere and probed at a

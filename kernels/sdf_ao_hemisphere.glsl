@@ -1,4 +1,4 @@
-// Random-hemisphere SDF AO (001_8103f59163db3ce3.txt, variant 4): n random
+// Random-hemisphere SDF AO (the SDF AO reference (docs/kernels.md), variant 4): n random
 // directions, flipped into the normal's hemisphere, probed at heights
 // h = 0.01 + R t^2 that crowd near the surface. The expected distance of a
 // probe h along a direction at angle theta to the normal is h cos(theta)

@@ -1,4 +1,4 @@
-// Jittered SDF AO (001_8103f59163db3ce3.txt, variant 3): n probes along
+// Jittered SDF AO (the SDF AO reference (docs/kernels.md), variant 3): n probes along
 // the normal at heights l = (i + j) R / n, i = 1..n, each jittered by j in
 // [0, 1) so that fixed spacing does not band; the shortfall l - map is
 // weighted 1 / (1 + l), AO = 1 - k * mean, clamped. The seed's jitter is a

@@ -1,4 +1,4 @@
-// Multiplicative SDF AO (001_8103f59163db3ce3.txt, variant 1): start at 1
+// Multiplicative SDF AO (the SDF AO reference (docs/kernels.md), variant 1): start at 1
 // and multiply down by 1 - k (h - map) / h at each of n evenly spaced
 // heights up to the reach R. Each factor is raised to 6/n, so the product
 // is the seed's six-step product (R = 0.6, k = 0.2) at n = 6 and tends to

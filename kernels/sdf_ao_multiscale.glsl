@@ -1,4 +1,4 @@
-// Multi-scale SDF AO (001_8103f59163db3ce3.txt, variant 2): heights double
+// Multi-scale SDF AO (the SDF AO reference (docs/kernels.md), variant 2): heights double
 // from R/64 to R (the seed's 0.1 .. 6.4 at n = 7), each factor the
 // fraction map / h of the open-space distance, clamped to [0, 1]; short
 // heights catch contact shadows, long ones the room. Factors are raised to

@@ -1,4 +1,4 @@
-// The sky panorama the SSDO kernels read (seed 003_9aa4a2c3c5c6ee23.txt),
+// The sky panorama the SSDO kernels read (seed Ritschel et al., I3D 2009),
 // made on the CPU with its mip chain.
 #include "screen_space_tables.h"
 

@@ -1,5 +1,5 @@
 // Alchemy screen-space ambient obscurance (McGuire et al. 2011), as
-// 000_79d41de70034b569.txt gives it: n samples on a spiral in a screen disc
+// McGuire et al., HPG 2011 gives it: n samples on a spiral in a screen disc
 // whose radius is the world-space radius R seen at the fragment's depth;
 // each sample's G-buffer position counts as an occluder in proportion to
 // how far it rises above the fragment's tangent plane, with inverse-square

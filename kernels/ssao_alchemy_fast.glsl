@@ -1,5 +1,5 @@
 // Alchemy ambient obscurance on the linear-depth pyramid: the estimator of
-// ssao_alchemy.glsl (000_79d41de70034b569.txt) sample for sample, the same
+// ssao_alchemy.glsl (McGuire et al., HPG 2011) sample for sample, the same
 // spiral, falloff, bias and contrast, but each sample's position is rebuilt
 // from one 32-bit depth (depth_pyramid.glsl) instead of read as an RGBA32F
 // texel: a quarter of the bytes, and for samples far from the pixel a

@@ -1,6 +1,6 @@
 // Hemisphere-kernel SSAO (Crytek 2007 / Chapman 2013), as taught in
-// 004_94976db8e6612027.txt, with positions reconstructed from hardware depth
-// as in 002_fea56af43bca7c1b.txt: test n points inside the normal-oriented
+// the hemisphere SSAO lesson (docs/kernels.md), with positions reconstructed from hardware depth
+// as in Chapman's SSAO tutorial: test n points inside the normal-oriented
 // hemisphere of radius R against the depth buffer. Output: AO in [0, 1],
 // 1 = open.
 //

@@ -1,5 +1,5 @@
 // Hemisphere-kernel SSAO on the linear-depth pyramid: hemisphere_cosine's
-// estimator (seed 004, 004_94976db8e6612027.txt, with its sampling fixed:
+// estimator (seed 004, the hemisphere SSAO lesson (docs/kernels.md), with its sampling fixed:
 // n / steps cosine-weighted rays in the normal hemisphere, each walked in
 // `steps` points out to R and blocked when any point is, AO = (1 - blocked
 // rays / rays)^k, the range check) with one 32-bit fetch per point instead

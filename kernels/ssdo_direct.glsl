@@ -1,5 +1,5 @@
 // Screen-space directional occlusion, direct pass (Ritschel, Grosch &
-// Seidel 2009, as taught in 003_9aa4a2c3c5c6ee23.txt). One loop over n
+// Seidel 2009, as taught in Ritschel et al., I3D 2009). One loop over n
 // hemisphere directions gives two outputs:
 //   visibility: the luminance-weighted fraction of the sky's energy that
 //               reaches the surface, shaped by `contrast` (an AO, 1 = open);

@@ -1,5 +1,5 @@
 // Screen-space directional occlusion on the linear-depth pyramid: the direct
-// pass of ssdo_marched (ssdo_direct.glsl, seed 003_9aa4a2c3c5c6ee23.txt, each
+// pass of ssdo_marched (ssdo_direct.glsl, seed Ritschel et al., I3D 2009, each
 // direction marched in `steps` points out to R) with each point tested by
 // one R32F fetch of the pyramid along the receiver's normal
 // (include/ssdo_fast.glsl), where ssdo_direct.glsl fetches an RGBA32F

@@ -1,5 +1,5 @@
 // ssdo_fast's one-bounce indirect light: ssdo_indirect.glsl's gather
-// (003_9aa4a2c3c5c6ee23.txt, "The bounce - sender as emitter") over the
+// (Ritschel et al., I3D 2009, "The bounce - sender as emitter") over the
 // points ssdo_fast_direct.glsl found blocked. The sender is rebuilt from the
 // pyramid's depth on its own pixel's ray; its normal, blurred radiance and
 // albedo are read at that pixel, once per blocked direction.

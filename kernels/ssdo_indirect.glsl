@@ -1,4 +1,4 @@
-// SSDO one-bounce indirect light (003_9aa4a2c3c5c6ee23.txt, "The bounce -
+// SSDO one-bounce indirect light (Ritschel et al., I3D 2009, "The bounce -
 // sender as emitter"). The samples the direct pass found occluded hit a
 // surface that is itself lit. Each is taken as a small Lambertian patch of
 // area A_s = pi R^2 / n re-emitting its blurred direct radiance times its

@@ -1,5 +1,5 @@
-// Joint bilateral upsample of half-resolution AO (seed 004_94976db8e6612027.txt
-// exercise 5; seed 000_79d41de70034b569.txt on the halos a plain upsample
+// Joint bilateral upsample of half-resolution AO (seed the hemisphere SSAO lesson (docs/kernels.md)
+// exercise 5; seed McGuire et al., HPG 2011 on the halos a plain upsample
 // leaves at silhouettes). Each full-resolution pixel blends the 4 half texels
 // around it with
 //

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Packs a self-contained folder for the GPU machine (../shared/docs/GPU.md):
+# Packs a self-contained folder for the GPU machine (docs/gpu.md):
 # the benchmark runner, the gate's render binary, every shared library they
 # need that a stock Ubuntu 24.04 with only the NVIDIA driver lacks, and the
 # one repository file cavity_render reads at run time (baselines/matrices.json;

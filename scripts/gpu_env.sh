@@ -1,4 +1,4 @@
-# Sourced by the scripts that run on the GPU machine (../shared/docs/GPU.md),
+# Sourced by the scripts that run on the GPU machine (docs/gpu.md),
 # from the repository root with .gl and .bundle carried: unpacks the GL and
 # Vulkan loaders, points them at the NVIDIA driver where the image does not,
 # and sets OUT (the folder that comes back).

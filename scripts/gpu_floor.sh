@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Issue 10's measurement on the GPU machine (through the device tool, .gl
+# The fast kernels against their floor on the GPU machine (through the device tool, .gl
 # and .bundle carried), in parts so that each call stays under the device's
 # 10 minutes:
 #   bench:   the fast pipelines (alchemy_fast, hemisphere_fast at n16 and

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Issue 10, part 2 on the GPU machine (through the device tool, .gl and
+# Narrow against full barriers on the GPU machine (through the device tool, .gl and
 # .bundle carried): what the narrow barriers buy. The seed and fast
 # pipelines at 1920x1080, both APIs, compute stage, timed with the narrow
 # barriers and with CAVITY_FULL_BARRIERS=1 (README, "Synchronisation between

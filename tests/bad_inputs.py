@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Every bad input of issue 13 against the real binaries: each must exit with its
+"""Every bad input against the real binaries: each must exit with its
 documented code (README "Exit codes"), print exactly one line on stderr that
 names the flag or file and the value, write nothing, and never crash.
 

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Issue 14: the gate spread over GPUs and machines.
+"""The gate spread over GPUs and machines.
 
     test_fleet.py TEST CAVITY SOURCE_DIR BUILD_DIR
 

@@ -30,7 +30,7 @@ protected:
     }
 };
 
-// 000_79d41de70034b569.txt: a sample in the tangent plane adds nothing
+// McGuire et al., HPG 2011: a sample in the tangent plane adds nothing
 // (N·ω = 0 is under the bias), so a plane facing the camera is fully open.
 TEST_P(Properties, AlchemyOnAPlaneFacingTheCameraIsOne) {
     const GBuffer g = facingPlanes(W, H, [](int, int) { return 3.0f; });
@@ -42,7 +42,7 @@ TEST_P(Properties, AlchemyOnAPlaneFacingTheCameraIsOne) {
 }
 
 // The blur divides by 2·sum − w0 so that the symmetric kernel sums to one
-// (000_79d41de70034b569.txt); a wrong divisor shifts brightness with radius.
+// (McGuire et al., HPG 2011); a wrong divisor shifts brightness with radius.
 TEST(GaussianWeights, SymmetricKernelSumsToOneForEveryRadius) {
     for (int r = 1; r <= 32; ++r) {
         const auto w = kernels::gaussianWeights(r);
@@ -147,7 +147,7 @@ protected:
     }
 };
 
-// 004_94976db8e6612027.txt: a 4x4 box of offsets -1.5..+1.5 averages exactly
+// the hemisphere SSAO lesson (docs/kernels.md): a 4x4 box of offsets -1.5..+1.5 averages exactly
 // one period of the rotation tile, so a pure tile pattern comes out flat.
 TEST_P(ScreenSpaceProperties, BoxBlurOfTheNoiseTileIsFlat) {
     HostImage tiled(W, H, 1);
@@ -159,7 +159,7 @@ TEST_P(ScreenSpaceProperties, BoxBlurOfTheNoiseTileIsFlat) {
     for (float v : out[0].pixels) ASSERT_NEAR(v, mean, 2.5e-4);
 }
 
-// 003_9aa4a2c3c5c6ee23.txt: with nothing in the hemisphere every sample is
+// Ritschel et al., I3D 2009: with nothing in the hemisphere every sample is
 // visible, and the bounce is the sender's albedo times its light, so a black
 // albedo sends nothing.
 TEST_P(ScreenSpaceProperties, SsdoSeesEverythingOnAnOpenPlaneAndBlackSendsNoBounce) {
@@ -197,7 +197,7 @@ TEST_P(ScreenSpaceProperties, HemisphereOnAPlaneFacingTheCameraIsOne) {
 
 // Half resolution must not bleed AO across a silhouette: with a depth step and
 // AO 1 on one side, 0 on the other, the bilateral upsample keeps each side's own
-// value on every full-resolution pixel (000_79d41de70034b569.txt warns of halos).
+// value on every full-resolution pixel (McGuire et al., HPG 2011 warns of halos).
 TEST_P(ScreenSpaceProperties, HalfResolutionUpsampleDoesNotBleedAcrossASilhouette) {
     const int edge = W / 2 + 1;   // odd, so the edge falls inside a 2x2 block
     const GBuffer full = facingPlanes(W, H, [&](int x, int) { return x < edge ? 2.0f : 6.0f; });

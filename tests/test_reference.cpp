@@ -361,7 +361,7 @@ CAVITY_ALL_BACKENDS(RasterGBuffer);
 namespace cavity::test {
 namespace {
 
-// Issue 3: "compute and fragment results agree to 1e-5 or tighter". The two
+// The stage contract: "compute and fragment results agree to 1e-5 or tighter". The two
 // entry points wrap one body (kernels/assemble.cpp), so every image of every
 // pipeline, G-buffer to composite, is compared between the stages: floats
 // within 1e-5, the 8-bit composite exactly. Both resolutions' pipelines, on

@@ -1,5 +1,5 @@
 // The signed-distance AO family and the ground truth
-// (001_8103f59163db3ce3.txt): the ground truth against its CPU reference,
+// (the SDF AO reference (docs/kernels.md)): the ground truth against its CPU reference,
 // and the properties the seeds state, on both backends. (The six SDF AO
 // kernels against their references run with every other AO kernel in
 // test_reference.cpp.)
@@ -70,7 +70,7 @@ TEST_P(SdfAo, GroundTruthMatchesItsReference) {
     }
 }
 
-// 001_8103f59163db3ce3.txt: in open space the distance at height h above
+// the SDF AO reference (docs/kernels.md): in open space the distance at height h above
 // the surface is h, "1.0 = no occlusion". On `open`, a bare floor, every AO
 // kernel and the ground truth must give 1 on every surface pixel (R16F
 // stores 1 exactly; the bound allows one storage step below it).
@@ -94,8 +94,7 @@ TEST_P(SdfAo, OpenSceneIsUnoccludedForEveryKernel) {
     }
 }
 
-// More samples, less error against the ground truth, on `corner`
-// (issue 3). The screen-space kernels and the randomised SDF variants
+// More samples, less error against the ground truth, on `corner`. The screen-space kernels and the randomised SDF variants
 // estimate an integral with n samples, so their noise, and with it their
 // error, falls as n grows. The normal-direction SDF variants (classic,
 // multiplicative, multi-scale, jittered's mean) are a quadrature of a fixed
@@ -145,7 +144,7 @@ TEST_P(SdfAo, SharedReachComparesEveryKernelAtTheTruthsRadius) {
                 (*shared)[1].meanAbsError);
 }
 
-// Contact darkening (001_8103f59163db3ce3.txt; the `contact` scene): the
+// Contact darkening (the SDF AO reference (docs/kernels.md); the `contact` scene): the
 // table top within 15 cm of the point where the sphere touches it (the
 // part the sphere does not hide from the camera) is darker
 // than the table top away from every object and edge, by at least 0.1 of

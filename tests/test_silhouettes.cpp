@@ -1,4 +1,4 @@
-// Two screen-space artefacts of the hemisphere pipeline that issue 11 asked
+// Two screen-space artefacts of the hemisphere pipeline that we were asked
 // to fix or show inherent, measured against the ray-traced ground truth on
 // the corner scene (floor, two walls, a sphere at the crease), 160x90, n16,
 // the AO where `cavity quality` reads it (after the 4x4 box, bilateral off).

@@ -32,7 +32,7 @@ TEST(Stats, SummarizesAKnownSample) {
 
 TEST(ClockCheck, RejectsTimersThatMissTheWork) {
     const ClockCheck c;
-    // llvmpipe GL, measured (../shared/docs/GPU.md): 0.06 ms between the
+    // llvmpipe GL, measured (docs/gpu.md): 0.06 ms between the
     // timestamps of a pass whose drained wall time is 48.8 ms.
     EXPECT_FALSE(c.trusted(0.06, 48.8));
     EXPECT_FALSE(c.trusted(0.0, 1.0));

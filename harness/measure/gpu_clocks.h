@@ -1,6 +1,6 @@
 // The GPU's own clocks, read while a measurement runs, so that every number
 // carries the SM and memory clock it was taken at (a GPU that sets its own
-// clock can halve a pass's time between two runs; ../shared/docs/GPU.md).
+// clock can halve a pass's time between two runs; docs/gpu.md).
 //
 // NVIDIA: NVML from the driver (libnvidia-ml.so.1), loaded at run time so
 // nothing links against it and machines without it simply have no clocks.

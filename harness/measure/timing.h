@@ -1,6 +1,6 @@
 // Measuring a pipeline on a GPU that manages its own clock.
 //
-// A GPU left idle between frames lowers its clock (../shared/docs/GPU.md:
+// A GPU left idle between frames lowers its clock (docs/gpu.md:
 // the H200 ran 765-990 MHz of its 1980 under drained frames), so a drained
 // measurement times the clock governor as much as the kernels. The default
 // mode therefore keeps the GPU busy: frames are recorded back to back, many

@@ -6,7 +6,7 @@
 // blur and upsample passes are the same passes the screen-space sweep already
 // measures, and with all of it the GPU sweep no longer fits one 10-minute
 // call (measured on the H200: 622 benchmarks took 578 s, 183 s of it the SDF
-// fragment axes; the full product would be 1102). Since issue 11 the SDF
+// fragment axes; the full product would be 1102). Since then the SDF
 // family also gets samples x half at the default blur (compute), for the
 // quality-cost chart, and hemisphere_cosine the screen-space product, so the
 // whole GPU sweep no longer fits one call: split it with

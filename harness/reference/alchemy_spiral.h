@@ -1,5 +1,5 @@
 // The CPU twin of kernels/include/alchemy_spiral.glsl: Alchemy's sample
-// spiral (000_79d41de70034b569.txt), the same operations in the same order,
+// spiral (McGuire et al., HPG 2011), the same operations in the same order,
 // shared by ref_alchemy.cpp and ref_fast.cpp.
 #pragma once
 

@@ -1,4 +1,4 @@
-// Reference of kernels/blur_bilateral.glsl (000_79d41de70034b569.txt).
+// Reference of kernels/blur_bilateral.glsl (McGuire et al., HPG 2011).
 #include "reference/refs.h"
 #include "reference/vec.h"
 

@@ -1,5 +1,5 @@
 // References of kernels/depth_from_position.glsl, ssao_hemisphere.glsl and
-// blur_box.glsl (004_94976db8e6612027.txt). Every value that picks a texel
+// blur_box.glsl (the hemisphere SSAO lesson (docs/kernels.md)). Every value that picks a texel
 // or decides a depth test is computed with the kernels' exact operations,
 // so the verdicts agree sample for sample; what differs is only smoothstep,
 // pow and the division by n (continuous, far under the 1e-3 tolerance).

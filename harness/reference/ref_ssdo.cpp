@@ -1,4 +1,4 @@
-// References of the SSDO kernels (003_9aa4a2c3c5c6ee23.txt): ssdo_direct.glsl,
+// References of the SSDO kernels (Ritschel et al., I3D 2009): ssdo_direct.glsl,
 // blur_bilateral_ssdo.glsl, ssdo_indirect.glsl and composite_ssdo.glsl, and
 // of ssdo_fast's. This file holds the direct passes, the blur and the
 // composite; ref_ssdo_indirect.cpp the bounce passes; ref_ssdo_sampling.cpp

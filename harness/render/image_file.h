@@ -1,6 +1,6 @@
 // One image of a render folder, in the format "cavity.f32z/1": the exact
 // float32 pixels the GPU read back, losslessly, readable with zlib alone
-// (no OpenImageIO on the GPU machine, see ../shared/docs/GPU.md).
+// (no OpenImageIO on the GPU machine, see docs/gpu.md).
 //
 //   bytes  0..7   magic "CAVF32Z1"
 //          8..11  width, 12..15 height, 16..19 channels (uint32, little-endian)

@@ -1,4 +1,4 @@
-// Alchemy's sample spiral (000_79d41de70034b569.txt), shared by
+// Alchemy's sample spiral (McGuire et al., HPG 2011), shared by
 // ssao_alchemy.glsl and ssao_alchemy_fast.glsl so that both place sample i
 // on the same pixel; harness/reference/alchemy_spiral.h is its CPU twin.
 //

@@ -24,7 +24,7 @@ float pixelHash(ivec2 pixel) {
     return hashToUnit(pcgHash(uint(pixel.x) + uint(pixel.y) * 65521u));
 }
 
-// Interleaved gradient noise (Jimenez 2014; 004_94976db8e6612027.txt):
+// Interleaved gradient noise (Jimenez 2014; the hemisphere SSAO lesson (docs/kernels.md)):
 // values in [0, 1) that differ strongly between neighbouring pixels yet are
 // well spread over any small block, so a +-half-step dither built from it
 // breaks up 8-bit bands without looking like grain. `p` is a pixel centre.

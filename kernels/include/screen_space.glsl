@@ -65,7 +65,7 @@ vec4 mulPoint(mat4 m, vec3 v, float w) {
 }
 
 // View position on the ray through the centre of `texel` at hardware depth
-// `depth`, by the inverse projection (004_94976db8e6612027.txt, "Reconstruct
+// `depth`, by the inverse projection (the hemisphere SSAO lesson (docs/kernels.md), "Reconstruct
 // view-space position from depth"). Our projection (harness/camera.cpp)
 // already sends +Y up to NDC y = -1 = row 0, so unlike the seed's
 // D3D-style code there is no flip of y: row 0 maps straight to NDC y = -1.

@@ -1,4 +1,4 @@
-// What the SDF ambient-occlusion kernels share (001_8103f59163db3ce3.txt):
+// What the SDF ambient-occlusion kernels share (the SDF AO reference (docs/kernels.md)):
 // the G-buffer pixel taken back to world space, where the scene's distance
 // function lives, and the distance function itself. These kernels read the
 // G-buffer only to know where each pixel's surface is; the occlusion comes

@@ -1,5 +1,5 @@
 // The signed-distance scenes the G-buffer pass ray-marches
-// (001_8103f59163db3ce3.txt: a scene is a function from a point to the
+// (the SDF AO reference (docs/kernels.md): a scene is a function from a point to the
 // distance of the nearest surface). World units are metres-ish, +Y up, so
 // that the AO radius default R = 0.5 spans a crease or a recess but not the
 // whole room. The CPU reference (harness/reference/sdf_scenes.cpp) holds the
@@ -10,10 +10,10 @@
 //           floor near the crease: floor contact, wall-floor creases, the
 //           three-way corner and a sphere-to-wall gap.
 //   slats:  a cabinet front of 30 thin vertical slats with recesses between
-//           them (000_79d41de70034b569.txt's "slatted cabinet"), a back panel
+//           them (McGuire et al., HPG 2011's "slatted cabinet"), a back panel
 //           behind the recesses, a frame around, standing on a floor.
 //   open:    a floor and nothing else: no point of it is occluded, so every
-//           AO kernel must give 1 (001_8103f59163db3ce3.txt: in open space
+//           AO kernel must give 1 (the SDF AO reference (docs/kernels.md): in open space
 //           the distance at height h above the surface is h).
 //   contact: a table on four legs with a sphere and a cube resting on its
 //           top: the contact darkening where an object meets a surface.

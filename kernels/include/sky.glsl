@@ -1,4 +1,4 @@
-// The sky panorama the SSDO kernels light with (seed 003_9aa4a2c3c5c6ee23.txt):
+// The sky panorama the SSDO kernels light with (seed Ritschel et al., I3D 2009):
 // a latitude-longitude image made on the CPU (const:sky, decl_screen_space.cpp)
 // with its full mip chain, sampled with textureLod.
 //

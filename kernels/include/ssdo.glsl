@@ -1,5 +1,5 @@
 // The hemisphere sampling shared by the SSDO direct and indirect passes
-// (003_9aa4a2c3c5c6ee23.txt): both must walk the very same directions,
+// (Ritschel et al., I3D 2009): both must walk the very same directions,
 // lengths and visibility verdicts, since the indirect pass re-uses the
 // occluded samples of the direct one as senders.
 //
@@ -59,7 +59,7 @@ bool ssdoBlocked(SsdoBasis f, vec3 p, vec3 point, float bias, out ivec2 texel) {
 // bilateral blur removes). That point finds a wall the direction meets at
 // distance t only when lambda > t, with probability (R - t) / R, so at a
 // 90 degree crease the seed reads 0.88 where the cosine-weighted visibility
-// within R is 0.58 (issue 11). With steps = k the direction is marched
+// within R is 0.58. With steps = k the direction is marched
 // instead, as hemisphere_cosine marches its rays: point j at
 // (j + 1 - u) R / k for the same per-pixel u in [0, 1), each moved in by a
 // share of one step, so a solid occluder met within R is found unless it

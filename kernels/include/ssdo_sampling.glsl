@@ -1,4 +1,4 @@
-// The sampling both SSDO families share (003_9aa4a2c3c5c6ee23.txt): the
+// The sampling both SSDO families share (Ritschel et al., I3D 2009): the
 // per-pixel basis and the n hemisphere directions, the sky gathered by the
 // direct passes, and the bounce a sender sends the receiver. Reads no image:
 // ssdo.glsl tests visibility on the G-buffer, ssdo_fast.glsl on the depth

@@ -3,23 +3,15 @@
 draw(c) draws it on a plotting.Canvas (or says on stderr why it is skipped).
 """
 
-from collections import OrderedDict
-
-from .labels import API_NAMES, fixed_line, format_ratio, is_compute_card, series_label
-from .plotting import pick_slice
+from .labels import fixed_line, is_compute_card
+from .plotting import label_pairs, paired, pick_slice
 
 NAME = "compute_vs_fragment"
 
 
 def fragment_ratios(records):
     """Fragment/compute time per (kernel, api) in the slice compute_vs_fragment draws."""
-    fixed, by_series = pick_slice(records, "stage")
-    out = OrderedDict()
-    for key, pts in by_series.items():
-        if "compute" in pts and "fragment" in pts:
-            c, f = pts["compute"]["ms"], pts["fragment"]["ms"]
-            out[key] = (c, f, f / c)
-    return out
+    return paired(records, "stage", "compute", "fragment", lambda compute, fragment: fragment / compute)
 
 
 def draw(c):
@@ -39,14 +31,7 @@ def draw(c):
             else "fragment (non-representative on a compute GPU)"
     ax.bar([x - w / 2 for x in xs], comp, w, label="compute stage", color="#3b6ea8", zorder=3)
     ax.bar([x + w / 2 for x in xs], frag, w, label=frag_label, color="#e3a35a", zorder=3)
-    labels_written = {}
-    for x, k in zip(xs, keys):
-        text = format_ratio(fr[k][2])
-        labels_written[series_label(k)] = text
-        ax.annotate(text, (x, max(fr[k][0], fr[k][1])), xytext=(0, 4), textcoords="offset points",
-                    ha="center", va="bottom", fontsize=10, fontweight="bold")
-    ax.set_xticks(xs)
-    ax.set_xticklabels([f"{k[0]}\n{API_NAMES.get(k[1], k[1])}" for k in keys])
+    labels_written = label_pairs(ax, fr)
     vals = comp + frag
     if max(vals) / min(vals) > 8:
         ax.set_yscale("log")

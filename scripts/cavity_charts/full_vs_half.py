@@ -3,10 +3,8 @@
 draw(c) draws it on a plotting.Canvas (or says on stderr why it is skipped).
 """
 
-from collections import OrderedDict
-
-from .labels import API_NAMES, fixed_line, format_ratio, series_label
-from .plotting import pick_slice
+from .labels import fixed_line
+from .plotting import label_pairs, paired, pick_slice
 
 NAME = "full_vs_half"
 
@@ -14,13 +12,7 @@ NAME = "full_vs_half"
 def speedups(records):
     """Full/half speed-up per (kernel, api) in the slice the full_vs_half chart
     draws: {(kernel, api): (full_ms, half_ms, full_ms / half_ms)}."""
-    fixed, by_series = pick_slice(records, "res")
-    out = OrderedDict()
-    for key, pts in by_series.items():
-        if "full" in pts and "half" in pts:
-            f, h = pts["full"]["ms"], pts["half"]["ms"]
-            out[key] = (f, h, f / h)
-    return out
+    return paired(records, "res", "full", "half", lambda full, half: full / half)
 
 
 def draw(c):
@@ -31,7 +23,6 @@ def draw(c):
     fig, ax = c.figure(width=max(6.5, 1.3 * len(sp) + 3))
     keys = list(sp)
     w = 0.38
-    labels_written = {}
     fulls = [sp[k][0] for k in keys]
     halves = [sp[k][1] for k in keys]
     xs = list(range(len(keys)))
@@ -39,13 +30,7 @@ def draw(c):
     ax.bar([x + w / 2 for x in xs], halves, w, label="half resolution (AO at ¼ pixels + upsample)",
            color="#9cc3e6", edgecolor="#3b6ea8", zorder=3)
     top = max(fulls + halves)
-    for x, k in zip(xs, keys):
-        text = format_ratio(sp[k][2])
-        labels_written[series_label(k)] = text
-        ax.annotate(text, (x, max(sp[k][0], sp[k][1])), xytext=(0, 4), textcoords="offset points",
-                    ha="center", va="bottom", fontsize=10, fontweight="bold")
-    ax.set_xticks(xs)
-    ax.set_xticklabels([f"{k[0]}\n{API_NAMES.get(k[1], k[1])}" for k in keys])
+    labels_written = label_pairs(ax, sp)
     ax.set_ylim(0, top * 1.22)
     ax.set_ylabel("GPU time (ms)")
     ax.set_xlabel("kernel and API   (number above each pair: speed-up = full time / half time)")

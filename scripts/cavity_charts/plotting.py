@@ -6,10 +6,10 @@ legend, log axes written plainly, and the PNG + SVG written and listed)."""
 import os
 import sys
 import textwrap
-from collections import Counter, defaultdict
+from collections import Counter, OrderedDict, defaultdict
 
 from .inputs import DIMS
-from .labels import device_line
+from .labels import API_NAMES, device_line, format_ratio, series_label
 
 DPI = 150
 LEGEND_MAX = 12
@@ -184,3 +184,44 @@ class Canvas:
         else:
             ax.set_ylim(0, hi * 1.12)
             ax.set_ylabel("GPU time (ms)")
+
+
+def paired(records, axis, a, b, ratio):
+    """{series: (a_ms, b_ms, ratio(a_ms, b_ms))} for the series of the slice that
+    varies `axis` which were measured at both values a and b."""
+    _, by_series = pick_slice(records, axis)
+    out = OrderedDict()
+    for key, pts in by_series.items():
+        if a in pts and b in pts:
+            x, y = pts[a]["ms"], pts[b]["ms"]
+            out[key] = (x, y, ratio(x, y))
+    return out
+
+
+def plot_series(c, ax, by_series):
+    """One line per series of a slice, styled by series; returns the x values
+    drawn (sorted) and every y value."""
+    xs_all, ys_all = set(), []
+    for key, pts in by_series.items():
+        xs = list(pts)
+        ys = [pts[x]["ms"] for x in xs]
+        xs_all.update(xs)
+        ys_all += ys
+        ax.plot(xs, ys, label=series_label(key), **c.style(key))
+    return sorted(xs_all), ys_all
+
+
+def label_pairs(ax, table):
+    """Under each pair of bars its kernel and API, above it the pair's ratio
+    (table as paired() returns it); returns {series label: ratio text}."""
+    keys = list(table)
+    xs = list(range(len(keys)))
+    written = {}
+    for x, k in zip(xs, keys):
+        text = format_ratio(table[k][2])
+        written[series_label(k)] = text
+        ax.annotate(text, (x, max(table[k][0], table[k][1])), xytext=(0, 4), textcoords="offset points",
+                    ha="center", va="bottom", fontsize=10, fontweight="bold")
+    ax.set_xticks(xs)
+    ax.set_xticklabels([f"{k[0]}\n{API_NAMES.get(k[1], k[1])}" for k in keys])
+    return written

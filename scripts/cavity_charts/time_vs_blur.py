@@ -3,8 +3,8 @@
 draw(c) draws it on a plotting.Canvas (or says on stderr why it is skipped).
 """
 
-from .labels import fixed_line, series_label
-from .plotting import pick_slice
+from .labels import fixed_line
+from .plotting import pick_slice, plot_series
 
 NAME = "time_vs_blur"
 
@@ -14,14 +14,7 @@ def draw(c):
     if not by_series:
         return c.skip("time_vs_blur", "no configurations that differ only in blur radius")
     fig, ax = c.figure()
-    xs_all, ys_all = set(), []
-    for key, pts in by_series.items():
-        xs = list(pts)
-        ys = [pts[x]["ms"] for x in xs]
-        xs_all.update(xs)
-        ys_all += ys
-        ax.plot(xs, ys, label=series_label(key), **c.style(key))
-    ticks = sorted(xs_all)
+    ticks, ys_all = plot_series(c, ax, by_series)
     ax.set_xticks(ticks)
     ax.set_xticklabels(["0 (off)" if t == 0 else str(t) for t in ticks])
     ax.set_xlabel("blur radius (px)")

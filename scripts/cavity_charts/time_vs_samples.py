@@ -3,8 +3,8 @@
 draw(c) draws it on a plotting.Canvas (or says on stderr why it is skipped).
 """
 
-from .labels import fixed_line, series_label
-from .plotting import pick_slice
+from .labels import fixed_line
+from .plotting import pick_slice, plot_series
 
 NAME = "time_vs_samples"
 
@@ -14,15 +14,8 @@ def draw(c):
     if not by_series:
         return c.skip("time_vs_samples", "no configurations that differ only in sample count")
     fig, ax = c.figure()
-    xs_all, ys_all = set(), []
-    for key, pts in by_series.items():
-        xs = list(pts)
-        ys = [pts[x]["ms"] for x in xs]
-        xs_all.update(xs)
-        ys_all += ys
-        ax.plot(xs, ys, label=series_label(key), **c.style(key))
+    ticks, ys_all = plot_series(c, ax, by_series)
     ax.set_xscale("log", base=2)
-    ticks = sorted(xs_all)
     ax.set_xticks(ticks)
     ax.set_xticklabels([str(t) for t in ticks])
     ax.minorticks_off()

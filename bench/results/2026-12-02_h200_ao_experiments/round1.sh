@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Issue 10 experiments on the H200: alchemy_fast's AO pass and the separable
+# AO-pass experiments on the H200: alchemy_fast's AO pass and the separable
 # blur with kernel sources swapped at run time (cavity_render --kernel-source),
 # 1920x1080 n16 b4 full, compute, both APIs, 3 interleaved rounds.
 set -uo pipefail

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Issue 10 experiments, round 2 (H200): alchemy_fast as committed (closed-form
+# AO-pass experiments, round 2 (H200): alchemy_fast as committed (closed-form
 # source pixel, spiral table) against a deinterleaved dispatch, against the
 # same without `precise` (the cost of CPU-exact maths), and OpenGL from GLSL
 # text instead of SPIR-V. 1920x1080 n16 b4 full, compute, 3 interleaved rounds.
