@@ -1,9 +1,11 @@
 #include "cli.h"
+#include "core/digest.h"
 
 #include "kernel.h"
 #include "core/text_table.h"
 
 #include <algorithm>
+#include <fstream>
 #include <charconv>
 #include <cmath>
 #include <filesystem>
@@ -34,6 +36,29 @@ Result<double> parseNumber(const std::string& flag, const std::string& text, dou
     std::ostringstream range;
     range << "a number in " << lo << ".." << hi;
     return parseNumber(flag, text, [&](double v) { return v >= lo && v <= hi; }, range.str());
+}
+
+Status addKernelSource(const std::string& value, SourceOverrides& overrides, std::vector<ReplacedSource>& replaced) {
+    namespace fs = std::filesystem;
+    const auto eq = value.find('=');
+    if (eq == std::string::npos || eq == 0 || eq + 1 == value.size())
+        return badInput("--kernel-source '" + value + "': must be NAME=FILE, e.g. ssao_alchemy.glsl=broken.glsl");
+    const std::string name = value.substr(0, eq), file = value.substr(eq + 1), given = "--kernel-source " + value;
+    if (!kernels::sourceFile(name)) return badInput("--kernel-source " + name + ": no kernel source of that name (kernels/*.glsl)");
+    if (overrides.count(name)) return badInput(given + ": kernels/" + name + " is already replaced (give each NAME once)");
+    std::error_code ec;
+    if (!fs::is_regular_file(file, ec))
+        return badInput(given + ": " + (fs::exists(file, ec) ? "not a file" : "no such file"));
+    constexpr uintmax_t kMaxBytes = 1 << 20;
+    if (fs::file_size(file, ec) > kMaxBytes) return badInput(given + ": over 1 MiB (a GLSL source is expected)");
+    std::ifstream in(file, std::ios::binary);
+    std::string text((std::istreambuf_iterator<char>(in)), {});
+    if (!in && !in.eof()) return badInput(given + ": cannot be read");
+    if (const auto nul = text.find('\0'); nul != std::string::npos)
+        return badInput(given + ": not a text file (a NUL byte at offset " + std::to_string(nul) + "; a GLSL source is expected)");
+    replaced.push_back({name, file, digestText(fnv1a64(text.data(), text.size()))});
+    overrides[name] = kernels::kReplacedFrom + file + "\n" + text;
+    return {};
 }
 
 Result<std::regex> parseFilter(const std::string& flag, const std::string& text) {

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "harness.h"
+#include "pipeline/pipeline.h"
 #include "flags.h"
 #include "result.h"
 
@@ -30,6 +31,10 @@ Result<std::vector<std::string>> splitList(const std::string& flag, const std::s
 // --filter REGEX: an ECMAScript regex, searched in configuration ids; one
 // that does not compile is an error naming the flag and why.
 Result<std::regex> parseFilter(const std::string& flag, const std::string& text);
+// --kernel-source NAME=FILE (cavity gate, cavity_render): kernels/NAME
+// replaced by FILE's text. NAME must be a kernel source and given once; FILE
+// a readable text file (no NUL byte) of at most 1 MiB. Adds it to both maps.
+Status addKernelSource(const std::string& value, SourceOverrides& overrides, std::vector<ReplacedSource>& replaced);
 // "--shard I/N": (I, N) with 0 <= I < N.
 Result<std::pair<int, int>> parseShard(const std::string& text);
 

@@ -32,6 +32,24 @@ const std::string kBaselinesHelp =
     "folder with matrices.json, manifest.json, budgets.json, images/ (default: baselines/ of the checkout found "
     "from the working directory up, else of the source tree this binary was built from)";
 
+const FlagSpec kReportUrlFlag{"--report-url", "URL",
+                               "where index.html will be published (a CI artifact): summary.md links it and status.json "
+                               "gives it as target_url"};
+
+const std::string kEnforceHelp =
+    "fail on a time budget overrun on a software renderer too (llvmpipe, lavapipe: by default reported, never "
+    "failed, as the host's load moves those times)";
+
+// An --expectations folder given on the command line must be one; the
+// default, <baselines>/expectations, may be absent (no expectations).
+Status checkExpectationsFlag(const std::string& dir) {
+    std::error_code ec;
+    if (!dir.empty() && !fs::is_directory(dir, ec))
+        return badInput("--expectations " + dir + ": " + (fs::exists(dir, ec) ? "not a folder" : "no such folder") +
+                        " (a folder of expectation files, one per device class)");
+    return {};
+}
+
 const CommandSpec& gateSpec() {
     static const CommandSpec spec{
         "cavity gate",
@@ -41,12 +59,17 @@ const CommandSpec& gateSpec() {
             {"--matrix", "NAME", "the matrix of matrices.json (default ci)"},
             {"--baselines", "DIR", kBaselinesHelp},
             {"--out", "DIR", "report folder (default out/gate)"},
+            kReportUrlFlag,
             {"--filter", "REGEX", "only the configurations whose id matches (searched)"},
             {"--shard", "I/N", "shard I of N (0 <= I < N); also GTEST_SHARD_INDEX/GTEST_TOTAL_SHARDS, TEST_SHARD_INDEX"},
             {"--device", "K", "device index (0..64)"},
             {"--retries", "N", "renders of a failing configuration after the first (0..100; default 2)"},
             {"--expectations", "DIR", "folder of expectation files (default <baselines>/expectations)"},
             {"--validation", "", "enable the Vulkan validation layers and the GL debug output"},
+            {"--enforce-cpu-budgets", "", kEnforceHelp},
+            {"--kernel-source", "NAME=FILE",
+             "render with kernels/NAME replaced by FILE's text (a shader edit or a planted defect, no rebuild); "
+             "repeatable, each NAME once; every report records FILE and its digest", "Options", true},
             {"--list", "", "print the ids of the selection, one a line, and render nothing"},
             {"--quiet", "", "no progress lines on stderr"},
         },
@@ -56,7 +79,7 @@ const CommandSpec& gateSpec() {
         {
             "cavity gate",
             "cavity gate --matrix ci --filter '/alchemy_fast/' --out out/gate",
-            "cavity gate --shard 0/2 --out out/gate0",
+            "cavity gate --filter '/alchemy_fast/' --kernel-source ssao_alchemy_fast.glsl=edit.glsl",
         },
     };
     return spec;
@@ -71,6 +94,8 @@ const CommandSpec& judgeSpec() {
             {"--baselines", "DIR", kBaselinesHelp},
             {"--expectations", "DIR", "folder of expectation files (default <baselines>/expectations)"},
             {"--out", "DIR", "report folder (default out/gate)"},
+            kReportUrlFlag,
+            {"--enforce-cpu-budgets", "", kEnforceHelp},
             {"--quiet", "", "no progress lines on stderr"},
         },
         "RENDER_DIR...",
@@ -88,7 +113,7 @@ const CommandSpec& mergeSpec() {
     static const CommandSpec spec{
         "cavity gate merge",
         "Joins the gate.json of shard outputs into one verdict and report.",
-        {{"--out", "DIR", "report folder (default out/gate)"}},
+        {{"--out", "DIR", "report folder (default out/gate)"}, kReportUrlFlag},
         "SHARD_DIR...",
         "output folders of cavity gate --shard runs",
         "",
@@ -121,6 +146,22 @@ const CommandSpec& updateSpec() {
     return spec;
 }
 
+// What to do when configurations failed on time budgets alone: images are
+// not what a baseline update changes.
+std::string budgetOnlyHint(const gate::GateRun& run, bool filtered, const std::string& from) {
+    int budgetOnly = 0;
+    std::string device;
+    for (const auto& r : run.results)
+        if (r.error.empty() && r.imagesPassed() && !r.timingPassed()) {
+            ++budgetOnly;
+            device = r.device;
+        }
+    if (budgetOnly == 0 || filtered) return "";
+    return std::to_string(budgetOnly) + " configurations failed on time budgets only (every image passed): budgets are " +
+           "not images; update them with `python3 scripts/update_budgets.py " + (fs::path(from) / "gate.json").string() +
+           " --pattern '" + device + "'` (docs/gate.md, \"Time budgets\")";
+}
+
 // --help prints and ends the command (exit 0); an error ends it (exit 2).
 #define CAVITY_PARSE(var, spec, argv)                              \
     auto var##_ = parseFlags(spec, argv);                          \
@@ -140,18 +181,20 @@ Result<gate::GateRun> loadGateJson(const std::string& dir) {
 
 int merge(const std::vector<std::string>& argv) {
     std::vector<std::string> dirs;
-    std::string out = "out/gate";
+    std::string out = "out/gate", reportUrl;
     CAVITY_PARSE(p, mergeSpec(), argv);
     dirs = p.positionals;
-    for (const auto& [flag, v] : p.values)
-        if (flag == "--out") out = v;
+    for (const auto& [flag, v] : p.values) (flag == "--out" ? out : reportUrl) = v;
     if (dirs.empty()) return fail("cavity gate merge", badInput("needs one or more shard output folders"));
     gate::GateRun merged;
     std::set<std::pair<std::string, int>> seen;
     for (const auto& d : dirs) {
         auto run = loadGateJson(d);
         if (!run) return fail("cavity gate merge", run.error());
-        if (merged.matrix.empty()) merged.matrix = run->matrix;
+        if (merged.matrix.empty()) {
+            merged.matrix = run->matrix;
+            merged.replaced = run->replaced;
+        }
         else if (merged.matrix != run->matrix)
             return fail("cavity gate merge", badInput(d + ": matrix " + run->matrix + " differs from " + merged.matrix));
         merged.seconds = std::max(merged.seconds, run->seconds);
@@ -160,19 +203,20 @@ int merge(const std::vector<std::string>& argv) {
             if (seen.insert({r.id, r.repetition}).second) merged.results.push_back(std::move(r));
     }
     if (auto st = checkWritableDir("--out", out); !st) return fail("cavity gate merge", st.error());
-    if (auto st = report::writeReports(merged, out); !st) return fail("cavity gate merge", st.error());
-    std::cout << report::summaryMarkdown(merged);
+    if (auto st = report::writeReports(merged, out, reportUrl); !st) return fail("cavity gate merge", st.error());
+    std::cout << report::summaryMarkdown(merged, reportUrl.empty() ? "index.html" : reportUrl);
     return merged.exitCode();
 }
 
 // Nothing is written unless every folder is whole (judge_folders.h).
 int judge(const std::vector<std::string>& argv) {
     std::vector<std::string> dirs;
-    std::string out = "out/gate", baselines, expectationsDir;
+    std::string out = "out/gate", baselines, expectationsDir, reportUrl;
     CAVITY_PARSE(p, judgeSpec(), argv);
     dirs = p.positionals;
     for (const auto& [flag, v] : p.values)
-        (flag == "--out" ? out : flag == "--baselines" ? baselines : expectationsDir) = v;
+        (flag == "--out" ? out : flag == "--baselines" ? baselines : flag == "--report-url" ? reportUrl : expectationsDir) = v;
+    if (auto st = checkExpectationsFlag(expectationsDir); !st) return fail("cavity gate judge", st.error());
     if (baselines.empty()) {
         auto found = defaultBaselines();
         if (!found) return fail("cavity gate judge", found.error());
@@ -182,11 +226,11 @@ int judge(const std::vector<std::string>& argv) {
     auto expectations =
         gate::loadExpectations(expectationsDir.empty() ? (fs::path(baselines) / "expectations").string() : expectationsDir);
     if (!expectations) return fail("cavity gate judge", expectations.error());
-    auto run = gate::judgeFolders(dirs, baselines, out, p.has("--quiet"));
+    auto run = gate::judgeFolders(dirs, baselines, out, p.has("--quiet"), p.has("--enforce-cpu-budgets"));
     if (!run) return fail("cavity gate judge", run.error());
     gate::applyExpectations(*run, *expectations);
-    if (auto st = report::writeReports(*run, out); !st) return fail("cavity gate judge", st.error());
-    std::cout << report::summaryMarkdown(*run);
+    if (auto st = report::writeReports(*run, out, reportUrl); !st) return fail("cavity gate judge", st.error());
+    std::cout << report::summaryMarkdown(*run, reportUrl.empty() ? "index.html" : reportUrl);
     std::cout << "\nreport: " << (fs::path(out) / "index.html").string() << "\n";
     return run->exitCode();
 }
@@ -194,6 +238,7 @@ int judge(const std::vector<std::string>& argv) {
 struct GateFlags {
     gate::GateOptions options;
     std::optional<std::string> shard;   // --shard I/N as given
+    std::string reportUrl;              // --report-url
     bool list = false;
     std::string helpText;               // --help: print this, run nothing
 };
@@ -209,20 +254,26 @@ Result<GateFlags> parseGate(const std::vector<std::string>& argv) {
     f.list = p.has("--list");
     o.validation = p.has("--validation");
     o.quiet = p.has("--quiet");
+    o.enforceCpuBudgets = p.has("--enforce-cpu-budgets");
     o.baselines.clear();
     for (const auto& [flag, v] : p.values) {
         if (flag == "--matrix") o.matrix = v;
         else if (flag == "--out") o.out = v;
+        else if (flag == "--report-url") f.reportUrl = v;
         else if (flag == "--baselines") o.baselines = v;
         else if (flag == "--filter") o.filter = v;
         else if (flag == "--shard") f.shard = v;
         else if (flag == "--expectations") o.expectations = v;
+        else if (flag == "--kernel-source") {
+            CAVITY_TRY(addKernelSource(v, o.overrides, o.replaced));
+        }
         else if (flag == "--device") {
             CAVITY_ASSIGN(o.device, parseInt(flag, v, 0, 64));
         } else if (flag == "--retries") {
             CAVITY_ASSIGN(o.retries, parseInt(flag, v, 0, 100));
         }
     }
+    CAVITY_TRY(checkExpectationsFlag(o.expectations));
     return f;
 }
 
@@ -262,8 +313,8 @@ int gateCommand(const std::vector<std::string>& argv) {
     if (auto st = gate::recoverBaselineUpdate(o.baselines); !st) return fail("cavity gate", st.error());
     auto run = gate::runGate(o);
     if (!run) return fail("cavity gate", run.error());
-    if (auto st = report::writeReports(*run, o.out); !st) return fail("cavity gate", st.error());
-    std::cout << report::summaryMarkdown(*run);
+    if (auto st = report::writeReports(*run, o.out, parsed->reportUrl); !st) return fail("cavity gate", st.error());
+    std::cout << report::summaryMarkdown(*run, parsed->reportUrl.empty() ? "index.html" : parsed->reportUrl);
     std::cout << "\nreport: " << (fs::path(o.out) / "index.html").string() << "\n";
     return run->exitCode();
 }
@@ -327,6 +378,7 @@ int baselinesCommand(const std::vector<std::string>& argv) {
     for (const auto& line : said) std::cout << line << "\n";
     const size_t changed = writes.size();
     std::cout << changed << " baseline files updated\n";
+    if (const std::string hint = budgetOnlyHint(*run, filter.has_value(), from); !hint.empty()) std::cout << hint << "\n";
     return 0;
 }
 

@@ -117,9 +117,18 @@ Status expand(const std::string& name, const std::map<std::string, std::string>&
     else text = sourceFile(name);
     if (!text) return internal("kernel source 'kernels/" + name + "' is not embedded (kernels/CMakeLists.txt)");
     const size_t index = files.size();
-    files.push_back("kernels/" + name);
+    // A replacement read from a file names it on a first line of its own
+    // (kReplacedFrom), so that a compile error points at the file given.
+    std::string label = "kernels/" + name, body = *text;
+    if (body.rfind(kReplacedFrom, 0) == 0) {
+        const size_t eol = body.find('\n');
+        label = body.substr(std::strlen(kReplacedFrom), eol == std::string::npos ? std::string::npos : eol - std::strlen(kReplacedFrom)) +
+                " (replacing kernels/" + name + ")";
+        body = eol == std::string::npos ? std::string() : body.substr(eol + 1);
+    }
+    files.push_back(label);
     out += "#line 1 " + std::to_string(index) + "\n";
-    std::istringstream in(*text);
+    std::istringstream in(body);
     std::string line;
     int lineNo = 0;
     while (std::getline(in, line)) {

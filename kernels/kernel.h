@@ -183,5 +183,9 @@ constexpr uint32_t kFirstImageBinding = 2;
 
 // The text of an embedded kernel file (kernels/*.glsl, kernels/include/*.glsl).
 const std::string* sourceFile(const std::string& name);
+// The first line of a replacement source read from a file, naming that file
+// ("//!cavity-replaced-from: my_alchemy.glsl"): assemble() labels the
+// replacement's diagnostics with it, and drops the line.
+inline constexpr const char* kReplacedFrom = "//!cavity-replaced-from: ";
 
 }  // namespace cavity::kernels

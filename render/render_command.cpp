@@ -114,16 +114,7 @@ Result<RenderCommand> parseRenderFlags(const std::vector<std::string>& argv) {
         } else if (flag == "--kernel-source") {
             // NAME=FILE: render with kernels/NAME replaced by FILE's text, so a
             // planted defect can be rendered on a machine without a build.
-            const auto eq = v.find('=');
-            if (eq == std::string::npos || eq == 0 || eq + 1 == v.size())
-                return badInput("--kernel-source '" + v + "': must be NAME=FILE, e.g. ssao_alchemy.glsl=broken.glsl");
-            const std::string name = v.substr(0, eq), file = v.substr(eq + 1);
-            if (!kernels::sourceFile(name))
-                return badInput("--kernel-source " + name + ": no kernel source of that name (kernels/*.glsl)");
-            std::ifstream in(file);
-            if (!in || std::filesystem::is_directory(file))
-                return badInput("--kernel-source " + name + "=" + file + ": cannot be read");
-            o.render.overrides[name] = std::string((std::istreambuf_iterator<char>(in)), {});
+            CAVITY_TRY(cli::addKernelSource(v, o.render.overrides, o.replaced));
         } else if (flag == "--timing") {
             if (v != "batch" && v != "drained") return badInput("--timing " + v + ": must be batch or drained");
             o.render.mode = v == "batch" ? TimingMode::Batch : TimingMode::Drained;
@@ -161,6 +152,9 @@ int renderCommand(const std::vector<std::string>& argv) {
     if (!matrix) return fail(matrix.error());
     auto entries = plan::selectEntries(*matrix, o->shardIndex, o->shardCount, o->filter);
     if (!entries) return fail(entries.error());
+    std::vector<RunConfig> selected;
+    for (const auto& e : *entries) selected.push_back(e.config);
+    if (auto st = checkSourcesUsed(o->replaced, selected); !st) return fail(st.error());
     if (auto st = checkWritableDir("--out", o->out); !st) return fail(st.error());
 
     RenderManifest header;
@@ -173,6 +167,7 @@ int renderCommand(const std::vector<std::string>& argv) {
     header.shardCount = o->shardCount;
     header.filter = o->filter;
     header.repeat = o->render.repeat;
+    header.replaced = o->replaced;
     FolderWriter writer(o->out, header);
     if (auto st = writer.begin(); !st) return fail(st.error());
     auto sink = [&](Rendering&& r) -> Status {

@@ -20,6 +20,7 @@ struct RenderCommand {
     std::string matrix, baselines, out, filter;   // baselines: empty until found (cli::defaultBaselines)
     int shardIndex = 0, shardCount = 1;
     RenderOptions render;
+    std::vector<ReplacedSource> replaced;   // --kernel-source, recorded in the manifest
 };
 
 // Every error names the flag, the value and what is allowed (flags declared

@@ -22,6 +22,7 @@ packages=(
   python3 python3-matplotlib python3-jsonschema                 # scripts/charts.py; tests/validate_results.py
   python3-xmlschema python3-junitparser                         # tests/validate_junit.py: junit.xml as CI readers take it
   chromium                                                      # the HTML report test (headless screenshot)
+  cmark-gfm                                                     # tests/validate_summary.py: summary.md as GitHub renders it
   universal-ctags                                               # tests/code_size.py: function lengths
 )
 missing=()

@@ -357,6 +357,17 @@ TEST(Gate, HtmlReportOpensInHeadlessChromiumWithFailuresFirst) {
     }
     EXPECT_FALSE(failing(run).empty());
     EXPECT_LT(lastFail, firstPass) << "failing configurations must come first";
+    // The overview grid before the cards: one cell a configuration, coloured
+    // by its verdict, linking to its card.
+    const std::regex cell("<a class=\"cell (pass|fail|noted|error)\" href=\"#cfg[0-9]+\"");
+    size_t cells = 0, failCells = 0;
+    for (auto it = std::sregex_iterator(text.begin(), text.end(), cell); it != std::sregex_iterator(); ++it) {
+        ++cells;
+        failCells += (*it)[1] == "fail";
+    }
+    EXPECT_EQ(cells, run.results.size());
+    EXPECT_EQ(failCells, failing(run).size());
+    EXPECT_LT(text.find("class=\"grid\""), text.find("class=\"cfg "));
     // JUnit as GitLab and Jenkins read it: failure text in the element body,
     // every time in seconds with three decimals, a time on every testcase.
     std::ifstream j(fs::path(o.out) / "junit.xml");
@@ -375,7 +386,8 @@ TEST(Gate, HtmlReportOpensInHeadlessChromiumWithFailuresFirst) {
     // baseline, diff and slider.
     std::ifstream sm(fs::path(o.out) / "summary.md");
     const std::string summary((std::istreambuf_iterator<char>(sm)), std::istreambuf_iterator<char>());
-    EXPECT_TRUE(std::regex_search(summary, std::regex("\\| ao \\| mean abs error [0-9.]+ \\| ≤ 0\\.001 \\|"))) << summary;
+    EXPECT_TRUE(std::regex_search(summary, std::regex("\\| mean abs error \\([a-z_, ]*\\) \\| [0-9]+ \\(vk\\) \\| mean abs error [0-9.]+ at `[^`]+` \\| ≤ [0-9.]+ \\|")))
+        << summary;
     EXPECT_NE(text.find("class=\"scale\""), std::string::npos);
     for (const auto& r : run.results) {
         if (!r.passed()) continue;

@@ -37,7 +37,7 @@ std::vector<std::string> ConfigResult::failureLines() const {
         for (const auto& f : i.failures) lines.push_back(i.image + ": " + f);
     for (const auto& t : timings)
         if (!t.passed()) {
-            char b[96];
+            char b[128];
             std::snprintf(b, sizeof b, "time %s: median %.4g ms > budget %.4g ms", t.pass.c_str(), t.medianMs, *t.budgetMs);
             lines.push_back(b);
         }
@@ -99,7 +99,8 @@ Result<GateRun> runGate(const GateOptions& o) {
     CAVITY_ASSIGN(auto entries, selectEntries(matrix, o.shardIndex, o.shardCount, o.filter));
     std::vector<RunConfig> configs;
     for (const auto& e : entries) configs.push_back(e.config);
-    CAVITY_ASSIGN(const Judge judge, prepareJudge(o.baselines, configs, o.out));
+    CAVITY_ASSIGN(Judge judge, prepareJudge(o.baselines, configs, o.out));
+    judge.enforceCpuBudgets = o.enforceCpuBudgets;
     CAVITY_ASSIGN(const Expectations expectations,
                   loadExpectations(o.expectations.empty() ? (fs::path(o.baselines) / "expectations").string() : o.expectations));
     std::optional<std::regex> flaky;
@@ -111,8 +112,10 @@ Result<GateRun> runGate(const GateOptions& o) {
         }
     }
 
+    CAVITY_TRY(checkSourcesUsed(o.replaced, configs));
     GateRun run;
     run.matrix = o.matrix;
+    run.replaced = o.replaced;
     run.shardIndex = o.shardIndex;
     run.shardCount = o.shardCount;
     render::RenderOptions ro;

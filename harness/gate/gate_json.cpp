@@ -2,6 +2,7 @@
 // `baselines update` accepts from.
 #include "gate/namespace.h"
 #include "gate/gate.h"
+#include "render/render_manifest.h"
 #include "core/json_input.h"
 
 #include <cmath>
@@ -42,7 +43,8 @@ json toJson(const GateRun& run) {
         json timings = json::array();
         for (const auto& t : r.timings)
             timings.push_back({{"pass", t.pass}, {"median_ms", t.medianMs}, {"clock", t.clock},
-                               {"budget_ms", t.budgetMs ? json(*t.budgetMs) : json(nullptr)}, {"passed", t.passed()}});
+                               {"budget_ms", t.budgetMs ? json(*t.budgetMs) : json(nullptr)}, {"advisory", t.advisory},
+                               {"within_budget", t.withinBudget()}, {"passed", t.passed()}});
         results.push_back({{"id", r.id}, {"repetition", r.repetition}, {"baseline_key", r.key}, {"device", r.device}, {"kernel", r.config.kernel},
                            {"passed", r.passed()}, {"verdict", r.verdict()}, {"fatal", r.fatal()}, {"attempts", r.attempts},
                            {"first_failures", r.firstFailures}, {"expected", r.expected}, {"expected_reason", r.expectedWhy},
@@ -51,7 +53,7 @@ json toJson(const GateRun& run) {
     }
     return {{"schema", "cavity.gate/1"}, {"matrix", run.matrix}, {"shard", {run.shardIndex, run.shardCount}},
             {"seconds", run.seconds}, {"exit_code", run.exitCode()}, {"counts", run.counts()},
-            {"backend_errors", run.backendErrors},
+            {"backend_errors", run.backendErrors}, {"kernel_sources", render::replacedJson(run.replaced)},
             {"results", results}};
 }
 
@@ -142,6 +144,10 @@ Result<ConfigResult> readResult(const JsonObject& rj) {
         CAVITY_ASSIGN(t.medianMs, tj.number("median_ms", 0, kAny));
         CAVITY_ASSIGN(t.clock, tj.str("clock"));
         CAVITY_ASSIGN(t.budgetMs, tj.numberOrNull("budget_ms", 0, kAny));
+        // Absent before software renderers' budgets were advisory: every budget failed.
+        if (tj.has("advisory")) {
+            CAVITY_ASSIGN(t.advisory, tj.boolean("advisory"));
+        }
         r.timings.push_back(t);
     }
     return r;
@@ -161,6 +167,10 @@ Result<GateRun> fromJson(const json& j, const std::string& path) {
     run.shardCount = shard[1];
     CAVITY_ASSIGN(run.seconds, top.number("seconds", 0, kAny));
     CAVITY_ASSIGN(run.backendErrors, top.strings("backend_errors"));
+    // Absent before --kernel-source was recorded: nothing replaced.
+    if (top.has("kernel_sources")) {
+        CAVITY_ASSIGN(run.replaced, render::parseReplaced(top.raw()["kernel_sources"], path));
+    }
     CAVITY_ASSIGN(const auto results, top.objects("results"));
     for (const auto& rj : results) {
         CAVITY_ASSIGN(auto r, readResult(rj));

@@ -136,6 +136,7 @@ Result<ConfigResult> judgeRendering(const render::Rendering& rend, const Judge& 
         t.medianMs = p.medianMs;
         t.clock = p.clock;
         t.budgetMs = j.budgets.find(r.device, r.id, p.pass);
+        t.advisory = rend.device.softwareRenderer && !j.enforceCpuBudgets;
         r.timings.push_back(t);
     }
     return r;

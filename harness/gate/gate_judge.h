@@ -20,6 +20,7 @@ struct Judge {
     Manifest manifest;
     Budgets budgets;
     std::string out;         // the gate's output folder
+    bool enforceCpuBudgets = false;   // GateOptions::enforceCpuBudgets
 };
 
 // Reads the tolerances and budgets, checks every baseline `configs` will be

@@ -131,6 +131,10 @@ Result<std::vector<Folder>> readFolders(const std::vector<std::string>& dirs) {
             if (f.m.gitCommit != first.m.gitCommit)
                 return badInput(f.path + ": rendered by build " + f.m.gitCommit + ", but " + first.path + " by build " +
                                 first.m.gitCommit + " (render every shard with one build)");
+            if (render::replacedJson(f.m.replaced) != render::replacedJson(first.m.replaced))
+                return badInput(f.path + ": rendered with kernel sources " + render::replacedJson(f.m.replaced).dump() + ", but " +
+                                first.path + " with " + render::replacedJson(first.m.replaced).dump() +
+                                " (render every shard with the same --kernel-source)");
         }
         folders.push_back(std::move(f));
     }
@@ -178,6 +182,7 @@ GateRun runHeader(const std::vector<Folder>& folders, const Matrix& matrix, doub
         run.shardIndex = folders.front().m.shardIndex;
         run.shardCount = folders.front().m.shardCount;
     }
+    run.replaced = folders.front().m.replaced;
     rendered = 0;
     for (const auto& f : folders) {
         rendered = std::max(rendered, f.m.seconds);
@@ -215,7 +220,7 @@ Result<render::Rendering> readRendering(const Item& item, const render::RenderEn
 }  // namespace
 
 Result<GateRun> judgeFolders(const std::vector<std::string>& dirs, const std::string& baselines, const std::string& out,
-                             bool quiet) {
+                             bool quiet, bool enforceCpuBudgets) {
     const auto start = std::chrono::steady_clock::now();
     CAVITY_ASSIGN(const auto folders, readFolders(dirs));
     CAVITY_ASSIGN(const Matrix matrix, renderedMatrix(folders, baselines));
@@ -226,7 +231,8 @@ Result<GateRun> judgeFolders(const std::vector<std::string>& dirs, const std::st
     std::vector<RunConfig> configs;
     for (const auto& f : folders)
         for (const auto& c : f.m.configs) configs.push_back(all[c.index]);
-    CAVITY_ASSIGN(const Judge judge, prepareJudge(baselines, configs, out));
+    CAVITY_ASSIGN(Judge judge, prepareJudge(baselines, configs, out));
+    judge.enforceCpuBudgets = enforceCpuBudgets;
     const auto items = gateOrder(folders);
     double rendered = 0;
     GateRun run = runHeader(folders, matrix, rendered);

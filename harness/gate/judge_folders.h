@@ -17,7 +17,8 @@
 
 namespace cavity::gate {
 
+// enforceCpuBudgets: GateOptions::enforceCpuBudgets.
 Result<GateRun> judgeFolders(const std::vector<std::string>& dirs, const std::string& baselines, const std::string& out,
-                             bool quiet = false);
+                             bool quiet = false, bool enforceCpuBudgets = false);
 
 }  // namespace cavity::gate

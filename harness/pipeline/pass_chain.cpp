@@ -4,6 +4,7 @@
 #include "pipeline/pipeline.h"
 
 #include <algorithm>
+#include <set>
 #include <cmath>
 
 namespace cavity::pipeline {
@@ -349,6 +350,25 @@ Result<std::map<std::string, HostImage>> renderImages(gpu::Backend& gpu, const R
         CAVITY_ASSIGN(out[name], chain->read(name));
     }
     return out;
+}
+
+Status checkSourcesUsed(const std::vector<ReplacedSource>& replaced, const std::vector<RunConfig>& configs) {
+    if (replaced.empty()) return {};
+    std::set<std::string> used, assembled;   // kernels/ file names; kernel and stage pairs done
+    for (const auto& c : configs)
+        for (const auto& spec : buildPasses(c)) {
+            const auto* k = kernels::find(spec.kernel);
+            if (!k || !assembled.insert(spec.kernel + (c.stage == gpu::Stage::Compute ? "/c" : "/f")).second) continue;
+            auto src = kernels::assemble(*k, c.stage, {}, nullptr, 0);
+            if (!src) continue;
+            for (const auto& f : src->files)
+                if (f.rfind("kernels/", 0) == 0) used.insert(f.substr(8));
+        }
+    for (const auto& r : replaced)
+        if (!used.count(r.name))
+            return badInput("--kernel-source " + r.name + "=" + r.file + ": no configuration of the selection compiles kernels/" +
+                            r.name + " (the replacement would change nothing)");
+    return {};
 }
 
 }  // namespace cavity::pipeline

@@ -61,6 +61,16 @@ Result<std::map<std::string, HostImage>> renderImages(gpu::Backend& gpu, const R
 
 // Replacement kernel sources by file name (planted-bug tests).
 using SourceOverrides = std::map<std::string, std::string>;
+// A kernel source replaced from a file (--kernel-source NAME=FILE), as every
+// report records it: which code a verdict judged.
+struct ReplacedSource {
+    std::string name;     // "ssao_alchemy.glsl", relative to kernels/
+    std::string file;     // the file given
+    std::string digest;   // digestText of its text
+};
+// Fails naming the first replaced source that no pass of `configs` compiles
+// (with its #includes): a replacement that would change nothing is a mistake.
+Status checkSourcesUsed(const std::vector<ReplacedSource>& replaced, const std::vector<RunConfig>& configs);
 // A planted slowdown: dependent FMAs per pixel by pass name (kernels::assemble).
 using PlantedSlowdown = std::map<std::string, int>;
 

@@ -52,6 +52,7 @@ std::vector<RunConfig> Matrix::expand() const {
         axes.kernels = g.kernels.size() == 1 && g.kernels[0] == "all" ? aoKernels() : g.kernels;
         axes.params = {{"samples", std::vector<double>(g.samples.begin(), g.samples.end())},
                        {"blur", std::vector<double>(g.blurs.begin(), g.blurs.end())}};
+        axes.params.insert(axes.params.end(), g.params.begin(), g.params.end());
         axes.half = g.half;
         axes.sizes = g.sizes;
         axes.apis = g.apis;
@@ -68,6 +69,69 @@ std::vector<RunConfig> Matrix::expand() const {
     }
     return out;
 }
+
+namespace {
+
+// "params": {"radius": [2, 4]}: kernel parameters other than samples and
+// blur (which have keys of their own), each a list of numbers; their ranges
+// are checked with every configuration by validate().
+Result<std::vector<std::pair<std::string, std::vector<double>>>> parseParams(const std::string& path,
+                                                                           const std::string& gw, const json& g) {
+    std::vector<std::pair<std::string, std::vector<double>>> out;
+    if (!g.contains("params")) return out;
+    if (!g["params"].is_object()) return badInput(path + ": " + gw + ".params must be an object of lists");
+    for (const auto& [name, values] : g["params"].items()) {
+        if (name == "samples" || name == "blur" || name == "scene" || !kernels::findParam(name))
+            return badInput(path + ": " + gw + ".params has '" + name +
+                            "' (a kernel parameter other than samples, blur and scene; see cavity run --help)");
+        if (!values.is_array() || values.empty())
+            return badInput(path + ": " + gw + ".params." + name + " must be a non-empty list of numbers");
+        std::vector<double> list;
+        for (const auto& v : values) {
+            if (!v.is_number()) return badInput(path + ": " + gw + ".params." + name + " has " + v.dump() + " (a number)");
+            list.push_back(v.get<double>());
+        }
+        out.emplace_back(name, std::move(list));
+    }
+    return out;
+}
+
+Result<MatrixGroup> parseGroup(const std::string& path, const std::string& gw, const json& g) {
+    CAVITY_TRY(onlyKeys(path, gw, g, {"scenes", "kernels", "samples", "blurs", "params", "resolutions", "sizes", "apis", "stages"}));
+    for (const char* key : {"scenes", "kernels", "samples", "blurs", "resolutions", "sizes", "apis", "stages"})
+        if (!g.contains(key)) return badInput(path + ": " + gw + " lacks '" + key + "'");
+    MatrixGroup grp;
+    CAVITY_ASSIGN(const JsonObject gf, JsonObject::of(path, gw, g));
+    CAVITY_ASSIGN(grp.scenes, gf.strings("scenes"));
+    CAVITY_ASSIGN(grp.kernels, gf.strings("kernels"));
+    // Ranges are the declarations' (validate() checks each configuration again).
+    CAVITY_ASSIGN(grp.samples, gf.integers("samples", 1, 1 << 20));
+    CAVITY_ASSIGN(grp.blurs, gf.integers("blurs", 0, 1 << 20));
+    CAVITY_ASSIGN(grp.params, parseParams(path, gw, g));
+    CAVITY_ASSIGN(auto res, gf.strings("resolutions"));
+    for (const auto& r : res) {
+        if (r != "full" && r != "half") return badInput(path + ": " + gw + ".resolutions has '" + r + "' (full or half)");
+        grp.half.push_back(r == "half");
+    }
+    CAVITY_ASSIGN(auto sizes, gf.strings("sizes"));
+    for (const auto& s : sizes) {
+        CAVITY_ASSIGN(auto wh, parseResolution(path + ": " + gw + ".sizes", s));
+        grp.sizes.push_back(wh);
+    }
+    CAVITY_ASSIGN(auto apis, gf.strings("apis"));
+    for (const auto& a : apis) {
+        if (a != "gl" && a != "vk") return badInput(path + ": " + gw + ".apis has '" + a + "' (gl or vk)");
+        grp.apis.push_back(a == "gl" ? gpu::Api::OpenGL : gpu::Api::Vulkan);
+    }
+    CAVITY_ASSIGN(auto stages, gf.strings("stages"));
+    for (const auto& s : stages) {
+        if (s != "compute" && s != "fragment") return badInput(path + ": " + gw + ".stages has '" + s + "'");
+        grp.stages.push_back(s == "compute" ? gpu::Stage::Compute : gpu::Stage::Fragment);
+    }
+    return grp;
+}
+
+}  // namespace
 
 Result<Matrix> loadMatrix(const std::string& path, const std::string& name) {
     CAVITY_ASSIGN(json doc, readJsonFile(path));
@@ -91,38 +155,7 @@ Result<Matrix> loadMatrix(const std::string& path, const std::string& name) {
     if (!m.contains("groups") || !m["groups"].is_array()) return badInput(path + ": " + where + ".groups must be a list");
     int gi = 0;
     for (const auto& g : m["groups"]) {
-        const std::string gw = where + ".groups[" + std::to_string(gi++) + "]";
-        CAVITY_TRY(onlyKeys(path, gw, g,
-                            {"scenes", "kernels", "samples", "blurs", "resolutions", "sizes", "apis", "stages"}));
-        for (const char* key : {"scenes", "kernels", "samples", "blurs", "resolutions", "sizes", "apis", "stages"})
-            if (!g.contains(key)) return badInput(path + ": " + gw + " lacks '" + key + "'");
-        MatrixGroup grp;
-        CAVITY_ASSIGN(const JsonObject gf, JsonObject::of(path, gw, g));
-        CAVITY_ASSIGN(grp.scenes, gf.strings("scenes"));
-        CAVITY_ASSIGN(grp.kernels, gf.strings("kernels"));
-        // Ranges are the declarations' (validate() below checks each configuration again).
-        CAVITY_ASSIGN(grp.samples, gf.integers("samples", 1, 1 << 20));
-        CAVITY_ASSIGN(grp.blurs, gf.integers("blurs", 0, 1 << 20));
-        CAVITY_ASSIGN(auto res, gf.strings("resolutions"));
-        for (const auto& r : res) {
-            if (r != "full" && r != "half") return badInput(path + ": " + gw + ".resolutions has '" + r + "' (full or half)");
-            grp.half.push_back(r == "half");
-        }
-        CAVITY_ASSIGN(auto sizes, gf.strings("sizes"));
-        for (const auto& s : sizes) {
-            CAVITY_ASSIGN(auto wh, parseResolution(path + ": " + gw + ".sizes", s));
-            grp.sizes.push_back(wh);
-        }
-        CAVITY_ASSIGN(auto apis, gf.strings("apis"));
-        for (const auto& a : apis) {
-            if (a != "gl" && a != "vk") return badInput(path + ": " + gw + ".apis has '" + a + "' (gl or vk)");
-            grp.apis.push_back(a == "gl" ? gpu::Api::OpenGL : gpu::Api::Vulkan);
-        }
-        CAVITY_ASSIGN(auto stages, gf.strings("stages"));
-        for (const auto& s : stages) {
-            if (s != "compute" && s != "fragment") return badInput(path + ": " + gw + ".stages has '" + s + "'");
-            grp.stages.push_back(s == "compute" ? gpu::Stage::Compute : gpu::Stage::Fragment);
-        }
+        CAVITY_ASSIGN(MatrixGroup grp, parseGroup(path, where + ".groups[" + std::to_string(gi++) + "]", g));
         matrix.groups.push_back(std::move(grp));
     }
     for (const auto& c : matrix.expand()) {

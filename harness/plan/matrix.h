@@ -38,6 +38,9 @@ std::string shapeText(const ImageShape& s);   // "160x90x1"
 struct MatrixGroup {
     std::vector<std::string> scenes, kernels;   // kernels: names, or {"all"} for every AO kernel
     std::vector<int> samples, blurs;
+    // Any other kernel parameter, as a list of values ("params": {"radius":
+    // [2]}): an axis each, after samples and blur, in name order.
+    std::vector<std::pair<std::string, std::vector<double>>> params;
     std::vector<bool> half;
     std::vector<std::pair<int, int>> sizes;
     std::vector<gpu::Api> apis;

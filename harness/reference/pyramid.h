@@ -19,8 +19,16 @@ Vec3 positionAt(const kernels::FrameUniforms& f, int x, int y, float depth);
 // The levels of depth_pyramid's output.
 int levelCount();
 
-// The level-0 pixel whose depth texel (tx, ty) of `level` holds.
+// The level-0 pixel whose depth texel (tx, ty) of `level` holds. Every
+// depth a fast kernel reads off the pyramid passes through here, so it also
+// counts the read in levelReads().
 void sourcePixel(const std::vector<HostImage>& zmip, int level, int& tx, int& ty);
+
+// How many depths the references have read from each pyramid level since
+// the last reset: which code paths of the fast kernels a configuration
+// reaches (the deep levels only when samples land far from their pixel, at
+// large sizes or radii). Counted per thread.
+std::vector<long long>& levelReads();
 
 // PyramidView and pyramidView().
 struct View {

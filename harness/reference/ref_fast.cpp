@@ -46,9 +46,17 @@ int levelCount() {
     return k && !k->outputs.empty() ? k->outputs[0].mipLevels : 1;
 }
 
+std::vector<long long>& levelReads() {
+    thread_local std::vector<long long> reads;
+    return reads;
+}
+
 // The pyramid's picks, undone one level at a time (include/pyramid.glsl does
 // it in closed form).
 void sourcePixel(const std::vector<HostImage>& zmip, int level, int& tx, int& ty) {
+    auto& reads = levelReads();
+    if (reads.size() <= size_t(level)) reads.resize(size_t(level) + 1, 0);
+    ++reads[size_t(level)];
     for (int k = level; k > 0; --k) {
         const HostImage& above = zmip[size_t(k - 1)];
         const int px = std::min(2 * tx + (ty & 1), above.width - 1);

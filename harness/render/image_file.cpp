@@ -180,6 +180,11 @@ Result<uint64_t> writeImageFile(const std::string& path, const HostImage& image)
 }
 
 Result<HostImage> readImageFile(const std::string& path, const StoredImage& expect) {
+    // A folder opens as a stream on Linux, and reading it throws from inside
+    // libstdc++ (EISDIR): only a regular file is read.
+    std::error_code ec;
+    if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec))
+        return badInput(path + ": not a file (the manifest lists an image file here)");
     std::ifstream f(path, std::ios::binary);
     if (!f) return badInput(path + ": missing or unreadable (the manifest lists it)");
     const std::string data((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());

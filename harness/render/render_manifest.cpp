@@ -24,6 +24,24 @@ json toJson(const RenderEntry& r) {
 
 }  // namespace
 
+json replacedJson(const std::vector<ReplacedSource>& replaced) {
+    json out = json::array();
+    for (const auto& r : replaced) out.push_back({{"name", r.name}, {"file", r.file}, {"digest", r.digest}});
+    return out;
+}
+
+Result<std::vector<ReplacedSource>> parseReplaced(const json& j, const std::string& path) {
+    std::vector<ReplacedSource> out;
+    if (!j.is_array()) return badInput(path + ": kernel_sources must be a list");
+    for (const auto& r : j) {
+        if (!r.is_object() || !r.contains("name") || !r.contains("file") || !r.contains("digest") || !r["name"].is_string() ||
+            !r["file"].is_string() || !r["digest"].is_string())
+            return badInput(path + ": kernel_sources has " + r.dump() + " (each {name, file, digest}, strings)");
+        out.push_back({r["name"], r["file"], r["digest"]});
+    }
+    return out;
+}
+
 json toJson(const RenderManifest& m) {
     json devices = json::object(), errors = json::array(), configs = json::array();
     for (const auto& [api, d] : m.devices) devices[api] = toJson(d);
@@ -43,6 +61,7 @@ json toJson(const RenderManifest& m) {
             {"shard", {m.shardIndex, m.shardCount}},
             {"filter", m.filter},
             {"repeat", m.repeat},
+            {"kernel_sources", replacedJson(m.replaced)},
             {"seconds", m.seconds},
             {"image_format", kImageFormat},
             {"devices", devices},
@@ -105,6 +124,10 @@ Result<RenderManifest> parseManifest(const json& j, const std::string& path) {
         }
     } catch (const json::exception& e) {
         return badInput(path + ": malformed at " + where + ": " + e.what());
+    }
+    // Absent before --kernel-source was recorded: nothing replaced.
+    if (j.contains("kernel_sources")) {
+        CAVITY_ASSIGN(m.replaced, parseReplaced(j["kernel_sources"], path));
     }
     if (m.shardCount < 1 || m.shardIndex < 0 || m.shardIndex >= m.shardCount)
         return badInput(path + ": shard " + std::to_string(m.shardIndex) + "/" + std::to_string(m.shardCount) +

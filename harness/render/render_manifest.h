@@ -55,9 +55,14 @@ struct RenderManifest {
     std::map<std::string, gpu::DeviceInfo> devices;   // by API name ("gl", "vk"), the backends that started
     std::vector<BackendError> backendErrors;
     std::vector<ConfigEntry> configs;
+    std::vector<ReplacedSource> replaced;              // --kernel-source: what was rendered instead of kernels/
 };
 
 nlohmann::json toJson(const RenderManifest& m);
+// The replaced kernel sources as render manifests and gate.json write them:
+// [{"name", "file", "digest"}].
+nlohmann::json replacedJson(const std::vector<ReplacedSource>& replaced);
+Result<std::vector<ReplacedSource>> parseReplaced(const nlohmann::json& j, const std::string& path);
 // Checks the schema and the type of every field; messages start with "PATH: ".
 Result<RenderManifest> parseManifest(const nlohmann::json& j, const std::string& path);
 

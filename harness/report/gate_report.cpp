@@ -29,13 +29,30 @@ Status writeText(const fs::path& path, const std::string& text) {
 
 }  // namespace
 
-Status writeReports(const GateRun& run, const std::string& outDir) {
+nlohmann::json commitStatus(const GateRun& run, const std::string& reportUrl) {
+    const int code = run.exitCode();
+    int failed = 0;
+    for (const auto& r : run.results) failed += r.fatal();
+    const std::string total = std::to_string(run.results.size());
+    std::string description = code == 0   ? "all " + total + " configurations passed"
+                              : code == 1 ? std::to_string(failed) + " of " + total + " configurations failed"
+                                          : "the gate could not judge every configuration (exit " + std::to_string(code) + ")";
+    description = "matrix " + run.matrix + ": " + description;
+    if (description.size() > kStatusDescriptionMax) description.resize(kStatusDescriptionMax);
+    return {{"state", code == 0 ? "success" : code == 1 ? "failure" : "error"},
+            {"description", description},
+            {"target_url", reportUrl.empty() ? nlohmann::json(nullptr) : nlohmann::json(reportUrl)},
+            {"context", "cavity/gate/" + run.matrix}};
+}
+
+Status writeReports(const GateRun& run, const std::string& outDir, const std::string& reportUrl) {
     const fs::path out(outDir);
     std::error_code ec;
     fs::create_directories(out, ec);
     CAVITY_TRY(writeJson((out / "gate.json").string(), toJson(run)));
     CAVITY_TRY(writeText(out / "junit.xml", junitXml(run)));
-    CAVITY_TRY(writeText(out / "summary.md", summaryMarkdown(run)));
+    CAVITY_TRY(writeText(out / "summary.md", summaryMarkdown(run, reportUrl.empty() ? "index.html" : reportUrl)));
+    CAVITY_TRY(writeJson((out / "status.json").string(), commitStatus(run, reportUrl)));
     CAVITY_ASSIGN(const std::string html, reportHtml(run, (out / "charts").string()));
     CAVITY_TRY(writeText(out / "index.html", html));
     return {};

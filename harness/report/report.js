@@ -39,6 +39,10 @@
       ' · ' + gate.results.length + ' configurations · ',
       el('span', {class: failed ? 'bad' : ''}, failed + ' failed'),
       ' · ' + view.counts + ' · ' + num(gate.seconds, 3) + ' s · zoom ', zoom, ' ', el('span', {id: 'zv'}, '2x'));
+    // What was judged instead of the committed kernels (--kernel-source).
+    for (const r of gate.kernel_sources || [])
+      document.getElementById('controls').append(el('div', {class: 'replaced'},
+        'kernel source replaced: ', el('code', {}, 'kernels/' + r.name), ' by ', el('code', {}, r.file), ' (' + r.digest + ')'));
   }
 
   // Thumbnails of what a passing configuration rendered and its worst
@@ -113,9 +117,25 @@
     return table;
   }
 
-  function configuration(r, v) {
-    const kind = r.fatal ? 'fail' : r.verdict === 'pass' ? 'pass' : 'noted';
-    const div = el('div', {class: 'cfg ' + kind, 'data-id': r.id, 'data-repetition': String(r.repetition), 'data-verdict': r.verdict},
+  function kindOf(r) { return r.fatal ? 'fail' : r.verdict === 'pass' ? 'pass' : 'noted'; }
+
+  // One cell a configuration, in matrix order, coloured by verdict; a
+  // cell's title is its id and verdict, and a click goes to its card.
+  function overview() {
+    const grid = el('div', {class: 'grid'});
+    gate.results.forEach((r, k) => {
+      const kind = r.error ? 'error' : kindOf(r);
+      grid.append(el('a', {class: 'cell ' + kind, href: '#cfg' + k, title: view.results[k].label + ': ' + r.verdict}));
+    });
+    const legend = el('div', {class: 'legend'}, 'Overview, one cell a configuration:');
+    for (const [kind, text] of [['pass', 'pass'], ['fail', 'fail'], ['noted', 'reported'], ['error', 'error']])
+      legend.append(el('span', {class: 'cell ' + kind}), text);
+    document.getElementById('overview').append(legend, grid);
+  }
+
+  function configuration(r, v, k) {
+    const kind = kindOf(r);
+    const div = el('div', {id: 'cfg' + k, class: 'cfg ' + kind, 'data-id': r.id, 'data-repetition': String(r.repetition), 'data-verdict': r.verdict},
                    el('h2', {}, v.label, el('span', {class: 'badge'}, r.verdict === 'fail' ? 'FAIL' : r.verdict)));
     if (r.error) div.append(el('p', {class: 'bad'}, r.error));
     if (v.note) div.append(el('p', {class: 'bad'}, v.note));
@@ -143,7 +163,8 @@
   controls(failed);
   const results = document.getElementById('results');
   for (const e of gate.backend_errors) results.append(el('p', {class: 'bad'}, 'backend could not start: ' + e));
-  for (const k of view.order) results.append(configuration(gate.results[k], view.results[k]));
+  overview();
+  for (const k of view.order) results.append(configuration(gate.results[k], view.results[k], k));
   charts();
   window.addEventListener('load', () => setZoom(document.getElementById('zoom').value));
 })();

@@ -1,4 +1,4 @@
-// junit.xml and summary.md (report/gate_report.h).
+// junit.xml (report/gate_report.h).
 #include "report/gate_report.h"
 
 #include "report/verdict_text.h"
@@ -40,20 +40,14 @@ std::string seconds3(double x) {
     return b;
 }
 
-// "rmse 0.0123 > 0.005 at (3,4)" -> {"rmse 0.0123", "> 0.005 at (3,4)"}: the
-// summary's result and tolerance columns. A line without a comparator is all result.
-std::pair<std::string, std::string> splitFailure(const std::string& f) {
-    for (const char* op : {" > ", " < "}) {
-        const auto at = f.find(op);
-        if (at == std::string::npos) continue;
-        std::string result = f.substr(0, at), tolerance = f.substr(at + 3);
-        if (const auto where = tolerance.find(" at ("); where != std::string::npos) {
-            result += tolerance.substr(where);
-            tolerance.resize(where);
-        }
-        return {result, (op[1] == '>' ? "≤ " : "≥ ") + tolerance};
-    }
-    return {f, ""};
+// The replaced kernel sources as the suite's properties ("kernel_source.NAME":
+// "FILE DIGEST"), or none.
+std::string junitProperties(const GateRun& run) {
+    if (run.replaced.empty()) return "<properties/>";
+    std::string p = "<properties>\n";
+    for (const auto& r : run.replaced)
+        p += "      <property name=\"kernel_source." + esc(r.name) + "\" value=\"" + esc(r.file + " " + r.digest) + "\"/>\n";
+    return p + "    </properties>";
 }
 
 }  // namespace
@@ -123,67 +117,9 @@ std::string junitXml(const GateRun& run) {
       << "  <testsuite name=\"cavity.gate." << esc(run.matrix) << "\" package=\"cavity.gate\" id=\"0\" timestamp=\""
       << utcTimestamp().substr(0, 19) << "\" hostname=\"" << esc(hostName()) << "\" tests=\"" << tests << "\" failures=\""
       << failures << "\" errors=\"" << errors << "\" skipped=\"" << skipped << "\" time=\"" << seconds3(run.seconds)
-      << "\">\n    <properties/>\n"
+      << "\">\n    " << junitProperties(run) << "\n"
       << cases.str() << "    <system-out/>\n    <system-err/>\n  </testsuite>\n</testsuites>\n";
     return x.str();
-}
-
-std::string summaryMarkdown(const GateRun& run) {
-    int failed = 0, unbudgeted = 0, nondet = 0, repetitions = 1, noted = 0;
-    for (const auto& r : run.results) {
-        failed += r.fatal();
-        noted += !r.fatal() && r.verdict() != "pass";
-        repetitions = std::max(repetitions, r.repetition + 1);
-        nondet += !r.deterministic;
-        for (const auto& t : r.timings) unbudgeted += !t.budgetMs;
-    }
-    std::ostringstream m;
-    m << "## Cavity gate `" << run.matrix << "`"
-      << (run.shardCount > 1 ? " (shard " + std::to_string(run.shardIndex) + "/" + std::to_string(run.shardCount) + ")" : "")
-      << ": " << (failed ? "**" + std::to_string(failed) + " of " + std::to_string(run.results.size()) + " configurations failed**"
-                  : noted ? "no regression in " + std::to_string(run.results.size()) + " configurations, " + std::to_string(noted) +
-                                " reported"
-                         : "all " + std::to_string(run.results.size()) + " configurations passed")
-      << " (" << num(run.seconds, 3) << " s)\n\n" << countsText(run) << "\n\n";
-    for (const auto& e : run.backendErrors) m << "- backend could not start: " << e << "\n";
-    if (failed) {
-        m << "| configuration | check | result | tolerance |\n| --- | --- | --- | --- |\n";
-        int rows = 0;
-        for (const auto* r : ordered(run)) {
-            if (!r->fatal()) break;
-            if (++rows > 40) {
-                m << "| … | | more in index.html | |\n";
-                break;
-            }
-            const std::string name = "`" + r->id + "`" + (r->repetition ? " rep " + std::to_string(r->repetition) : "");
-            if (!r->error.empty()) m << "| " << name << " | run | " << r->error << " | |\n";
-            if (r->verdict() == "unexpected-pass") m << "| " << name << " | expectation | unexpected pass | " << r->expectedWhy << " |\n";
-            for (const auto& i : r->images)
-                for (const auto& f : i.failures) {
-                    const auto [result, tolerance] = splitFailure(f);
-                    m << "| " << name << " | " << i.image << " | " << result << " | " << tolerance << " |\n";
-                }
-            for (const auto& t : r->timings)
-                if (!t.passed())
-                    m << "| " << name << " | time " << t.pass << " | " << num(t.medianMs) << " ms (+"
-                      << num(100 * (t.medianMs / *t.budgetMs - 1), 3) << "%) | ≤ " << num(*t.budgetMs) << " ms |\n";
-        }
-        m << "\n";
-    }
-    if (noted) {
-        // Not fatal, never silent: flaky configurations, expected failures
-        // and known flakes, with what they said.
-        m << "| configuration | verdict | note |\n| --- | --- | --- |\n";
-        for (const auto* r : ordered(run))
-            if (!r->fatal() && r->verdict() != "pass") m << "| `" << r->label() << "` | " << r->verdict() << " | " << verdictNote(*r) << " |\n";
-        m << "\n";
-    }
-    if (repetitions > 1)
-        m << "- each configuration was rendered " << repetitions << " times; every repetition is judged on its own and counted above\n";
-    if (nondet) m << "- " << nondet << " configurations were not bit-identical across two frames on the same device\n";
-    if (unbudgeted) m << "- " << unbudgeted << " pass timings had no budget for this device (reported, not failed)\n";
-    m << "\nAccept intended changes with `cavity baselines update --from <gate output>`; details in index.html.\n";
-    return m.str();
 }
 
 }  // namespace cavity::report

@@ -1,0 +1,116 @@
+// Reading the linear-depth pyramid (depth_pyramid.glsl): the fast AO
+// kernels' shared helpers, mirrored by harness/reference/ref_fast.cpp.
+#include "include/screen_space.glsl"
+
+// Samples up to 2^(3 + 1) = 16 px away read level 0; each doubling of the
+// distance moves one level down (after Scalable Ambient Obscurance).
+const int LOG_MAX_OFFSET = 3;
+
+// viewRayAt(pixel) * depth with each operation rounded as the CPU's is: the
+// rebuilt positions feed discrete decisions (a radius or a depth test).
+vec3 positionAt(ivec2 pixel, float depth) {
+    precise vec2 ndc = (vec2(pixel) + 0.5) * frame.invSize * 2.0 - 1.0;
+    precise vec3 p = vec3(ndc.x * frame.camera.x * depth, -ndc.y * frame.camera.y * depth, -depth);
+    return p;
+}
+
+// The size of pyramid level l: level 0 is this pass's size, and each mip
+// halves it, rounding down. Not textureSize(in_zmip, l): llvmpipe answers that
+// query with one lane's lod for every lane when l varies across them, which
+// clamped samples of level-0 pixels into a neighbour's level-1 size.
+ivec2 levelSize(int l) {
+    return max(frame.size >> l, ivec2(1));
+}
+
+// The level a sample `h` pixels from its receiver reads (h >= 0).
+int pyramidLevel(int h, int maxLevel) {
+    return clamp(findMSB(h) - LOG_MAX_OFFSET, 0, maxLevel);
+}
+
+// The level-0 pixel whose depth texel t of `level` holds: undoes
+// depth_pyramid.glsl's pick (2x + (y & 1), 2y + (x & 1)) once per level. The
+// pick appends one bit to each coordinate per level, and the bits it appends
+// alternate: to x the parity of y, then of x, then of y...; to y the other
+// way round. So the whole chain is a shift and two masks, where a loop over
+// the levels cost a sixth of the pass on the H200 (bench/ROOFLINE.md). The
+// clamp into a level above never acts while that level is at least 2 texels
+// across (t < floor(s / 2) gives 2t + 1 < s); the loop stays for the 1-texel
+// levels of tiny images, the only ones where it does.
+ivec2 sourcePixel(ivec2 t, int level) {
+    if (level == 0) return t;
+    if (any(lessThanEqual(frame.size >> (level - 1), ivec2(1)))) {
+        for (int k = level; k > 0; --k) t = min(t * 2 + ivec2(t.y & 1, t.x & 1), levelSize(k - 1) - 1);
+        return t;
+    }
+    int high = int(0xAAAAAAAAu >> uint(32 - level));   // bits level-1, level-3, ...
+    int low = ((1 << level) - 1) ^ high;                // bits level-2, level-4, ...
+    ivec2 parity = t & 1;
+    return (t << level);
+}
+
+// What projecting a view-space point onto this pass's pixels takes:
+// x_px = x / depth * toPixel.x + size.x / 2, and y likewise with the flip
+// (positionAt() inverted); and the pyramid's last level.
+struct PyramidView {
+    vec2 toPixel;
+    vec2 centre;
+    int maxLevel;
+};
+
+PyramidView pyramidView() {
+    precise vec2 toPixel = vec2(0.5, -0.5) * vec2(frame.size) *
+                           vec2(portableReciprocal(frame.camera.x), portableReciprocal(frame.camera.y));
+    return PyramidView(toPixel, 0.5 * vec2(frame.size), textureQueryLevels(in_zmip) - 1);
+}
+
+// The stored surface under the view-space point s, seen from the receiver
+// at `pixel`: false for a point behind the camera plane, off the screen or
+// on the background. Samples far from the pixel read coarser levels
+// (pyramidLevel). `source` and `zq`: the level-0 pixel whose depth the
+// level holds, and that depth (the stored point is positionAt(source, zq)).
+bool pyramidLookup(PyramidView v, vec3 s, ivec2 pixel, out ivec2 source, out float zq) {
+    source = ivec2(-1);
+    zq = 0.0;
+    if (s.z >= 0.0) return false;
+    precise vec2 sp = s.xy * portableReciprocal(-s.z) * v.toPixel + v.centre;
+    ivec2 texel = ivec2(floor(clamp(sp, vec2(-1.0), vec2(frame.size))));
+    if (any(lessThan(texel, ivec2(0))) || any(greaterThanEqual(texel, frame.size))) return false;
+    ivec2 away = abs(texel - pixel);
+    int level = pyramidLevel(max(away.x, away.y), v.maxLevel);
+    ivec2 tl = min(texel >> level, levelSize(level) - 1);
+    zq = texelFetch(in_zmip, tl, level).r;
+    if (isBackground(zq)) return false;
+    source = sourcePixel(tl, level);
+    return true;
+}
+
+// Whether the point s, sampled from the receiver with unit normal N at the
+// level `receiverLevel` = N . X along it (X its view point), is blocked, and
+// by which stored point q (pyramidLookup's source and zq). No normal is
+// fetched at q; two tests, both along N (ssao_hemisphere_fast.glsl says
+// why):
+//  * q rises above s: N . q - N . s > bias, with N . q = z_q (N . ray_q).
+//    The receiver's own plane sits at the receiver's level under every
+//    point, at any viewing angle: no self-shadowing.
+//  * s lies behind q along its own ray (z_q + bias < z_s) while q stands
+//    above the receiver's tangent plane, N . q - N . X > bias: the verdict
+//    of a depth layer for a point that has passed under or through a thin
+//    occluder seen from above (a slat, a plate over a gap), which rises no
+//    higher than the point and so passes the first test. The receiver's own
+//    plane never stands above itself, so this cannot shadow it either.
+// Where q's ray meets the receiver's plane from behind (N . ray_q >= 0, a
+// receiver seen edge-on, such as a sphere's rim over the floor) N . q says
+// nothing, and the depth test alone decides, the seed's where q has no
+// normal.
+bool pyramidBlocks(PyramidView v, vec3 N, float receiverLevel, vec3 s, ivec2 pixel, float bias, out ivec2 source,
+                   out float zq) {
+    if (!pyramidLookup(v, s, pixel, source, zq)) return false;
+    float along = orderedDot(N, positionAt(source, 1.0));
+    precise float height = zq * along;
+    precise float rise = height - orderedDot(N, s);
+    if (along < 0.0 && rise > bias) return true;
+    precise float threshold = zq + bias;
+    if (threshold >= -s.z) return false;
+    precise float lift = height - receiverLevel;
+    return along >= 0.0 || lift > bias;
+}
