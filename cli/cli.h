@@ -63,6 +63,7 @@ int fail(const std::string& program, const Error& e);
 int runCommand(const std::vector<std::string>& args);
 int gateCommand(const std::vector<std::string>& args);
 int baselinesCommand(const std::vector<std::string>& args);
+int approveCommand(const std::vector<std::string>& args);   // cavity baselines approve
 int compareCommand(const std::vector<std::string>& args);
 // `program` starts every message: "cavity quality", "cavity_render quality".
 int qualityCommand(const std::vector<std::string>& args, const std::string& program = "cavity quality");

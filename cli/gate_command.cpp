@@ -1,6 +1,6 @@
 // `cavity gate`, `cavity gate judge`, `cavity gate merge` and `cavity baselines update`.
 #include "gate/baseline_update.h"
-#include "cli.h"
+#include "gate_outputs.h"
 #include "pipeline/config_id.h"
 #include "gate/expectations.h"
 #include "core/json_file.h"
@@ -172,12 +172,6 @@ std::string budgetOnlyHint(const gate::GateRun& run, bool filtered, const std::s
     }                                                              \
     const ParsedFlags& var = *var##_;
 
-Result<gate::GateRun> loadGateJson(const std::string& dir) {
-    const std::string path = (fs::path(dir) / "gate.json").string();
-    if (!fs::exists(path)) return badInput(path + ": cannot be read (run `cavity gate --out " + dir + "` first)");
-    CAVITY_ASSIGN(const nlohmann::json j, readJsonFile(path));
-    return gate::fromJson(j, path);
-}
 
 int merge(const std::vector<std::string>& argv) {
     std::vector<std::string> dirs;
@@ -321,11 +315,14 @@ int gateCommand(const std::vector<std::string>& argv) {
 
 int baselinesCommand(const std::vector<std::string>& argv) {
     if (!argv.empty() && (argv[0] == "--help" || argv[0] == "-h")) {
-        std::cout << "usage: cavity baselines update [flags]   (see cavity baselines update --help)\n";
+        std::cout << "usage: cavity baselines update|approve [flags]   (see cavity baselines update --help, "
+                     "cavity baselines approve --help)\n";
         return 0;
     }
+    if (!argv.empty() && argv[0] == "approve") return approveCommand({argv.begin() + 1, argv.end()});
     if (argv.empty() || argv[0] != "update")
-        return fail("cavity baselines", badInput("usage: cavity baselines update [--from DIR] [--filter REGEX] [--baselines DIR]"));
+        return fail("cavity baselines", badInput("'" + (argv.empty() ? std::string() : argv[0]) +
+                                                 "': usage: cavity baselines update|approve [flags]"));
     std::string from = "out/gate", filterText, root;
     CAVITY_PARSE(p, updateSpec(), std::vector<std::string>(argv.begin() + 1, argv.end()));
     for (const auto& [flag, v] : p.values) {

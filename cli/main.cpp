@@ -15,6 +15,7 @@ constexpr const char* kUsage =
     "  gate judge judge render folders written by cavity_render (the gate in two steps)\n"
     "  gate merge join shard outputs into one verdict\n"
     "  baselines update   accept new images as baselines\n"
+    "  baselines approve  approve (or mark known bad) a run's image digests for their device class\n"
     "  compare    two runs (results.json or cavity_bench JSON) pass by pass: change, interval, verdict\n"
     "  quality    each AO kernel's mean absolute error against the ray-traced ground truth\n"
     "`cavity COMMAND --help` lists a command's flags. `cavity` alone prints this and exits 2;\n"

@@ -48,8 +48,8 @@ const cli::CommandSpec& renderSpec() {
         },
         "",
         "",
-        "\nExit codes: 0 every configuration rendered, 2 bad input (nothing written), 3 a backend did not start, "
-        "4 a configuration failed on the GPU.",
+        "\nExit codes: 0 every configuration rendered, 1 a pass wrote NaN or infinity (the folder is written), 2 bad "
+        "input (nothing written), 3 a backend did not start, 4 a configuration failed on the GPU.",
         {
             "cavity_render --matrix gpu --out out/render",
             "cavity_render --matrix ci --backend vk --kernel-source ssao_alchemy.glsl=my_alchemy.glsl --out out/edit",
@@ -71,16 +71,18 @@ std::string joined(const std::vector<std::string>& argv) {
 }
 
 // The gate's precedence (gate::GateRun::exitCode): bad input, then a
-// backend that did not start, then a GPU error.
+// backend that did not start, then a GPU error, then a pass that wrote NaN
+// or infinity (1, as in every tool: the run finished, the image is wrong).
 int worst(const RenderManifest& m) {
-    bool bad = false, backend = !m.backendErrors.empty(), gpuError = false;
+    bool bad = false, backend = !m.backendErrors.empty(), gpuError = false, nonFinite = false;
     for (const auto& c : m.configs)
         for (const auto& r : c.renders) {
             bad |= r.errorCode == int(ErrorCode::BadInput);
             backend |= r.errorCode == int(ErrorCode::BackendUnavailable);
-            gpuError |= r.errorCode != 0;
+            nonFinite |= r.errorCode == int(ErrorCode::Regression);
+            gpuError |= r.errorCode != 0 && r.errorCode != int(ErrorCode::Regression);
         }
-    return bad ? 2 : backend ? 3 : gpuError ? 4 : 0;
+    return bad ? 2 : backend ? 3 : gpuError ? 4 : nonFinite ? 1 : 0;
 }
 
 }  // namespace
@@ -168,7 +170,11 @@ int renderCommand(const std::vector<std::string>& argv) {
     header.filter = o->filter;
     header.repeat = o->render.repeat;
     header.replaced = o->replaced;
-    FolderWriter writer(o->out, header);
+    // Images approved by digest for this device are not written: a clean
+    // render of a known device sends back its manifest alone.
+    auto approvals = plan::loadApprovals((fs::path(o->baselines) / "approvals.json").string());
+    if (!approvals) return fail(approvals.error());
+    FolderWriter writer(o->out, header, std::move(*approvals));
     if (auto st = writer.begin(); !st) return fail(st.error());
     auto sink = [&](Rendering&& r) -> Status {
         const std::string what = r.id + (r.repetition ? " (repetition " + std::to_string(r.repetition) + ")" : "");

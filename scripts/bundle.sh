@@ -11,18 +11,22 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 out="${1:-.bundle}"
 build="${BUILD_DIR:-build}"
-cmake --build "$build" --target cavity_bench cavity_render >/dev/null
+cmake --build "$build" --target cavity_bench cavity_render cavity >/dev/null
 rm -rf "$out"
 mkdir -p "$out/lib" "$out/baselines"
-cp "$build/bench/cavity_bench" "$build/render/cavity_render" "$out/"
-strip "$out/cavity_bench" "$out/cavity_render"
+# cavity travels without its OpenImageIO module: there it judges render
+# folders whose images are all approved by digest (docs/gate.md), which
+# reads no image file; anything that needs pixels says it cannot load the module.
+cp "$build/bench/cavity_bench" "$build/render/cavity_render" "$build/harness/cavity" "$out/"
+strip "$out/cavity_bench" "$out/cavity_render" "$out/cavity"
 cp baselines/matrices.json "$out/baselines/"
+[ -f baselines/approvals.json ] && cp baselines/approvals.json "$out/baselines/"
 # Libraries resolved by the loader here, minus what every glibc system and the
 # GPU machine's loaders provide. libz is part of every Linux base system
 # (Ubuntu's zlib1g is "required"), and the system's own must win: the NVIDIA
 # driver's libraries load it too, and ours (Debian 12's) is older.
 system='^(linux-vdso|libc\.so|libm\.so|libdl\.so|librt\.so|libpthread\.so|ld-linux|libstdc\+\+|libgcc_s|libz\.so|libvulkan|libEGL|libGL|libOpenGL|libGLX|libGLdispatch|libX|libxcb)'
-for exe in cavity_bench cavity_render; do
+for exe in cavity_bench cavity_render cavity; do
   ldd "$out/$exe" | awk '/=>/ {print $1, $3}'
 done | sort -u | while read -r name path; do
   if ! [[ "$name" =~ $system ]]; then cp -L "$path" "$out/lib/"; fi
@@ -46,7 +50,12 @@ if [ "${1:-}" != quality ] && [[ " $* " != *" --baselines "* ]]; then
 fi
 exec "$here/cavity_render" "$@"
 RENDER
-chmod +x "$out/run.sh" "$out/render.sh"
+cat > "$out/cavity.sh" <<'CAVITY'
+here="$(cd "$(dirname "$0")" && pwd)"
+export LD_LIBRARY_PATH="$here/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
+exec "$here/cavity" "$@"
+CAVITY
+chmod +x "$out/run.sh" "$out/render.sh" "$out/cavity.sh"
 size=$(du -sm "$out" | cut -f1)
-echo "bundle: $out ($size MiB): cavity_bench cavity_render baselines/matrices.json lib/: $(ls "$out/lib" | tr '\n' ' ')"
+echo "bundle: $out ($size MiB): cavity_bench cavity_render cavity baselines/ lib/: $(ls "$out/lib" | tr '\n' ' ')"
 if [ "$size" -gt 40 ]; then echo "bundle: over the 40 MiB limit" >&2; exit 1; fi

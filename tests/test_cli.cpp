@@ -202,7 +202,8 @@ TEST_F(Cli, RunHelpNamesEveryKernelAndParameterWithDefaultAndRange) {
 }
 
 TEST_F(Cli, EveryHelpWrapsAt100ColumnsAndEndsWithExamples) {
-    for (const std::string command : {"run", "gate", "gate judge", "gate merge", "baselines update", "compare", "quality"}) {
+    for (const std::string command :
+         {"run", "gate", "gate judge", "gate merge", "baselines update", "baselines approve", "compare", "quality"}) {
         const Outcome o = stdoutOf(command + " --help");
         ASSERT_EQ(o.code, 0) << command;
         std::istringstream lines(o.output);

@@ -189,6 +189,61 @@ TEST_F(GateInputs, KernelSourceCompileErrorNamesTheFileGiven) {
     EXPECT_NE(o.output.find(broken.string() + " (replacing kernels/ssao_alchemy.glsl):1"), std::string::npos) << o.output;
 }
 
+// Approvals (baselines/approvals.json): an approved digest of the device's
+// class passes with no metric computed; a known-bad digest fails on any
+// device; an approval of another class changes nothing (tolerance route).
+TEST_F(GateInputs, ApprovedDigestsPassAtOnceAndKnownBadOnesFail) {
+    const fs::path out = dir / "out";
+    ASSERT_EQ(gate().code, 0);
+    const Outcome noWhy = run("baselines approve --from " + out.string() + " --baselines " + base.string());
+    EXPECT_EQ(noWhy.code, 2) << noWhy.output;
+    EXPECT_NE(noWhy.output.find("--why: required"), std::string::npos) << noWhy.output;
+    const Outcome approve = run("baselines approve --from " + out.string() + " --baselines " + base.string() +
+                                " --by tester --why 'the CPU references'");
+    ASSERT_EQ(approve.code, 0) << approve.output;
+    EXPECT_NE(approve.output.find("6 image digests approved"), std::string::npos) << approve.output;
+    auto routes = [&] {
+        std::ifstream f(out / "gate.json");
+        const auto j = nlohmann::json::parse(f);
+        std::map<std::string, int> n;
+        for (const auto& r : j["results"])
+            for (const auto& i : r["images"]) {
+                ++n[i["route"].get<std::string>()];
+                if (i["route"] == "digest") {
+                    EXPECT_TRUE(i["metrics"].is_null()) << i;
+                }
+            }
+        return n;
+    };
+    const Outcome byDigest = gate();
+    EXPECT_EQ(byDigest.code, 0) << byDigest.output;
+    EXPECT_EQ(routes(), (std::map<std::string, int>{{"digest", 6}}));
+    EXPECT_NE(byDigest.output.find("images decided: 6 by approved digest"), std::string::npos) << byDigest.output;
+    // The same digests approved for another class only: judged by tolerance.
+    std::ifstream in(base / "approvals.json");
+    auto doc = nlohmann::json::parse(in);
+    in.close();
+    for (auto& a : doc["approvals"]) a["device_class"] = "nvidia-h200";
+    std::ofstream(base / "approvals.json", std::ios::trunc) << doc.dump(2);
+    ASSERT_EQ(gate().code, 0);
+    EXPECT_EQ(routes(), (std::map<std::string, int>{{"tolerance", 6}}));
+    // Known bad, on whatever device: fails at once, naming who said so.
+    const Outcome negative = run("baselines approve --from " + out.string() + " --baselines " + base.string() +
+                                 " --negative --by tester --filter '/vk/' --why 'planted for the test'");
+    ASSERT_EQ(negative.code, 0) << negative.output;
+    const Outcome bad = gate();
+    EXPECT_EQ(bad.code, 1) << bad.output;
+    EXPECT_EQ(routes(), (std::map<std::string, int>{{"negative", 3}, {"tolerance", 3}}));
+    EXPECT_NE(bad.output.find("known bad"), std::string::npos) << bad.output;
+}
+
+TEST_F(GateInputs, ApprovalsThatDoNotParseAreBadInput) {
+    std::ofstream(base / "approvals.json") << R"({"schema": "cavity.approvals/1", "approvals": [{"key": "k"}]})";
+    expectBad(gate(), "approvals.json");
+    std::ofstream(base / "approvals.json", std::ios::trunc) << R"({"schema": "cavity.approvals/2", "approvals": []})";
+    expectBad(gate(), "schema");
+}
+
 TEST_F(GateInputs, UnknownMatrixIsBadInput) {
     const Outcome o = run("gate --matrix nope --baselines " + base.string() + " --out " + (dir / "out").string());
     EXPECT_EQ(o.code, 2);

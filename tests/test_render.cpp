@@ -28,6 +28,7 @@
 #include <functional>
 #include <map>
 #include <set>
+#include <regex>
 #include <string>
 
 namespace cavity::test {
@@ -489,6 +490,55 @@ TEST_P(BadRenderFolder, IsRefusedWithOneLineNamingTheFileAndWritesNothing) {
 
 INSTANTIATE_TEST_SUITE_P(Damages, BadRenderFolder, ::testing::Range<size_t>(0, damages().size()),
                          [](const auto& info) { return damages()[info.param].name; });
+
+// A pass that writes NaN is exit 1 from every tool: the run finished and
+// the image is wrong (cavity run, cavity_render, cavity gate judge).
+TEST_F(TwoStep, ANaNImageIsExitOneInEveryTool) {
+    std::string broken = *kernels::sourceFile("ssao_alchemy.glsl");
+    const std::string find = "write_ao(pixel, vec4(A, 0.0, 0.0, 0.0));";
+    ASSERT_NE(broken.find(find), std::string::npos);
+    broken.replace(broken.find(find), find.size(),
+                   "write_ao(pixel, vec4(pixel == ivec2(37, 21) ? uintBitsToFloat(0x7fc00000u) : A, 0.0, 0.0, 0.0));");
+    const fs::path file = scratch("nan") / "nan.glsl", folder = scratch("nan-render"), judged = scratch("nan-judged");
+    fs::create_directories(file.parent_path());
+    std::ofstream(file) << broken;
+    const std::string only = " --filter '^corner/alchemy/n16/b4/full/160x90/vk/compute$'";
+    const Outcome r = render("--matrix ci --baselines " + base.string() + only + " --kernel-source ssao_alchemy.glsl=" +
+                             file.string() + " --out " + folder.string());
+    EXPECT_EQ(r.code, 1) << r.output;
+    const Outcome j = judge(folder.string(), judged);
+    EXPECT_EQ(j.code, 1) << j.output;
+    // cavity run has no --kernel-source: the same NaN through the gate in
+    // one step, which runs the configuration as cavity run does.
+    const Outcome g = cavity("gate --matrix ci --baselines " + base.string() + only + " --retries 0 --out " +
+                             scratch("nan-gate").string() + " --kernel-source ssao_alchemy.glsl=" + file.string());
+    EXPECT_EQ(g.code, 1) << g.output;
+    EXPECT_NE(g.output.find("NaN or infinity"), std::string::npos) << g.output;
+}
+
+// A known device sends back digests only: approve a render folder's
+// digests, render again, and the new folder holds a manifest and no image
+// file, which the judge passes by digest with nothing computed.
+TEST_F(TwoStep, ApprovedDigestsTravelWithoutTheirImages) {
+    const fs::path approved = scratch("baselines"), first = scratch("first"), second = scratch("second"),
+                   judged = scratch("judged");
+    fs::copy(base, approved, fs::copy_options::recursive);
+    ASSERT_EQ(render("--matrix ci --baselines " + approved.string() + " --filter " + kFilter + " --out " + first.string()).code, 0);
+    const Outcome a = cavity("baselines approve --from " + first.string() + " --baselines " + approved.string() +
+                             " --by tester --why 'lavapipe and llvmpipe as rendered here'");
+    ASSERT_EQ(a.code, 0) << a.output;
+    EXPECT_TRUE(std::regex_search(a.output, std::regex("^[1-9][0-9]* image digests approved"))) << a.output;
+    ASSERT_EQ(render("--matrix ci --baselines " + approved.string() + " --filter " + kFilter + " --out " + second.string()).code, 0);
+    EXPECT_FALSE(fs::exists(second / "images")) << "an approved image was written";
+    EXPECT_LT(fs::file_size(second / "manifest.json"), 64u * 1024);
+    const Outcome j = cavity("gate judge " + second.string() + " --baselines " + approved.string() + " --out " + judged.string());
+    EXPECT_EQ(j.code, 0) << j.output;
+    EXPECT_NE(j.output.find("images decided: 18 by approved digest"), std::string::npos) << j.output;
+    // Without the approvals the same folder cannot be judged: say so, exit 2.
+    const Outcome refused = judge(second.string(), scratch("refused"));
+    EXPECT_EQ(refused.code, 2) << refused.output;
+    EXPECT_NE(refused.output.find("its digest is not approved"), std::string::npos) << refused.output;
+}
 
 TEST_F(TwoStep, OverlappingShardsAreRefused) {
     const fs::path copy = scratch("copy"), out = scratch("judged");

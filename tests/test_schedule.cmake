@@ -41,7 +41,7 @@ foreach(entry
     "35|fleet_shard_protocols"
     "35|Compare.BadInputExitsTwoWithOneLineNamingIt"
     "31|Backends/Analytic.OpenGeometryReadsOpenEverywhere/vk  # GetParam() = vk"
-    "30|GateInputs.BudgetOverrunIsARegressionAndSaysByHowMuch"
+    "30|GateInputs.CpuBudgetOverrunIsReportedAndFailsOnlyWhenEnforced"
     "29|charts"
     "28|GateInputs.UpdateFromAnIncompleteOutputChangesNothing"
     "27|Cli.ListPrintsExactlyWhatTheRunRuns"

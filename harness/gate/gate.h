@@ -24,6 +24,11 @@ namespace cavity::gate {
 struct ImageCheck {
     std::string image;                 // "ao", "ao_blur", "color"
     std::string digest;                // digest.h imageDigest() of the new image
+    // What decided it: "digest" (an approved positive of this device class:
+    // a pass, no metric computed), "negative" (an approved known-bad digest:
+    // a failure) or "tolerance" (the metrics against the stored reference).
+    std::string route = "tolerance";
+    std::string approval;              // digest and negative: who approved it, when, on what, why
     std::string baseline;              // path of the baseline file (relative to the repo root or absolute)
     std::string newPng, newExact;      // written new image: PNG to look at, and the exact file (.exr / .png)
     std::string baselinePng, diffPng;  // for the report
@@ -49,6 +54,7 @@ struct TimingCheck {
 
 struct ConfigResult {
     std::string id, key, device;
+    std::string driver;                // the device's driver string, for approvals
     int repetition = 0;                // cavity_render --repeat: every repetition is judged
     RunConfig config;
     std::vector<ImageCheck> images;

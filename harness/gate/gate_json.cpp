@@ -36,7 +36,8 @@ json toJson(const GateRun& run) {
                      {"ssim", i.metrics->ssim}, {"flip_mean", i.metrics->flipMean},
                      {"non_finite", i.metrics->nonFinite}, {"differing_pixels", i.metrics->differingPixels},
                      {"differing_share", i.metrics->differingShare}, {"channels_compared", i.metrics->channelsCompared}};
-            images.push_back({{"image", i.image}, {"digest", i.digest}, {"baseline", i.baseline}, {"new", i.newExact}, {"new_png", i.newPng},
+            images.push_back({{"image", i.image}, {"digest", i.digest}, {"route", i.route}, {"approval", i.approval},
+                              {"baseline", i.baseline}, {"new", i.newExact}, {"new_png", i.newPng},
                               {"baseline_png", i.baselinePng}, {"diff_png", i.diffPng}, {"metrics", m},
                               {"tolerance", toJson(i.tolerance)}, {"failures", i.failures}, {"passed", i.passed()}});
         }
@@ -45,7 +46,7 @@ json toJson(const GateRun& run) {
             timings.push_back({{"pass", t.pass}, {"median_ms", t.medianMs}, {"clock", t.clock},
                                {"budget_ms", t.budgetMs ? json(*t.budgetMs) : json(nullptr)}, {"advisory", t.advisory},
                                {"within_budget", t.withinBudget()}, {"passed", t.passed()}});
-        results.push_back({{"id", r.id}, {"repetition", r.repetition}, {"baseline_key", r.key}, {"device", r.device}, {"kernel", r.config.kernel},
+        results.push_back({{"id", r.id}, {"repetition", r.repetition}, {"baseline_key", r.key}, {"device", r.device}, {"driver", r.driver}, {"kernel", r.config.kernel},
                            {"passed", r.passed()}, {"verdict", r.verdict()}, {"fatal", r.fatal()}, {"attempts", r.attempts},
                            {"first_failures", r.firstFailures}, {"expected", r.expected}, {"expected_reason", r.expectedWhy},
                            {"deterministic", r.deterministic}, {"error", r.error},
@@ -99,6 +100,11 @@ Result<ImageCheck> readImage(const JsonObject& ij) {
     ImageCheck i;
     CAVITY_ASSIGN(i.image, ij.str("image"));
     CAVITY_ASSIGN(i.digest, ij.str("digest", ""));
+    // Absent before approvals: every image was judged by tolerance.
+    CAVITY_ASSIGN(i.route, ij.str("route", "tolerance"));
+    if (i.route != "tolerance" && i.route != "digest" && i.route != "negative")
+        return ij.bad("route", "must be tolerance, digest or negative");
+    CAVITY_ASSIGN(i.approval, ij.str("approval", ""));
     CAVITY_ASSIGN(i.baseline, ij.str("baseline"));
     CAVITY_ASSIGN(i.newExact, ij.str("new"));
     CAVITY_ASSIGN(i.newPng, ij.str("new_png"));
@@ -121,6 +127,7 @@ Result<ConfigResult> readResult(const JsonObject& rj) {
     CAVITY_ASSIGN(r.repetition, rj.integer("repetition", 0, 1 << 20, 0));   // absent before cavity_render --repeat
     CAVITY_ASSIGN(r.key, rj.str("baseline_key"));
     CAVITY_ASSIGN(r.device, rj.str("device"));
+    CAVITY_ASSIGN(r.driver, rj.str("driver", ""));
     CAVITY_ASSIGN(r.config.kernel, rj.str("kernel"));
     CAVITY_ASSIGN(r.deterministic, rj.boolean("deterministic"));
     CAVITY_ASSIGN(r.error, rj.str("error"));

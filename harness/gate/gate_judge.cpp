@@ -59,12 +59,80 @@ Result<Judge> prepareJudge(const std::string& baselines, const std::vector<RunCo
     j.out = out;
     CAVITY_ASSIGN(j.manifest, loadManifest((root / "manifest.json").string()));
     CAVITY_ASSIGN(j.budgets, loadBudgets((root / "budgets.json").string()));
+    CAVITY_ASSIGN(j.approvals, loadApprovals((root / "approvals.json").string()));
     for (const auto& c : configs)
         for (const auto& img : checkedImages())
             CAVITY_TRY(checkBaseline((root / "images" / baselineKey(c) / (img.name + img.extension)).string(), c, img.name));
     CAVITY_TRY(checkWritableDir("--out", out));
     return j;
 }
+
+namespace {
+
+std::string approvalText(const Approval& a) {
+    return std::string(a.positive ? "approved" : "approved as known bad") + " for " + a.deviceClass + " (" + a.api + ", " +
+           a.stage + ") by " + a.by + " on " + a.when + ": " + a.why;
+}
+
+// The tolerance route: the metrics of the new image against the stored
+// reference, the baseline and a heat-map of the difference written beside it.
+Status judgeByTolerance(ImageCheck& check, const CheckedImage& ci, const HostImage& now, const Tolerance& tol,
+                        const fs::path& basePath, const fs::path& dir, int& errorCode) {
+    if (!fs::exists(basePath)) {
+        // Never a silent pass: the configuration fails, the gate exits 2,
+        // and the new image is there to accept.
+        check.failures.push_back("baseline missing: " + basePath.string() +
+                                 " (accept the new image with `cavity baselines update`)");
+        errorCode = int(ErrorCode::BadInput);
+        return {};
+    }
+    CAVITY_ASSIGN(HostImage base, readImage(basePath.string()));
+    metrics::Options mo;
+    mo.threshold = tol.pixelThreshold;
+    mo.flip = ci.perceptual;
+    mo.eightBit = ci.extension == ".png";
+    mo.differingDelta = int(tol.differingDelta);
+    CAVITY_ASSIGN(check.metrics, metrics::compare(base, now, mo));
+    check.failures = verdict(*check.metrics, tol, ci.perceptual);
+    check.baselinePng = (dir / (ci.name + ".baseline.png")).string();
+    check.diffPng = (dir / (ci.name + ".diff.png")).string();
+    CAVITY_TRY(writeImage(check.baselinePng, base));
+    CAVITY_TRY(writeImage(check.diffPng, metrics::heatmap(base, now, 2 * tol.pixelThreshold)));
+    return {};
+}
+
+// One checked image: a known-bad digest fails, an approved one of this
+// device class passes with nothing computed, anything else is judged by
+// tolerance. The new image is written where its pixels are held (`now`; a
+// render folder holds none for an approved digest).
+Result<ImageCheck> judgeImage(const CheckedImage& ci, const HostImage* now, const std::string& digest, const ConfigResult& r,
+                              const Judge& j, const Tolerance& tol, const fs::path& dir, int& errorCode) {
+    ImageCheck check;
+    check.image = ci.name;
+    check.digest = digest;
+    check.tolerance = tol;
+    const fs::path basePath = fs::path(j.baselines) / "images" / r.key / (ci.name + ci.extension);
+    check.baseline = basePath.string();
+    if (now) {
+        std::error_code ec;
+        fs::create_directories(dir, ec);
+        check.newExact = (dir / (ci.name + ".new" + ci.extension)).string();
+        check.newPng = (dir / (ci.name + ".new.png")).string();
+        CAVITY_TRY(writeImage(check.newExact, *now));
+        if (ci.extension != ".png") CAVITY_TRY(writeImage(check.newPng, *now));
+    }
+    if (const Approval* a = j.approvals.find(r.key, ci.name, digest, deviceClass(r.device))) {
+        check.route = a->positive ? "digest" : "negative";
+        check.approval = approvalText(*a);
+        if (!a->positive) check.failures.push_back("digest " + digest + " is known bad: " + check.approval);
+        return check;
+    }
+    if (!now) return internal(r.label() + ": " + ci.name + " holds no pixels and its digest " + digest + " is not approved");
+    CAVITY_TRY(judgeByTolerance(check, ci, *now, tol, basePath, dir, errorCode));
+    return check;
+}
+
+}  // namespace
 
 Result<ConfigResult> judgeRendering(const render::Rendering& rend, const Judge& j, const ConfigResult* first) {
     ConfigResult r;
@@ -73,6 +141,7 @@ Result<ConfigResult> judgeRendering(const render::Rendering& rend, const Judge& 
     r.config = rend.config;
     r.repetition = rend.repetition;
     r.device = rend.device.deviceName;
+    r.driver = rend.device.driver;
     if (!rend.error.empty()) {
         r.error = rend.error;
         r.errorCode = rend.errorCode;
@@ -80,7 +149,6 @@ Result<ConfigResult> judgeRendering(const render::Rendering& rend, const Judge& 
     }
     r.deterministic = rend.deterministic;
     const Tolerance tol = j.manifest.forPipeline(rend.config.kernel, r.device);
-    const fs::path root(j.baselines);
     fs::path dir = fs::path(j.out) / "images" / r.id;
     if (rend.repetition > 0) dir /= "rep" + std::to_string(rend.repetition);
     for (const auto& ci : checkedImages()) {
@@ -91,43 +159,13 @@ Result<ConfigResult> judgeRendering(const render::Rendering& rend, const Judge& 
             if (first)
                 for (const auto& i : first->images)
                     if (i.image == ci.name && i.digest == digest) same = &i;
-            if (!same) return internal(r.label() + ": " + ci.name + " has neither pixels nor repetition 0's digest");
-            r.images.push_back(*same);
-            continue;
+            if (same) {
+                r.images.push_back(*same);
+                continue;
+            }
         }
-        const HostImage& now = pixels->second;
-        ImageCheck check;
-        check.image = ci.name;
-        check.digest = digest;
-        check.tolerance = tol;
-        const fs::path basePath = root / "images" / r.key / (ci.name + ci.extension);
-        check.baseline = basePath.string();
-        std::error_code ec;
-        fs::create_directories(dir, ec);
-        check.newExact = (dir / (ci.name + ".new" + ci.extension)).string();
-        check.newPng = (dir / (ci.name + ".new.png")).string();
-        CAVITY_TRY(writeImage(check.newExact, now));
-        if (ci.extension != ".png") CAVITY_TRY(writeImage(check.newPng, now));
-        if (!fs::exists(basePath)) {
-            // Never a silent pass: the configuration fails, the gate exits 2,
-            // and the new image is there to accept.
-            check.failures.push_back("baseline missing: " + basePath.string() +
-                                     " (accept the new image with `cavity baselines update`)");
-            r.errorCode = int(ErrorCode::BadInput);
-        } else {
-            CAVITY_ASSIGN(HostImage base, readImage(basePath.string()));
-            metrics::Options mo;
-            mo.threshold = tol.pixelThreshold;
-            mo.flip = ci.perceptual;
-            mo.eightBit = ci.extension == ".png";
-            mo.differingDelta = int(tol.differingDelta);
-            CAVITY_ASSIGN(check.metrics, metrics::compare(base, now, mo));
-            check.failures = verdict(*check.metrics, tol, ci.perceptual);
-            check.baselinePng = (dir / (ci.name + ".baseline.png")).string();
-            check.diffPng = (dir / (ci.name + ".diff.png")).string();
-            CAVITY_TRY(writeImage(check.baselinePng, base));
-            CAVITY_TRY(writeImage(check.diffPng, metrics::heatmap(base, now, 2 * tol.pixelThreshold)));
-        }
+        const HostImage* now = pixels == rend.images.end() ? nullptr : &pixels->second;
+        CAVITY_ASSIGN(ImageCheck check, judgeImage(ci, now, digest, r, j, tol, dir, r.errorCode));
         r.images.push_back(std::move(check));
     }
     for (const auto& p : rend.timings) {

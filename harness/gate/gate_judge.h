@@ -7,6 +7,7 @@
 #pragma once
 
 #include "gate/namespace.h"
+#include "plan/approvals.h"
 #include "gate/gate.h"
 #include "render/rendering.h"
 
@@ -19,6 +20,7 @@ struct Judge {
     std::string baselines;   // folder with manifest.json, budgets.json, images/
     Manifest manifest;
     Budgets budgets;
+    Approvals approvals;     // approvals.json
     std::string out;         // the gate's output folder
     bool enforceCpuBudgets = false;   // GateOptions::enforceCpuBudgets
 };

@@ -1,5 +1,7 @@
 #include "gate/judge_folders.h"
 
+#include "plan/approvals.h"
+
 #include "pipeline/config_id.h"
 #include "gate/gate_judge.h"
 #include "render/image_file.h"
@@ -53,7 +55,14 @@ bool inside(const std::string& file) {
 // folder's shard, no entry is in two folders, every repetition is there,
 // each image has the configuration's shape, and an image without a file
 // is one whose digest repetition 0 has.
-Status checkEntries(const Folder& f, const std::vector<RunConfig>& all, std::map<std::string, std::string>& owner) {
+bool sameAsFirst(const render::ConfigEntry& c, const std::string& image, const std::string& digest) {
+    for (const auto& first : c.renders[0].images)
+        if (first.name == image && first.stored.digest == digest) return true;
+    return false;
+}
+
+Status checkEntries(const Folder& f, const std::vector<RunConfig>& all, std::map<std::string, std::string>& owner,
+                    const plan::Approvals& approved) {
     const auto& m = f.m;
     const std::string shard = std::to_string(m.shardIndex) + "/" + std::to_string(m.shardCount);
     for (const auto& c : m.configs) {
@@ -89,15 +98,10 @@ Status checkEntries(const Folder& f, const std::vector<RunConfig>& all, std::map
                                     ", the configuration renders " + shapeText(need));
                 if (!i->file.empty() && !inside(i->file))
                     return badInput(f.path + ": " + label(c, r) + ": " + ci.name + " file " + i->file + " is outside the folder");
-                if (i->file.empty()) {
-                    bool same = false;
-                    if (k > 0)
-                        for (const auto& first : c.renders[0].images)
-                            same |= first.name == ci.name && first.stored.digest == i->stored.digest;
-                    if (!same)
-                        return badInput(f.path + ": " + label(c, r) + ": " + ci.name +
-                                        " has no file and is not repetition 0's image");
-                }
+                if (i->file.empty() && !(k > 0 && sameAsFirst(c, ci.name, i->stored.digest)) &&
+                    !approved.find(c.key, ci.name, i->stored.digest, plan::deviceClass(c.device)))
+                    return badInput(f.path + ": " + label(c, r) + ": " + ci.name +
+                                    " has no file, is not repetition 0's image, and its digest is not approved");
             }
         }
     }
@@ -226,7 +230,8 @@ Result<GateRun> judgeFolders(const std::vector<std::string>& dirs, const std::st
     CAVITY_ASSIGN(const Matrix matrix, renderedMatrix(folders, baselines));
     const auto all = matrix.expand();
     std::map<std::string, std::string> owner;
-    for (const auto& f : folders) CAVITY_TRY(checkEntries(f, all, owner));
+    CAVITY_ASSIGN(const auto approved, plan::loadApprovals((fs::path(baselines) / "approvals.json").string()));
+    for (const auto& f : folders) CAVITY_TRY(checkEntries(f, all, owner, approved));
     for (const auto& f : folders) CAVITY_TRY(checkFiles(f));
     std::vector<RunConfig> configs;
     for (const auto& f : folders)

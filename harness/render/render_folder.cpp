@@ -8,7 +8,8 @@ namespace cavity::render {
 
 namespace fs = std::filesystem;
 
-FolderWriter::FolderWriter(std::string dir, RenderManifest manifest) : dir_(std::move(dir)), manifest_(std::move(manifest)) {}
+FolderWriter::FolderWriter(std::string dir, RenderManifest manifest, plan::Approvals approved)
+    : dir_(std::move(dir)), manifest_(std::move(manifest)), approved_(std::move(approved)) {}
 
 Status FolderWriter::begin() {
     std::error_code ec;
@@ -38,6 +39,9 @@ Status FolderWriter::add(Rendering&& r) {
         bool same = false;
         if (first)
             for (const auto& f : first->images) same |= f.name == ci.name && f.stored.digest == i.stored.digest;
+        // An approved digest (positive for this class, or known bad) needs no
+        // pixels to be judged: only its digest travels.
+        same |= approved_.find(r.key, ci.name, i.stored.digest, plan::deviceClass(r.device.deviceName)) != nullptr;
         const std::string content = r.key + "|" + ci.name + "|" + i.stored.digest;
         if (auto known = stored_.find(content); !same && known != stored_.end()) {
             i.file = known->second.first;

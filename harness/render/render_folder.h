@@ -12,6 +12,7 @@
 #pragma once
 
 #include "render/namespace.h"
+#include "plan/approvals.h"
 #include "render/render_manifest.h"
 #include "render/rendering.h"
 
@@ -24,7 +25,9 @@ class FolderWriter {
 public:
     // `manifest` carries the header (matrix, hash, commit, command, shard,
     // filter, repeat); the writer fills in devices and configurations.
-    FolderWriter(std::string dir, RenderManifest manifest);
+    // `approved`: images whose digest is approved for the device's class are
+    // recorded by digest alone, no file (the judge decides them by digest).
+    FolderWriter(std::string dir, RenderManifest manifest, plan::Approvals approved = {});
 
     // Removes a manifest left by an earlier render into the same folder, so
     // that a render that dies half way leaves a folder the judge refuses.
@@ -39,6 +42,7 @@ public:
 private:
     std::string dir_;
     RenderManifest manifest_;
+    plan::Approvals approved_;
     std::map<size_t, size_t> byIndex_;   // matrix index -> manifest_.configs position
     // (baseline key, image, digest) -> the file holding it and its size
     std::map<std::string, std::pair<std::string, uint64_t>> stored_;

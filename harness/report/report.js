@@ -51,7 +51,8 @@
   function thumbnails(r) {
     const row = el('div', {class: 'row'});
     for (const i of r.images) {
-      const caption = i.image + (i.metrics ? ' · max ' + num(i.metrics.max_abs, 2) + ' · SSIM ' + num(i.metrics.ssim, 5) : '');
+      const caption = i.image + (i.route === 'digest' ? ' · approved digest'
+                                 : i.metrics ? ' · max ' + num(i.metrics.max_abs, 2) + ' · SSIM ' + num(i.metrics.ssim, 5) : '');
       row.append(el('figure', {}, el('figcaption', {}, caption), image(i.new_png, 'thumb')));
     }
     return row;
@@ -141,7 +142,14 @@
     if (v.note) div.append(el('p', {class: 'bad'}, v.note));
     if (!r.deterministic) div.append(el('p', {class: 'bad'}, 'not bit-identical across two frames on this device'));
     if (r.passed) div.append(thumbnails(r));
-    else for (const i of r.images) div.append(...comparison(i));
+    else for (const i of r.images) {
+      // A known-bad digest: nothing was compared, the approval says why.
+      if (i.route === 'negative') div.append(el('div', {class: 'row'}, el('figure', {}, el('figcaption', {}, i.image + ' · known bad digest'),
+                                                                        image(i.new_png, 'thumb'))),
+                                           el('div', {class: 'bad'}, i.image + ': ' + i.failures.join('; ')));
+      else if (i.route === 'digest') div.append(el('div', {}, i.image + ': approved digest (' + i.approval + ')'));
+      else div.append(...comparison(i));
+    }
     if (r.timings.length) div.append(timings(r));
     return div;
   }

@@ -149,6 +149,16 @@ std::vector<std::string> noteLines(const GateRun& run) {
         }
     }
     std::vector<std::string> n = notedLines(run);
+    std::map<std::string, int> routes;
+    for (const auto& r : run.results)
+        for (const auto& i : r.images) ++routes[i.route];
+    if (routes.count("digest") || routes.count("negative")) {
+        std::string line = "- images decided";
+        for (const auto& [route, count] : routes)
+            line += std::string(line.back() == 'd' ? ": " : ", ") + std::to_string(count) + " by " +
+                    (route == "negative" ? "a known-bad digest" : route == "digest" ? "approved digest" : "tolerance");
+        n.push_back(line);
+    }
     for (const auto& e : run.backendErrors) n.push_back("- backend could not start: " + e);
     for (const auto& r : run.replaced)
         n.push_back("- kernel source replaced: `kernels/" + r.name + "` by `" + r.file + "` (" + r.digest + ")");

@@ -1,0 +1,185 @@
+// `cavity baselines approve`: the digests of a judged run's images, added to
+// baselines/approvals.json for the device class they were rendered on, as
+// positives (the next identical render passes by digest, nothing computed)
+// or negatives (known bad: fails at once), with who, when and why.
+#include "gate_outputs.h"
+#include "core/json_file.h"
+#include "plan/approvals.h"
+#include "gate/gate.h"
+#include "measure/results.h"
+#include "render/render_manifest.h"
+
+#include <algorithm>
+#include <map>
+#include <set>
+
+#include <cstdlib>
+#include <filesystem>
+#include <iostream>
+#include <optional>
+#include <regex>
+
+namespace cavity::cli {
+
+namespace fs = std::filesystem;
+
+Result<gate::GateRun> loadGateJson(const std::string& dir) {
+    const std::string path = (fs::path(dir) / "gate.json").string();
+    if (!fs::exists(path)) return badInput(path + ": cannot be read (run `cavity gate --out " + dir + "` first)");
+    CAVITY_ASSIGN(const nlohmann::json j, readJsonFile(path));
+    return gate::fromJson(j, path);
+}
+
+namespace {
+
+const CommandSpec& approveSpec() {
+    static const CommandSpec spec{
+        "cavity baselines approve",
+        "Approves the images of a judged gate run by digest for the device class each was rendered on "
+        "(baselines/approvals.json): a later render with the same digest passes at once, with no metric computed. "
+        "With --negative, marks them known bad instead: a render with that digest fails at once, on any device.",
+        {
+            {"--from", "DIR", "a gate output folder (gate.json), or a render folder of cavity_render (manifest.json: its "
+                              "digests, no images needed) (default out/gate)"},
+            {"--why", "TEXT", "why these images are right (or, with --negative, wrong); recorded (required)"},
+            {"--filter", "REGEX", "only the configurations whose id matches (default: every one that rendered)"},
+            {"--negative", "", "mark the digests known bad instead of approving them"},
+            {"--by", "NAME", "who approves (default: $USER)"},
+            {"--baselines", "DIR", "folder with approvals.json (default: baselines/ of the checkout)"},
+        },
+        "",
+        "",
+        "",
+        {
+            "cavity baselines approve --from out/gate --why 'H200, driver 580: first references'",
+            "cavity baselines approve --from out/gate --filter '/alchemy_fast/' --negative --why 'bad pick'",
+        },
+    };
+    return spec;
+}
+
+struct ApproveFlags {
+    std::string from = "out/gate", why, by, root;
+    std::optional<std::regex> filter;
+    bool negative = false;
+};
+
+Result<ApproveFlags> parseApprove(const ParsedFlags& p) {
+    ApproveFlags f;
+    f.negative = p.has("--negative");
+    for (const auto& [flag, v] : p.values) {
+        if (flag == "--from") f.from = v;
+        else if (flag == "--why") f.why = v;
+        else if (flag == "--by") f.by = v;
+        else if (flag == "--baselines") f.root = v;
+        else if (flag == "--filter") {
+            CAVITY_ASSIGN(f.filter, parseFilter(flag, v));
+        }
+    }
+    if (f.why.empty()) return badInput("--why: required (what makes these images right, or with --negative wrong)");
+    for (const char* var : {"USER", "LOGNAME"})
+        if (f.by.empty() && std::getenv(var) && *std::getenv(var)) f.by = std::getenv(var);
+    if (f.by.empty()) f.by = "unknown";
+    if (f.root.empty()) {
+        CAVITY_ASSIGN(f.root, defaultBaselines());
+    }
+    return f;
+}
+
+// The approvals a run adds: every image of every selected configuration that
+// rendered, once per key, image, digest and device class.
+size_t addApprovals(plan::Approvals& a, const gate::GateRun& run, const ApproveFlags& f) {
+    const std::string when = utcTimestamp();
+    size_t added = 0;
+    for (const auto& r : run.results) {
+        if (!r.error.empty() || (f.filter && !std::regex_search(r.id, *f.filter))) continue;
+        const auto parts = r.id.substr(r.key.size() + 1);   // "vk/compute"
+        const std::string api = parts.substr(0, parts.find('/')), stage = parts.substr(parts.find('/') + 1);
+        for (const auto& i : r.images) {
+            plan::Approval x{r.key, i.image, i.digest, !f.negative, plan::deviceClass(r.device), api, stage,
+                             r.driver, f.by, when, f.why};
+            const auto same = [&](const plan::Approval& e) {
+                return e.key == x.key && e.image == x.image && e.digest == x.digest && e.positive == x.positive &&
+                       e.deviceClass == x.deviceClass;
+            };
+            if (i.digest.empty() || std::any_of(a.entries.begin(), a.entries.end(), same)) continue;
+            a.entries.push_back(std::move(x));
+            ++added;
+        }
+    }
+    return added;
+}
+
+// The approvals a render folder adds: the digests its manifest records, for
+// the device each configuration rendered on. A configuration whose
+// repetitions disagree is left out (a digest approves one image exactly).
+Result<size_t> addRenderApprovals(plan::Approvals& a, const std::string& dir, const ApproveFlags& f, size_t& skipped) {
+    const std::string path = (fs::path(dir) / "manifest.json").string();
+    CAVITY_ASSIGN(const auto j, readJsonFile(path));
+    CAVITY_ASSIGN(const render::RenderManifest m, render::parseManifest(j, path));
+    const std::string when = utcTimestamp();
+    size_t added = 0;
+    for (const auto& c : m.configs) {
+        if (f.filter && !std::regex_search(c.id, *f.filter)) continue;
+        std::map<std::string, std::set<std::string>> digests;   // image -> digests over the repetitions
+        bool failed = false;
+        for (const auto& r : c.renders) {
+            failed |= !r.error.empty();
+            for (const auto& i : r.images) digests[i.name].insert(i.stored.digest);
+        }
+        const bool agree = std::all_of(digests.begin(), digests.end(), [](const auto& d) { return d.second.size() == 1; });
+        if (failed || !agree || digests.empty()) {
+            ++skipped;
+            continue;
+        }
+        const auto device = m.devices.find(c.api);
+        const std::string stage = c.id.substr(c.id.rfind('/') + 1);
+        for (const auto& [image, ds] : digests) {
+            plan::Approval x{c.key, image, *ds.begin(), !f.negative, plan::deviceClass(c.device), c.api, stage,
+                             device == m.devices.end() ? "" : device->second.driver, f.by, when, f.why};
+            const auto same = [&](const plan::Approval& e) {
+                return e.key == x.key && e.image == x.image && e.digest == x.digest && e.positive == x.positive &&
+                       e.deviceClass == x.deviceClass;
+            };
+            if (std::any_of(a.entries.begin(), a.entries.end(), same)) continue;
+            a.entries.push_back(std::move(x));
+            ++added;
+        }
+    }
+    return added;
+}
+
+}  // namespace
+
+int approveCommand(const std::vector<std::string>& argv) {
+    const std::string program = "cavity baselines approve";
+    auto parsed = parseFlags(approveSpec(), argv);
+    if (!parsed) return fail(program, parsed.error());
+    if (parsed->help) {
+        std::cout << parsed->helpText;
+        return 0;
+    }
+    auto f = parseApprove(*parsed);
+    if (!f) return fail(program, f.error());
+    const std::string path = (fs::path(f->root) / "approvals.json").string();
+    auto approvals = plan::loadApprovals(path);
+    if (!approvals) return fail(program, approvals.error());
+    size_t added = 0, skipped = 0;
+    std::error_code ec;
+    if (!fs::exists(fs::path(f->from) / "gate.json", ec) && fs::exists(fs::path(f->from) / "manifest.json", ec)) {
+        auto n = addRenderApprovals(*approvals, f->from, *f, skipped);
+        if (!n) return fail(program, n.error());
+        added = *n;
+    } else {
+        auto run = loadGateJson(f->from);
+        if (!run) return fail(program, run.error());
+        added = addApprovals(*approvals, *run, *f);
+    }
+    if (auto st = plan::saveApprovals(path, *approvals); !st) return fail(program, st.error());
+    std::cout << added << " image digests " << (f->negative ? "marked known bad" : "approved") << " in " << path << "\n";
+    if (skipped)
+        std::cout << skipped << " configurations left out: a render error, or repetitions with different images\n";
+    return 0;
+}
+
+}  // namespace cavity::cli
