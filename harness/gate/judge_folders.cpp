@@ -11,10 +11,6 @@
 #include "core/progress.h"
 
 #include <algorithm>
-#include <thread>
-#include <optional>
-#include <mutex>
-#include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -225,49 +221,6 @@ Result<render::Rendering> readRendering(const Item& item, const render::RenderEn
     return r;
 }
 
-// One configuration's renders, in order: a later repetition that matches
-// repetition 0 takes its check.
-Result<std::vector<ConfigResult>> judgeItem(const Item& item, const std::vector<RunConfig>& all, const Judge& judge,
-                                            Progress& progress, std::mutex& progressLock) {
-    std::vector<ConfigResult> out;
-    ConfigResult rep0;
-    for (const auto& entry : item.c->renders) {
-        CAVITY_ASSIGN(const render::Rendering r, readRendering(item, entry, all[item.c->index]));
-        CAVITY_ASSIGN(ConfigResult res, judgeRendering(r, judge, entry.repetition ? &rep0 : nullptr));
-        {
-            std::lock_guard<std::mutex> lock(progressLock);
-            progress.done(res.label() + " " + (res.passed() ? "pass" : "FAIL"), res.error.empty());
-        }
-        if (entry.repetition == 0) rep0 = res;
-        out.push_back(std::move(res));
-    }
-    return out;
-}
-
-// Every configuration judged, on as many threads as the machine has cores
-// (reading, comparing and writing one configuration's images is independent
-// of every other's); the results in the items' order, the first error wins.
-Result<std::vector<std::vector<ConfigResult>>> judgeItems(const std::vector<Item>& items, const std::vector<RunConfig>& all,
-                                                          const Judge& judge, Progress& progress) {
-    std::vector<std::optional<Result<std::vector<ConfigResult>>>> results(items.size());
-    std::atomic<size_t> next{0};
-    std::mutex progressLock;
-    auto work = [&] {
-        for (size_t i = next++; i < items.size(); i = next++) results[i] = judgeItem(items[i], all, judge, progress, progressLock);
-    };
-    const size_t threads = std::clamp<size_t>(std::thread::hardware_concurrency(), 1, std::max<size_t>(1, items.size()));
-    std::vector<std::thread> pool;
-    for (size_t t = 1; t < threads; ++t) pool.emplace_back(work);
-    work();
-    for (auto& t : pool) t.join();
-    std::vector<std::vector<ConfigResult>> out;
-    for (auto& r : results) {
-        if (!*r) return r->error();
-        out.push_back(std::move(**r));
-    }
-    return out;
-}
-
 }  // namespace
 
 Result<GateRun> judgeFolders(const std::vector<std::string>& dirs, const std::string& baselines, const std::string& out,
@@ -291,9 +244,16 @@ Result<GateRun> judgeFolders(const std::vector<std::string>& dirs, const std::st
     size_t renders = 0;
     for (const auto& item : items) renders += item.c->renders.size();
     Progress progress(renders, quiet, "gate: ");
-    CAVITY_ASSIGN(auto judged, judgeItems(items, all, judge, progress));
-    for (auto& results : judged)
-        for (auto& res : results) run.results.push_back(std::move(res));
+    for (const auto& item : items) {
+        ConfigResult rep0;
+        for (const auto& entry : item.c->renders) {
+            CAVITY_ASSIGN(const render::Rendering r, readRendering(item, entry, all[item.c->index]));
+            CAVITY_ASSIGN(ConfigResult res, judgeRendering(r, judge, entry.repetition ? &rep0 : nullptr));
+            progress.done(res.label() + " " + (res.passed() ? "pass" : "FAIL"), res.error.empty());
+            if (entry.repetition == 0) rep0 = res;
+            run.results.push_back(std::move(res));
+        }
+    }
     run.seconds = rendered + std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return run;
 }
