@@ -6,6 +6,8 @@
 #include <fstream>
 #include <sstream>
 
+#include <unistd.h>
+
 namespace cavity::core {
 
 namespace {
@@ -97,6 +99,20 @@ Result<nlohmann::json> readJsonFile(const std::string& path) {
     } catch (const nlohmann::json::exception& e) {
         return badInput(path + ": does not parse: " + reason(e));
     }
+}
+
+Status writeFileAtomically(const std::string& path, const std::string& text) {
+    const std::string tmp = path + ".tmp-" + std::to_string(::getpid());
+    {
+        std::ofstream f(tmp);
+        if (!f) return badInput(path + ": cannot write");
+        f << text;
+        if (!f) return internal("write " + path + " failed");
+    }
+    std::error_code ec;
+    std::filesystem::rename(tmp, path, ec);
+    if (ec) return internal("rename " + tmp + " -> " + path + ": " + ec.message());
+    return {};
 }
 
 }  // namespace cavity::core

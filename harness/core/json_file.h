@@ -23,4 +23,9 @@ std::string nullNonFiniteTokens(const std::string& text);
 // "FILE: does not parse: line L: what nlohmann::json objected to".
 Result<nlohmann::json> readJsonFile(const std::string& path);
 
+// Writes `text` to a temporary file beside `path` and renames it into place,
+// so a reader (or a kill halfway) sees the old file or the new one, never a
+// part. Every report and JSON file we write goes through here.
+Status writeFileAtomically(const std::string& path, const std::string& text);
+
 }  // namespace cavity::core

@@ -1,5 +1,7 @@
 #include "measure/results.h"
 
+#include "core/json_file.h"
+
 #include "pipeline/config_id.h"
 
 #include <chrono>
@@ -178,19 +180,6 @@ json resultsDocument(const std::vector<RunRecord>& runs, const std::vector<RunEr
     return doc;
 }
 
-Status writeJson(const std::string& path, const json& doc) {
-    namespace fs = std::filesystem;
-    const std::string tmp = path + ".tmp-" + std::to_string(::getpid());
-    {
-        std::ofstream f(tmp);
-        if (!f) return badInput(path + ": cannot write");
-        f << doc.dump(2) << "\n";
-        if (!f) return internal("write " + path + " failed");
-    }
-    std::error_code ec;
-    fs::rename(tmp, path, ec);
-    if (ec) return internal("rename " + tmp + " -> " + path + ": " + ec.message());
-    return {};
-}
+Status writeJson(const std::string& path, const json& doc) { return writeFileAtomically(path, doc.dump(2) + "\n"); }
 
 }  // namespace cavity::measure

@@ -5,9 +5,6 @@
 
 #include <cctype>
 #include <filesystem>
-#include <fstream>
-
-#include <unistd.h>
 
 namespace cavity::plan {
 
@@ -74,17 +71,7 @@ Status saveApprovals(const std::string& path, const Approvals& a) {
     std::string text = "{\n  \"schema\": \"cavity.approvals/1\",\n  \"approvals\": [";
     for (size_t i = 0; i < list.size(); ++i) text += (i ? ",\n    " : "\n    ") + list[i].dump();
     text += list.empty() ? "]\n}\n" : "\n  ]\n}\n";
-    const std::string tmp = path + ".tmp-" + std::to_string(::getpid());
-    {
-        std::ofstream f(tmp);
-        if (!f) return badInput(path + ": cannot write");
-        f << text;
-        if (!f) return internal("write " + path + " failed");
-    }
-    std::error_code ec;
-    fs::rename(tmp, path, ec);
-    if (ec) return internal("rename " + tmp + " -> " + path + ": " + ec.message());
-    return {};
+    return writeFileAtomically(path, text);
 }
 
 }  // namespace cavity::plan

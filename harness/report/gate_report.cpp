@@ -1,33 +1,13 @@
 #include "report/gate_report.h"
 
+#include "core/json_file.h"
 #include "measure/results.h"
 
 #include <filesystem>
-#include <fstream>
-
-#include <unistd.h>
 
 namespace cavity::report {
 
 namespace fs = std::filesystem;
-
-namespace {
-
-Status writeText(const fs::path& path, const std::string& text) {
-    const fs::path tmp = path.string() + ".tmp-" + std::to_string(::getpid());
-    {
-        std::ofstream f(tmp);
-        if (!f) return badInput(path.string() + ": cannot write");
-        f << text;
-        if (!f) return internal("write " + path.string() + " failed");
-    }
-    std::error_code ec;
-    fs::rename(tmp, path, ec);
-    if (ec) return internal("rename " + tmp.string() + ": " + ec.message());
-    return {};
-}
-
-}  // namespace
 
 nlohmann::json commitStatus(const GateRun& run, const std::string& reportUrl) {
     const int code = run.exitCode();
@@ -50,11 +30,11 @@ Status writeReports(const GateRun& run, const std::string& outDir, const std::st
     std::error_code ec;
     fs::create_directories(out, ec);
     CAVITY_TRY(writeJson((out / "gate.json").string(), toJson(run)));
-    CAVITY_TRY(writeText(out / "junit.xml", junitXml(run)));
-    CAVITY_TRY(writeText(out / "summary.md", summaryMarkdown(run, reportUrl.empty() ? "index.html" : reportUrl)));
+    CAVITY_TRY(writeFileAtomically((out / "junit.xml").string(), junitXml(run)));
+    CAVITY_TRY(writeFileAtomically((out / "summary.md").string(), summaryMarkdown(run, reportUrl.empty() ? "index.html" : reportUrl)));
     CAVITY_TRY(writeJson((out / "status.json").string(), commitStatus(run, reportUrl)));
     CAVITY_ASSIGN(const std::string html, reportHtml(run, (out / "charts").string()));
-    CAVITY_TRY(writeText(out / "index.html", html));
+    CAVITY_TRY(writeFileAtomically((out / "index.html").string(), html));
     return {};
 }
 
