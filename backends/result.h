@@ -15,6 +15,8 @@ enum class ErrorCode {
     BadInput = 2,             // a flag, file or value the user gave is wrong
     BackendUnavailable = 3,   // no ICD, no EGL device, ...
     Internal = 4,             // a GPU call failed after the backend started
+    StoreUnavailable = 5,     // the image store cannot be reached, refused us, or lacks an object
+    StoreCorrupt = 6,         // a store object's pixels do not have the digest it is filed under
 };
 
 struct Error {
@@ -25,6 +27,8 @@ struct Error {
 inline Error badInput(std::string m) { return {ErrorCode::BadInput, std::move(m)}; }
 inline Error unavailable(std::string m) { return {ErrorCode::BackendUnavailable, std::move(m)}; }
 inline Error internal(std::string m) { return {ErrorCode::Internal, std::move(m)}; }
+inline Error storeUnavailable(std::string m) { return {ErrorCode::StoreUnavailable, std::move(m)}; }
+inline Error storeCorrupt(std::string m) { return {ErrorCode::StoreCorrupt, std::move(m)}; }
 
 // A value or an error, in the spirit of std::expected (C++23).
 template <class T>

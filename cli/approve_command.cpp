@@ -7,7 +7,10 @@
 #include "plan/approvals.h"
 #include "gate/gate.h"
 #include "measure/results.h"
+#include "images/image_io.h"
+#include "render/image_file.h"
 #include "render/render_manifest.h"
+#include "store/store.h"
 
 #include <algorithm>
 #include <map>
@@ -15,6 +18,7 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <optional>
 #include <regex>
@@ -46,6 +50,8 @@ const CommandSpec& approveSpec() {
             {"--negative", "", "mark the digests known bad instead of approving them"},
             {"--by", "NAME", "who approves (default: $USER)"},
             {"--baselines", "DIR", "folder with approvals.json (default: baselines/ of the checkout)"},
+            {"--store", "DIR|URL", "the image store the approved images are put into, under their digest (default "
+                                   "$CAVITY_STORE, else <baselines>/store; docs/store.md)"},
         },
         "",
         "",
@@ -53,13 +59,14 @@ const CommandSpec& approveSpec() {
         {
             "cavity baselines approve --from out/gate --why 'H200, driver 580: first references'",
             "cavity baselines approve --from out/gate --filter '/alchemy_fast/' --negative --why 'bad pick'",
+            "cavity baselines approve --from out/render --store https://store.example/refs --why 'driver 580'",
         },
     };
     return spec;
 }
 
 struct ApproveFlags {
-    std::string from = "out/gate", why, by, root;
+    std::string from = "out/gate", why, by, root, store;
     std::optional<std::regex> filter;
     bool negative = false;
 };
@@ -72,6 +79,7 @@ Result<ApproveFlags> parseApprove(const ParsedFlags& p) {
         else if (flag == "--why") f.why = v;
         else if (flag == "--by") f.by = v;
         else if (flag == "--baselines") f.root = v;
+        else if (flag == "--store") f.store = v;
         else if (flag == "--filter") {
             CAVITY_ASSIGN(f.filter, parseFilter(flag, v));
         }
@@ -88,7 +96,14 @@ Result<ApproveFlags> parseApprove(const ParsedFlags& p) {
 
 // The approvals a run adds: every image of every selected configuration that
 // rendered, once per key, image, digest and device class.
-size_t addApprovals(plan::Approvals& a, const gate::GateRun& run, const ApproveFlags& f) {
+// An approved image whose pixels this run holds, for the store: a file of
+// the gate's output (`stored` empty) or of a render folder.
+struct Pixels {
+    std::string digest, path;
+    render::StoredImage stored;
+};
+
+size_t addApprovals(plan::Approvals& a, const gate::GateRun& run, const ApproveFlags& f, std::vector<Pixels>& pixels) {
     const std::string when = utcTimestamp();
     size_t added = 0;
     for (const auto& r : run.results) {
@@ -103,6 +118,13 @@ size_t addApprovals(plan::Approvals& a, const gate::GateRun& run, const ApproveF
                        e.deviceClass == x.deviceClass;
             };
             if (i.digest.empty() || std::any_of(a.entries.begin(), a.entries.end(), same)) continue;
+            if (!i.newExact.empty()) {
+                // Beside the exact image the judge wrote its float bits
+                // (gate_judge.cpp): those are what the digest is of.
+                const fs::path bits = fs::path(i.newExact).replace_extension(".f32z");
+                std::error_code ec;
+                pixels.push_back({i.digest, fs::exists(bits, ec) ? bits.string() : i.newExact, {}});
+            }
             a.entries.push_back(std::move(x));
             ++added;
         }
@@ -113,7 +135,8 @@ size_t addApprovals(plan::Approvals& a, const gate::GateRun& run, const ApproveF
 // The approvals a render folder adds: the digests its manifest records, for
 // the device each configuration rendered on. A configuration whose
 // repetitions disagree is left out (a digest approves one image exactly).
-Result<size_t> addRenderApprovals(plan::Approvals& a, const std::string& dir, const ApproveFlags& f, size_t& skipped) {
+Result<size_t> addRenderApprovals(plan::Approvals& a, const std::string& dir, const ApproveFlags& f, size_t& skipped,
+                                  std::vector<Pixels>& pixels) {
     const std::string path = (fs::path(dir) / "manifest.json").string();
     CAVITY_ASSIGN(const auto j, readJsonFile(path));
     CAVITY_ASSIGN(const render::RenderManifest m, render::parseManifest(j, path));
@@ -123,9 +146,13 @@ Result<size_t> addRenderApprovals(plan::Approvals& a, const std::string& dir, co
         if (f.filter && !std::regex_search(c.id, *f.filter)) continue;
         std::map<std::string, std::set<std::string>> digests;   // image -> digests over the repetitions
         bool failed = false;
+        std::map<std::string, Pixels> files;   // image -> its file, where the folder holds one
         for (const auto& r : c.renders) {
             failed |= !r.error.empty();
-            for (const auto& i : r.images) digests[i.name].insert(i.stored.digest);
+            for (const auto& i : r.images) {
+                digests[i.name].insert(i.stored.digest);
+                if (!i.file.empty()) files[i.name] = {i.stored.digest, (fs::path(dir) / i.file).string(), i.stored};
+            }
         }
         const bool agree = std::all_of(digests.begin(), digests.end(), [](const auto& d) { return d.second.size() == 1; });
         if (failed || !agree || digests.empty()) {
@@ -142,11 +169,41 @@ Result<size_t> addRenderApprovals(plan::Approvals& a, const std::string& dir, co
                        e.deviceClass == x.deviceClass;
             };
             if (std::any_of(a.entries.begin(), a.entries.end(), same)) continue;
+            if (const auto file = files.find(image); file != files.end()) pixels.push_back(file->second);
             a.entries.push_back(std::move(x));
             ++added;
         }
     }
     return added;
+}
+
+// Every approved image this run holds, put into the store under its digest
+// (each checked to be the image approved); approvals.json is written only
+// after all of them are there.
+Result<size_t> putImages(const std::vector<Pixels>& pixels, const ApproveFlags& f) {
+    store::StoreOptions so;
+    so.location = f.store.empty() ? store::defaultLocation(f.root) : f.store;
+    CAVITY_ASSIGN(auto target, store::openStore(so));
+    std::set<std::string> done;
+    for (const auto& p : pixels) {
+        if (!done.insert(p.digest).second) continue;
+        CAVITY_ASSIGN(const bool there, target->has(p.digest));
+        if (there) continue;
+        HostImage image;
+        if (p.stored.digest.empty() && fs::path(p.path).extension() == ".f32z") {
+            std::ifstream f(p.path, std::ios::binary);
+            const std::string bytes((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+            CAVITY_ASSIGN(image, render::decodeImage(bytes, p.path));
+        } else if (p.stored.digest.empty()) {
+            CAVITY_ASSIGN(image, readImage(p.path));
+        } else {
+            CAVITY_ASSIGN(image, render::readImageFile(p.path, p.stored));
+        }
+        CAVITY_ASSIGN(const std::string digest, store::putImage(*target, image));
+        if (digest != p.digest)
+            return badInput(p.path + ": its pixels have digest " + digest + ", the run recorded " + p.digest);
+    }
+    return done.size();
 }
 
 }  // namespace
@@ -165,18 +222,22 @@ int approveCommand(const std::vector<std::string>& argv) {
     auto approvals = plan::loadApprovals(path);
     if (!approvals) return fail(program, approvals.error());
     size_t added = 0, skipped = 0;
+    std::vector<Pixels> pixels;
     std::error_code ec;
     if (!fs::exists(fs::path(f->from) / "gate.json", ec) && fs::exists(fs::path(f->from) / "manifest.json", ec)) {
-        auto n = addRenderApprovals(*approvals, f->from, *f, skipped);
+        auto n = addRenderApprovals(*approvals, f->from, *f, skipped, pixels);
         if (!n) return fail(program, n.error());
         added = *n;
     } else {
         auto run = loadGateJson(f->from);
         if (!run) return fail(program, run.error());
-        added = addApprovals(*approvals, *run, *f);
+        added = addApprovals(*approvals, *run, *f, pixels);
     }
+    auto stored = putImages(pixels, *f);
+    if (!stored) return fail(program, stored.error());
     if (auto st = plan::saveApprovals(path, *approvals); !st) return fail(program, st.error());
-    std::cout << added << " image digests " << (f->negative ? "marked known bad" : "approved") << " in " << path << "\n";
+    std::cout << added << " image digests " << (f->negative ? "marked known bad" : "approved") << " in " << path << "; "
+              << *stored << " images in the store\n";
     if (skipped)
         std::cout << skipped << " configurations left out: a render error, or repetitions with different images\n";
     return 0;

@@ -190,6 +190,17 @@ Result<std::string> defaultBaselines() {
                     "; give --baselines DIR");
 }
 
+FlagSpec storeFlag() {
+    return {"--store", "DIR|URL",
+            "the image store that holds the references approved per device class: a folder or an http(s):// URL "
+            "(default $CAVITY_STORE, else <baselines>/store; docs/store.md)"};
+}
+
+FlagSpec storeCacheFlag() {
+    return {"--store-cache", "DIR",
+            "where an HTTP store's objects are cached (default $CAVITY_STORE_CACHE, else ~/.cache/cavity/store)"};
+}
+
 int exitCode(const Error& e) { return static_cast<int>(e.code); }
 
 int fail(const std::string& program, const Error& e) {

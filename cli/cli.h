@@ -35,6 +35,10 @@ Result<std::regex> parseFilter(const std::string& flag, const std::string& text)
 // replaced by FILE's text. NAME must be a kernel source and given once; FILE
 // a readable text file (no NUL byte) of at most 1 MiB. Adds it to both maps.
 Status addKernelSource(const std::string& value, SourceOverrides& overrides, std::vector<ReplacedSource>& replaced);
+// --store DIR|URL and --store-cache DIR (harness/store/store.h), as every
+// command that reads or writes the image store declares them.
+FlagSpec storeFlag();
+FlagSpec storeCacheFlag();
 // "--shard I/N": (I, N) with 0 <= I < N.
 Result<std::pair<int, int>> parseShard(const std::string& text);
 
@@ -65,6 +69,7 @@ int gateCommand(const std::vector<std::string>& args);
 int baselinesCommand(const std::vector<std::string>& args);
 int approveCommand(const std::vector<std::string>& args);   // cavity baselines approve
 int compareCommand(const std::vector<std::string>& args);
+int storeCommand(const std::vector<std::string>& args);     // cavity store check
 // `program` starts every message: "cavity quality", "cavity_render quality".
 int qualityCommand(const std::vector<std::string>& args, const std::string& program = "cavity quality");
 

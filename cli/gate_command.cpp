@@ -15,6 +15,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <map>
 #include <optional>
 #include <regex>
 #include <set>
@@ -67,6 +68,8 @@ const CommandSpec& gateSpec() {
             {"--expectations", "DIR", "folder of expectation files (default <baselines>/expectations)"},
             {"--validation", "", "enable the Vulkan validation layers and the GL debug output"},
             {"--enforce-cpu-budgets", "", kEnforceHelp},
+            storeFlag(),
+            storeCacheFlag(),
             {"--kernel-source", "NAME=FILE",
              "render with kernels/NAME replaced by FILE's text (a shader edit or a planted defect, no rebuild); "
              "repeatable, each NAME once; every report records FILE and its digest", "Options", true},
@@ -75,7 +78,8 @@ const CommandSpec& gateSpec() {
         },
         "",
         "",
-        "\nExit codes: 0 all pass, 1 a regression or an unexpected pass, 2 bad input, 3 a backend could not start.",
+        "\nExit codes: 0 all pass, 1 a regression or an unexpected pass, 2 bad input, 3 a backend could not start, 5 the "
+        "image store cannot be reached or lacks a reference, 6 a store object does not match its digest.",
         {
             "cavity gate",
             "cavity gate --matrix ci --filter '/alchemy_fast/' --out out/gate",
@@ -96,6 +100,8 @@ const CommandSpec& judgeSpec() {
             {"--out", "DIR", "report folder (default out/gate)"},
             kReportUrlFlag,
             {"--enforce-cpu-budgets", "", kEnforceHelp},
+            storeFlag(),
+            storeCacheFlag(),
             {"--quiet", "", "no progress lines on stderr"},
         },
         "RENDER_DIR...",
@@ -192,6 +198,7 @@ int merge(const std::vector<std::string>& argv) {
         else if (merged.matrix != run->matrix)
             return fail("cavity gate merge", badInput(d + ": matrix " + run->matrix + " differs from " + merged.matrix));
         merged.seconds = std::max(merged.seconds, run->seconds);
+        merged.renderSeconds = std::max(merged.renderSeconds, run->renderSeconds);
         for (auto& e : run->backendErrors) merged.backendErrors.push_back(e);
         for (auto& r : run->results)
             if (seen.insert({r.id, r.repetition}).second) merged.results.push_back(std::move(r));
@@ -204,12 +211,18 @@ int merge(const std::vector<std::string>& argv) {
 
 // Nothing is written unless every folder is whole (judge_folders.h).
 int judge(const std::vector<std::string>& argv) {
-    std::vector<std::string> dirs;
-    std::string out = "out/gate", baselines, expectationsDir, reportUrl;
+    std::string expectationsDir, reportUrl;
+    gate::JudgeOptions o;
+    std::string& baselines = o.baselines;
+    baselines.clear();
     CAVITY_PARSE(p, judgeSpec(), argv);
-    dirs = p.positionals;
-    for (const auto& [flag, v] : p.values)
-        (flag == "--out" ? out : flag == "--baselines" ? baselines : flag == "--report-url" ? reportUrl : expectationsDir) = v;
+    const std::vector<std::string> dirs = p.positionals;
+    const std::map<std::string, std::string*> into{{"--out", &o.out}, {"--baselines", &baselines},
+                                                   {"--report-url", &reportUrl}, {"--expectations", &expectationsDir},
+                                                   {"--store", &o.store.location}, {"--store-cache", &o.store.cache}};
+    for (const auto& [flag, v] : p.values) *into.at(flag) = v;
+    o.quiet = p.has("--quiet");
+    o.enforceCpuBudgets = p.has("--enforce-cpu-budgets");
     if (auto st = checkExpectationsFlag(expectationsDir); !st) return fail("cavity gate judge", st.error());
     if (baselines.empty()) {
         auto found = defaultBaselines();
@@ -220,12 +233,12 @@ int judge(const std::vector<std::string>& argv) {
     auto expectations =
         gate::loadExpectations(expectationsDir.empty() ? (fs::path(baselines) / "expectations").string() : expectationsDir);
     if (!expectations) return fail("cavity gate judge", expectations.error());
-    auto run = gate::judgeFolders(dirs, baselines, out, p.has("--quiet"), p.has("--enforce-cpu-budgets"));
+    auto run = gate::judgeFolders(dirs, o);
     if (!run) return fail("cavity gate judge", run.error());
     gate::applyExpectations(*run, *expectations);
-    if (auto st = report::writeReports(*run, out, reportUrl); !st) return fail("cavity gate judge", st.error());
+    if (auto st = report::writeReports(*run, o.out, reportUrl); !st) return fail("cavity gate judge", st.error());
     std::cout << report::summaryMarkdown(*run, reportUrl.empty() ? "index.html" : reportUrl);
-    std::cout << "\nreport: " << (fs::path(out) / "index.html").string() << "\n";
+    std::cout << "\nreport: " << (fs::path(o.out) / "index.html").string() << "\n";
     return run->exitCode();
 }
 
@@ -258,6 +271,8 @@ Result<GateFlags> parseGate(const std::vector<std::string>& argv) {
         else if (flag == "--filter") o.filter = v;
         else if (flag == "--shard") f.shard = v;
         else if (flag == "--expectations") o.expectations = v;
+        else if (flag == "--store") o.store.location = v;
+        else if (flag == "--store-cache") o.store.cache = v;
         else if (flag == "--kernel-source") {
             CAVITY_TRY(addKernelSource(v, o.overrides, o.replaced));
         }

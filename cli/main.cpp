@@ -1,6 +1,7 @@
 // The cavity command. Exit codes (README.md, "Exit codes"): 0 success,
 // 1 a regression (gate), 2 bad usage or input, 3 a backend could not start,
-// 4 an internal GPU error.
+// 4 an internal GPU error, 5 the image store cannot be reached, 6 a store
+// object does not match its digest.
 #include "cli.h"
 
 #include <iostream>
@@ -16,6 +17,7 @@ constexpr const char* kUsage =
     "  gate merge join shard outputs into one verdict\n"
     "  baselines update   accept new images as baselines\n"
     "  baselines approve  approve (or mark known bad) a run's image digests for their device class\n"
+    "  store check        fetch every approved image from the image store and check its digest\n"
     "  compare    two runs (results.json or cavity_bench JSON) pass by pass: change, interval, verdict\n"
     "  quality    each AO kernel's mean absolute error against the ray-traced ground truth\n"
     "`cavity COMMAND --help` lists a command's flags. `cavity` alone prints this and exits 2;\n"
@@ -40,9 +42,10 @@ int main(int argc, char** argv) {
     if (command == "gate") return cavity::cli::gateCommand(args);
     if (command == "baselines") return cavity::cli::baselinesCommand(args);
     if (command == "compare") return cavity::cli::compareCommand(args);
+    if (command == "store") return cavity::cli::storeCommand(args);
     if (command == "quality") return cavity::cli::qualityCommand(args);
     // One line, as every usage error (README "Exit codes").
-    const std::string near = cavity::cli::nearest(command, {"run", "gate", "baselines", "compare", "quality"});
+    const std::string near = cavity::cli::nearest(command, {"run", "gate", "baselines", "compare", "quality", "store"});
     std::cerr << "cavity: unknown command '" << command << "'" << (near.empty() ? "" : " (did you mean " + near + "?)")
               << "; see cavity --help\n";
     return 2;

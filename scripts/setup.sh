@@ -19,6 +19,8 @@ packages=(
   libimath-dev                                                  # half floats (backends/texels; also OpenEXR's)
   libfmt-dev                                                    # text tables (harness/core/text_table.cpp)
   zlib1g-dev                                                    # render folders (cavity_render)
+  libcurl4-openssl-dev                                          # the HTTP image store (harness/store)
+  nginx-light openssl                                           # tests/test_store_http.py: a real WebDAV store, with TLS
   python3 python3-matplotlib python3-jsonschema                 # scripts/charts.py; tests/validate_results.py
   python3-xmlschema python3-junitparser                         # tests/validate_junit.py: junit.xml as CI readers take it
   chromium                                                      # the HTML report test (headless screenshot)

@@ -163,6 +163,16 @@ CASES = [
     Case("bench-plant-file-folder", "cavity_bench", ["--plant-file", "prev"], ["--plant-file", "prev"],
          setup=replace_with_folder("prev")),
     Case("bench-frames-1e999", "cavity_bench", ["--frames", "1e999"], ["--frames", "1e999"]),
+    # The image store (docs/store.md).
+    Case("store-is-file", "cavity", GATE + ["--store", "prev"], ["--store", "prev", "not a folder"], setup=write("prev", "x")),
+    Case("store-empty", "cavity", GATE + ["--store", ""], ["--store", "empty"]),
+    Case("store-scheme", "cavity", GATE + ["--store", "s3://bucket/x"], ["--store", "s3://bucket/x", "unknown scheme"]),
+    Case("store-credentials-in-url", "cavity", ["store", "check", "--baselines", "baselines", "--store",
+                                                "https://u:secret@example.invalid/x"], ["--store", "credentials in the URL"]),
+    Case("store-check-no-match", "cavity", ["store", "check", "--baselines", "baselines", "--class", "no-such-gpu"],
+         ["no-such-gpu", "approvals.json"]),
+    Case("store-missing-object", "cavity", ["store", "check", "--baselines", "baselines", "--store", "prev"],
+         ["store prev", "no object"], code=5, setup=replace_with_folder("prev")),
 ]
 
 

@@ -3,10 +3,12 @@
 // asked to, atomically.
 #include "run_binary.h"
 #include "images/image_io.h"
+#include "plan/approvals.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <csignal>
@@ -235,6 +237,106 @@ TEST_F(GateInputs, ApprovedDigestsPassAtOnceAndKnownBadOnesFail) {
     EXPECT_EQ(bad.code, 1) << bad.output;
     EXPECT_EQ(routes(), (std::map<std::string, int>{{"negative", 3}, {"tolerance", 3}}));
     EXPECT_NE(bad.output.find("known bad"), std::string::npos) << bad.output;
+}
+
+// The tolerance route's reference: the nearest approved image of the
+// device's own class, fetched from the store with the default tolerances,
+// else (no positive of the class) the default class's stored baseline with
+// the manifest's device overrides. A store that lacks the reference, or
+// holds another image under its digest, stops the judge with its own code.
+TEST_F(GateInputs, ToleranceJudgesAgainstTheClassReferenceElseTheDefault) {
+    const fs::path out = dir / "out", st = dir / "store";
+    ASSERT_EQ(gate().code, 0);
+    const Outcome approve = run("baselines approve --from " + out.string() + " --baselines " + base.string() + " --store " +
+                                st.string() + " --by tester --why 'llvmpipe references'");
+    ASSERT_EQ(approve.code, 0) << approve.output;
+    size_t objects = 0;
+    for (const auto& e : fs::recursive_directory_iterator(st)) objects += e.is_regular_file();
+    EXPECT_GE(objects, 3u) << approve.output;   // gl and vk may share an image
+    std::ifstream in(fs::path(CAVITY_SOURCE_DIR) / "kernels/ssao_alchemy.glsl");
+    std::string text((std::istreambuf_iterator<char>(in)), {});
+    text.replace(text.find("- P.bias"), 8, "- 0.9 * P.bias");
+    const fs::path edit = dir / "bias_scaled.glsl";
+    std::ofstream(edit) << text;
+    const std::string planted = "--retries 0 --store " + st.string() + " --kernel-source ssao_alchemy.glsl=" + edit.string();
+    auto images = [&] {
+        std::ifstream f(out / "gate.json");
+        std::vector<nlohmann::json> v;
+        const auto doc = nlohmann::json::parse(f);
+        for (const auto& r : doc["results"])
+            for (const auto& i : r["images"]) v.push_back(i);
+        return v;
+    };
+    const Outcome own = gate(planted);
+    EXPECT_EQ(own.code, 1) << own.output;
+    ASSERT_EQ(images().size(), 6u);
+    int failed = 0;
+    for (const auto& i : images()) {
+        EXPECT_EQ(i["route"], "tolerance") << i;
+        const std::string ref = i["reference"];
+        EXPECT_TRUE(ref == "llvmpipe gl/compute" || ref == "llvmpipe vk/compute") << ref;
+        EXPECT_EQ(i["baseline"].get<std::string>().rfind("store:fnv1a64:", 0), 0u) << i;
+        EXPECT_NE(i["approval"].get<std::string>().find("llvmpipe references"), std::string::npos) << i;
+        failed += !i["passed"].get<bool>();
+    }
+    EXPECT_GT(failed, 0);
+    // Approved for another class only: the default reference, by file.
+    std::ifstream ain(base / "approvals.json");
+    auto doc = nlohmann::json::parse(ain);
+    ain.close();
+    for (auto& a : doc["approvals"])
+        if (a["by"] == "tester") a["device_class"] = "some-other-gpu";
+    std::ofstream(base / "approvals.json", std::ios::trunc) << doc.dump(2);
+    EXPECT_EQ(gate(planted).code, 1);
+    for (const auto& i : images()) {
+        EXPECT_EQ(i["reference"], "default") << i;
+        EXPECT_NE(i["baseline"].get<std::string>().find("baselines/images/corner/alchemy"), std::string::npos) << i;
+    }
+    for (auto& a : doc["approvals"])
+        if (a["by"] == "tester") a["device_class"] = "llvmpipe";
+    std::ofstream(base / "approvals.json", std::ios::trunc) << doc.dump(2);
+    // Another image filed under the reference's digest: exit 6, one line.
+    std::vector<fs::path> files;
+    for (const auto& e : fs::recursive_directory_iterator(st))
+        if (e.is_regular_file()) files.push_back(e.path());
+    std::sort(files.begin(), files.end());
+    std::vector<std::string> kept;
+    for (const auto& f : files) kept.push_back(checksum(f));
+    for (const auto& f : files) fs::copy_file(files[0] == f ? files[1] : files[0], f, fs::copy_options::overwrite_existing);
+    const Outcome corrupt = gate(planted);
+    EXPECT_EQ(corrupt.code, 6) << corrupt.output;
+    EXPECT_NE(corrupt.output.find("corrupt: its pixels have digest"), std::string::npos) << corrupt.output;
+    EXPECT_EQ(std::count(corrupt.output.begin(), corrupt.output.end(), '\n'), 1) << corrupt.output;
+    // A store without the reference: exit 5, one line naming the digest.
+    fs::remove_all(st);
+    const Outcome missing = gate(planted);
+    EXPECT_EQ(missing.code, 5) << missing.output;
+    EXPECT_NE(missing.output.find("no object fnv1a64:"), std::string::npos) << missing.output;
+    EXPECT_EQ(std::count(missing.output.begin(), missing.output.end(), '\n'), 1) << missing.output;
+}
+
+TEST(Approvals, TheNearestReferenceOfTheClassIsTheSameApiAndStageElseTheLatest) {
+    cavity::plan::Approvals a;
+    auto add = [&](std::string digest, std::string cls, std::string api, std::string stage, std::string when, bool pos = true) {
+        a.entries.push_back({"k", "ao", digest, pos, cls, api, stage, "", "t", when, "w"});
+    };
+    add("fnv1a64:0000000000000001", "gpu-a", "gl", "compute", "2026-01-01");
+    add("fnv1a64:0000000000000002", "gpu-a", "vk", "fragment", "2026-01-02");
+    add("fnv1a64:0000000000000003", "gpu-a", "vk", "compute", "2026-01-01");
+    add("fnv1a64:0000000000000004", "gpu-a", "vk", "compute", "2026-01-03");
+    add("fnv1a64:0000000000000005", "gpu-a", "vk", "compute", "2026-01-09", false);
+    add("fnv1a64:0000000000000006", "gpu-b", "gl", "fragment", "2026-01-01");
+    auto ref = [&](std::string cls, std::string api, std::string stage) {
+        const auto* r = a.reference("k", "ao", cls, api, stage);
+        return r ? r->digest.back() - '0' : 0;
+    };
+    EXPECT_EQ(ref("gpu-a", "vk", "compute"), 4);    // same API and stage, the latest; never a negative
+    EXPECT_EQ(ref("gpu-a", "gl", "compute"), 1);
+    EXPECT_EQ(ref("gpu-a", "gl", "fragment"), 1);   // the same API before the same stage
+    EXPECT_EQ(ref("gpu-a", "vk", "fragment"), 2);
+    EXPECT_EQ(ref("gpu-b", "vk", "compute"), 6);    // any of the class before another class
+    EXPECT_EQ(ref("gpu-c", "gl", "compute"), 0);    // none: the default class's baseline
+    EXPECT_EQ(a.reference("k", "color", "gpu-a", "gl", "compute"), nullptr);
 }
 
 TEST_F(GateInputs, ApprovalsThatDoNotParseAreBadInput) {

@@ -34,6 +34,14 @@
 namespace cavity::test {
 namespace {
 
+gate::JudgeOptions judgeOptions(const std::string& baselines, const std::string& out) {
+    gate::JudgeOptions o;
+    o.baselines = baselines;
+    o.out = out;
+    return o;
+}
+
+
 namespace fs = std::filesystem;
 using nlohmann::json;
 
@@ -311,7 +319,7 @@ TEST_F(TwoStep, APlantedBugFailsThroughTheSplit) {
                                             &failures);
     ASSERT_TRUE(st.ok()) << st.error().message;
     ASSERT_TRUE(writer.finish(failures, 0).ok());
-    auto run = gate::judgeFolders({dir.string()}, base.string(), out.string());
+    auto run = gate::judgeFolders({dir.string()}, judgeOptions(base.string(), out.string()));
     ASSERT_TRUE(run) << run.error().message;
     EXPECT_EQ(run->exitCode(), 1);
     ASSERT_EQ(run->results.size(), 1u);

@@ -7,6 +7,11 @@
 
 namespace cavity::core {
 
+std::mutex& stderrLock() {
+    static std::mutex lock;
+    return lock;
+}
+
 Progress::Progress(size_t total, bool quiet, std::string prefix)
     : total_(total), prefix_(std::move(prefix)), quiet_(quiet), terminal_(::isatty(2) == 1),
       t0_(std::chrono::steady_clock::now()) {}
@@ -19,6 +24,7 @@ void Progress::print(size_t count, const std::string& label, size_t finished, bo
     if (finished > 0)
         std::snprintf(eta, sizeof eta, "ETA %.1f s", elapsed / double(finished) * double(total_ - std::min(finished, total_)));
     // \033[K clears what a longer previous line left behind.
+    std::lock_guard<std::mutex> hold(stderrLock());
     std::fprintf(stderr, "%s%s[%zu/%zu] %s  elapsed %.1f s  %s%s", inPlace ? "\r" : "", prefix_.c_str(), count, total_,
                  label.c_str(), elapsed, eta, inPlace ? "\033[K" : "\n");
     std::fflush(stderr);
@@ -40,6 +46,7 @@ void Progress::done(const std::string& label, bool show) {
 
 void Progress::interrupt() {
     if (!open_) return;
+    std::lock_guard<std::mutex> hold(stderrLock());
     std::fputc('\n', stderr);
     open_ = false;
 }

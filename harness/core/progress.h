@@ -8,9 +8,17 @@
 
 #include <chrono>
 #include <cstddef>
+#include <mutex>
 #include <string>
 
 namespace cavity::core {
+
+// Held by whatever writes to stderr while other threads run, and by an image
+// read (images/image_module.cpp), which points fd 2 at a file for the
+// duration to fold OpenImageIO's and libpng's messages into its one error
+// line: a progress line printed meanwhile would land in that file and be
+// lost. Progress takes it for every line.
+std::mutex& stderrLock();
 
 class Progress {
 public:

@@ -99,7 +99,7 @@ Result<GateRun> runGate(const GateOptions& o) {
     CAVITY_ASSIGN(auto entries, selectEntries(matrix, o.shardIndex, o.shardCount, o.filter));
     std::vector<RunConfig> configs;
     for (const auto& e : entries) configs.push_back(e.config);
-    CAVITY_ASSIGN(Judge judge, prepareJudge(o.baselines, configs, o.out));
+    CAVITY_ASSIGN(Judge judge, prepareJudge(o.baselines, configs, o.out, o.store));
     judge.enforceCpuBudgets = o.enforceCpuBudgets;
     CAVITY_ASSIGN(const Expectations expectations,
                   loadExpectations(o.expectations.empty() ? (fs::path(o.baselines) / "expectations").string() : o.expectations));

@@ -11,6 +11,7 @@
 #include "gate/baselines.h"
 #include "images/metrics.h"
 #include "pipeline/pipeline.h"
+#include "store/store.h"
 
 #include <nlohmann/json.hpp>
 
@@ -28,7 +29,11 @@ struct ImageCheck {
     // a pass, no metric computed), "negative" (an approved known-bad digest:
     // a failure) or "tolerance" (the metrics against the stored reference).
     std::string route = "tolerance";
-    std::string approval;              // digest and negative: who approved it, when, on what, why
+    std::string approval;              // who approved it (the digest, or the reference judged against), when, on what, why
+    // tolerance: the reference judged against: "default" (the stored
+    // baseline, with the manifest's device overrides) or "<class> <api>/<stage>"
+    // (the nearest approved image of the device's own class, from the store).
+    std::string reference;
     std::string baseline;              // path of the baseline file (relative to the repo root or absolute)
     std::string newPng, newExact;      // written new image: PNG to look at, and the exact file (.exr / .png)
     std::string baselinePng, diffPng;  // for the report
@@ -97,6 +102,7 @@ struct GateOptions {
     int retries = 2;                       // renders of a failing configuration after the first
     std::string expectations;              // folder of expectation files; empty: <baselines>/expectations
     bool enforceCpuBudgets = false;        // a software renderer's budget overrun fails too (TimingCheck::advisory)
+    cavity::store::StoreOptions store;             // --store, --store-cache: where class references are
     SourceOverrides overrides;             // --kernel-source: kernels/ files replaced
     std::vector<ReplacedSource> replaced;  // ... and where each came from, for the reports
     // Test hook (CAVITY_TEST_FLAKY): configurations whose id this regex
@@ -111,7 +117,8 @@ struct GateRun {
     std::vector<ConfigResult> results;
     std::vector<std::string> backendErrors;   // backends that could not start
     std::vector<ReplacedSource> replaced;     // kernel sources replaced (--kernel-source)
-    double seconds = 0;
+    double seconds = 0;           // the whole gate: rendering and judging
+    double renderSeconds = 0;     // of which rendering in cavity_render (gate judge); 0: rendered in this process
     // 0 all pass (flaky, expected-fail and known-flake included), 1 a
     // regression or an unexpected pass, 2 bad input (a baseline missing or
     // unreadable), 3 a backend could not start.

@@ -36,7 +36,7 @@ json toJson(const GateRun& run) {
                      {"ssim", i.metrics->ssim}, {"flip_mean", i.metrics->flipMean},
                      {"non_finite", i.metrics->nonFinite}, {"differing_pixels", i.metrics->differingPixels},
                      {"differing_share", i.metrics->differingShare}, {"channels_compared", i.metrics->channelsCompared}};
-            images.push_back({{"image", i.image}, {"digest", i.digest}, {"route", i.route}, {"approval", i.approval},
+            images.push_back({{"image", i.image}, {"digest", i.digest}, {"route", i.route}, {"approval", i.approval}, {"reference", i.reference},
                               {"baseline", i.baseline}, {"new", i.newExact}, {"new_png", i.newPng},
                               {"baseline_png", i.baselinePng}, {"diff_png", i.diffPng}, {"metrics", m},
                               {"tolerance", toJson(i.tolerance)}, {"failures", i.failures}, {"passed", i.passed()}});
@@ -53,7 +53,7 @@ json toJson(const GateRun& run) {
                            {"error_code", r.errorCode}, {"images", images}, {"timings", timings}});
     }
     return {{"schema", "cavity.gate/1"}, {"matrix", run.matrix}, {"shard", {run.shardIndex, run.shardCount}},
-            {"seconds", run.seconds}, {"exit_code", run.exitCode()}, {"counts", run.counts()},
+            {"seconds", run.seconds}, {"render_seconds", run.renderSeconds}, {"exit_code", run.exitCode()}, {"counts", run.counts()},
             {"backend_errors", run.backendErrors}, {"kernel_sources", render::replacedJson(run.replaced)},
             {"results", results}};
 }
@@ -105,6 +105,7 @@ Result<ImageCheck> readImage(const JsonObject& ij) {
     if (i.route != "tolerance" && i.route != "digest" && i.route != "negative")
         return ij.bad("route", "must be tolerance, digest or negative");
     CAVITY_ASSIGN(i.approval, ij.str("approval", ""));
+    CAVITY_ASSIGN(i.reference, ij.str("reference", ""));
     CAVITY_ASSIGN(i.baseline, ij.str("baseline"));
     CAVITY_ASSIGN(i.newExact, ij.str("new"));
     CAVITY_ASSIGN(i.newPng, ij.str("new_png"));
@@ -173,6 +174,7 @@ Result<GateRun> fromJson(const json& j, const std::string& path) {
     run.shardIndex = shard[0];
     run.shardCount = shard[1];
     CAVITY_ASSIGN(run.seconds, top.number("seconds", 0, kAny));
+    CAVITY_ASSIGN(run.renderSeconds, top.number("render_seconds", 0, kAny, 0.0));
     CAVITY_ASSIGN(run.backendErrors, top.strings("backend_errors"));
     // Absent before --kernel-source was recorded: nothing replaced.
     if (top.has("kernel_sources")) {

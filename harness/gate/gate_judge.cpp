@@ -1,6 +1,7 @@
 #include "gate/gate_judge.h"
 
 #include "core/digest.h"
+#include "render/image_file.h"
 #include "images/image_io.h"
 #include "measure/runner.h"
 
@@ -52,7 +53,16 @@ Status checkBaseline(const std::string& path, const RunConfig& c, const std::str
 
 }  // namespace
 
-Result<Judge> prepareJudge(const std::string& baselines, const std::vector<RunConfig>& configs, const std::string& out) {
+Result<HostImage> Judge::reference(const std::string& digest) const {
+    std::lock_guard<std::mutex> hold(*fetchLock);
+    if (const auto at = fetched->find(digest); at != fetched->end()) return at->second;
+    if (!store) return internal("no image store to fetch " + digest + " from");
+    CAVITY_ASSIGN(HostImage image, cavity::store::getImage(*store, digest));
+    return fetched->emplace(digest, std::move(image)).first->second;
+}
+
+Result<Judge> prepareJudge(const std::string& baselines, const std::vector<RunConfig>& configs, const std::string& out,
+                           const store::StoreOptions& storeOptions) {
     const fs::path root(baselines);
     Judge j;
     j.baselines = baselines;
@@ -63,6 +73,10 @@ Result<Judge> prepareJudge(const std::string& baselines, const std::vector<RunCo
     for (const auto& c : configs)
         for (const auto& img : checkedImages())
             CAVITY_TRY(checkBaseline((root / "images" / baselineKey(c) / (img.name + img.extension)).string(), c, img.name));
+    store::StoreOptions so = storeOptions;
+    if (so.location.empty()) so.location = store::defaultLocation(baselines);
+    CAVITY_ASSIGN(std::unique_ptr<store::ImageStore> s, store::openStore(so));
+    j.store = std::move(s);
     CAVITY_TRY(checkWritableDir("--out", out));
     return j;
 }
@@ -74,10 +88,31 @@ std::string approvalText(const Approval& a) {
            a.stage + ") by " + a.by + " on " + a.when + ": " + a.why;
 }
 
-// The tolerance route: the metrics of the new image against the stored
-// reference, the baseline and a heat-map of the difference written beside it.
-Status judgeByTolerance(ImageCheck& check, const CheckedImage& ci, const HostImage& now, const Tolerance& tol,
-                        const fs::path& basePath, const fs::path& dir, int& errorCode) {
+// The tolerance route: the metrics of the new image against the reference,
+// the reference and a heat-map of the difference written beside it.
+Status judgeAgainst(ImageCheck& check, const CheckedImage& ci, const HostImage& now, const HostImage& base,
+                    const fs::path& dir) {
+    const Tolerance& tol = check.tolerance;
+    metrics::Options mo;
+    mo.threshold = tol.pixelThreshold;
+    mo.flip = ci.perceptual;
+    mo.eightBit = ci.extension == ".png";
+    mo.differingDelta = int(tol.differingDelta);
+    CAVITY_ASSIGN(check.metrics, metrics::compare(base, now, mo));
+    check.failures = verdict(*check.metrics, tol, ci.perceptual);
+    // The report shows a passing image as a thumbnail of the new one alone;
+    // the reference and the heat-map are for the images that failed.
+    if (check.passed()) return {};
+    check.baselinePng = (dir / (ci.name + ".baseline.png")).string();
+    check.diffPng = (dir / (ci.name + ".diff.png")).string();
+    CAVITY_TRY(writeImage(check.baselinePng, base, Encoding::Preview));
+    CAVITY_TRY(writeImage(check.diffPng, metrics::heatmap(base, now, 2 * tol.pixelThreshold), Encoding::Preview));
+    return {};
+}
+
+// Against the default class's reference, the stored baseline file.
+Status judgeByTolerance(ImageCheck& check, const CheckedImage& ci, const HostImage& now, const fs::path& basePath,
+                        const fs::path& dir, int& errorCode) {
     if (!fs::exists(basePath)) {
         // Never a silent pass: the configuration fails, the gate exits 2,
         // and the new image is there to accept.
@@ -87,18 +122,7 @@ Status judgeByTolerance(ImageCheck& check, const CheckedImage& ci, const HostIma
         return {};
     }
     CAVITY_ASSIGN(HostImage base, readImage(basePath.string()));
-    metrics::Options mo;
-    mo.threshold = tol.pixelThreshold;
-    mo.flip = ci.perceptual;
-    mo.eightBit = ci.extension == ".png";
-    mo.differingDelta = int(tol.differingDelta);
-    CAVITY_ASSIGN(check.metrics, metrics::compare(base, now, mo));
-    check.failures = verdict(*check.metrics, tol, ci.perceptual);
-    check.baselinePng = (dir / (ci.name + ".baseline.png")).string();
-    check.diffPng = (dir / (ci.name + ".diff.png")).string();
-    CAVITY_TRY(writeImage(check.baselinePng, base));
-    CAVITY_TRY(writeImage(check.diffPng, metrics::heatmap(base, now, 2 * tol.pixelThreshold)));
-    return {};
+    return judgeAgainst(check, ci, now, base, dir);
 }
 
 // One checked image: a known-bad digest fails, an approved one of this
@@ -119,7 +143,11 @@ Result<ImageCheck> judgeImage(const CheckedImage& ci, const HostImage* now, cons
         check.newExact = (dir / (ci.name + ".new" + ci.extension)).string();
         check.newPng = (dir / (ci.name + ".new.png")).string();
         CAVITY_TRY(writeImage(check.newExact, *now));
-        if (ci.extension != ".png") CAVITY_TRY(writeImage(check.newPng, *now));
+        if (ci.extension != ".png") CAVITY_TRY(writeImage(check.newPng, *now, Encoding::Preview));
+        // The very float bits, for `cavity baselines approve` to put into the
+        // image store: an 8-bit PNG read back need not give the bits a
+        // driver's readback gave (GL and Vulkan convert differently).
+        if (auto bits = render::writeImageFile((dir / (ci.name + ".new.f32z")).string(), *now, 1); !bits) return bits.error();
     }
     if (const Approval* a = j.approvals.find(r.key, ci.name, digest, deviceClass(r.device))) {
         check.route = a->positive ? "digest" : "negative";
@@ -128,7 +156,20 @@ Result<ImageCheck> judgeImage(const CheckedImage& ci, const HostImage* now, cons
         return check;
     }
     if (!now) return internal(r.label() + ": " + ci.name + " holds no pixels and its digest " + digest + " is not approved");
-    CAVITY_TRY(judgeByTolerance(check, ci, *now, tol, basePath, dir, errorCode));
+    const std::string cls = deviceClass(r.device), stage = r.id.substr(r.id.rfind('/') + 1);
+    if (const Approval* ref = j.approvals.reference(r.key, ci.name, cls, gpu::apiName(r.config.api), stage)) {
+        // Its own class's reference: the default tolerances, no device
+        // override (those allow for another device's rounding).
+        check.tolerance = j.manifest.forPipeline(r.config.kernel, "");
+        check.reference = cls + " " + ref->api + "/" + ref->stage;
+        check.approval = approvalText(*ref);
+        check.baseline = "store:" + ref->digest;
+        CAVITY_ASSIGN(const HostImage base, j.reference(ref->digest));
+        CAVITY_TRY(judgeAgainst(check, ci, *now, base, dir));
+        return check;
+    }
+    check.reference = "default";
+    CAVITY_TRY(judgeByTolerance(check, ci, *now, basePath, dir, errorCode));
     return check;
 }
 

@@ -10,6 +10,11 @@
 #include "plan/approvals.h"
 #include "gate/gate.h"
 #include "render/rendering.h"
+#include "store/store.h"
+
+#include <map>
+#include <memory>
+#include <mutex>
 
 #include <string>
 #include <vector>
@@ -23,13 +28,25 @@ struct Judge {
     Approvals approvals;     // approvals.json
     std::string out;         // the gate's output folder
     bool enforceCpuBudgets = false;   // GateOptions::enforceCpuBudgets
+    // Where approved references of a device class are fetched from, for an
+    // image judged by tolerance against its own class's reference.
+    std::shared_ptr<cavity::store::ImageStore> store;
+    // The references fetched so far, by digest (a configuration's two APIs
+    // and stages usually share one).
+    std::shared_ptr<std::map<std::string, HostImage>> fetched = std::make_shared<std::map<std::string, HostImage>>();
+    std::shared_ptr<std::mutex> fetchLock = std::make_shared<std::mutex>();
+    // The approved reference with this digest, from the store (once).
+    Result<HostImage> reference(const std::string& digest) const;
 };
 
 // Reads the tolerances and budgets, checks every baseline `configs` will be
 // compared with (present ones must be readable and of the configuration's
 // shape; a missing one is judged, not refused) and that `out` can be
 // written. Writes nothing.
-Result<Judge> prepareJudge(const std::string& baselines, const std::vector<RunConfig>& configs, const std::string& out);
+// `store`: where references of device classes are fetched from (opened
+// here, contacted only when an image needs one).
+Result<Judge> prepareJudge(const std::string& baselines, const std::vector<RunConfig>& configs, const std::string& out,
+                           const cavity::store::StoreOptions& store = {});
 
 // Judges one Rendering, writing its new images, the baselines as PNG and the
 // diff heat-maps under out/images/<id>/ (out/images/<id>/rep<K>/ for a later

@@ -11,6 +11,10 @@
 #include "core/progress.h"
 
 #include <algorithm>
+#include <atomic>
+#include <mutex>
+#include <optional>
+#include <thread>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -221,10 +225,55 @@ Result<render::Rendering> readRendering(const Item& item, const render::RenderEn
     return r;
 }
 
+// One configuration's renders, in order: a later repetition that matches
+// repetition 0 takes its check.
+Result<std::vector<ConfigResult>> judgeItem(const Item& item, const std::vector<RunConfig>& all, const Judge& judge,
+                                            Progress& progress, std::mutex& progressLock) {
+    std::vector<ConfigResult> out;
+    ConfigResult rep0;
+    for (const auto& entry : item.c->renders) {
+        CAVITY_ASSIGN(const render::Rendering r, readRendering(item, entry, all[item.c->index]));
+        CAVITY_ASSIGN(ConfigResult res, judgeRendering(r, judge, entry.repetition ? &rep0 : nullptr));
+        {
+            std::lock_guard<std::mutex> lock(progressLock);
+            progress.done(res.label() + " " + (res.passed() ? "pass" : "FAIL"), res.error.empty());
+        }
+        if (entry.repetition == 0) rep0 = res;
+        out.push_back(std::move(res));
+    }
+    return out;
+}
+
+// Every configuration judged on as many threads as the machine has cores:
+// reading, comparing and writing one configuration's images is independent
+// of every other's. Image reads, which swap fd 2, take core::stderrLock()
+// and so does every progress line. The results come in the items' order;
+// the first error in that order wins.
+Result<std::vector<std::vector<ConfigResult>>> judgeItems(const std::vector<Item>& items, const std::vector<RunConfig>& all,
+                                                          const Judge& judge, Progress& progress) {
+    std::vector<std::optional<Result<std::vector<ConfigResult>>>> results(items.size());
+    std::atomic<size_t> next{0};
+    std::mutex progressLock;
+    auto work = [&] {
+        for (size_t i = next++; i < items.size(); i = next++) results[i] = judgeItem(items[i], all, judge, progress, progressLock);
+    };
+    const size_t threads = std::clamp<size_t>(std::thread::hardware_concurrency(), 1, std::max<size_t>(1, items.size()));
+    std::vector<std::thread> pool;
+    for (size_t t = 1; t < threads; ++t) pool.emplace_back(work);
+    work();
+    for (auto& t : pool) t.join();
+    std::vector<std::vector<ConfigResult>> out;
+    for (auto& r : results) {
+        if (!*r) return r->error();
+        out.push_back(std::move(**r));
+    }
+    return out;
+}
+
 }  // namespace
 
-Result<GateRun> judgeFolders(const std::vector<std::string>& dirs, const std::string& baselines, const std::string& out,
-                             bool quiet, bool enforceCpuBudgets) {
+Result<GateRun> judgeFolders(const std::vector<std::string>& dirs, const JudgeOptions& o) {
+    const std::string& baselines = o.baselines;
     const auto start = std::chrono::steady_clock::now();
     CAVITY_ASSIGN(const auto folders, readFolders(dirs));
     CAVITY_ASSIGN(const Matrix matrix, renderedMatrix(folders, baselines));
@@ -236,24 +285,18 @@ Result<GateRun> judgeFolders(const std::vector<std::string>& dirs, const std::st
     std::vector<RunConfig> configs;
     for (const auto& f : folders)
         for (const auto& c : f.m.configs) configs.push_back(all[c.index]);
-    CAVITY_ASSIGN(Judge judge, prepareJudge(baselines, configs, out));
-    judge.enforceCpuBudgets = enforceCpuBudgets;
+    CAVITY_ASSIGN(Judge judge, prepareJudge(baselines, configs, o.out, o.store));
+    judge.enforceCpuBudgets = o.enforceCpuBudgets;
     const auto items = gateOrder(folders);
     double rendered = 0;
     GateRun run = runHeader(folders, matrix, rendered);
     size_t renders = 0;
     for (const auto& item : items) renders += item.c->renders.size();
-    Progress progress(renders, quiet, "gate: ");
-    for (const auto& item : items) {
-        ConfigResult rep0;
-        for (const auto& entry : item.c->renders) {
-            CAVITY_ASSIGN(const render::Rendering r, readRendering(item, entry, all[item.c->index]));
-            CAVITY_ASSIGN(ConfigResult res, judgeRendering(r, judge, entry.repetition ? &rep0 : nullptr));
-            progress.done(res.label() + " " + (res.passed() ? "pass" : "FAIL"), res.error.empty());
-            if (entry.repetition == 0) rep0 = res;
-            run.results.push_back(std::move(res));
-        }
-    }
+    Progress progress(renders, o.quiet, "gate: ");
+    CAVITY_ASSIGN(auto judged, judgeItems(items, all, judge, progress));
+    for (auto& results : judged)
+        for (auto& res : results) run.results.push_back(std::move(res));
+    run.renderSeconds = rendered;
     run.seconds = rendered + std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return run;
 }

@@ -17,8 +17,14 @@
 
 namespace cavity::gate {
 
-// enforceCpuBudgets: GateOptions::enforceCpuBudgets.
-Result<GateRun> judgeFolders(const std::vector<std::string>& dirs, const std::string& baselines, const std::string& out,
-                             bool quiet = false, bool enforceCpuBudgets = false);
+struct JudgeOptions {
+    std::string baselines = "baselines";
+    std::string out = "out/gate";
+    bool quiet = false;
+    bool enforceCpuBudgets = false;   // GateOptions::enforceCpuBudgets
+    cavity::store::StoreOptions store;        // GateOptions::store
+};
+
+Result<GateRun> judgeFolders(const std::vector<std::string>& dirs, const JudgeOptions& o);
 
 }  // namespace cavity::gate

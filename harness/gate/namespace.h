@@ -9,6 +9,7 @@ namespace cavity::images {}
 namespace cavity::plan {}
 namespace cavity::measure {}
 namespace cavity::render {}
+namespace cavity::store {}
 
 namespace cavity::gate {
 using namespace cavity::core;
@@ -18,4 +19,5 @@ using namespace cavity::images;
 using namespace cavity::plan;
 using namespace cavity::measure;
 using namespace cavity::render;
+using namespace cavity::store;
 }  // namespace cavity::gate

@@ -27,6 +27,7 @@ Status writeImage(const std::string& path, const HostImage& img, Encoding enc, b
     if (!exr && channels == 2) channels = 3;
     ImageSpec spec(img.width, img.height, channels, exr ? TypeDesc::HALF : (sixteenBit ? TypeDesc::UINT16 : TypeDesc::UINT8));
     if (exr) spec.attribute("compression", "zip");
+    if (enc == Encoding::Preview) spec.attribute("png:compressionLevel", 1);
     std::vector<float> px(size_t(img.width) * img.height * channels, 0.0f);
     for (size_t p = 0; p < size_t(img.width) * img.height; ++p)
         for (int c = 0; c < img.channels; ++c) {

@@ -2,6 +2,8 @@
 // harness's image-file calls to it.
 #include "images/image_module.h"
 
+#include "core/progress.h"
+
 #include "core/camera.h"
 #include "images/gbuffer_import.h"
 #include "images/image_io.h"
@@ -55,13 +57,17 @@ Status writeImage(const std::string& path, const HostImage& img, Encoding enc, b
     return m->writeImage(path, img, enc, sixteenBit);
 }
 
+// Reads swap fd 2 (core::stderrLock()): one at a time, and never beside a
+// progress line.
 Result<HostImage> readImage(const std::string& path) {
     CAVITY_ASSIGN(const ImageModule* m, imageModule());
+    std::lock_guard<std::mutex> hold(stderrLock());
     return m->readImage(path);
 }
 
 Result<GBufferImages> importGBuffer(const std::string& path, int width, int height) {
     CAVITY_ASSIGN(const ImageModule* m, imageModule());
+    std::lock_guard<std::mutex> hold(stderrLock());
     return m->importGBuffer(path, width, height, &frameUniforms);
 }
 

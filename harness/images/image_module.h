@@ -5,7 +5,7 @@
 // image: --help, bad flags, `list`, `compare`, the tests' own processes.
 //
 // Everything that calls OpenImageIO is in the module (image_io.cpp,
-// gbuffer_import.cpp, metrics_oiio.cpp, namespace cavity::oiio); the rest of
+// gbuffer_import.cpp, namespace cavity::oiio); the rest of
 // the harness calls it through this table. The module is built with this
 // build's compiler and flags, so the table passes C++ types as they are.
 #pragma once
@@ -21,13 +21,6 @@
 
 namespace cavity::images {
 
-// What OpenImageIO's ImageBufAlgo::compare reports (metrics.cpp says how it is used).
-struct OiioCompareSums {
-    double maxError = 0, meanError = 0, rmsError = 0;
-    long long failing = 0;   // pixels with any channel |a-b| > threshold
-    int maxX = 0, maxY = 0;
-};
-
 // The frame a G-buffer import rebuilds positions with (harness/core/camera.h):
 // passed in, so that the module carries no harness code of its own.
 using FrameFn = kernels::FrameUniforms (*)(int width, int height, int srcWidth, int srcHeight);
@@ -38,10 +31,6 @@ struct ImageModule {
     Result<HostImage> (*readImage)(const std::string& path);
     // gbuffer_import.h
     Result<GBufferImages> (*importGBuffer)(const std::string& path, int width, int height, FrameFn frame);
-    // metrics.cpp: pixels with any NaN or Inf; compare; NaN and Inf to 0 in place.
-    long long (*nonFinitePixels)(const HostImage& img);
-    OiioCompareSums (*compare)(const HostImage& a, const HostImage& b, double threshold);
-    void (*zeroNonFinite)(HostImage& img);
 };
 
 // The module's one exported symbol.
@@ -53,9 +42,6 @@ namespace oiio {
 Status writeImage(const std::string& path, const HostImage& img, Encoding enc, bool sixteenBit);
 Result<HostImage> readImage(const std::string& path);
 Result<GBufferImages> importGBuffer(const std::string& path, int width, int height, FrameFn frame);
-long long nonFinitePixels(const HostImage& img);
-OiioCompareSums compare(const HostImage& a, const HostImage& b, double threshold);
-void zeroNonFinite(HostImage& img);
 }  // namespace oiio
 
 // Loads the module on the first call (thread-safe) and keeps it loaded;

@@ -4,8 +4,9 @@
 
 extern "C" __attribute__((visibility("default"))) const cavity::images::ImageModule* cavity_image_module() {
     static const cavity::images::ImageModule table{
-        &cavity::images::oiio::writeImage,     &cavity::images::oiio::readImage, &cavity::images::oiio::importGBuffer,
-        &cavity::images::oiio::nonFinitePixels, &cavity::images::oiio::compare,   &cavity::images::oiio::zeroNonFinite,
+        &cavity::images::oiio::writeImage,
+        &cavity::images::oiio::readImage,
+        &cavity::images::oiio::importGBuffer,
     };
     return &table;
 }

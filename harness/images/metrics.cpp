@@ -1,9 +1,9 @@
 #include "images/metrics.h"
 
 #include "images/flip.h"
-#include "images/image_module.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -24,30 +24,63 @@ bool sameNonFinite(float a, float b) {
     return (std::isnan(a) && std::isnan(b)) || (std::isinf(a) && a == b);
 }
 
-// The metrics OIIO's compare gives, for images without non-finite values.
-// Its PSNR is left out: it uses max(1, largest value seen) as the peak, and
-// ours is for a signal range of 1.0 whatever the values.
-//
-// nfail (OIIO 2.4, imagebufalgo_compare.cpp) counts each pixel once when any
-// of its channels has |a-b| > failthresh (and a relative error above
-// failrelative, 0 here). CompareResults::error is true whenever nfail > 0,
-// so it says nothing about whether the comparison ran.
+// The sums of an image comparison, as OpenImageIO's ImageBufAlgo::compare
+// defines them (2.4, imagebufalgo_compare.cpp), for images without
+// non-finite values: over every channel of every pixel, the largest
+// |a - b| (and the first pixel where it occurs), the mean and the root mean
+// square of |a - b|, and the pixels with any channel's |a - b| above the
+// threshold. Our own code rather than OpenImageIO's since the judge also
+// runs where OpenImageIO is not installed (cavity_render on a GPU machine);
+// it sums in one order, so the same images give the same bits everywhere.
+// Its PSNR is left out: OpenImageIO uses max(1, largest value seen) as the
+// peak, and ours is for a signal range of 1.0 whatever the values.
 struct Sums {
     double maxAbs = 0, meanAbs = 0, rmse = 0;
     long long overThreshold = 0;
     int worstX = 0, worstY = 0;
 };
 
-// OIIO's compare, in the image module (image_module.h).
-Sums oiioCompare(const ImageModule& oiio, const HostImage& a, const HostImage& b, double threshold) {
-    const OiioCompareSums cr = oiio.compare(a, b, threshold);
-    return {cr.maxError, cr.meanError, cr.rmsError, cr.failing, cr.maxX, cr.maxY};
+Sums sums(const HostImage& a, const HostImage& b, double threshold) {
+    Sums s;
+    const double limit = float(threshold);
+    const size_t ch = size_t(a.channels), npix = size_t(a.width) * size_t(a.height);
+    double total = 0, total2 = 0;
+    size_t worst = 0;
+    for (size_t p = 0; p < npix; ++p) {
+        bool over = false;
+        for (size_t c = 0; c < ch; ++c) {
+            const double f = std::fabs(a.pixels[p * ch + c] - b.pixels[p * ch + c]);
+            total += f;
+            total2 += f * f;
+            if (f > s.maxAbs) {
+                s.maxAbs = f;
+                worst = p;
+            }
+            over |= f > limit;
+        }
+        s.overThreshold += over;
+    }
+    const double n = double(npix * ch);
+    s.meanAbs = total / n;
+    s.rmse = std::sqrt(total2 / n);
+    s.worstX = int(worst % size_t(a.width));
+    s.worstY = int(worst / size_t(a.width));
+    return s;
+}
+
+long long nonFinitePixels(const HostImage& img) {
+    long long n = 0;
+    const size_t ch = size_t(img.channels);
+    for (size_t p = 0; p * ch < img.pixels.size(); ++p)
+        n += std::any_of(img.pixels.begin() + long(p * ch), img.pixels.begin() + long(p * ch + ch),
+                         [](float v) { return !std::isfinite(v); });
+    return n;
 }
 
 // With non-finite values present, compare copies in which every pair holding
 // one is zeroed in both images, then take those pairs out of the averages and
 // put the mismatched ones back in as infinite, over-threshold errors.
-Sums compareWithNonFinite(const ImageModule& oiio, const HostImage& a, const HostImage& b, double threshold) {
+Sums compareWithNonFinite(const HostImage& a, const HostImage& b, double threshold) {
     HostImage sa = a, sb = b;
     const size_t npix = size_t(a.width) * a.height;
     const int ch = a.channels;
@@ -69,12 +102,12 @@ Sums compareWithNonFinite(const ImageModule& oiio, const HostImage& a, const Hos
             mismatchedPixels.push_back(p);
         }
     }
-    Sums s = oiioCompare(oiio, sa, sb, threshold);
+    Sums s = sums(sa, sb, threshold);
     const double nvals = double(npix) * ch, used = nvals - double(excluded);
     s.meanAbs = used > 0 ? s.meanAbs * nvals / used : 0.0;
     s.rmse = used > 0 ? std::sqrt(s.rmse * s.rmse * nvals / used) : 0.0;
     for (size_t p : mismatchedPixels) {
-        bool counted = false;   // by OIIO, through another channel of the pixel
+        bool counted = false;   // by sums(), through another channel of the pixel
         for (int c = 0; c < ch; ++c)
             counted |= std::fabs(sa.pixels[p * ch + c] - sb.pixels[p * ch + c]) > float(threshold);
         s.overThreshold += !counted;
@@ -87,10 +120,11 @@ Sums compareWithNonFinite(const ImageModule& oiio, const HostImage& a, const Hos
     return s;
 }
 
-// What SSIM and FLIP see: non-finite values as 0 (OIIO's NONFINITE_BLACK).
-HostImage finiteCopy(const ImageModule& oiio, const HostImage& img) {
+// What SSIM and FLIP see: non-finite values as 0.
+HostImage finiteCopy(const HostImage& img) {
     HostImage out = img;
-    oiio.zeroNonFinite(out);
+    for (float& v : out.pixels)
+        if (!std::isfinite(v)) v = 0.0f;
     return out;
 }
 
@@ -154,19 +188,31 @@ double ssim(const HostImage& a, const HostImage& b) {
     const int x0 = valid ? kSsimRadius : 0, x1 = valid ? w - kSsimRadius : w;
     const int y0 = valid ? kSsimRadius : 0, y1 = valid ? h - kSsimRadius : h;
     const size_t row = 5 * size_t(w);
-    std::vector<double> horizontal(row * h), m(row);
+    // The horizontal pass's rows in a ring of 2r + 1: the vertical pass at
+    // row y reads rows y - r .. y + r (clamped), and y only grows. A whole
+    // image of them would be 5 doubles a pixel (83 MB at 1920x1080), paged
+    // in and zeroed for every channel.
+    constexpr int kRing = 2 * kSsimRadius + 1;
+    std::vector<double> ring(row * kRing), m(row);
+    std::array<int, kRing> held;
     double total = 0;
     for (int c = 0; c < ch; ++c) {
-        for (int y = 0; y < h; ++y) {
-            const size_t first = size_t(y) * w * ch + c;
-            blurRowMoments(&a.pixels[first], &b.pixels[first], ch, w, &horizontal[row * y]);
-        }
+        held.fill(-1);
+        const auto horizontal = [&](int y) -> const double* {
+            double* slot = &ring[row * size_t(y % kRing)];
+            if (held[size_t(y % kRing)] != y) {
+                const size_t first = size_t(y) * w * ch + c;
+                blurRowMoments(&a.pixels[first], &b.pixels[first], ch, w, slot);
+                held[size_t(y % kRing)] = y;
+            }
+            return slot;
+        };
         double sum = 0;
         for (int y = y0; y < y1; ++y) {
             std::fill(m.begin(), m.end(), 0.0);
             for (int i = -kSsimRadius; i <= kSsimRadius; ++i) {
                 const double k = win[size_t(i + kSsimRadius)];
-                const double* t = &horizontal[row * size_t(std::clamp(y + i, 0, h - 1))];
+                const double* t = horizontal(std::clamp(y + i, 0, h - 1));
                 for (size_t j = 0; j < row; ++j) m[j] += k * t[j];
             }
             for (int x = x0; x < x1; ++x) {
@@ -229,7 +275,6 @@ Result<Report> compare(const HostImage& baselineIn, const HostImage& candidateIn
             return internal("image " + shape(*img) + " holds " + std::to_string(img->pixels.size()) + " floats");
     if (baselineIn.width <= 0 || baselineIn.height <= 0 || baselineIn.channels <= 0)
         return badInput("cannot compare empty images (" + shape(baselineIn) + ")");
-    CAVITY_ASSIGN(const ImageModule* oiio, imageModule());
     const bool dropAlpha = constantAlpha(baselineIn, candidateIn);
     const HostImage rgbBaseline = dropAlpha ? colourOnly(baselineIn) : HostImage{};
     const HostImage rgbCandidate = dropAlpha ? colourOnly(candidateIn) : HostImage{};
@@ -242,7 +287,7 @@ Result<Report> compare(const HostImage& baselineIn, const HostImage& candidateIn
         r.differingPixels = differing(baseline, candidate, options.differingDelta);
         r.differingShare = double(r.differingPixels) / (double(baseline.width) * baseline.height);
     }
-    r.nonFinite = oiio->nonFinitePixels(candidate);
+    r.nonFinite = nonFinitePixels(candidate);
     if (r.nonFinite > 0) {
         const size_t at = size_t(std::find_if(candidate.pixels.begin(), candidate.pixels.end(),
                                               [](float v) { return !std::isfinite(v); }) -
@@ -250,10 +295,10 @@ Result<Report> compare(const HostImage& baselineIn, const HostImage& candidateIn
         r.firstNonFiniteX = int(at % candidate.width);
         r.firstNonFiniteY = int(at / candidate.width);
     }
-    const bool anyNonFinite = r.nonFinite > 0 || oiio->nonFinitePixels(baseline) > 0;
+    const bool anyNonFinite = r.nonFinite > 0 || nonFinitePixels(baseline) > 0;
 
-    const Sums s = anyNonFinite ? compareWithNonFinite(*oiio, baseline, candidate, options.threshold)
-                                : oiioCompare(*oiio, baseline, candidate, options.threshold);
+    const Sums s = anyNonFinite ? compareWithNonFinite(baseline, candidate, options.threshold)
+                                : sums(baseline, candidate, options.threshold);
     r.maxAbs = s.maxAbs;
     r.meanAbs = s.meanAbs;
     r.rmse = s.rmse;
@@ -262,8 +307,8 @@ Result<Report> compare(const HostImage& baselineIn, const HostImage& candidateIn
     r.psnr = r.rmse > 0 ? -20.0 * std::log10(r.rmse) : kInf;   // 20 log10(1 / rmse)
     r.overThresholdShare = double(s.overThreshold) / (double(baseline.width) * baseline.height);
 
-    const HostImage fa = anyNonFinite ? finiteCopy(*oiio, baseline) : HostImage{};
-    const HostImage fb = anyNonFinite ? finiteCopy(*oiio, candidate) : HostImage{};
+    const HostImage fa = anyNonFinite ? finiteCopy(baseline) : HostImage{};
+    const HostImage fb = anyNonFinite ? finiteCopy(candidate) : HostImage{};
     const HostImage& a = anyNonFinite ? fa : baseline;
     const HostImage& b = anyNonFinite ? fb : candidate;
     r.ssim = ssim(a, b);

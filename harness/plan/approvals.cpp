@@ -22,6 +22,21 @@ const Approval* Approvals::find(const std::string& key, const std::string& image
     return positive;
 }
 
+const Approval* Approvals::reference(const std::string& key, const std::string& image, const std::string& deviceClass,
+                                     const std::string& api, const std::string& stage) const {
+    const Approval* best = nullptr;
+    int bestScore = -1;
+    for (const auto& a : entries) {
+        if (!a.positive || a.key != key || a.image != image || a.deviceClass != deviceClass) continue;
+        const int score = 2 * (a.api == api) + (a.stage == stage);
+        if (score > bestScore || (score == bestScore && a.when >= best->when)) {
+            best = &a;
+            bestScore = score;
+        }
+    }
+    return best;
+}
+
 std::string deviceClass(const std::string& deviceName) {
     const std::string name = deviceName.substr(0, std::min(deviceName.find(" ("), deviceName.find('/')));
     std::string out;
@@ -53,7 +68,9 @@ Result<Approvals> loadApprovals(const std::string& path) {
             CAVITY_ASSIGN(*out, e.str(field));
         }
         if (verdict != "positive" && verdict != "negative") return e.bad("verdict", "must be positive or negative");
-        if (x.digest.rfind("fnv1a64:", 0) != 0) return e.bad("digest", "must be a digest (fnv1a64:...)");
+        if (x.digest.size() != 24 || x.digest.rfind("fnv1a64:", 0) != 0 ||
+            x.digest.find_first_not_of("0123456789abcdef", 8) != std::string::npos)
+            return e.bad("digest", "must be fnv1a64: and 16 lower-case hex digits");
         x.positive = verdict == "positive";
         a.entries.push_back(std::move(x));
     }

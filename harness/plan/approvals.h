@@ -30,6 +30,13 @@ struct Approvals {
     // (known bad anywhere), else a positive on `deviceClass`; null if none.
     const Approval* find(const std::string& key, const std::string& image, const std::string& digest,
                          const std::string& deviceClass) const;
+    // The approved positive of this key and image on `deviceClass` nearest
+    // to an image rendered with `api` and `stage`: the same API and stage,
+    // else the same API, else the same stage, else any; the latest approved
+    // among equals. Null when the class has none: the image is then judged
+    // against the default class's reference (baselines/images).
+    const Approval* reference(const std::string& key, const std::string& image, const std::string& deviceClass,
+                              const std::string& api, const std::string& stage) const;
 };
 
 // A device's class as approvals name it: its name up to any " (" or "/"

@@ -26,7 +26,6 @@ constexpr char kMagic[8] = {'C', 'A', 'V', 'F', '3', '2', 'Z', '1'};
 // zlib's default level: on 1920x1080 renders level 1 gave files 1.4x larger
 // (colour 1.6x) for 40% of the time; the GPU machine's upload is the scarcer
 // resource (README.md, "Why this image format").
-constexpr int kLevel = 6;
 
 void putU32(std::string& s, size_t at, uint32_t v) {
     for (int i = 0; i < 4; ++i) s[at + i] = char(v >> (8 * i) & 0xff);
@@ -145,7 +144,7 @@ std::string shapeOf(uint64_t w, uint64_t h, uint64_t c) {
 
 }  // namespace
 
-std::string encodeImage(const HostImage& image) {
+std::string encodeImage(const HostImage& image, int level) {
     uint32_t sampleBytes = 4;
     const std::string raw = narrowest(image, sampleBytes);
     uLongf packed = compressBound(uLong(raw.size()));
@@ -159,13 +158,13 @@ std::string encodeImage(const HostImage& image) {
     // compress2 only fails for lack of memory or a too small buffer, and
     // compressBound() is large enough by definition.
     compress2(reinterpret_cast<Bytef*>(out.data() + kImageHeaderBytes), &packed,
-              reinterpret_cast<const Bytef*>(raw.data()), uLong(raw.size()), kLevel);
+              reinterpret_cast<const Bytef*>(raw.data()), uLong(raw.size()), level);
     out.resize(kImageHeaderBytes + packed);
     return out;
 }
 
-Result<uint64_t> writeImageFile(const std::string& path, const HostImage& image) {
-    const std::string bytes = encodeImage(image);
+Result<uint64_t> writeImageFile(const std::string& path, const HostImage& image, int level) {
+    const std::string bytes = encodeImage(image, level);
     const std::string tmp = path + ".tmp-" + std::to_string(::getpid());
     {
         std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
@@ -179,24 +178,22 @@ Result<uint64_t> writeImageFile(const std::string& path, const HostImage& image)
     return uint64_t(bytes.size());
 }
 
-Result<HostImage> readImageFile(const std::string& path, const StoredImage& expect) {
-    // A folder opens as a stream on Linux, and reading it throws from inside
-    // libstdc++ (EISDIR): only a regular file is read.
-    std::error_code ec;
-    if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec))
-        return badInput(path + ": not a file (the manifest lists an image file here)");
-    std::ifstream f(path, std::ios::binary);
-    if (!f) return badInput(path + ": missing or unreadable (the manifest lists it)");
-    const std::string data((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
-    const std::string recorded = ", the manifest says " + std::to_string(expect.bytes);
+namespace {
+
+// The checks of readImageFile() on bytes already read, in its order;
+// without `expect` (a store object), only the format's own consistency.
+Result<HostImage> decode(const std::string& data, const std::string& path, const StoredImage* expect) {
+    const std::string recorded = expect ? ", the manifest says " + std::to_string(expect->bytes) : std::string();
     if (data.size() < kImageHeaderBytes)
         return badInput(path + ": truncated: " + std::to_string(data.size()) + " bytes" + recorded);
     if (std::memcmp(data.data(), kMagic, sizeof kMagic) != 0)
         return badInput(path + ": not a " + std::string(kImageFormat) + " image (no CAVF32Z1 header)");
     const uint32_t w = getU32(data, 8), h = getU32(data, 12), c = getU32(data, 16);
-    if (int64_t(w) != expect.width || int64_t(h) != expect.height || int64_t(c) != expect.channels)
+    if (expect && (int64_t(w) != expect->width || int64_t(h) != expect->height || int64_t(c) != expect->channels))
         return badInput(path + ": wrong size: the file is " + shapeOf(w, h, c) + ", the manifest says " +
-                        shapeOf(uint64_t(expect.width), uint64_t(expect.height), uint64_t(expect.channels)));
+                        shapeOf(uint64_t(expect->width), uint64_t(expect->height), uint64_t(expect->channels)));
+    if (!expect && (w == 0 || h == 0 || c == 0 || c > 4 || uint64_t(w) * h > (uint64_t(1) << 28)))
+        return badInput(path + ": corrupt header: " + shapeOf(w, h, c));
     const uint32_t sampleBytes = getU32(data, 20);
     if (sampleBytes != 1 && sampleBytes != 2 && sampleBytes != 4)
         return badInput(path + ": corrupt header: " + std::to_string(sampleBytes) + " bytes per sample (1, 2 or 4)");
@@ -204,9 +201,9 @@ Result<HostImage> readImageFile(const std::string& path, const StoredImage& expe
     if (getU64(data, 24) != raw)
         return badInput(path + ": corrupt header: stored size " + std::to_string(getU64(data, 24)) + " for " +
                         shapeOf(w, h, c) + " at " + std::to_string(sampleBytes) + " bytes (" + std::to_string(raw) + ")");
-    if (data.size() < expect.bytes)
+    if (expect && data.size() < expect->bytes)
         return badInput(path + ": truncated: " + std::to_string(data.size()) + " bytes" + recorded);
-    if (data.size() > expect.bytes)
+    if (expect && data.size() > expect->bytes)
         return badInput(path + ": " + std::to_string(data.size()) + " bytes" + recorded + " (appended to?)");
     if (raw > std::numeric_limits<uLong>::max()) return badInput(path + ": image too large for zlib here");
     std::string planes(raw, '\0');
@@ -220,10 +217,30 @@ Result<HostImage> readImageFile(const std::string& path, const StoredImage& expe
                                    : std::string("does not inflate (") + zError(z) + ")"));
     HostImage image{int(w), int(h), int(c)};
     widen(planes, sampleBytes, image);
-    const std::string digest = imageDigest(image);
-    if (digest != expect.digest)
-        return badInput(path + ": corrupt: digest " + digest + ", the manifest says " + expect.digest);
+    if (expect) {
+        const std::string digest = imageDigest(image);
+        if (digest != expect->digest)
+            return badInput(path + ": corrupt: digest " + digest + ", the manifest says " + expect->digest);
+    }
     return image;
+}
+
+}  // namespace
+
+Result<HostImage> decodeImage(const std::string& bytes, const std::string& label) {
+    return decode(bytes, label, nullptr);
+}
+
+Result<HostImage> readImageFile(const std::string& path, const StoredImage& expect) {
+    // A folder opens as a stream on Linux, and reading it throws from inside
+    // libstdc++ (EISDIR): only a regular file is read.
+    std::error_code ec;
+    if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec))
+        return badInput(path + ": not a file (the manifest lists an image file here)");
+    std::ifstream f(path, std::ios::binary);
+    if (!f) return badInput(path + ": missing or unreadable (the manifest lists it)");
+    const std::string data((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+    return decode(data, path, &expect);
 }
 
 }  // namespace cavity::render

@@ -42,14 +42,19 @@ struct StoredImage {
 };
 
 // The file's bytes.
-std::string encodeImage(const HostImage& image);
+// `level`: zlib's, 1 (fast) to 9 (small); render folders use 6.
+std::string encodeImage(const HostImage& image, int level = 6);
 // Writes through a temporary name and a rename; returns the file's size.
-Result<uint64_t> writeImageFile(const std::string& path, const HostImage& image);
+Result<uint64_t> writeImageFile(const std::string& path, const HostImage& image, int level = 6);
 // Reads and checks against `expect`, in the order a damaged file is best
 // described: missing, shorter than a header, not this format, another
 // shape, truncated or longer than recorded, a zlib stream that does not
 // inflate to exactly the raw byte count, a digest other than recorded.
 // Every message starts with "PATH: ".
 Result<HostImage> readImageFile(const std::string& path, const StoredImage& expect);
+// Decodes the bytes of one image file, checking the format's own
+// consistency (header, sizes, the zlib stream) but no digest; messages start
+// with "LABEL: ".
+Result<HostImage> decodeImage(const std::string& bytes, const std::string& label);
 
 }  // namespace cavity::render

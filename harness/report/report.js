@@ -88,7 +88,10 @@
   function comparison(i) {
     const row = el('div', {class: 'row'});
     const baseline = view.images[i.baseline_png];
-    row.append(el('figure', {class: 'zoomable'}, el('figcaption', {}, i.image + ' baseline'), image(i.baseline_png, 'z')));
+    // The reference judged against: the default class's baseline, or the
+    // nearest image approved for this device class (from the image store).
+    const ref = i.reference && i.reference !== 'default' ? ' (approved ' + i.reference + ')' : '';
+    row.append(el('figure', {class: 'zoomable'}, el('figcaption', {}, i.image + ' baseline' + ref), image(i.baseline_png, 'z')));
     row.append(el('figure', {class: 'zoomable'}, el('figcaption', {}, 'new'), image(i.new_png, 'z')));
     const threshold = i.tolerance.pixel_threshold;
     row.append(el('figure', {class: 'zoomable'}, el('figcaption', {}, '|new - baseline|'),

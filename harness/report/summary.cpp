@@ -150,13 +150,18 @@ std::vector<std::string> noteLines(const GateRun& run) {
     }
     std::vector<std::string> n = notedLines(run);
     std::map<std::string, int> routes;
+    int ownClass = 0;   // judged by tolerance against an image approved for its own device class
     for (const auto& r : run.results)
-        for (const auto& i : r.images) ++routes[i.route];
-    if (routes.count("digest") || routes.count("negative")) {
+        for (const auto& i : r.images) {
+            ++routes[i.route];
+            ownClass += i.route == "tolerance" && !i.reference.empty() && i.reference != "default";
+        }
+    if (routes.count("digest") || routes.count("negative") || ownClass) {
         std::string line = "- images decided";
         for (const auto& [route, count] : routes)
             line += std::string(line.back() == 'd' ? ": " : ", ") + std::to_string(count) + " by " +
                     (route == "negative" ? "a known-bad digest" : route == "digest" ? "approved digest" : "tolerance");
+        if (ownClass) line += " (" + std::to_string(ownClass) + " against their device class's approved reference)";
         n.push_back(line);
     }
     for (const auto& e : run.backendErrors) n.push_back("- backend could not start: " + e);
@@ -180,7 +185,9 @@ std::string headline(const GateRun& run, int failed, int noted) {
            (failed ? "**" + std::to_string(failed) + " of " + total + " configurations failed**"
             : noted ? "no regression in " + total + " configurations, " + std::to_string(noted) + " reported"
                     : "all " + total + " configurations passed") +
-           " (" + num(run.seconds, 3) + " s)";
+           (run.renderSeconds > 0 ? " (rendered in " + num(run.renderSeconds, 3) + " s, judged in " +
+                                        num(run.seconds - run.renderSeconds, 3) + " s)"
+                                  : " (" + num(run.seconds, 3) + " s)");
 }
 
 }  // namespace

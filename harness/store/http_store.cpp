@@ -1,0 +1,219 @@
+// The HTTP store: objects at <URL>/fnv1a64/<hex>.f32z, read with GET (after
+// a look in the local cache), probed with HEAD, written with PUT. Plain HTTP
+// rather than S3's signed requests: every WebDAV server (nginx's dav module,
+// Apache's mod_dav), an S3 or GCS bucket behind an HTTP gateway, Artifactory
+// or a static file server answers GET, HEAD and PUT with nothing more than a
+// token or a password, and nginx from Debian is a real server the tests can
+// start (docs/store.md).
+#include "store/store.h"
+
+#include "core/digest.h"
+#include "core/json_file.h"
+#include "render/image_file.h"
+
+#include <curl/curl.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <mutex>
+
+namespace cavity::store {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr size_t kMaxObjectBytes = size_t(1) << 30;
+
+std::string env(const char* name) {
+    const char* v = std::getenv(name);
+    return v ? v : "";
+}
+
+std::string cacheFolder(const std::string& given) {
+    if (!given.empty()) return given;
+    if (const std::string c = env("CAVITY_STORE_CACHE"); !c.empty()) return c;
+    if (const std::string x = env("XDG_CACHE_HOME"); !x.empty()) return (fs::path(x) / "cavity" / "store").string();
+    const std::string home = env("HOME");
+    return (fs::path(home.empty() ? "." : home) / ".cache" / "cavity" / "store").string();
+}
+
+size_t onBody(char* data, size_t size, size_t n, void* user) {
+    auto* out = static_cast<std::string*>(user);
+    if (out->size() + size * n > kMaxObjectBytes) return 0;   // CURLE_WRITE_ERROR
+    out->append(data, size * n);
+    return size * n;
+}
+
+struct Upload {
+    const std::string* bytes;
+    size_t at = 0;
+};
+
+size_t onUpload(char* buffer, size_t size, size_t n, void* user) {
+    auto* u = static_cast<Upload*>(user);
+    const size_t left = u->bytes->size() - u->at, take = std::min(left, size * n);
+    std::copy_n(u->bytes->data() + u->at, take, buffer);
+    u->at += take;
+    return take;
+}
+
+struct Response {
+    long status = 0;
+    std::string body;
+};
+
+class HttpStore final : public ImageStore {
+public:
+    HttpStore(std::string url, std::string cache) : url_(std::move(url)), cache_(std::move(cache)) {
+        if (!url_.empty() && url_.back() == '/') url_.pop_back();
+    }
+    std::string where() const override { return url_; }
+
+    Result<std::string> getBytes(const std::string& digest) override {
+        const fs::path cached = fs::path(cache_) / objectPath(digest);
+        std::error_code ec;
+        if (fs::is_regular_file(cached, ec)) {
+            std::ifstream f(cached, std::ios::binary);
+            std::string bytes((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+            if (checkObject(bytes, digest, cached.string()).ok()) return bytes;
+            fs::remove(cached, ec);   // damaged in the cache: fetched again below
+        }
+        CAVITY_ASSIGN(Response r, request("GET", digest, nullptr));
+        if (r.status == 404) return storeUnavailable("store " + url_ + ": no object " + digest + " (HTTP 404)");
+        if (r.status != 200) return refused("GET", digest, r.status);
+        CAVITY_TRY(checkObject(r.body, digest, url_ + "/" + objectPath(digest)));
+        fs::create_directories(cached.parent_path(), ec);
+        // The cache is a convenience: an object that cannot be kept there is
+        // still returned, and one that is kept is whole (written, then renamed).
+        if (!ec) (void)writeFileAtomically(cached.string(), r.body);
+        return std::move(r.body);
+    }
+
+    Result<bool> has(const std::string& digest) override {
+        CAVITY_ASSIGN(Response r, request("HEAD", digest, nullptr));
+        if (r.status == 200) return true;
+        if (r.status == 404) return false;
+        return refused("HEAD", digest, r.status);
+    }
+
+    Status put(const std::string& digest, const std::string& bytes) override {
+        CAVITY_ASSIGN(Response r, request("PUT", digest, &bytes));
+        if (r.status == 200 || r.status == 201 || r.status == 204) return {};
+        return refused("PUT", digest, r.status);
+    }
+
+private:
+    // A decodable image whose pixels have the digest it is filed under.
+    static Status checkObject(const std::string& bytes, const std::string& digest, const std::string& label) {
+        auto image = render::decodeImage(bytes, label);
+        if (!image) return storeCorrupt(image.error().message);
+        if (const std::string actual = imageDigest(*image); actual != digest)
+            return storeCorrupt(label + ": corrupt: its pixels have digest " + actual + ", not " + digest);
+        return {};
+    }
+
+    Error refused(const std::string& method, const std::string& digest, long status) const {
+        const std::string head = "store " + url_ + ": " + method + " " + objectPath(digest) + ": HTTP " + std::to_string(status);
+        if (status == 401)
+            return storeUnavailable(head + (method == "PUT" ? ": credentials missing, refused, or without write access"
+                                                            : ": credentials missing or refused") +
+                                    " (CAVITY_STORE_TOKEN, CAVITY_STORE_USER and CAVITY_STORE_PASSWORD, or a netrc file)");
+        if (status == 403 || status == 405)
+            return storeUnavailable(head + (method == "PUT" ? ": these credentials may not write to the store"
+                                                             : ": these credentials may not read the store"));
+        return storeUnavailable(head);
+    }
+
+    Result<Response> request(const std::string& method, const std::string& digest, const std::string* upload);
+
+    std::string url_, cache_;
+};
+
+void globalInit() {
+    static std::once_flag once;
+    std::call_once(once, [] { curl_global_init(CURL_GLOBAL_DEFAULT); });
+}
+
+// Credentials, CA and time limits from the environment; nothing of them is
+// ever put into a message.
+void configure(CURL* h, curl_slist*& headers) {
+    if (const std::string token = env("CAVITY_STORE_TOKEN"); !token.empty()) {
+        headers = curl_slist_append(headers, ("Authorization: Bearer " + token).c_str());
+        curl_easy_setopt(h, CURLOPT_HTTPHEADER, headers);
+    } else if (const std::string user = env("CAVITY_STORE_USER"); !user.empty()) {
+        curl_easy_setopt(h, CURLOPT_HTTPAUTH, long(CURLAUTH_BASIC));
+        curl_easy_setopt(h, CURLOPT_USERNAME, user.c_str());
+        curl_easy_setopt(h, CURLOPT_PASSWORD, env("CAVITY_STORE_PASSWORD").c_str());
+    } else {
+        curl_easy_setopt(h, CURLOPT_NETRC, long(CURL_NETRC_OPTIONAL));
+        if (const std::string netrc = env("CAVITY_STORE_NETRC"); !netrc.empty())
+            curl_easy_setopt(h, CURLOPT_NETRC_FILE, netrc.c_str());
+    }
+    if (const std::string ca = env("CAVITY_STORE_CA"); !ca.empty()) curl_easy_setopt(h, CURLOPT_CAINFO, ca.c_str());
+    long seconds = 600;
+    if (const std::string t = env("CAVITY_STORE_TIMEOUT"); !t.empty()) seconds = std::max(1L, std::atol(t.c_str()));
+    curl_easy_setopt(h, CURLOPT_TIMEOUT, seconds);
+    curl_easy_setopt(h, CURLOPT_CONNECTTIMEOUT, std::min(seconds, 20L));
+    curl_easy_setopt(h, CURLOPT_NOSIGNAL, 1L);
+    curl_easy_setopt(h, CURLOPT_PROTOCOLS_STR, "http,https");
+    curl_easy_setopt(h, CURLOPT_FOLLOWLOCATION, 0L);   // credentials go to this host only
+}
+
+std::string failureText(CURLcode c, const char* detail) {
+    std::string why = detail[0] ? detail : curl_easy_strerror(c);
+    if (c == CURLE_PEER_FAILED_VERIFICATION || c == CURLE_SSL_CACERT_BADFILE || c == CURLE_SSL_CONNECT_ERROR)
+        return "TLS: " + why + " (certificates are always verified; give the server's CA with CAVITY_STORE_CA)";
+    if (c == CURLE_OPERATION_TIMEDOUT) return why + " (CAVITY_STORE_TIMEOUT sets the limit in seconds)";
+    if (c == CURLE_PARTIAL_FILE || c == CURLE_RECV_ERROR) return "the transfer broke off: " + why;
+    return why;
+}
+
+Result<Response> HttpStore::request(const std::string& method, const std::string& digest, const std::string* upload) {
+    globalInit();
+    CURL* h = curl_easy_init();
+    if (!h) return internal("store " + url_ + ": curl_easy_init failed");
+    curl_slist* headers = nullptr;
+    char detail[CURL_ERROR_SIZE] = {0};
+    Response r;
+    Upload up{upload};
+    const std::string object = url_ + "/" + objectPath(digest);
+    curl_easy_setopt(h, CURLOPT_URL, object.c_str());
+    curl_easy_setopt(h, CURLOPT_ERRORBUFFER, detail);
+    curl_easy_setopt(h, CURLOPT_WRITEFUNCTION, onBody);
+    curl_easy_setopt(h, CURLOPT_WRITEDATA, &r.body);
+    configure(h, headers);
+    if (method == "HEAD") curl_easy_setopt(h, CURLOPT_NOBODY, 1L);
+    if (upload) {
+        curl_easy_setopt(h, CURLOPT_UPLOAD, 1L);
+        curl_easy_setopt(h, CURLOPT_READFUNCTION, onUpload);
+        curl_easy_setopt(h, CURLOPT_READDATA, &up);
+        curl_easy_setopt(h, CURLOPT_INFILESIZE_LARGE, curl_off_t(upload->size()));
+    }
+    const CURLcode c = curl_easy_perform(h);
+    curl_easy_getinfo(h, CURLINFO_RESPONSE_CODE, &r.status);
+    curl_slist_free_all(headers);
+    curl_easy_cleanup(h);
+    if (c == CURLE_WRITE_ERROR)
+        return storeCorrupt("store " + url_ + ": " + objectPath(digest) + ": larger than " +
+                            std::to_string(kMaxObjectBytes >> 20) + " MiB, no image object");
+    if (c != CURLE_OK) return storeUnavailable("store " + url_ + ": " + method + " " + objectPath(digest) + ": " + failureText(c, detail));
+    return r;
+}
+
+}  // namespace
+
+Result<std::unique_ptr<ImageStore>> httpStore(const std::string& url, const std::string& cacheDir) {
+    const size_t host = url.find("://") + 3;
+    const size_t slash = url.find('/', host);
+    if (url.substr(host, slash == std::string::npos ? std::string::npos : slash - host).find('@') != std::string::npos)
+        return badInput("--store: credentials in the URL are refused (they would be printed with it); give them in "
+                        "CAVITY_STORE_TOKEN, CAVITY_STORE_USER and CAVITY_STORE_PASSWORD, or a netrc file");
+    if (host >= url.size() || url[host] == '/') return badInput("--store " + url + ": no host in the URL");
+    return std::unique_ptr<ImageStore>(std::make_unique<HttpStore>(url, cacheFolder(cacheDir)));
+}
+
+}  // namespace cavity::store

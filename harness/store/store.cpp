@@ -1,0 +1,113 @@
+#include "store/store.h"
+
+#include "core/digest.h"
+#include "core/json_file.h"
+#include "render/image_file.h"
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+
+namespace cavity::store {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr const char* kAlgorithm = "fnv1a64:";
+constexpr size_t kHexDigits = 16;
+
+class FolderStore final : public ImageStore {
+public:
+    explicit FolderStore(std::string root) : root_(std::move(root)) {}
+    std::string where() const override { return root_; }
+
+    Result<std::string> getBytes(const std::string& digest) override {
+        const fs::path p = fs::path(root_) / objectPath(digest);
+        std::error_code ec;
+        if (!fs::is_regular_file(p, ec))
+            return storeUnavailable("store " + root_ + ": no object " + digest + " (" + p.string() + ")");
+        std::ifstream f(p, std::ios::binary);
+        if (!f) return storeUnavailable("store " + root_ + ": cannot read " + p.string());
+        return std::string((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+    }
+
+    Result<bool> has(const std::string& digest) override {
+        std::error_code ec;
+        return fs::is_regular_file(fs::path(root_) / objectPath(digest), ec);
+    }
+
+    Status put(const std::string& digest, const std::string& bytes) override {
+        const fs::path p = fs::path(root_) / objectPath(digest);
+        std::error_code ec;
+        fs::create_directories(p.parent_path(), ec);
+        if (ec) return storeUnavailable("store " + root_ + ": cannot create " + p.parent_path().string() + ": " + ec.message());
+        return writeFileAtomically(p.string(), bytes);
+    }
+
+private:
+    std::string root_;
+};
+
+std::string env(const char* name) {
+    const char* v = std::getenv(name);
+    return v ? v : "";
+}
+
+}  // namespace
+
+bool validDigest(const std::string& digest) {
+    const std::string prefix = kAlgorithm;
+    if (digest.size() != prefix.size() + kHexDigits || digest.compare(0, prefix.size(), prefix) != 0) return false;
+    for (size_t i = prefix.size(); i < digest.size(); ++i) {
+        const char c = digest[i];
+        if (!((c >= '0' && c <= '9') || (c >= 'a' && c <= 'f'))) return false;
+    }
+    return true;
+}
+
+std::string objectPath(const std::string& digest) {
+    const std::string prefix = kAlgorithm;
+    return "fnv1a64/" + digest.substr(prefix.size()) + ".f32z";
+}
+
+std::string defaultLocation(const std::string& baselines) {
+    const std::string fromEnv = env("CAVITY_STORE");
+    return fromEnv.empty() ? (fs::path(baselines) / "store").string() : fromEnv;
+}
+
+std::unique_ptr<ImageStore> folderStore(const std::string& root) { return std::make_unique<FolderStore>(root); }
+
+Result<std::unique_ptr<ImageStore>> openStore(const StoreOptions& o, const std::string& flag) {
+    const std::string& at = o.location;
+    if (at.empty()) return badInput(flag + ": empty (a folder, or an http:// or https:// URL)");
+    if (at.rfind("http://", 0) == 0 || at.rfind("https://", 0) == 0) return httpStore(at, o.cache);
+    std::string root = at;
+    if (root.rfind("file://", 0) == 0) root = root.substr(7);
+    else if (root.find("://") != std::string::npos)
+        return badInput(flag + " " + at + ": unknown scheme (a folder, file://, http:// or https://)");
+    std::error_code ec;
+    if (fs::exists(root, ec) && !fs::is_directory(root, ec))
+        return badInput(flag + " " + root + ": not a folder (a store is a folder or a URL)");
+    return folderStore(root);
+}
+
+Result<HostImage> getImage(ImageStore& s, const std::string& digest) {
+    if (!validDigest(digest)) return badInput("digest '" + digest + "': not fnv1a64: and 16 hex digits");
+    CAVITY_ASSIGN(const std::string bytes, s.getBytes(digest));
+    const std::string label = s.where() + "/" + objectPath(digest);
+    auto image = render::decodeImage(bytes, label);
+    if (!image) return storeCorrupt(image.error().message);
+    const std::string actual = imageDigest(*image);
+    if (actual != digest) return storeCorrupt(label + ": corrupt: its pixels have digest " + actual + ", not " + digest);
+    return image;
+}
+
+Result<std::string> putImage(ImageStore& s, const HostImage& image) {
+    const std::string digest = imageDigest(image);
+    CAVITY_TRY(s.put(digest, render::encodeImage(image)));
+    return digest;
+}
+
+}  // namespace cavity::store
