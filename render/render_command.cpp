@@ -4,6 +4,7 @@
 
 #include "cli.h"
 #include "flags.h"
+#include "gate/gate_judge.h"
 #include "render/render_folder.h"
 #include "measure/results.h"
 #include "measure/runner.h"
@@ -45,6 +46,12 @@ const cli::CommandSpec& renderSpec() {
             {"--max-time", "S", "stop measuring after S seconds (0.001..3600)"},
             {"--kernel-source", "NAME=FILE", "render with kernels/NAME replaced by FILE's text (a planted defect); repeatable",
              "Options", true},
+            {"--store", "DIR|URL",
+             "judge here: an image whose digest is not approved is compared, with the gate's tolerances "
+             "(<baselines>/manifest.json), with the nearest image approved for the device's class, fetched from this "
+             "image store; only the images that fail (or have no reference of the class) are written, the others "
+             "travel as verdicts and metrics (docs/store.md)"},
+            cli::storeCacheFlag(),
         },
         "",
         "",
@@ -53,6 +60,7 @@ const cli::CommandSpec& renderSpec() {
         {
             "cavity_render --matrix gpu --out out/render",
             "cavity_render --matrix ci --backend vk --kernel-source ssao_alchemy.glsl=my_alchemy.glsl --out out/edit",
+            "cavity_render --matrix gpu --store references/ --out out/render",
             "cavity_render quality --kernel alchemy_fast --res 1920x1080",
         },
     };
@@ -83,6 +91,32 @@ int worst(const RenderManifest& m) {
             gpuError |= r.errorCode != 0 && r.errorCode != int(ErrorCode::Regression);
         }
     return bad ? 2 : backend ? 3 : gpuError ? 4 : nonFinite ? 1 : 0;
+}
+
+struct JudgedHere {
+    int passed = 0, failed = 0, unjudged = 0;
+};
+
+// --store: the gate's own judging of each image that is not approved by
+// digest, against its class's approved image from the store; the verdict
+// and metrics go into the manifest (Rendering::judged), and the folder
+// writer keeps the files of those that failed.
+Status judgeHere(Rendering& r, const gate::Judge& judge, JudgedHere& tally) {
+    CAVITY_ASSIGN(const gate::ConfigResult res, gate::judgeRendering(r, judge));
+    for (const auto& check : res.images) {
+        if (check.route == "unjudged") ++tally.unjudged;
+        if (check.route != "tolerance") continue;
+        RemoteCheck k;
+        k.reference = check.reference;
+        k.referenceDigest = check.baseline.substr(std::string("store:").size());
+        k.passed = check.passed();
+        k.failures = check.failures;
+        k.metrics = check.metrics ? gate::metricsJson(*check.metrics) : nlohmann::json::object();
+        k.tolerance = gate::toleranceJson(check.tolerance);
+        (k.passed ? tally.passed : tally.failed) += 1;
+        r.judged[check.image] = std::move(k);
+    }
+    return {};
 }
 
 }  // namespace
@@ -125,6 +159,12 @@ Result<RenderCommand> parseRenderFlags(const std::vector<std::string>& argv) {
             o.render.maxNoise = pct / 100;
         } else if (flag == "--max-time") {
             CAVITY_ASSIGN(o.render.maxSeconds, cli::parseNumber(flag, v, 0.001, 3600));
+        } else if (flag == "--store") {
+            if (!o.store) o.store.emplace();
+            o.store->location = v;
+        } else if (flag == "--store-cache") {
+            if (!o.store) o.store.emplace();
+            o.store->cache = v;
         }
     }
     // As cavity's commands find them: from the working directory up, else the
@@ -174,12 +214,22 @@ int renderCommand(const std::vector<std::string>& argv) {
     // render of a known device sends back its manifest alone.
     auto approvals = plan::loadApprovals((fs::path(o->baselines) / "approvals.json").string());
     if (!approvals) return fail(approvals.error());
+    std::optional<gate::Judge> judge;
+    if (o->store) {
+        if (o->store->location.empty() && !o->store->cache.empty())
+            return fail(badInput("--store-cache: needs --store (the image store to judge against)"));
+        auto j = gate::prepareJudge(o->baselines, selected, o->out, *o->store, true);
+        if (!j) return fail(j.error());
+        judge = std::move(*j);
+    }
     FolderWriter writer(o->out, header, std::move(*approvals));
     if (auto st = writer.begin(); !st) return fail(st.error());
+    JudgedHere tally;
     auto sink = [&](Rendering&& r) -> Status {
         const std::string what = r.id + (r.repetition ? " (repetition " + std::to_string(r.repetition) + ")" : "");
         const std::string error = r.error;
         const uint64_t before = writer.bytesWritten();
+        if (judge && error.empty()) CAVITY_TRY(judgeHere(r, *judge, tally));
         CAVITY_TRY(writer.add(std::move(r)));
         if (!error.empty()) std::fprintf(stderr, "render: %-60s error: %s\n", what.c_str(), error.c_str());
         else std::fprintf(stderr, "render: %-60s %8.1f KiB\n", what.c_str(), double(writer.bytesWritten() - before) / 1024.0);
@@ -190,6 +240,10 @@ int renderCommand(const std::vector<std::string>& argv) {
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (auto st = writer.finish(failures, seconds); !st) return fail(st.error());
     for (const auto& f : failures) std::cerr << "cavity_render: " << gpu::apiName(f.api) << ": " << f.message << "\n";
+    if (judge)
+        std::printf("judged here against the device class's approved images: %d passed (no file), %d failed (written); "
+                    "%d without a reference of the class (written, for cavity gate judge)\n",
+                    tally.passed, tally.failed, tally.unjudged);
     std::printf("wrote %s: %zu configurations x %d repetitions of matrix %s, %d image files, %.1f MiB, %.1f s\n",
                 (fs::path(o->out) / "manifest.json").c_str(), writer.manifest().configs.size(), o->render.repeat,
                 matrix->name.c_str(), writer.filesWritten(), double(writer.bytesWritten()) / (1024.0 * 1024.0), seconds);

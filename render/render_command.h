@@ -6,6 +6,9 @@
 
 #include "harness.h"
 #include "render/rendering.h"
+#include "store/store.h"
+
+#include <optional>
 
 #include <string>
 #include <vector>
@@ -21,6 +24,9 @@ struct RenderCommand {
     int shardIndex = 0, shardCount = 1;
     RenderOptions render;
     std::vector<ReplacedSource> replaced;   // --kernel-source, recorded in the manifest
+    // --store (and --store-cache): judge here, against the images approved
+    // for the device's class, and write only the images that fail.
+    std::optional<cavity::store::StoreOptions> store;
 };
 
 // Every error names the flag, the value and what is allowed (flags declared

@@ -548,6 +548,71 @@ TEST_F(TwoStep, ApprovedDigestsTravelWithoutTheirImages) {
     EXPECT_NE(refused.output.find("its digest is not approved"), std::string::npos) << refused.output;
 }
 
+// cavity_render --store judges where it renders: an image whose digest is
+// not approved is compared with its class's approved image from the store;
+// a passing one travels as its verdict and metrics, a failing one as its
+// file. The judge at home takes the verdicts, re-judges the files, and
+// refuses records made with other tolerances or another reference.
+TEST_F(TwoStep, ImagesJudgedWhereTheyAreRenderedTravelAsVerdicts) {
+    const fs::path approved = scratch("baselines"), first = scratch("first"), edited = scratch("edited"),
+                   judged = scratch("judged"), st = scratch("store");
+    fs::copy(base, approved, fs::copy_options::recursive);
+    ASSERT_EQ(render("--matrix ci --baselines " + approved.string() + " --filter " + kFilter + " --out " + first.string()).code, 0);
+    const Outcome a = cavity("baselines approve --from " + first.string() + " --baselines " + approved.string() +
+                             " --store " + st.string() + " --by tester --why 'references'");
+    ASSERT_EQ(a.code, 0) << a.output;
+    // A change the tolerances allow in the AO, 0.2% more occlusion.
+    std::ifstream in(fs::path(CAVITY_SOURCE_DIR) / "kernels/ssao_alchemy.glsl");
+    std::string text((std::istreambuf_iterator<char>(in)), {});
+    const std::string find = "1.0 - P.scale * S";
+    ASSERT_NE(text.find(find), std::string::npos);
+    text.replace(text.find(find), find.size(), "1.0 - P.scale * S * 1.002");
+    const fs::path edit = approved / "edit.glsl";
+    std::ofstream(edit) << text;
+    const Outcome r = render("--matrix ci --baselines " + approved.string() + " --filter " + kFilter + " --out " +
+                             edited.string() + " --store " + st.string() + " --kernel-source ssao_alchemy.glsl=" + edit.string());
+    ASSERT_EQ(r.code, 0) << r.output;
+    const auto m = readJson(edited / "manifest.json");
+    int passedHere = 0, files = 0;
+    for (const auto& c : m["configurations"])
+        for (const auto& i : c["renders"][0]["images"]) {
+            if (!i.contains("judged")) continue;
+            const bool passed = i["judged"]["passed"];
+            passedHere += passed;
+            files += !i["file"].is_null();
+            EXPECT_EQ(i["file"].is_null(), passed) << i;   // only a failing image travels as a file
+            EXPECT_TRUE(i["judged"]["reference"] == "llvmpipe gl/compute" || i["judged"]["reference"] == "llvmpipe vk/compute")
+                << i;
+        }
+    ASSERT_GT(passedHere, 0) << r.output;
+    auto judgeHere = [&](const fs::path& out) {
+        return cavity("gate judge " + edited.string() + " --baselines " + approved.string() + " --store " + st.string() +
+                      " --out " + out.string());
+    };
+    const Outcome j = judgeHere(judged);
+    ASSERT_TRUE(j.code == 0 || j.code == 1) << j.output;
+    const auto g = readJson(judged / "gate.json");
+    int remote = 0;
+    for (const auto& res : g["results"])
+        for (const auto& i : res["images"])
+            if (i["approval"].get<std::string>().find("judged where it was rendered") != std::string::npos) {
+                ++remote;
+                EXPECT_EQ(i["route"], "tolerance");
+                EXPECT_TRUE(i["passed"].get<bool>());
+                EXPECT_FALSE(i["metrics"].is_null());
+            }
+    EXPECT_EQ(remote, passedHere);
+    // Judged with other tolerances than this baselines folder's: refused.
+    std::ifstream min(approved / "manifest.json");
+    json manifest = json::parse(min);
+    min.close();
+    manifest["pipelines"]["*"]["rmse"] = 0.0031;
+    std::ofstream(approved / "manifest.json", std::ios::trunc) << manifest.dump(1);
+    const Outcome other = judgeHere(scratch("other"));
+    EXPECT_EQ(other.code, 2) << other.output;
+    EXPECT_NE(other.output.find("other tolerances"), std::string::npos) << other.output;
+}
+
 TEST_F(TwoStep, OverlappingShardsAreRefused) {
     const fs::path copy = scratch("copy"), out = scratch("judged");
     fs::copy(rendered(), copy, fs::copy_options::recursive);

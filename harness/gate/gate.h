@@ -132,6 +132,10 @@ struct GateRun {
 Result<GateRun> runGate(const GateOptions& o);
 
 nlohmann::json toJson(const GateRun& run);
+// The pieces of gate.json that render folders also carry (RemoteCheck).
+nlohmann::json toleranceJson(const Tolerance& t);
+nlohmann::json metricsJson(const metrics::Report& m);
+Result<metrics::Report> metricsFromJson(const nlohmann::json& j, const std::string& where);
 Result<GateRun> fromJson(const nlohmann::json& j, const std::string& path);
 
 }  // namespace cavity::gate

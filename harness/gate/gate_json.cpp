@@ -11,35 +11,37 @@ namespace cavity::gate {
 
 using nlohmann::json;
 
-namespace {
-
-json toJson(const Tolerance& t) {
+json toleranceJson(const Tolerance& t) {
     return {{"max_abs", t.maxAbs}, {"mean_abs", t.meanAbs}, {"rmse", t.rmse}, {"psnr_min", t.psnrMin},
             {"pixel_threshold", t.pixelThreshold}, {"over_threshold_share", t.overThresholdShare},
             {"ssim_min", t.ssimMin}, {"flip_mean_max", t.flipMeanMax}, {"differing_delta", t.differingDelta},
             {"differing_share_max", t.differingShareMax}};
 }
 
+namespace {
+
 double num(double x) { return std::isfinite(x) ? x : (x > 0 ? 1e300 : -1e300); }
 
 }  // namespace
+
+json metricsJson(const metrics::Report& m) {
+    return {{"max_abs", num(m.maxAbs)}, {"mean_abs", num(m.meanAbs)}, {"rmse", num(m.rmse)},
+            {"psnr", num(m.psnr)}, {"over_threshold_share", m.overThresholdShare},
+            {"ssim", m.ssim}, {"flip_mean", m.flipMean},
+            {"non_finite", m.nonFinite}, {"differing_pixels", m.differingPixels},
+            {"differing_share", m.differingShare}, {"channels_compared", m.channelsCompared}};
+}
 
 json toJson(const GateRun& run) {
     json results = json::array();
     for (const auto& r : run.results) {
         json images = json::array();
         for (const auto& i : r.images) {
-            json m = nullptr;
-            if (i.metrics)
-                m = {{"max_abs", num(i.metrics->maxAbs)}, {"mean_abs", num(i.metrics->meanAbs)}, {"rmse", num(i.metrics->rmse)},
-                     {"psnr", num(i.metrics->psnr)}, {"over_threshold_share", i.metrics->overThresholdShare},
-                     {"ssim", i.metrics->ssim}, {"flip_mean", i.metrics->flipMean},
-                     {"non_finite", i.metrics->nonFinite}, {"differing_pixels", i.metrics->differingPixels},
-                     {"differing_share", i.metrics->differingShare}, {"channels_compared", i.metrics->channelsCompared}};
+            const json m = i.metrics ? metricsJson(*i.metrics) : json(nullptr);
             images.push_back({{"image", i.image}, {"digest", i.digest}, {"route", i.route}, {"approval", i.approval}, {"reference", i.reference},
                               {"baseline", i.baseline}, {"new", i.newExact}, {"new_png", i.newPng},
                               {"baseline_png", i.baselinePng}, {"diff_png", i.diffPng}, {"metrics", m},
-                              {"tolerance", toJson(i.tolerance)}, {"failures", i.failures}, {"passed", i.passed()}});
+                              {"tolerance", toleranceJson(i.tolerance)}, {"failures", i.failures}, {"passed", i.passed()}});
         }
         json timings = json::array();
         for (const auto& t : r.timings)
@@ -162,6 +164,11 @@ Result<ConfigResult> readResult(const JsonObject& rj) {
 }
 
 }  // namespace
+
+Result<metrics::Report> metricsFromJson(const json& j, const std::string& where) {
+    CAVITY_ASSIGN(const JsonObject m, JsonObject::of(where, "metrics", j));
+    return readMetrics(m);
+}
 
 Result<GateRun> fromJson(const json& j, const std::string& path) {
     if (!j.is_object() || j.value("schema", "") != "cavity.gate/1")

@@ -62,7 +62,7 @@ Result<HostImage> Judge::reference(const std::string& digest) const {
 }
 
 Result<Judge> prepareJudge(const std::string& baselines, const std::vector<RunConfig>& configs, const std::string& out,
-                           const store::StoreOptions& storeOptions) {
+                           const store::StoreOptions& storeOptions, bool remote) {
     const fs::path root(baselines);
     Judge j;
     j.baselines = baselines;
@@ -70,9 +70,10 @@ Result<Judge> prepareJudge(const std::string& baselines, const std::vector<RunCo
     CAVITY_ASSIGN(j.manifest, loadManifest((root / "manifest.json").string()));
     CAVITY_ASSIGN(j.budgets, loadBudgets((root / "budgets.json").string()));
     CAVITY_ASSIGN(j.approvals, loadApprovals((root / "approvals.json").string()));
+    j.remote = remote;
     for (const auto& c : configs)
         for (const auto& img : checkedImages())
-            CAVITY_TRY(checkBaseline((root / "images" / baselineKey(c) / (img.name + img.extension)).string(), c, img.name));
+            if (!remote) CAVITY_TRY(checkBaseline((root / "images" / baselineKey(c) / (img.name + img.extension)).string(), c, img.name));
     store::StoreOptions so = storeOptions;
     if (so.location.empty()) so.location = store::defaultLocation(baselines);
     CAVITY_ASSIGN(std::unique_ptr<store::ImageStore> s, store::openStore(so));
@@ -91,7 +92,7 @@ std::string approvalText(const Approval& a) {
 // The tolerance route: the metrics of the new image against the reference,
 // the reference and a heat-map of the difference written beside it.
 Status judgeAgainst(ImageCheck& check, const CheckedImage& ci, const HostImage& now, const HostImage& base,
-                    const fs::path& dir) {
+                    const fs::path& dir, bool writeFiles = true) {
     const Tolerance& tol = check.tolerance;
     metrics::Options mo;
     mo.threshold = tol.pixelThreshold;
@@ -102,7 +103,7 @@ Status judgeAgainst(ImageCheck& check, const CheckedImage& ci, const HostImage& 
     check.failures = verdict(*check.metrics, tol, ci.perceptual);
     // The report shows a passing image as a thumbnail of the new one alone;
     // the reference and the heat-map are for the images that failed.
-    if (check.passed()) return {};
+    if (check.passed() || !writeFiles) return {};
     check.baselinePng = (dir / (ci.name + ".baseline.png")).string();
     check.diffPng = (dir / (ci.name + ".diff.png")).string();
     CAVITY_TRY(writeImage(check.baselinePng, base, Encoding::Preview));
@@ -125,19 +126,46 @@ Status judgeByTolerance(ImageCheck& check, const CheckedImage& ci, const HostIma
     return judgeAgainst(check, ci, now, base, dir);
 }
 
+// An image judged where it was rendered and found to pass (its file stayed
+// there): its record, taken when it was judged with the tolerances this
+// judge would use against the reference it would choose.
+Result<ImageCheck> fromRemote(ImageCheck& check, const RemoteCheck& k, const ConfigResult& r, const Judge& j,
+                              bool perceptual) {
+    check.tolerance = j.manifest.forPipeline(r.config.kernel, "");
+    const std::string stage = r.id.substr(r.id.rfind('/') + 1);
+    const Approval* ref = j.approvals.reference(r.key, check.image, deviceClass(r.device), gpu::apiName(r.config.api), stage);
+    if (!ref || ref->digest != k.referenceDigest)
+        return badInput(r.label() + ": " + check.image + " was judged where it was rendered against " + k.referenceDigest +
+                        ", and approvals.json here names " + (ref ? ref->digest : std::string("no reference")) +
+                        " for it: render it again");
+    if (k.tolerance != toleranceJson(check.tolerance))
+        return badInput(r.label() + ": " + check.image + " was judged where it was rendered with other tolerances than "
+                        "manifest.json's here (" + k.tolerance.dump() + "): render it again");
+    CAVITY_ASSIGN(check.metrics, metricsFromJson(k.metrics, r.label() + " " + check.image));
+    check.failures = verdict(*check.metrics, check.tolerance, perceptual);
+    if (!check.failures.empty())
+        return badInput(r.label() + ": " + check.image + " is recorded as passing where it was rendered, but its metrics "
+                        "fail here (" + check.failures.front() + ")");
+    check.reference = k.reference;
+    check.approval = approvalText(*ref) + "; judged where it was rendered";
+    check.baseline = "store:" + ref->digest;
+    return check;
+}
+
 // One checked image: a known-bad digest fails, an approved one of this
 // device class passes with nothing computed, anything else is judged by
 // tolerance. The new image is written where its pixels are held (`now`; a
 // render folder holds none for an approved digest).
 Result<ImageCheck> judgeImage(const CheckedImage& ci, const HostImage* now, const std::string& digest, const ConfigResult& r,
-                              const Judge& j, const Tolerance& tol, const fs::path& dir, int& errorCode) {
+                              const Judge& j, const Tolerance& tol, const fs::path& dir, int& errorCode,
+                              const std::map<std::string, RemoteCheck>& judged) {
     ImageCheck check;
     check.image = ci.name;
     check.digest = digest;
     check.tolerance = tol;
     const fs::path basePath = fs::path(j.baselines) / "images" / r.key / (ci.name + ci.extension);
     check.baseline = basePath.string();
-    if (now) {
+    if (now && !j.remote) {
         std::error_code ec;
         fs::create_directories(dir, ec);
         check.newExact = (dir / (ci.name + ".new" + ci.extension)).string();
@@ -155,7 +183,10 @@ Result<ImageCheck> judgeImage(const CheckedImage& ci, const HostImage* now, cons
         if (!a->positive) check.failures.push_back("digest " + digest + " is known bad: " + check.approval);
         return check;
     }
-    if (!now) return internal(r.label() + ": " + ci.name + " holds no pixels and its digest " + digest + " is not approved");
+    if (!now) {
+        if (const auto k = judged.find(ci.name); k != judged.end()) return fromRemote(check, k->second, r, j, ci.perceptual);
+        return internal(r.label() + ": " + ci.name + " holds no pixels and its digest " + digest + " is not approved");
+    }
     const std::string cls = deviceClass(r.device), stage = r.id.substr(r.id.rfind('/') + 1);
     if (const Approval* ref = j.approvals.reference(r.key, ci.name, cls, gpu::apiName(r.config.api), stage)) {
         // Its own class's reference: the default tolerances, no device
@@ -165,7 +196,11 @@ Result<ImageCheck> judgeImage(const CheckedImage& ci, const HostImage* now, cons
         check.approval = approvalText(*ref);
         check.baseline = "store:" + ref->digest;
         CAVITY_ASSIGN(const HostImage base, j.reference(ref->digest));
-        CAVITY_TRY(judgeAgainst(check, ci, *now, base, dir));
+        CAVITY_TRY(judgeAgainst(check, ci, *now, base, dir, !j.remote));
+        return check;
+    }
+    if (j.remote) {
+        check.route = "unjudged";
         return check;
     }
     check.reference = "default";
@@ -206,7 +241,7 @@ Result<ConfigResult> judgeRendering(const render::Rendering& rend, const Judge& 
             }
         }
         const HostImage* now = pixels == rend.images.end() ? nullptr : &pixels->second;
-        CAVITY_ASSIGN(ImageCheck check, judgeImage(ci, now, digest, r, j, tol, dir, r.errorCode));
+        CAVITY_ASSIGN(ImageCheck check, judgeImage(ci, now, digest, r, j, tol, dir, r.errorCode, rend.judged));
         r.images.push_back(std::move(check));
     }
     for (const auto& p : rend.timings) {

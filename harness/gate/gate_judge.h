@@ -28,6 +28,11 @@ struct Judge {
     Approvals approvals;     // approvals.json
     std::string out;         // the gate's output folder
     bool enforceCpuBudgets = false;   // GateOptions::enforceCpuBudgets
+    // Judging where the images were rendered (cavity_render --store): no
+    // file written (no OpenImageIO there), and an image whose class has no
+    // approved reference is left for the judge at home (route "unjudged";
+    // its file travels).
+    bool remote = false;
     // Where approved references of a device class are fetched from, for an
     // image judged by tolerance against its own class's reference.
     std::shared_ptr<cavity::store::ImageStore> store;
@@ -45,8 +50,10 @@ struct Judge {
 // written. Writes nothing.
 // `store`: where references of device classes are fetched from (opened
 // here, contacted only when an image needs one).
+// `remote`: Judge::remote (the baseline files, read only at home, are not
+// checked).
 Result<Judge> prepareJudge(const std::string& baselines, const std::vector<RunConfig>& configs, const std::string& out,
-                           const cavity::store::StoreOptions& store = {});
+                           const cavity::store::StoreOptions& store = {}, bool remote = false);
 
 // Judges one Rendering, writing its new images, the baselines as PNG and the
 // diff heat-maps under out/images/<id>/ (out/images/<id>/rep<K>/ for a later

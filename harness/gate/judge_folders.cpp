@@ -103,9 +103,11 @@ Status checkEntries(const Folder& f, const std::vector<RunConfig>& all, std::map
                 if (!i->file.empty() && !inside(i->file))
                     return badInput(f.path + ": " + label(c, r) + ": " + ci.name + " file " + i->file + " is outside the folder");
                 if (i->file.empty() && !(k > 0 && sameAsFirst(c, ci.name, i->stored.digest)) &&
-                    !approved.find(c.key, ci.name, i->stored.digest, plan::deviceClass(c.device)))
+                    !approved.find(c.key, ci.name, i->stored.digest, plan::deviceClass(c.device)) &&
+                    !(i->judged && i->judged->passed))
                     return badInput(f.path + ": " + label(c, r) + ": " + ci.name +
-                                    " has no file, is not repetition 0's image, and its digest is not approved");
+                                    " has no file, is not repetition 0's image, its digest is not approved, and it "
+                                    "was not judged to pass where it was rendered");
             }
         }
     }
@@ -219,6 +221,7 @@ Result<render::Rendering> readRendering(const Item& item, const render::RenderEn
     r.timings = entry.timings;
     for (const auto& i : entry.images) {
         r.digests[i.name] = i.stored.digest;
+        if (i.judged) r.judged[i.name] = *i.judged;
         if (i.file.empty()) continue;
         CAVITY_ASSIGN(r.images[i.name], render::readImageFile((fs::path(f->dir) / i.file).string(), i.stored));
     }

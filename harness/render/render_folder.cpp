@@ -42,6 +42,11 @@ Status FolderWriter::add(Rendering&& r) {
         // An approved digest (positive for this class, or known bad) needs no
         // pixels to be judged: only its digest travels.
         same |= approved_.find(r.key, ci.name, i.stored.digest, plan::deviceClass(r.device.deviceName)) != nullptr;
+        // Judged here and passed: its verdict and metrics travel instead.
+        if (const auto k = r.judged.find(ci.name); k != r.judged.end()) {
+            i.judged = k->second;
+            same |= k->second.passed;
+        }
         const std::string content = r.key + "|" + ci.name + "|" + i.stored.digest;
         if (auto known = stored_.find(content); !same && known != stored_.end()) {
             i.file = known->second.first;

@@ -27,6 +27,8 @@ public:
     // filter, repeat); the writer fills in devices and configurations.
     // `approved`: images whose digest is approved for the device's class are
     // recorded by digest alone, no file (the judge decides them by digest).
+    // So are images that Rendering::judged says passed where they were
+    // rendered; the record of each judged image goes into the manifest.
     FolderWriter(std::string dir, RenderManifest manifest, plan::Approvals approved = {});
 
     // Removes a manifest left by an earlier render into the same folder, so

@@ -14,10 +14,15 @@ json toJson(const gpu::DeviceInfo& d) {
 json toJson(const RenderEntry& r) {
     json timings = json::array(), images = json::array();
     for (const auto& t : r.timings) timings.push_back({{"pass", t.pass}, {"median_ms", t.medianMs}, {"clock", t.clock}});
-    for (const auto& i : r.images)
+    for (const auto& i : r.images) {
         images.push_back({{"name", i.name}, {"file", i.file.empty() ? json(nullptr) : json(i.file)},
                           {"width", i.stored.width}, {"height", i.stored.height}, {"channels", i.stored.channels},
                           {"digest", i.stored.digest}, {"bytes", i.stored.bytes}});
+        if (const auto& k = i.judged)
+            images.back()["judged"] = {{"reference", k->reference}, {"reference_digest", k->referenceDigest},
+                                       {"passed", k->passed}, {"failures", k->failures}, {"metrics", k->metrics},
+                                       {"tolerance", k->tolerance}};
+    }
     return {{"repetition", r.repetition}, {"error", r.error}, {"error_code", r.errorCode},
             {"deterministic", r.deterministic}, {"timings", timings}, {"images", images}};
 }
@@ -116,6 +121,14 @@ Result<RenderManifest> parseManifest(const json& j, const std::string& path) {
                     i.name = ij.at("name");
                     if (!ij.at("file").is_null()) i.file = ij.at("file");
                     i.stored = {ij.at("width"), ij.at("height"), ij.at("channels"), ij.at("digest"), ij.at("bytes")};
+                    if (ij.contains("judged")) {
+                        const json& k = ij.at("judged");
+                        i.judged = RemoteCheck{k.at("reference"), k.at("reference_digest"), k.at("passed"),
+                                               k.at("failures"), k.at("metrics"), k.at("tolerance")};
+                        if (!i.judged->metrics.is_object() || !i.judged->tolerance.is_object())
+                            return badInput(path + ": malformed at " + where + ": judged." + i.name +
+                                            ": metrics and tolerance must be objects");
+                    }
                     r.images.push_back(std::move(i));
                 }
                 c.renders.push_back(std::move(r));

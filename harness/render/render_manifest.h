@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -25,6 +26,7 @@ struct ImageEntry {
     std::string name;             // "ao", "ao_blur", "color"
     std::string file;             // relative to the folder; empty: the same pixels as repetition 0
     StoredImage stored;           // shape, digest, file size (0 without a file)
+    std::optional<RemoteCheck> judged;
 };
 
 struct RenderEntry {              // one repetition

@@ -12,6 +12,8 @@
 #include "pipeline/pipeline.h"
 #include "measure/timing.h"
 
+#include <nlohmann/json.hpp>
+
 #include <functional>
 #include <map>
 #include <optional>
@@ -24,6 +26,19 @@ struct PassTime {
     std::string pass;
     double medianMs = 0;
     std::string clock;            // Timing::clock: "gpu-timestamp" or "wall"
+};
+
+// An image judged where it was rendered (cavity_render --store): against
+// the nearest image approved for the device's class, from the image store,
+// with the gate's own code and tolerances. Only a failing one is written to
+// the folder; a passing one travels as this record.
+struct RemoteCheck {
+    std::string reference;        // "<class> <api>/<stage>"
+    std::string referenceDigest;  // the approved image's digest
+    bool passed = false;
+    std::vector<std::string> failures;
+    nlohmann::json metrics;       // as gate.json writes them
+    nlohmann::json tolerance;     // the tolerance judged with, as gate.json writes it
 };
 
 // One repetition of one matrix entry.
@@ -42,6 +57,9 @@ struct Rendering {
     // later repetition that matches repetition 0 has only the digest).
     std::map<std::string, std::string> digests;
     std::map<std::string, HostImage> images;
+    // Read back from a render folder: images judged where they were rendered
+    // (render_manifest.h RemoteCheck), by name.
+    std::map<std::string, RemoteCheck> judged;
 };
 
 struct BackendFailure {

@@ -31,14 +31,16 @@
   }
 
   function controls(failed) {
-    const zoom = el('input', {id: 'zoom', type: 'range', min: '1', max: '8', value: '2'});
+    const zoom = el('input', {id: 'zoom', type: 'range', min: '1', max: '24', value: '2'});
     zoom.addEventListener('input', () => setZoom(zoom.value));
     const shard = gate.shard[1] > 1 ? ' · shard ' + gate.shard[0] + '/' + gate.shard[1] : '';
     document.getElementById('controls').append(
       el('b', {}, 'Cavity gate'), ' matrix ', el('code', {}, gate.matrix), shard,
       ' · ' + gate.results.length + ' configurations · ',
       el('span', {class: failed ? 'bad' : ''}, failed + ' failed'),
-      ' · ' + view.counts + ' · ' + num(gate.seconds, 3) + ' s · zoom ', zoom, ' ', el('span', {id: 'zv'}, '2x'));
+      ' · ' + view.counts + ' · ' + (gate.render_seconds > 0
+        ? 'rendered in ' + num(gate.render_seconds, 3) + ' s, judged in ' + num(gate.seconds - gate.render_seconds, 3) + ' s'
+        : num(gate.seconds, 3) + ' s') + ' · zoom ', zoom, ' ', el('span', {id: 'zv'}, '2x'));
     // What was judged instead of the committed kernels (--kernel-source).
     for (const r of gate.kernel_sources || [])
       document.getElementById('controls').append(el('div', {class: 'replaced'},
@@ -151,6 +153,14 @@
                                                                         image(i.new_png, 'thumb'))),
                                            el('div', {class: 'bad'}, i.image + ': ' + i.failures.join('; ')));
       else if (i.route === 'digest') div.append(el('div', {}, i.image + ': approved digest (' + i.approval + ')'));
+      // Within its tolerances in a configuration that failed on another
+      // image: its numbers, and the new image where its file travelled.
+      else if (i.passed) div.append(el('div', {class: 'row'},
+                                       el('figure', {}, el('figcaption', {}, i.image + ' · passed' +
+                                                           (i.approval.endsWith('judged where it was rendered')
+                                                            ? ' where it was rendered' : '')),
+                                          view.images[i.new_png] ? image(i.new_png, 'thumb') : null),
+                                       metricsTable(i)));
       else div.append(...comparison(i));
     }
     if (r.timings.length) div.append(timings(r));
@@ -166,7 +176,10 @@
 
   function setZoom(z) {
     document.getElementById('zv').textContent = z + 'x';
-    for (const img of document.querySelectorAll('img.z')) if (img.naturalWidth) img.style.width = img.naturalWidth * z + 'px';
+    // z times a width of at most 320 px: a 160x90 image at 2x is 320 px,
+    // a 1920x1080 one 640 px (and its pixels at 12x and up).
+    for (const img of document.querySelectorAll('img.z'))
+      if (img.naturalWidth) img.style.width = Math.min(img.naturalWidth, 320) * z + 'px';
   }
 
   const failed = gate.results.filter((r) => r.fatal).length;
