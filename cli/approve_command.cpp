@@ -117,7 +117,9 @@ size_t addApprovals(plan::Approvals& a, const gate::GateRun& run, const ApproveF
                 return e.key == x.key && e.image == x.image && e.digest == x.digest && e.positive == x.positive &&
                        e.deviceClass == x.deviceClass;
             };
-            if (i.digest.empty() || std::any_of(a.entries.begin(), a.entries.end(), same)) continue;
+            if (i.digest.empty()) continue;
+            // Into the store whether or not the digest was approved before:
+            // approving again is how an empty store is filled.
             if (!i.newExact.empty()) {
                 // Beside the exact image the judge wrote its float bits
                 // (gate_judge.cpp): those are what the digest is of.
@@ -125,6 +127,7 @@ size_t addApprovals(plan::Approvals& a, const gate::GateRun& run, const ApproveF
                 std::error_code ec;
                 pixels.push_back({i.digest, fs::exists(bits, ec) ? bits.string() : i.newExact, {}});
             }
+            if (std::any_of(a.entries.begin(), a.entries.end(), same)) continue;
             a.entries.push_back(std::move(x));
             ++added;
         }
@@ -168,8 +171,8 @@ Result<size_t> addRenderApprovals(plan::Approvals& a, const std::string& dir, co
                 return e.key == x.key && e.image == x.image && e.digest == x.digest && e.positive == x.positive &&
                        e.deviceClass == x.deviceClass;
             };
-            if (std::any_of(a.entries.begin(), a.entries.end(), same)) continue;
             if (const auto file = files.find(image); file != files.end()) pixels.push_back(file->second);
+            if (std::any_of(a.entries.begin(), a.entries.end(), same)) continue;
             a.entries.push_back(std::move(x));
             ++added;
         }

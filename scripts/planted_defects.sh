@@ -1,0 +1,39 @@
+#!/usr/bin/env bash
+# Writes a set of planted kernel defects, one edited copy of one kernel file
+# each, for gating runs that must fail (docs/gate.md, "Gating a shader edit
+# in one step"): DIR/<name>.glsl plus DIR/list.txt, a line per defect:
+#   <name> <kernels/ file it replaces> <regex of the configurations it touches>
+# Each is one small change of the kind a review misses; each edit is checked
+# to have applied (the file differs from the original).
+#   scripts/planted_defects.sh DIR
+set -euo pipefail
+cd "$(dirname "$0")/.."
+out="${1:?usage: scripts/planted_defects.sh DIR}"
+mkdir -p "$out"
+: > "$out/list.txt"
+plant() {   # name, file under kernels/, configurations regex, sed expression
+  local name=$1 file=$2 touches=$3 expr=$4
+  sed "$expr" "kernels/$file" > "$out/$name.glsl"
+  if cmp -s "kernels/$file" "$out/$name.glsl"; then echo "planted_defects: $name did not apply to $file" >&2; exit 1; fi
+  echo "$name $file $touches" >> "$out/list.txt"
+}
+# The depth pyramid's pick undone with x and y swapped from level 3 down:
+# read only where samples land 64 px or more away.
+plant pyramid_level3 include/pyramid.glsl '_fast/' \
+  's|    ivec2 parity = t \& 1;|    ivec2 parity = t \& 1;\n    if (level >= 3) parity = parity.yx;|'
+# alchemy_fast reads one pyramid level too coarse everywhere.
+plant alchemy_fast_level ssao_alchemy_fast.glsl '/alchemy_fast/' \
+  's|int level = pyramidLevel(int(h), maxLevel);|int level = min(pyramidLevel(int(h), maxLevel) + 1, maxLevel);|'
+# Alchemy's bias lowered by a tenth: a little more self-occlusion on flat ground.
+plant alchemy_bias ssao_alchemy.glsl '/alchemy/' 's|dot(N, omega) - P.bias|dot(N, omega) - 0.9 * P.bias|'
+# The composite's dither dropped: bands in the 8-bit gradients.
+plant no_dither composite.glsl '/full/' 's|if (P.dither != 0) {|if (P.dither != 0 \&\& false) {|'
+# The separable blur's Gaussian read one weight off (w[i+1] for w[i]).
+plant blur_weight_shift include/blur_separable.glsl '_fast/' 's|return P.weights\[i >> 2\]\[i \& 3\];|return P.weights[(i + 1) >> 2][(i + 1) \& 3];|'
+# The bilateral upsample's normal weight to the 4th power instead of the 8th.
+plant upsample_normal upsample_bilateral.glsl '/half/' 's|float normalWeight = cn \* cn;|float normalWeight = cn;|'
+# hemisphere_fast's radius 5% short.
+plant hemisphere_fast_radius ssao_hemisphere_fast.glsl '/hemisphere_fast/' 's|float R = P.radius;|float R = 0.95 * P.radius;|'
+# ssdo_fast's bounce 10% weak.
+plant ssdo_bounce ssdo_fast_indirect.glsl '/ssdo_fast/' 's|area \* P.bounce_strength / PI|area * 0.9 * P.bounce_strength / PI|'
+wc -l < "$out/list.txt" | xargs echo "planted_defects: defects in $out/list.txt:"
