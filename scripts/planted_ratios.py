@@ -11,9 +11,10 @@ error, share over threshold, FLIP, share of differing pixels) and tolerance /
 value for those bounded below (SSIM); PSNR is left out, its ratio being one
 of RMSE's. Prints a Markdown table.
 """
-import json
 import os
 import sys
+
+import cavity_json   # scripts/cavity_json.py: plain or gzip (X.json.gz)
 
 UPPER = {"max_abs": "max_abs", "mean_abs": "mean_abs", "rmse": "rmse", "over_threshold_share": "over_threshold_share",
          "flip_mean": "flip_mean_max", "differing_share": "differing_share_max"}
@@ -39,7 +40,7 @@ def main():
     print("| defect | configurations failed | images failed / judged | worst ratio | metric | at |")
     print("| --- | ---: | ---: | ---: | --- | --- |")
     for path in sys.argv[1:]:
-        m = json.load(open(path))
+        m = cavity_json.load(path)
         configs, failed_configs, images, failed_images = 0, 0, 0, 0
         top = (0.0, "", "")
         for c in m["configurations"]:
@@ -56,7 +57,7 @@ def main():
                 if r > top[0]:
                     top = (r, what, c["id"] + " " + i["name"])
             failed_configs += bad
-        name = os.path.splitext(os.path.basename(path))[0]
+        name = os.path.basename(path).split(".")[0]
         print(f"| {name} | {failed_configs} of {configs} | {failed_images} / {images} | {top[0]:.1f}x | {top[1]} | `{top[2]}` |")
 
 

@@ -3,6 +3,7 @@
 
     python3 scripts/update_budgets.py out/gate/gate.json --pattern llvmpipe --factor 5 --min-ms 10
     python3 scripts/update_budgets.py a1.json --pattern "NVIDIA H200"      # cavity_bench JSON, repetitions
+    python3 scripts/update_budgets.py g1.json g2.json g3.json --pattern "NVIDIA H200" --factor 1.5
 
 From cavity_bench JSON (--benchmark_repetitions=N, N >= 5), each pass's
 budget is its median over the repetitions plus a margin derived from the
@@ -13,7 +14,8 @@ On the H200 (repetition CV <= 0.63%) that is 3%, so a pass 10% slower fails
 by 7% while an unchanged run must move 5 standard deviations to fail.
 
 Every pass of every configuration in gate.json gets budget = factor x its
-measured median, under the device class `pattern` (a substring of the device
+measured median (the largest over the runs, when several gate.json files are
+given), under the device class `pattern` (a substring of the device
 name, as budgets.json matches it). Other device classes are kept as they are.
 A CPU renderer's times swing with machine load (CI runs tests two at a time),
 hence the generous default factor; on a GPU use 1.2 to 1.5.
@@ -63,7 +65,7 @@ def from_bench(doc, a):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("gate_json")
+    ap.add_argument("gate_json", nargs="+")
     ap.add_argument("--pattern", required=True, help="device-class substring, e.g. llvmpipe or NVIDIA")
     ap.add_argument("--factor", type=float, default=5.0)
     ap.add_argument("--min-ms", type=float, default=0.0,
@@ -76,23 +78,30 @@ def main():
     if a.factor <= 1:
         sys.exit(f"update_budgets: --factor {a.factor}: must be > 1")
     try:
-        gate = cavity_json.load(a.gate_json)
+        runs = [cavity_json.load(p) for p in a.gate_json]
         budgets = json.load(open(a.budgets))
     except (OSError, ValueError) as e:
         sys.exit(f"update_budgets: {e}")
-    if "benchmarks" in gate:
-        table, note = from_bench(gate, a)
-    elif gate.get("schema") == "cavity.gate/1":
-        table = {}
+    if len(runs) == 1 and "benchmarks" in runs[0]:
+        table, note = from_bench(runs[0], a)
+    elif all(g.get("schema") == "cavity.gate/1" for g in runs):
+        medians = {}
         devices = set()
-        for r in gate["results"]:
-            if r["error"]:
-                continue
-            devices.add(r["device"])
-            table[r["id"]] = {t["pass"]: round(max(a.factor * t["median_ms"], a.min_ms), 4) for t in r["timings"]}
-        note = f"max({a.factor}x the median, {a.min_ms} ms) from a gate run on {', '.join(sorted(devices))}"
+        for gate in runs:
+            for r in gate["results"]:
+                if r["error"]:
+                    continue
+                devices.add(r["device"])
+                for t in r["timings"]:
+                    key = (r["id"], t["pass"])
+                    medians[key] = max(medians.get(key, 0.0), t["median_ms"])
+        table = {}
+        for (cid, pass_), m in medians.items():
+            table.setdefault(cid, {})[pass_] = round(max(a.factor * m, a.min_ms), 4)
+        note = (f"max({a.factor}x the largest median, {a.min_ms} ms) over {len(runs)} gate runs on "
+                f"{', '.join(sorted(devices))}")
     else:
-        sys.exit(f"update_budgets: {a.gate_json}: neither a cavity gate.json nor cavity_bench JSON")
+        sys.exit(f"update_budgets: {' '.join(a.gate_json)}: one cavity_bench JSON, or cavity gate.json files")
     entry = {"pattern": a.pattern, "note": note, "budgets_ms": dict(sorted(table.items()))}
     budgets["devices"] = [d for d in budgets.get("devices", []) if d["pattern"] != a.pattern] + [entry]
     fd, tmp = tempfile.mkstemp(dir=os.path.dirname(os.path.abspath(a.budgets)))

@@ -347,11 +347,13 @@ std::vector<std::string> needed(const std::string& path) {
 TEST(RenderBinary, LinksNoOpenImageIO) {
     const auto libs = needed(CAVITY_RENDER_EXE);
     ASSERT_FALSE(libs.empty()) << CAVITY_RENDER_EXE << ": no dynamic section read";
-    // What any Linux with a GL/Vulkan loader has, and what cavity_bench (which
-    // has travelled to the GPU machine since the start) needs already.
+    // What any Linux with a GL/Vulkan loader has, what cavity_bench (which
+    // has travelled to the GPU machine since the start) needs already, and
+    // libcurl (an HTTP image store; scripts/bundle.sh carries it and its
+    // libraries).
     const std::vector<std::string> allowed = {"libc.so", "libstdc++.so", "libm.so", "libgcc_s.so", "libdl.so",
                                               "libpthread.so", "libvulkan.so", "libEGL.so", "libOpenGL.so",
-                                              "libGL", "libz.so", "libepoxy.so"};
+                                              "libGL", "libz.so", "libepoxy.so", "libcurl.so"};
     const auto bench = needed(CAVITY_BENCH_EXE);
     for (const auto& lib : libs) {
         std::string lower = lib;
