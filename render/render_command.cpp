@@ -10,7 +10,13 @@
 #include "measure/runner.h"
 #include "shard_sources.h"
 
+#include <algorithm>
+#include <atomic>
 #include <chrono>
+#include <deque>
+#include <functional>
+#include <future>
+#include <thread>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -94,7 +100,7 @@ int worst(const RenderManifest& m) {
 }
 
 struct JudgedHere {
-    int passed = 0, failed = 0, unjudged = 0;
+    std::atomic<int> passed{0}, failed{0}, unjudged{0};
 };
 
 // --store: the gate's own judging of each image that is not approved by
@@ -118,6 +124,48 @@ Status judgeHere(Rendering& r, const gate::Judge& judge, JudgedHere& tally) {
     }
     return {};
 }
+
+// --store: each rendering is judged on a thread of its own while the GPU
+// renders the next (the metrics of three 1920x1080 images take longer than
+// rendering them), at most one per core in flight; the writer gets them in
+// the order they were rendered.
+class JudgingQueue {
+public:
+    JudgingQueue(const gate::Judge* judge, JudgedHere& tally, std::function<Status(Rendering&&)> write)
+        : judge_(judge), tally_(tally), write_(std::move(write)),
+          limit_(std::max<size_t>(1, std::thread::hardware_concurrency())) {}
+
+    Status push(Rendering&& r) {
+        if (!judge_) return write_(std::move(r));
+        pending_.push_back(std::async(std::launch::async, [this, r = std::move(r)]() mutable -> Result<Rendering> {
+            if (r.error.empty()) CAVITY_TRY(judgeHere(r, *judge_, tally_));
+            return std::move(r);
+        }));
+        while (pending_.size() > limit_ ||
+               (!pending_.empty() && pending_.front().wait_for(std::chrono::seconds(0)) == std::future_status::ready))
+            CAVITY_TRY(popFront());
+        return {};
+    }
+
+    Status drain() {
+        while (!pending_.empty()) CAVITY_TRY(popFront());
+        return {};
+    }
+
+private:
+    Status popFront() {
+        auto done = pending_.front().get();
+        pending_.pop_front();
+        if (!done) return done.error();
+        return write_(std::move(*done));
+    }
+
+    const gate::Judge* judge_;
+    JudgedHere& tally_;
+    std::function<Status(Rendering&&)> write_;
+    size_t limit_;
+    std::deque<std::future<Result<Rendering>>> pending_;
+};
 
 }  // namespace
 
@@ -225,25 +273,26 @@ int renderCommand(const std::vector<std::string>& argv) {
     FolderWriter writer(o->out, header, std::move(*approvals));
     if (auto st = writer.begin(); !st) return fail(st.error());
     JudgedHere tally;
-    auto sink = [&](Rendering&& r) -> Status {
+    JudgingQueue queue(judge ? &*judge : nullptr, tally, [&](Rendering&& r) -> Status {
         const std::string what = r.id + (r.repetition ? " (repetition " + std::to_string(r.repetition) + ")" : "");
         const std::string error = r.error;
         const uint64_t before = writer.bytesWritten();
-        if (judge && error.empty()) CAVITY_TRY(judgeHere(r, *judge, tally));
         CAVITY_TRY(writer.add(std::move(r)));
         if (!error.empty()) std::fprintf(stderr, "render: %-60s error: %s\n", what.c_str(), error.c_str());
         else std::fprintf(stderr, "render: %-60s %8.1f KiB\n", what.c_str(), double(writer.bytesWritten() - before) / 1024.0);
         return {};
-    };
+    });
     std::vector<BackendFailure> failures;
+    auto sink = [&](Rendering&& r) -> Status { return queue.push(std::move(r)); };
     if (auto st = renderEntries(*matrix, *entries, o->render, sink, &failures); !st) return fail(st.error());
+    if (auto st = queue.drain(); !st) return fail(st.error());
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (auto st = writer.finish(failures, seconds); !st) return fail(st.error());
     for (const auto& f : failures) std::cerr << "cavity_render: " << gpu::apiName(f.api) << ": " << f.message << "\n";
     if (judge)
         std::printf("judged here against the device class's approved images: %d passed (no file), %d failed (written); "
                     "%d without a reference of the class (written, for cavity gate judge)\n",
-                    tally.passed, tally.failed, tally.unjudged);
+                    tally.passed.load(), tally.failed.load(), tally.unjudged.load());
     std::printf("wrote %s: %zu configurations x %d repetitions of matrix %s, %d image files, %.1f MiB, %.1f s\n",
                 (fs::path(o->out) / "manifest.json").c_str(), writer.manifest().configs.size(), o->render.repeat,
                 matrix->name.c_str(), writer.filesWritten(), double(writer.bytesWritten()) / (1024.0 * 1024.0), seconds);
