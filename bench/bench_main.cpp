@@ -20,6 +20,7 @@
 #include <benchmark/benchmark.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -52,13 +53,19 @@ Status readPlantFile(const std::string& path, std::map<std::string, cavity::pipe
     if (!f || std::filesystem::is_directory(path)) return cavity::badInput("--plant-file " + path + ": cannot be read");
     try {
         const auto doc = nlohmann::json::parse(f);
-        for (const auto& [id, passes] : doc.items())
+        if (!doc.is_object() || doc.empty())
+            return cavity::badInput("--plant-file " + path + ": must be a non-empty object {\"<id>\": {\"<pass>\": FMAS}}, not " +
+                                    std::string(doc.type_name()) + (doc.empty() ? " (empty)" : ""));
+        for (const auto& [id, passes] : doc.items()) {
+            if (!passes.is_object() || passes.empty())
+                return cavity::badInput("--plant-file " + path + ": " + id + ": must be a non-empty object {\"<pass>\": FMAS}");
             for (const auto& [pass, n] : passes.items()) {
                 if (!n.is_number_integer() || n.get<long>() < 1 || n.get<long>() > 1000000)
                     return cavity::badInput("--plant-file " + path + ": " + id + " " + pass + " = " + n.dump() +
                                             ": must be an integer in 1..1000000");
                 out[id][pass] = n.get<int>();
             }
+        }
     } catch (const nlohmann::json::exception& e) {
         return cavity::badInput("--plant-file " + path + ": " + e.what());
     }
@@ -147,6 +154,11 @@ Result<cavity::bench::Options> parse(int argc, char** argv, std::vector<char*>& 
             CAVITY_ASSIGN(o.device, parseInt(flag, value, 0, 64));
         }
     }
+    const auto given = [&](const char* name) {
+        return std::any_of(parsed.values.begin(), parsed.values.end(), [&](const auto& v) { return v.first == name; });
+    };
+    if (given("--plant") && given("--plant-file"))
+        return cavity::badInput("--plant and --plant-file: give one (the file plants per configuration, --plant everywhere)");
     return o;
 }
 

@@ -15,6 +15,7 @@
 #include <cmath>
 #include <iostream>
 #include <map>
+#include <set>
 #include <memory>
 
 namespace cavity::bench {
@@ -182,6 +183,37 @@ void emptyScope(benchmark::State& state, gpu::Api api) {
 
 }  // namespace
 
+// A plant that would plant nothing is an error, never a run that reports "no
+// regression": every --plant pass must be a pass of some configuration of
+// the sweep, and every --plant-file configuration and pass one of the sweep's.
+Status checkPlants(const Options& o, const std::vector<RunConfig>& configs) {
+    std::set<std::string> allPasses;
+    std::map<std::string, std::set<std::string>> byId;
+    for (const auto& c : configs)
+        for (const auto& p : buildPasses(c)) {
+            allPasses.insert(p.name);
+            byId[configId(c)].insert(p.name);
+        }
+    auto list = [](const std::set<std::string>& names) {
+        std::string out;
+        for (const auto& n : names) out += (out.empty() ? "" : ", ") + n;
+        return out;
+    };
+    for (const auto& [pass, fmas] : o.plant)
+        if (!allPasses.count(pass))
+            return badInput("--plant " + pass + ":" + std::to_string(fmas) + ": no configuration of the sweep has a pass '" +
+                            pass + "' (passes: " + list(allPasses) + ")");
+    for (const auto& [id, plant] : o.plantById) {
+        const auto c = byId.find(id);
+        if (c == byId.end())
+            return badInput("--plant-file: configuration '" + id + "' is not in the sweep (see --benchmark_list_tests)");
+        for (const auto& [pass, fmas] : plant)
+            if (!c->second.count(pass))
+                return badInput("--plant-file: " + id + " has no pass '" + pass + "' (passes: " + list(c->second) + ")");
+    }
+    return {};
+}
+
 Result<int> registerSweep(const Options& o) {
     std::vector<gpu::Api> apis;
     if (o.backend == "gl" || o.backend == "all") apis.push_back(gpu::Api::OpenGL);
@@ -243,6 +275,7 @@ Result<int> registerSweep(const Options& o) {
         benchmark::AddCustomContext("cavity_planted_slowdown", text);
     }
     const auto configs = benchmarkSweep(cpu ? cpuSweep() : gpuSweep(), started);
+    CAVITY_TRY(checkPlants(o, configs));
     for (const auto& c : configs) {
         const auto planted = o.plantById.find(configId(c));
         Bench b{c, timing, planted == o.plantById.end() ? o.plant : planted->second};

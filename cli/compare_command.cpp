@@ -7,6 +7,8 @@
 #include "measure/results.h"
 
 #include <algorithm>
+#include <optional>
+#include <regex>
 #include <iostream>
 
 namespace cavity::cli {
@@ -22,6 +24,8 @@ const CommandSpec& compareSpec() {
             {"--alpha", "A", "significance of the U test, and 1 - A the confidence of the interval; in (0, 1) (default 0.05)"},
             {"--min-change", "P", "smallest change, in percent of the old median, called slower or faster; >= 0 (default 2)"},
             {"--json", "FILE", "also write the rows as cavity.compare/1 JSON"},
+            {"--filter", "REGEX",
+             "only the rows whose \"<configuration id> <pass>\" matches (searched): '/alchemy_fast/', ' ao$'"},
             {"--fail-on-slower", "", "exit 1 when any row is slower"},
         },
         "OLD.json NEW.json",
@@ -31,6 +35,7 @@ const CommandSpec& compareSpec() {
             "cavity compare main/results.json pr/results.json",
             "cavity compare --min-change 1 --fail-on-slower main.json pr.json",
             "cavity compare --json out/compare.json old.json new.json",
+            "cavity compare --filter '/alchemy_fast/.* ao$' main.json pr.json",
         },
     };
     return spec;
@@ -40,6 +45,7 @@ struct CompareFlags {
     std::vector<std::string> files;   // OLD.json NEW.json
     CompareThresholds thresholds;
     std::string jsonPath;
+    std::optional<std::regex> filter;
     bool failOnSlower = false;
     std::string helpText;             // --help: print this, compare nothing
 };
@@ -56,6 +62,8 @@ Result<CompareFlags> parse(const std::vector<std::string>& argv) {
     for (const auto& [flag, v] : parsed.values) {
         if (flag == "--json") {
             f.jsonPath = v;
+        } else if (flag == "--filter") {
+            CAVITY_ASSIGN(f.filter, parseFilter(flag, v));
         } else if (flag == "--alpha") {
             CAVITY_ASSIGN(f.thresholds.alpha,
                           parseNumber(flag, v, [](double x) { return x > 0 && x < 1; }, "a number in (0, 1)"));
@@ -79,18 +87,23 @@ int compareCommand(const std::vector<std::string>& argv) {
         std::cout << parsed->helpText;
         return 0;
     }
-    const auto& [files, t, jsonPath, failOnSlower, help] = *parsed;
+    const auto& [files, t, jsonPath, filter, failOnSlower, help] = *parsed;
     auto before = loadSampleSets(files[0]);
     if (!before) return fail(program, before.error());
     auto after = loadSampleSets(files[1]);
     if (!after) return fail(program, after.error());
 
-    const auto rows = compareAll(*before, *after, t);
+    auto rows = compareAll(*before, *after, t);
+    if (filter) {
+        std::erase_if(rows, [&](const auto& r) { return !std::regex_search(r.id + " " + r.pass, *filter); });
+        if (rows.empty())
+            return fail(program, badInput("--filter: matches no \"<configuration id> <pass>\" of either run"));
+    }
     // The JSON first: if it cannot be written the command fails before it
     // has printed a table that looks like success.
     if (!jsonPath.empty()) {
         if (auto s = writeJson(jsonPath, compareJson(rows, *before, *after, t)); !s) {
-            if (s.error().code == ErrorCode::BadInput) return fail(program, badInput("--json " + jsonPath + ": cannot be written"));
+            if (s.error().code == ErrorCode::BadInput) return fail(program, badInput("--json " + s.error().message));
             return fail(program, {s.error().code, "--json " + s.error().message});
         }
     }

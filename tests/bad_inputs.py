@@ -163,6 +163,14 @@ CASES = [
     Case("bench-plant-file-folder", "cavity_bench", ["--plant-file", "prev"], ["--plant-file", "prev"],
          setup=replace_with_folder("prev")),
     Case("bench-frames-1e999", "cavity_bench", ["--frames", "1e999"], ["--frames", "1e999"]),
+    # Plants that would plant nothing (cavity_bench's timing-verdict check).
+    Case("bench-plant-unknown-pass", "cavity_bench", ["--plant", "nopass:300"], ["--plant", "nopass", "passes:"]),
+    Case("bench-plant-file-array", "cavity_bench", ["--plant-file", "p.json"], ["--plant-file", "p.json", "array"],
+         setup=write("p.json", "[1, 2]")),
+    Case("bench-plant-file-unknown-id", "cavity_bench", ["--plant-file", "p.json"], ["--plant-file", "nosuch/id", "not in the sweep"],
+         setup=write("p.json", '{"nosuch/id": {"ao": 5}}')),
+    Case("bench-plant-and-file", "cavity_bench", ["--plant", "ao:5", "--plant-file", "p.json"], ["--plant", "--plant-file"],
+         setup=write("p.json", '{"x": {"ao": 5}}')),
     # The image store (docs/store.md).
     Case("store-is-file", "cavity", GATE + ["--store", "prev"], ["--store", "prev", "not a folder"], setup=write("prev", "x")),
     Case("store-empty", "cavity", GATE + ["--store", ""], ["--store", "empty"]),

@@ -372,7 +372,11 @@ TEST_F(Compare, BadInputExitsTwoWithOneLineNamingIt) {
         {good + " " + good + " --json", "cavity compare: --json: missing value"},
         {good + " " + good + " --bogus", "cavity compare: --bogus: unknown flag (see cavity compare --help)"},
         {good + " " + good + " --json " + (dir / "no" / "such" / "v.json").string(),
-         "cavity compare: --json " + (dir / "no" / "such" / "v.json").string() + ": cannot be written"},
+         "cavity compare: --json " + (dir / "no" / "such" / "v.json").string() + ": cannot write"},
+        // Onto a folder: exit 2 and nothing left behind (was exit 4 and a .tmp-<pid>).
+        {good + " " + good + " --json " + folder, "cavity compare: --json " + folder + ": is a folder"},
+        {good + " " + good + " --filter zzz", "cavity compare: --filter: matches no"},
+        {good + " " + good + " --filter '('", "cavity compare: --filter"},
     };
     for (const auto& [args, message] : cases) {
         const Outcome o = cavity("compare " + args + (args.find("--json") == std::string::npos ? " --json " + out : ""));
@@ -381,6 +385,8 @@ TEST_F(Compare, BadInputExitsTwoWithOneLineNamingIt) {
         EXPECT_EQ(std::count(o.output.begin(), o.output.end(), '\n'), 1) << args << "\n" << o.output;
         EXPECT_FALSE(fs::exists(out)) << args;
     }
+    for (const auto& e : fs::recursive_directory_iterator(dir))
+        EXPECT_EQ(e.path().filename().string().find(".tmp-"), std::string::npos) << e.path();
 }
 
 }  // namespace

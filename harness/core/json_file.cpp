@@ -102,16 +102,25 @@ Result<nlohmann::json> readJsonFile(const std::string& path) {
 }
 
 Status writeFileAtomically(const std::string& path, const std::string& text) {
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec)) return badInput(path + ": is a folder (a file is written here)");
     const std::string tmp = path + ".tmp-" + std::to_string(::getpid());
     {
         std::ofstream f(tmp);
         if (!f) return badInput(path + ": cannot write");
         f << text;
-        if (!f) return internal("write " + path + " failed");
+        if (!f) {
+            f.close();
+            std::filesystem::remove(tmp, ec);
+            return internal("write " + path + " failed (disk full?)");
+        }
     }
-    std::error_code ec;
     std::filesystem::rename(tmp, path, ec);
-    if (ec) return internal("rename " + tmp + " -> " + path + ": " + ec.message());
+    if (ec) {
+        const std::string why = ec.message();
+        std::filesystem::remove(tmp, ec);   // nothing half-written left behind
+        return internal("rename " + tmp + " -> " + path + ": " + why);
+    }
     return {};
 }
 
