@@ -22,7 +22,9 @@ const CommandSpec& compareSpec() {
         "(Mann-Whitney U test).",
         {
             {"--alpha", "A", "significance of the U test, and 1 - A the confidence of the interval; in (0, 1) (default 0.05)"},
-            {"--min-change", "P", "smallest change, in percent of the old median, called slower or faster; >= 0 (default 2)"},
+            {"--min-change", "P|auto",
+             "smallest change, in percent of the old median, called slower or faster; >= 0 (default 2); auto: each "
+             "pass's detectable change (its interval's half-width or the timer's step), at least 0.5"},
             {"--json", "FILE", "also write the rows as cavity.compare/1 JSON"},
             {"--filter", "REGEX",
              "only the rows whose \"<configuration id> <pass>\" matches (searched): '/alchemy_fast/', ' ao$'"},
@@ -30,10 +32,13 @@ const CommandSpec& compareSpec() {
         },
         "OLD.json NEW.json",
         "a results.json (cavity run) or Google Benchmark JSON (cavity_bench --benchmark_out), each",
-        "\nExit codes: 0 compared, 1 slower with --fail-on-slower, 2 bad usage or input.",
+        "\nVerdicts: slower, faster, same, inconclusive (with its reason and what to do: too few samples, clocks "
+        "differ, mixed clocks, interval too wide, software renderer), new, gone.\n"
+        "Exit codes: 0 compared, 1 slower with --fail-on-slower, 2 bad usage or input.",
         {
             "cavity compare main/results.json pr/results.json",
             "cavity compare --min-change 1 --fail-on-slower main.json pr.json",
+            "cavity compare --min-change auto main.json pr.json",
             "cavity compare --json out/compare.json old.json new.json",
             "cavity compare --filter '/alchemy_fast/.* ao$' main.json pr.json",
         },
@@ -67,8 +72,11 @@ Result<CompareFlags> parse(const std::vector<std::string>& argv) {
         } else if (flag == "--alpha") {
             CAVITY_ASSIGN(f.thresholds.alpha,
                           parseNumber(flag, v, [](double x) { return x > 0 && x < 1; }, "a number in (0, 1)"));
+        } else if (flag == "--min-change" && v == "auto") {
+            f.thresholds.autoMinChange = true;
         } else if (flag == "--min-change") {
-            CAVITY_ASSIGN(f.thresholds.minChangePct, parseNumber(flag, v, [](double x) { return x >= 0; }, "a percentage >= 0"));
+            CAVITY_ASSIGN(f.thresholds.minChangePct,
+                          parseNumber(flag, v, [](double x) { return x >= 0; }, "a percentage >= 0, or auto"));
         }
     }
     if (f.files.size() != 2)

@@ -4,6 +4,7 @@
 #include "run_binary.h"
 #include "core/json_file.h"
 #include "compare/sample_sets.h"
+#include "compare/compare_verdict.h"
 
 #include <gtest/gtest.h>
 
@@ -11,6 +12,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
@@ -74,7 +76,8 @@ double pipelineMs(const FakeConfig& c, size_t rep) {
 // the iteration entries (real_time in microseconds here, to exercise the
 // unit), then the mean, median, stddev and cv aggregates, whose constant
 // counters are 0/0 and come out as a bare NaN.
-std::string benchmarkJson(const std::vector<FakeConfig>& configs, bool withErrorAndMirrors = false) {
+std::string benchmarkJson(const std::vector<FakeConfig>& configs, bool withErrorAndMirrors = false,
+                          bool softwareRenderer = false) {
     json benchmarks = json::array();
     for (const auto& c : configs) {
         const std::string name = c.id + "/iterations:50/manual_time";
@@ -120,7 +123,8 @@ std::string benchmarkJson(const std::vector<FakeConfig>& configs, bool withError
                               {"error_message", "vkCreateImage: VK_ERROR_OUT_OF_DEVICE_MEMORY"},
                               {"real_time", 0.0},
                               {"time_unit", "us"}});
-    const json doc = {{"context", {{"date", "2026-12-01T10:00:00+00:00"}, {"cavity_sweep", "gpu"}}},
+    const json doc = {{"context", {{"date", "2026-12-01T10:00:00+00:00"}, {"cavity_sweep", "gpu"},
+                                   {"cavity_software_renderer", softwareRenderer ? "true" : "false"}}},
                       {"benchmarks", benchmarks}};
     std::string text = doc.dump(2);
     // Google Benchmark's own spelling of 0/0 and of an overflow.
@@ -279,6 +283,81 @@ TEST_F(Compare, KnownShiftIsSlowerAndTheRestIsSame) {
     EXPECT_EQ(cavity("compare " + o + " " + n + " --min-change 10 --fail-on-slower").code, 0);
 }
 
+// The detectable change, by hand: the smallest difference between two
+// distinct samples is the timer's step, and no change under it (or under the
+// interval's half-width) can be called.
+TEST(CompareVerdict, DetectableChangeIsTheIntervalOrTheTimersStep) {
+    using cavity::compare::compareSeries;
+    EXPECT_DOUBLE_EQ(cavity::compare::smallestStep({1.0, 1.25, 2.0}, {1.5}), 0.25);
+    EXPECT_TRUE(std::isnan(cavity::compare::smallestStep({1.0, 1.0}, {1.0})));
+    cavity::compare::SampleSet a, b;
+    for (double v : {1.0, 1.0, 1.0, 1.1, 1.1}) a.add(v, "gpu-timestamp");
+    for (double v : {1.0, 1.0, 1.1, 1.1, 1.1}) b.add(v, "gpu-timestamp");
+    cavity::compare::CompareThresholds t;   // 2%
+    const auto r = compareSeries("x", "ao", &a, &b, t);
+    EXPECT_NEAR(r.timerStepPct, 10.0, 1e-9);   // a 0.1 ms step over a 1.0 ms median
+    EXPECT_GE(r.detectablePct, 10.0 - 1e-9);
+    EXPECT_NEAR(r.detectablePct, std::max(10.0, (r.highPct - r.lowPct) / 2), 1e-9);
+    EXPECT_EQ(r.verdict, "inconclusive");
+    EXPECT_EQ(r.reason, "interval too wide");
+    EXPECT_NE(r.next.find("more repetitions"), std::string::npos);
+    t.autoMinChange = true;   // the threshold follows the detectable change, and never under the timer's step
+    const auto a2 = compareSeries("x", "ao", &a, &b, t);
+    EXPECT_GE(a2.thresholdPct, a2.timerStepPct);
+    EXPECT_EQ(a2.verdict, "same");
+    // Identical constant samples: nothing to detect, the floor of auto is the threshold.
+    cavity::compare::SampleSet c;
+    for (int i = 0; i < 5; ++i) c.add(2.0, "gpu-timestamp");
+    const auto same = compareSeries("x", "ao", &c, &c, t);
+    EXPECT_EQ(same.verdict, "same");
+    EXPECT_DOUBLE_EQ(same.detectablePct, 0.0);
+    EXPECT_DOUBLE_EQ(same.thresholdPct, cavity::compare::kAutoFloorPct);
+}
+
+// --min-change auto calls a change under the fixed 2% when the samples can
+// see it; a software renderer's times never give slower or faster.
+TEST_F(Compare, AutoThresholdCallsWhatTheNoiseAllowsAndSoftwareRenderersNeverJudge) {
+    const auto before = fakeConfig(kId, 20, 1, 0);
+    const auto after = fakeConfig(kId, 20, 2, 0.009);   // +1.5% on a 0.6 ms AO pass, +-1% noise
+    const std::string o = write("old.json", benchmarkJson({before}));
+    const std::string n = write("new.json", benchmarkJson({after}));
+    const std::string out = (dir / "v.json").string();
+    ASSERT_EQ(cavity("compare " + o + " " + n + " --json " + out).code, 0);
+    EXPECT_NE(row(rowsOf(out), kId, "ao")["verdict"], "slower");   // under 2%
+    const Outcome autoRun = cavity("compare " + o + " " + n + " --min-change auto --json " + out);
+    ASSERT_EQ(autoRun.code, 0) << autoRun.output;
+    const json ao = row(rowsOf(out), kId, "ao");
+    EXPECT_EQ(ao["verdict"], "slower") << ao.dump();
+    EXPECT_LT(ao["threshold_pct"].get<double>(), 1.5);
+    EXPECT_GE(ao["threshold_pct"].get<double>(), cavity::compare::kAutoFloorPct);
+    EXPECT_EQ(row(rowsOf(out), kId, "blur")["verdict"], "same");
+    // The same numbers from a software renderer: inconclusive, with the reason.
+    const std::string os = write("old_sw.json", benchmarkJson({before}, false, true));
+    const std::string ns = write("new_sw.json", benchmarkJson({fakeConfig(kId, 20, 2, 0.06)}, false, true));
+    const Outcome sw = cavity("compare " + os + " " + ns + " --json " + out + " --fail-on-slower");
+    EXPECT_EQ(sw.code, 0) << sw.output;
+    const json swAo = row(rowsOf(out), kId, "ao");
+    EXPECT_EQ(swAo["verdict"], "inconclusive");
+    EXPECT_EQ(swAo["reason"], "software renderer");
+    EXPECT_NE(sw.output.find("judge speed on a GPU"), std::string::npos) << sw.output;
+}
+
+// Two runs of one build on lavapipe: whatever the host's load did to the
+// times, nothing is called slower (or faster).
+TEST_F(Compare, IdenticalRunsOnASoftwareRendererAreNeverSlower) {
+    const std::string a = (dir / "a").string(), b = (dir / "b").string(), out = (dir / "v.json").string();
+    for (const auto& o : {a, b}) {
+        const Outcome r = cavity("run --backend vk --res 64x36 --frames 6 --warmup 1 --samples 8,16 --quiet --out " + o);
+        ASSERT_EQ(r.code, 0) << r.output;
+    }
+    const Outcome r = cavity("compare " + a + "/results.json " + b + "/results.json --min-change auto --fail-on-slower --json " + out);
+    EXPECT_EQ(r.code, 0) << r.output;
+    for (const auto& row : rowsOf(out)) {
+        EXPECT_NE(row["verdict"], "slower") << row.dump();
+        EXPECT_NE(row["verdict"], "faster") << row.dump();
+    }
+}
+
 TEST_F(Compare, ResultsJsonAgainstResultsJsonAndAgainstBenchmarkJson) {
     const auto before = fakeConfig(kId, 40, 3, 0);
     const auto after = fakeConfig(kId, 40, 4, 0.03);
@@ -330,17 +409,21 @@ TEST_F(Compare, ClocksAreNeverPooled) {
     const json rows = rowsOf(out);
     for (const char* pass : {"pipeline", "ao", "blur", "composite"}) {
         const json& m = row(rows, kOtherId, pass);
-        EXPECT_EQ(m["verdict"], "mixed clocks") << pass;
+        EXPECT_EQ(m["verdict"], "inconclusive") << pass;
+        EXPECT_EQ(m["reason"], "mixed clocks") << pass;
+        EXPECT_NE(m["next"].get<std::string>().find("one clock"), std::string::npos) << pass;
         EXPECT_EQ(m["new_clock"], "mixed");
         EXPECT_TRUE(m["p"].is_null());
         EXPECT_TRUE(m["change_pct"].is_null());
         EXPECT_TRUE(m["new_median_ms"].is_null());
         const json& d = row(rows, third, pass);
-        EXPECT_EQ(d["verdict"], "clocks differ") << pass;
+        EXPECT_EQ(d["verdict"], "inconclusive") << pass;
+        EXPECT_EQ(d["reason"], "clocks differ") << pass;
         EXPECT_EQ(d["old_clock"], "gpu-timestamp");
         EXPECT_EQ(d["new_clock"], "wall");
         EXPECT_TRUE(d["p"].is_null());
-        EXPECT_EQ(row(rows, fourth, pass)["verdict"], "too few samples") << pass;
+        EXPECT_EQ(row(rows, fourth, pass)["verdict"], "inconclusive") << pass;
+        EXPECT_EQ(row(rows, fourth, pass)["reason"], "too few samples") << pass;
         EXPECT_EQ(row(rows, kId, pass)["verdict"], "same") << pass;
     }
     EXPECT_NE(r.output.find("mixed clocks"), std::string::npos);

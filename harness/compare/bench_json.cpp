@@ -68,6 +68,8 @@ Result<SampleSets> readBenchmarkJson(const json& doc, const std::string& path) {
     SampleSets out;
     out.path = path;
     out.format = "google-benchmark";
+    if (doc.contains("context") && doc["context"].is_object())
+        out.softwareRenderer = doc["context"].value("cavity_software_renderer", "") == "true";
     const json& benchmarks = doc["benchmarks"];
     for (size_t i = 0; i < benchmarks.size(); ++i) {
         const json& b = benchmarks[i];

@@ -4,7 +4,9 @@
 #include "stats/mann_whitney.h"
 #include "stats/stats.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 namespace cavity::compare {
 
@@ -12,10 +14,33 @@ namespace {
 
 double medianOf(const SampleSet& s) { return s.ms.empty() || s.mixedClocks ? NAN : summarize(s.ms).median; }
 
+std::string percent(double x) {
+    char b[32];
+    std::snprintf(b, sizeof b, "%g%%", x);
+    return b;
+}
+
+CompareRow& inconclusive(CompareRow& r, std::string reason, std::string next) {
+    r.verdict = "inconclusive";
+    r.reason = std::move(reason);
+    r.next = std::move(next);
+    return r;
+}
+
 }  // namespace
 
+double smallestStep(const std::vector<double>& a, const std::vector<double>& b) {
+    std::vector<double> v(a);
+    v.insert(v.end(), b.begin(), b.end());
+    std::sort(v.begin(), v.end());
+    double step = NAN;
+    for (size_t i = 1; i < v.size(); ++i)
+        if (v[i] > v[i - 1] && !(v[i] - v[i - 1] >= step)) step = v[i] - v[i - 1];
+    return step;
+}
+
 CompareRow compareSeries(const std::string& id, const std::string& pass, const SampleSet* before,
-                         const SampleSet* after, const CompareThresholds& t) {
+                         const SampleSet* after, const CompareThresholds& t, bool software) {
     CompareRow r;
     r.id = id;
     r.pass = pass;
@@ -35,14 +60,11 @@ CompareRow compareSeries(const std::string& id, const std::string& pass, const S
     }
     // A wall-clock time includes submission and the drain around each pass;
     // a timestamp does not. Their difference is the harness, not the change.
-    if (before->mixedClocks || after->mixedClocks) {
-        r.verdict = "mixed clocks";
-        return r;
-    }
-    if (before->clock != after->clock) {
-        r.verdict = "clocks differ";
-        return r;
-    }
+    const std::string oneClock = "time both runs on one clock (docs/timing.md), or run them interleaved";
+    if (before->mixedClocks || after->mixedClocks) return inconclusive(r, "mixed clocks", oneClock);
+    if (before->clock != after->clock) return inconclusive(r, "clocks differ", oneClock);
+    if (r.nOld < kMinSamples || r.nNew < kMinSamples)
+        return inconclusive(r, "too few samples", "measure at least " + std::to_string(kMinSamples) + " repetitions a side");
 
     const auto u = stats::mannWhitneyU(before->ms, after->ms);
     const auto hl = stats::hodgesLehmann(before->ms, after->ms, t.alpha);
@@ -58,10 +80,22 @@ CompareRow compareSeries(const std::string& id, const std::string& pass, const S
     r.changePct = pct(hl.shift);
     r.lowPct = pct(hl.low);
     r.highPct = pct(hl.high);
+    r.timerStepPct = pct(smallestStep(before->ms, after->ms));
+    const double halfWidth = (r.highPct - r.lowPct) / 2;
+    r.detectablePct = std::isnan(r.timerStepPct) ? halfWidth : std::max(halfWidth, r.timerStepPct);
+    r.thresholdPct = t.autoMinChange ? std::max(r.detectablePct, kAutoFloorPct) : t.minChangePct;
 
-    if (r.nOld < kMinSamples || r.nNew < kMinSamples) r.verdict = "too few samples";
-    else if (r.p < t.alpha && r.changePct >= t.minChangePct && r.lowPct > 0) r.verdict = "slower";
-    else if (r.p < t.alpha && r.changePct <= -t.minChangePct && r.highPct < 0) r.verdict = "faster";
+    const bool slower = r.p < t.alpha && r.changePct >= r.thresholdPct && r.lowPct > 0;
+    const bool faster = r.p < t.alpha && r.changePct <= -r.thresholdPct && r.highPct < 0;
+    if ((slower || faster) && software)
+        return inconclusive(r, "software renderer",
+                            "judge speed on a GPU: a software renderer's times are the host CPU's and move with its load");
+    if (slower) r.verdict = "slower";
+    else if (faster) r.verdict = "faster";
+    else if (r.detectablePct > r.thresholdPct)
+        return inconclusive(r, "interval too wide",
+                            "more repetitions, or the two builds interleaved on one GPU, to see a change of " +
+                                percent(r.thresholdPct));
     else r.verdict = "same";
     return r;
 }

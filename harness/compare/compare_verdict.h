@@ -20,7 +20,16 @@ namespace cavity::compare {
 struct CompareThresholds {
     double alpha = 0.05;       // significance of the U test; the interval is at 1 - alpha
     double minChangePct = 2;   // smallest shift, in percent of the old median, worth a verdict
+    // --min-change auto: each pass's threshold is its detectable change
+    // (below), never under kAutoFloorPct.
+    bool autoMinChange = false;
 };
+
+// The floor of --min-change auto: two unchanged runs of one build, one after
+// the other on an H200, moved untouched passes by up to 0.45% with p < 0.05
+// (bench/results/2026-12-01_h200_verdict); a change the drift between two
+// processes can make is not called.
+constexpr double kAutoFloorPct = 0.5;
 
 // Fewer samples than this on a side gives no verdict: with 2 against 2 the
 // smallest two-sided p the U test can give is 1/3.
@@ -28,7 +37,16 @@ constexpr size_t kMinSamples = 3;
 
 struct CompareRow {
     std::string id, pass;
-    std::string verdict;   // slower, faster, same, mixed clocks, clocks differ, too few samples, new, gone
+    // slower, faster, same, inconclusive, new, gone
+    std::string verdict;
+    // inconclusive: why ("too few samples", "mixed clocks", "clocks differ",
+    // "interval too wide", "software renderer") and what to do next.
+    std::string reason, next;
+    // The smallest change these two samples could have called, in percent of
+    // the old median: the larger of the interval's half-width and the
+    // timer's step (the smallest difference between two distinct samples).
+    double detectablePct = NAN, timerStepPct = NAN;
+    double thresholdPct = NAN;   // the change a verdict needed: --min-change, or auto's
     size_t nOld = 0, nNew = 0;
     std::string oldClock, newClock;   // "" where the side is missing
     // NaN where not computed: medians of a missing or mixed-clock side; the
@@ -41,8 +59,15 @@ struct CompareRow {
     bool exact = false;        // exact U distribution for p and interval
 };
 
-// Either side may be null: the pass is new or gone.
+// Either side may be null: the pass is new or gone. `software`: either run
+// was on a software renderer (llvmpipe, lavapipe), whose times are the host
+// CPU's: no change is called slower or faster there.
 CompareRow compareSeries(const std::string& id, const std::string& pass, const SampleSet* before,
-                         const SampleSet* after, const CompareThresholds& t);
+                         const SampleSet* after, const CompareThresholds& t, bool software = false);
+
+// The smallest positive difference between two distinct values of a and b
+// together (a timer's step, where the samples are on one); NaN with fewer
+// than two distinct values.
+double smallestStep(const std::vector<double>& a, const std::vector<double>& b);
 
 }  // namespace cavity::compare

@@ -56,6 +56,8 @@ Result<SampleSets> readResultsJson(const json& doc, const std::string& path) {
     for (const auto& r : runs) {
         CAVITY_ASSIGN(const std::string id, r.str("id"));
         CAVITY_ASSIGN(const std::string clock, r.str("clock"));
+        if (r.raw().contains("device") && r.raw()["device"].is_object())
+            out.softwareRenderer |= r.raw()["device"].value("software_renderer", false);
         // The frame first, as a table reads best whole before parts.
         CAVITY_ASSIGN(const JsonObject frame, r.object("frame"));
         CAVITY_TRY(addSamples(out.at(id, kFramePass), frame, clock));

@@ -37,6 +37,9 @@ struct SampleSets {
     std::map<std::pair<std::string, std::string>, SampleSet> series;
     int skippedErrors = 0;    // benchmark entries with error_occurred
     int skippedMirrors = 0;   // "<id>@<pass>" entries: the same numbers as the counters
+    // Measured on a software renderer (a results.json run's device, or
+    // cavity_bench's context cavity_software_renderer).
+    bool softwareRenderer = false;
 
     SampleSet& at(const std::string& id, const std::string& pass);
 };

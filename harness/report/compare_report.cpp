@@ -14,8 +14,7 @@ using nlohmann::json;
 namespace {
 
 // The verdicts in the order a summary lists them.
-constexpr std::array<const char*, 8> kVerdicts = {"slower", "faster",        "same", "too few samples",
-                                                   "mixed clocks", "clocks differ", "new",  "gone"};
+constexpr std::array<const char*, 6> kVerdicts = {"slower", "faster", "same", "inconclusive", "new", "gone"};
 
 std::string format(const char* f, double v) {
     if (std::isnan(v)) return "-";
@@ -82,7 +81,8 @@ std::vector<CompareRow> compareAll(const SampleSets& before, const SampleSets& a
     for (const auto& k : keys) {
         const auto o = before.series.find(k), n = after.series.find(k);
         rows.push_back(compareSeries(k.first, k.second, o == before.series.end() ? nullptr : &o->second,
-                                     n == after.series.end() ? nullptr : &n->second, t));
+                                     n == after.series.end() ? nullptr : &n->second, t,
+                                     before.softwareRenderer || after.softwareRenderer));
     }
     return rows;
 }
@@ -91,16 +91,19 @@ std::string compareTable(const std::vector<CompareRow>& rows, const SampleSets& 
                          const CompareThresholds& t) {
     const std::string level = confidenceLabel(t.alpha);
     std::vector<std::vector<std::string>> cells = {
-        {"configuration", "pass", "old ms", "new ms", "change", level + " interval", "p", "n old/new", "verdict"}};
+        {"configuration", "pass", "old ms", "new ms", "change", level + " interval", "detectable", "p", "n old/new",
+         "verdict"}};
     for (const auto& r : rows)
         cells.push_back({r.id, r.pass, format("%.4f", r.oldMedianMs), format("%.4f", r.newMedianMs),
-                         format("%+.1f%%", r.changePct), formatInterval(r.lowPct, r.highPct), formatP(r.p),
-                         std::to_string(r.nOld) + "/" + std::to_string(r.nNew), r.verdict});
+                         format("%+.1f%%", r.changePct), formatInterval(r.lowPct, r.highPct),
+                         format("%.2f%%", r.detectablePct), formatP(r.p),
+                         std::to_string(r.nOld) + "/" + std::to_string(r.nNew),
+                         r.verdict + (r.reason.empty() ? "" : ": " + r.reason)});
     std::vector<size_t> width(cells[0].size(), 0);
     for (const auto& row : cells)
         for (size_t c = 0; c < row.size(); ++c) width[c] = std::max(width[c], row[c].size());
     // Names and the verdict read from the left, numbers line up on the right.
-    auto leftAligned = [](size_t c) { return c < 2 || c == 8; };
+    auto leftAligned = [](size_t c) { return c < 2 || c == 9; };
     std::string out = "old: " + describe(before) + "\nnew: " + describe(after) + "\n\n";
     for (const auto& row : cells) {
         std::string line;
@@ -116,8 +119,20 @@ std::string compareTable(const std::vector<CompareRow>& rows, const SampleSets& 
         if (counts.at(v) || std::string(v) == "slower" || std::string(v) == "faster" || std::string(v) == "same")
             summary += (summary.empty() ? "" : ", ") + std::to_string(counts.at(v)) + " " + v;
     out += "\n" + summary + "\n";
-    out += "slower/faster: U-test p < " + format("%g", t.alpha) + ", change >= " + format("%g", t.minChangePct) +
-           "% of the old median and the " + level + " interval of the change excludes 0\n";
+    out += "slower/faster: U-test p < " + format("%g", t.alpha) + ", change >= " +
+           (t.autoMinChange ? "each pass's detectable change (at least " + format("%g", kAutoFloorPct) + "%)"
+                            : format("%g", t.minChangePct) + "%") +
+           " of the old median and the " + level + " interval of the change excludes 0; detectable: the smallest "
+           "change these samples could call (the interval's half-width, or the timer's step)\n";
+    // Each reason for an inconclusive row once, with what to do about it.
+    std::map<std::string, std::pair<int, std::string>> reasons;
+    for (const auto& r : rows)
+        if (!r.reason.empty()) {
+            ++reasons[r.reason].first;
+            reasons[r.reason].second = r.next;
+        }
+    for (const auto& [reason, n] : reasons)
+        out += "inconclusive, " + reason + " (" + std::to_string(n.first) + "): " + n.second + "\n";
     return out;
 }
 
@@ -128,6 +143,11 @@ json compareJson(const std::vector<CompareRow>& rows, const SampleSets& before, 
         list.push_back({{"id", r.id},
                         {"pass", r.pass},
                         {"verdict", r.verdict},
+                        {"reason", text(r.reason)},
+                        {"next", text(r.next)},
+                        {"detectable_pct", number(r.detectablePct)},
+                        {"timer_step_pct", number(r.timerStepPct)},
+                        {"threshold_pct", number(r.thresholdPct)},
                         {"n_old", r.nOld},
                         {"n_new", r.nNew},
                         {"old_clock", text(r.oldClock)},
@@ -148,7 +168,7 @@ json compareJson(const std::vector<CompareRow>& rows, const SampleSets& before, 
             {"new", side(after)},
             {"alpha", t.alpha},
             {"confidence", 1 - t.alpha},
-            {"min_change_pct", t.minChangePct},
+            {"min_change_pct", t.autoMinChange ? json("auto") : json(t.minChangePct)},
             {"counts", tally(rows)},
             {"rows", list}};
 }
