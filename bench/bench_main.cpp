@@ -24,6 +24,8 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+
+#include <unistd.h>
 #include <iostream>
 #include <memory>
 #include <regex>
@@ -193,6 +195,21 @@ int main(int argc, char** argv) {
             std::regex(filter[0] == '-' ? filter.substr(1) : filter, std::regex_constants::extended);
         } catch (const std::regex_error& e) {
             std::cerr << "cavity_bench: --benchmark_filter='" << filter << "': not a regular expression (" << e.what() << ")\n";
+            return 2;
+        }
+    }
+    // Google Benchmark finds an unwritable --benchmark_out only after the
+    // whole sweep has run, and then exits 1 with its own words.
+    if (!out.empty()) {
+        namespace fs = std::filesystem;
+        std::error_code ec;
+        const fs::path parent = fs::path(out).has_parent_path() ? fs::path(out).parent_path() : fs::path(".");
+        const char* why = fs::is_directory(out, ec)        ? "is a folder"
+                          : !fs::is_directory(parent, ec)  ? "its folder does not exist"
+                          : ::access(parent.c_str(), W_OK) ? "its folder is not writable"
+                                                           : nullptr;
+        if (why) {
+            std::cerr << "cavity_bench: --benchmark_out=" << out << ": cannot be written (" << why << ")\n";
             return 2;
         }
     }

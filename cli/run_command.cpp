@@ -223,6 +223,11 @@ int runCommand(const std::vector<std::string>& argv) {
     if (auto st = checkWritableDir("--out", s.out); !st) return fail(st.error());
     const RunOutcome out = runPlan(s, apis, *plan);
     if (!out.runs.empty()) printTable(out.runs);
+    // --max-time bounds a run whatever --frames asks: say where it cut one short.
+    for (const auto& r : out.runs)
+        if (r.timing.stop == "time" && r.timing.frame.ms.size() < size_t(r.timingOptions.frames))
+            std::cerr << "cavity run: " << configId(r.config) << ": --max-time stopped measuring after "
+                      << r.timing.frame.ms.size() << " of the " << r.timingOptions.frames << " frames --frames asked for\n";
     if (out.runs.empty() && out.errors.empty()) return out.worst;
     if (auto st = writeResults(s, out, argv); !st) return fail(st.error());
     return out.worst;

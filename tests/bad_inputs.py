@@ -171,6 +171,12 @@ CASES = [
          setup=write("p.json", '{"nosuch/id": {"ao": 5}}')),
     Case("bench-plant-and-file", "cavity_bench", ["--plant", "ao:5", "--plant-file", "p.json"], ["--plant", "--plant-file"],
          setup=write("p.json", '{"x": {"ao": 5}}')),
+    Case("bench-out-no-folder", "cavity_bench", ["--benchmark_out=nosuch/x.json"], ["--benchmark_out=nosuch/x.json", "does not exist"]),
+    Case("bench-out-folder", "cavity_bench", ["--benchmark_out=prev"], ["--benchmark_out=prev", "is a folder"],
+         setup=replace_with_folder("prev")),
+    Case("compare-nan-real-time", "cavity", ["compare", "a.json", "a.json"], ["a.json", "real_time", "NaN"],
+         setup=write("a.json", '{"benchmarks": [{"name": "corner/alchemy/n16/b4/full/32x18/vk/compute", '
+                               '"run_type": "iteration", "real_time": NaN, "time_unit": "ms"}]}')),
     # The image store (docs/store.md).
     Case("store-is-file", "cavity", GATE + ["--store", "prev"], ["--store", "prev", "not a folder"], setup=write("prev", "x")),
     Case("store-empty", "cavity", GATE + ["--store", ""], ["--store", "empty"]),

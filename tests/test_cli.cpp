@@ -150,6 +150,20 @@ TEST_F(Cli, RunWritesImagesAndResults) {
     EXPECT_NE(o.output.find("median ms"), std::string::npos);
 }
 
+// --max-time bounds a run whatever --frames asks for, and says so.
+TEST_F(Cli, MaxTimeBoundsARunThatAsksForMoreFrames) {
+    const Outcome o = cavity("run --backend vk --res 32x18 --frames 100000 --max-time 0.3 --quiet --out " + dir.string());
+    ASSERT_EQ(o.code, 0) << o.output;
+    EXPECT_NE(o.output.find("--max-time stopped measuring after"), std::string::npos) << o.output;
+    std::ifstream f(dir / "results.json");
+    const auto doc = nlohmann::json::parse(f);
+    ASSERT_EQ(doc["runs"].size(), 1u);
+    EXPECT_EQ(doc["runs"][0]["timing"]["stop"], "time") << doc["runs"][0]["timing"];
+    const size_t frames = doc["runs"][0]["frame"]["samples_ms"].size();
+    EXPECT_GE(frames, 3u);
+    EXPECT_LT(frames, 100000u);
+}
+
 // stdout only (stderr to /dev/null), and the exit code.
 Outcome stdoutOf(const std::string& args) { return cavity(args, "", "2>/dev/null"); }
 // stderr only.

@@ -92,14 +92,16 @@ Result<SampleSets> readBenchmarkJson(const json& doc, const std::string& path) {
         double factor = 0;
         if (!msPerUnit(unit, factor))
             return badInput(where + " " + name + ": time_unit " + unit + ": must be ns, us, ms or s");
-        if (!b.contains("real_time") || !(b["real_time"].is_number() || b["real_time"].is_null()))
-            return badInput(where + " " + name + ": real_time: must be a number");
+        // A NaN (written as a bare NaN, read as null) is no time either: an
+        // iteration without error_occurred must have measured one.
+        if (!b.contains("real_time") || !b["real_time"].is_number())
+            return badInput(where + " " + name + ": real_time: must be a number (" +
+                            (b.contains("real_time") ? "NaN or " + std::string(b["real_time"].type_name()) : std::string("missing")) +
+                            " in an iteration without error_occurred)");
 
         const std::string id = configurationIdOf(name);
         const std::string clock = clockOfLabel(stringOr(b, "label", ""));
-        // null is a NaN the reporter wrote: a repetition with no time adds no sample.
-        SampleSet& pipeline = out.at(id, kPipelinePass);
-        if (b["real_time"].is_number()) pipeline.add(b["real_time"].get<double>() * factor, clock);
+        out.at(id, kPipelinePass).add(b["real_time"].get<double>() * factor, clock);
         for (const auto& [key, value] : b.items()) {
             if (key.size() <= 8 || key.rfind("pass_", 0) != 0 || !endsWith(key, "_ms")) continue;
             SampleSet& pass = out.at(id, key.substr(5, key.size() - 8));

@@ -52,7 +52,10 @@ TimingOptions timingOptions(const gpu::DeviceInfo& device, const RunOptions& o) 
     t.frames = o.frames;
     if (o.mode) t.mode = *o.mode;
     if (o.maxNoise) t.maxNoise = *o.maxNoise;
-    if (o.maxSeconds) t.maxSeconds = *o.maxSeconds;
+    if (o.maxSeconds) {
+        t.maxSeconds = *o.maxSeconds;
+        t.hardTimeLimit = true;   // the user's limit bounds the run, --frames or not
+    }
     return t;
 }
 

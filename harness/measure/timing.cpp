@@ -160,6 +160,11 @@ private:
     // The stop rule: with a fixed count, once it is reached; with a noise
     // target, once the worst median noise is under it or the time is up.
     bool stopRule(double elapsed) {
+        if (o_.hardTimeLimit && elapsed >= o_.maxSeconds && accepted_ >= kMinTimedFrames) {
+            t_.noise = worstNoise(t_);
+            t_.stop = "time";
+            return true;
+        }
         if (accepted_ < o_.frames) return false;
         if (o_.maxNoise <= 0) {
             t_.stop = "frames";

@@ -41,6 +41,9 @@ struct Series {
 };
 
 enum class TimingMode { Batch, Drained };
+
+// The fewest frames a hard time limit leaves: a median and its noise need some.
+constexpr int kMinTimedFrames = 3;
 const char* timingModeName(TimingMode m);   // "batch", "drained"
 
 struct TimingOptions {
@@ -52,6 +55,10 @@ struct TimingOptions {
     int frames = 50;                // measured frames at least; exactly this many when maxNoise is 0
     double maxNoise = 0.005;        // target half-width of the medians' 95% interval, relative; 0: fixed count
     double maxSeconds = 2.0;        // measurement time limit (with at least `frames` frames)
+    // maxSeconds given by the user (--max-time): a limit even before `frames`
+    // are measured (at least kMinTimedFrames), rather than a limit on the
+    // noise search alone. `stop` then says "time" with fewer frames.
+    bool hardTimeLimit = false;
     double batchMs = 25;            // GPU time per batch (batch mode); sets frames per submission
     int maxBatch = 256;
     std::optional<std::string> clock;   // "gpu-timestamp" or "wall": skip the decision (repetitions)
