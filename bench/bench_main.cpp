@@ -12,6 +12,7 @@
 // through cli/flags.h, as cavity's are; --benchmark_* and --v= go to
 // Google Benchmark untouched.
 #include "bench_runner.h"
+#include "console_reporter.h"
 #include "per_pass_reporter.h"
 
 #include "cli.h"
@@ -186,7 +187,8 @@ int main(int argc, char** argv) {
     if (help) return 0;
     // Read before Initialize, which takes its flags out of the list.
     const std::string out = benchmarkFlag(rest, "benchmark_out"), format = benchmarkFlag(rest, "benchmark_out_format"),
-                      filter = benchmarkFlag(rest, "benchmark_filter");
+                      filter = benchmarkFlag(rest, "benchmark_filter"),
+                      consoleFormat = benchmarkFlag(rest, "benchmark_format");
     // Google Benchmark compiles the filter as a std::regex (extended; '-'
     // first negates it) and prints its own error before running nothing; ours
     // is one line and exit 2.
@@ -227,7 +229,10 @@ int main(int argc, char** argv) {
     std::unique_ptr<benchmark::BenchmarkReporter> file;
     if (!out.empty() && (format.empty() || format == "json"))
         file = std::make_unique<cavity::bench::PerPassJsonReporter>();
-    const size_t ran = benchmark::RunSpecifiedBenchmarks(nullptr, file.get());
+    // Our console table, unless another format is asked for the console.
+    std::unique_ptr<benchmark::BenchmarkReporter> console;
+    if (consoleFormat.empty() || consoleFormat == "console") console = std::make_unique<cavity::bench::ConsoleReporter>();
+    const size_t ran = benchmark::RunSpecifiedBenchmarks(console.get(), file.get());
     benchmark::Shutdown();
     cavity::bench::releaseBackends();
     if (ran == 0) {

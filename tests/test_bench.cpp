@@ -7,6 +7,7 @@
 #include "plan/sweep.h"
 
 #include <gtest/gtest.h>
+#include <algorithm>
 #include <nlohmann/json.hpp>
 
 #include <cstdio>
@@ -164,6 +165,31 @@ TEST(Bench, RepetitionsShareOneClockAndEveryPassHasAnEntry) {
         ASSERT_TRUE(mirrors.count(key)) << key;
         EXPECT_NEAR(mirrors[key], ms, 1e-9 + 1e-9 * ms) << key;
     }
+}
+
+// The console: a line per configuration with every pass, the repetitions'
+// median and spread, no "nan" anywhere, and the library's DEBUG warning
+// replaced by what it means.
+TEST(Bench, ConsoleIsATableWithoutNan) {
+    const Outcome o = bench("--benchmark_filter='corner/alchemy/n16/b4/half/320x180/vk/compute' --frames 3 --warmup 1 "
+                            "--benchmark_repetitions=3");
+    ASSERT_EQ(o.code, 0) << o.output;
+    std::string lower = o.output;
+    std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return std::tolower(c); });
+    EXPECT_EQ(lower.find("nan"), std::string::npos) << o.output;
+    EXPECT_EQ(o.output.find("***WARNING***"), std::string::npos) << o.output;
+    EXPECT_NE(o.output.find("median of 3:"), std::string::npos) << o.output;
+    EXPECT_NE(o.output.find("[cv "), std::string::npos) << o.output;
+    int rows = 0;
+    std::istringstream lines(o.output);
+    for (std::string line; std::getline(lines, line);)
+        if (line.rfind("corner/alchemy/n16/b4/half/320x180/vk/compute  ", 0) == 0) {
+            ++rows;
+            for (const char* pass : {" ao ", " blur ", " composite ", " upsample ", " frames, clock="})
+                EXPECT_NE(line.find(pass), std::string::npos) << line;
+            EXPECT_LT(line.size(), 220u) << line;
+        }
+    EXPECT_EQ(rows, 3);
 }
 
 TEST(Bench, BadFlagIsAnError) {
