@@ -48,6 +48,49 @@ TEST_P(Timing, EveryReportedTimeIsPositive) {
     for (double ms : t.frame.ms) EXPECT_GT(ms, 0.0);
 }
 
+// The clock is decided on the warm GPU: a timer that misreads while cold
+// (the first check fails, as a first configuration's did on the H200) does
+// not lock the measurement onto the wall clock.
+TEST_P(Timing, AColdProbeThatFailsDoesNotDecideTheClock) {
+    RunConfig c = configAt(160, 90);
+    auto chain = PassChain::create(gpu(), c);
+    ASSERT_TRUE(chain) << chain.error().message;
+    TimingOptions o = defaultTimingOptions(gpu().info());
+    o.warmup = 2;
+    o.frames = 5;
+    o.maxNoise = 0;
+    auto plain = measurePasses(gpu(), **chain, o);
+    ASSERT_TRUE(plain) << plain.error().message;
+    ClockCheck coldFails;
+    coldFails.distrustFirst = 1;
+    coldFails.coldCounts = false;   // the rule of a GPU, on whatever renders here
+    auto t = measurePasses(gpu(), **chain, o, nullptr, coldFails);
+    ASSERT_TRUE(t) << t.error().message;
+    // llvmpipe's GL timestamps pass or fail the check by the host's load, so
+    // the claim is made where the warm GPU trusts them (lavapipe, GPUs).
+    if (plain->clock == "gpu-timestamp") {
+        EXPECT_EQ(t->clock, "gpu-timestamp") << t->clockNote;
+        EXPECT_NE(t->clockNote.find("cold probe"), std::string::npos) << t->clockNote;
+        // A repetition told the first one used the wall clock decides again, and says so.
+        o.clock = "wall";
+        ClockCheck gpuRule;
+        gpuRule.coldCounts = false;
+        auto rep = measurePasses(gpu(), **chain, o, nullptr, gpuRule);
+        ASSERT_TRUE(rep) << rep.error().message;
+        EXPECT_EQ(rep->clock, "gpu-timestamp");
+        EXPECT_NE(rep->clockNote.find("re-decided"), std::string::npos) << rep->clockNote;
+    }
+    // On a software renderer a cold failure keeps the wall clock (the default rule).
+    if (gpu().info().softwareRenderer) {
+        ClockCheck strict;
+        strict.distrustFirst = 1;
+        o.clock.reset();
+        auto s = measurePasses(gpu(), **chain, o, nullptr, strict);
+        ASSERT_TRUE(s) << s.error().message;
+        EXPECT_EQ(s->clock, "wall") << s->clockNote;
+    }
+}
+
 TEST_P(Timing, GpuClockIsUsedOnlyWhenItAgreesWithTheWallClock) {
     const auto t = measureAt(160, 90, 5);
     const ClockCheck check;

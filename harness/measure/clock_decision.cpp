@@ -64,6 +64,10 @@ Result<std::string> clockVerdict(gpu::Backend& gpu, PassChain& chain, const Cloc
 }
 
 bool ClockCheck::trusted(double gpuMs, double wallMs) const {
+    if (distrustFirst > 0) {
+        --distrustFirst;
+        return false;
+    }
     if (!(gpuMs > 0)) return false;
     if (gpuMs > wallMs * maxOverWall + slopMs) return false;
     return gpuMs >= minFraction * wallMs || wallMs - gpuMs <= overheadMs;

@@ -71,7 +71,10 @@ TimingOptions defaultTimingOptions(const gpu::DeviceInfo& device);
 
 struct Timing {
     std::string clock;           // "gpu-timestamp" or "wall"
-    std::string clockNote;       // why the wall clock was used, when it was
+    // Why the wall clock was used, when it was; or, on timestamps, that the
+    // warm decision overrode the cold probe or the configuration's first
+    // repetition. Empty: timestamps, decided warm, nothing to say.
+    std::string clockNote;
     TimingMode mode = TimingMode::Batch;   // as run: the wall clock always times passes drained
     int batchFrames = 1;         // frames per submission
     std::vector<Series> passes;  // in pass order, on `clock`
@@ -97,6 +100,14 @@ struct Timing {
 struct ClockCheck {
     double maxOverWall = 1.05, slopMs = 0.02;
     double minFraction = 0.5, overheadMs = 0.3;
+    // Test double of a timer that misreads while cold: the first this many
+    // checks fail whatever they compare.
+    mutable int distrustFirst = 0;
+    // Whether a cold probe's failure keeps the wall clock even when the warm
+    // probe passes. Unset: on a software renderer, whose timestamps pass or
+    // fail by the host's load (llvmpipe's GL ones miss deferred draws), yes;
+    // on a GPU, no: the warm GPU decides.
+    std::optional<bool> coldCounts;
     bool trusted(double gpuMs, double wallMs) const;
 };
 
