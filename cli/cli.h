@@ -70,6 +70,7 @@ int baselinesCommand(const std::vector<std::string>& args);
 int approveCommand(const std::vector<std::string>& args);   // cavity baselines approve
 int compareCommand(const std::vector<std::string>& args);
 int storeCommand(const std::vector<std::string>& args);     // cavity store check
+int abCommand(const std::vector<std::string>& args);        // cavity ab
 // `program` starts every message: "cavity quality", "cavity_render quality".
 int qualityCommand(const std::vector<std::string>& args, const std::string& program = "cavity quality");
 

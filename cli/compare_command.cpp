@@ -24,7 +24,7 @@ const CommandSpec& compareSpec() {
             {"--alpha", "A", "significance of the U test, and 1 - A the confidence of the interval; in (0, 1) (default 0.05)"},
             {"--min-change", "P|auto",
              "smallest change, in percent of the old median, called slower or faster; >= 0 (default 2); auto: each "
-             "pass's detectable change (its interval's half-width or the timer's step), at least 0.5"},
+             "pass's detectable change (its interval's half-width or the timer's step), from 0.5 up to 2"},
             {"--json", "FILE", "also write the rows as cavity.compare/1 JSON"},
             {"--filter", "REGEX",
              "only the rows whose \"<configuration id> <pass>\" matches (searched): '/alchemy_fast/', ' ao$'"},

@@ -18,6 +18,7 @@ constexpr const char* kUsage =
     "  baselines update   accept new images as baselines\n"
     "  baselines approve  approve (or mark known bad) a run's image digests for their device class\n"
     "  store check        fetch every approved image from the image store and check its digest\n"
+    "  ab         two builds measured interleaved on one GPU, then compared pass by pass\n"
     "  compare    two runs (results.json or cavity_bench JSON) pass by pass: change, interval, verdict\n"
     "  quality    each AO kernel's mean absolute error against the ray-traced ground truth\n"
     "`cavity COMMAND --help` lists a command's flags. `cavity` alone prints this and exits 2;\n"
@@ -43,9 +44,10 @@ int main(int argc, char** argv) {
     if (command == "baselines") return cavity::cli::baselinesCommand(args);
     if (command == "compare") return cavity::cli::compareCommand(args);
     if (command == "store") return cavity::cli::storeCommand(args);
+    if (command == "ab") return cavity::cli::abCommand(args);
     if (command == "quality") return cavity::cli::qualityCommand(args);
     // One line, as every usage error (README "Exit codes").
-    const std::string near = cavity::cli::nearest(command, {"run", "gate", "baselines", "compare", "quality", "store"});
+    const std::string near = cavity::cli::nearest(command, {"run", "gate", "baselines", "compare", "quality", "store", "ab"});
     std::cerr << "cavity: unknown command '" << command << "'" << (near.empty() ? "" : " (did you mean " + near + "?)")
               << "; see cavity --help\n";
     return 2;

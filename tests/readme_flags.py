@@ -40,7 +40,7 @@ GOOGLE_BENCHMARK_FLAGS = {
 # Subcommands: program -> {subcommand words: ()}; () is the program itself.
 SUBCOMMANDS = {
     "cavity": [("run",), ("quality",), ("compare",), ("gate", "judge"), ("gate", "merge"), ("gate",),
-               ("baselines", "update"), ("baselines", "approve"), ("store", "check")],
+               ("baselines", "update"), ("baselines", "approve"), ("store", "check"), ("ab",)],
     "cavity_render": [("quality",)],
     "cavity_bench": [],
 }

@@ -301,10 +301,13 @@ TEST(CompareVerdict, DetectableChangeIsTheIntervalOrTheTimersStep) {
     EXPECT_EQ(r.verdict, "inconclusive");
     EXPECT_EQ(r.reason, "interval too wide");
     EXPECT_NE(r.next.find("more repetitions"), std::string::npos);
-    t.autoMinChange = true;   // the threshold follows the detectable change, and never under the timer's step
+    // auto follows the detectable change up to --min-change: a timer this
+    // coarse leaves the row inconclusive, never "same" at a 10% threshold.
+    t.autoMinChange = true;
     const auto a2 = compareSeries("x", "ao", &a, &b, t);
-    EXPECT_GE(a2.thresholdPct, a2.timerStepPct);
-    EXPECT_EQ(a2.verdict, "same");
+    EXPECT_DOUBLE_EQ(a2.thresholdPct, 2.0);
+    EXPECT_EQ(a2.verdict, "inconclusive");
+    EXPECT_EQ(a2.reason, "interval too wide");
     // Identical constant samples: nothing to detect, the floor of auto is the threshold.
     cavity::compare::SampleSet c;
     for (int i = 0; i < 5; ++i) c.add(2.0, "gpu-timestamp");
@@ -355,6 +358,42 @@ TEST_F(Compare, IdenticalRunsOnASoftwareRendererAreNeverSlower) {
     for (const auto& row : rowsOf(out)) {
         EXPECT_NE(row["verdict"], "slower") << row.dump();
         EXPECT_NE(row["verdict"], "faster") << row.dump();
+    }
+}
+
+// cavity ab alternates the two builds (A B, then B A), merges each side's
+// rounds into one run of repetitions, and never mixes A's with B's.
+TEST_F(Compare, InterleavedRunsAlternateAndKeepTheSidesApart) {
+    const std::string out = (dir / "ab").string();
+    const Outcome r = cavity(std::string("ab --a ") + CAVITY_BENCH_EXE + " --b " + CAVITY_BENCH_EXE +
+                             " --rounds 3 --filter 'corner/alchemy/n16/b4/full/320x180/vk/compute' "
+                             "--bench-args='--frames 2 --warmup 0' --out " + out);
+    ASSERT_EQ(r.code, 0) << r.output;
+    auto mtime = [&](const std::string& name) { return fs::last_write_time(fs::path(out) / name); };
+    EXPECT_LT(mtime("a_0.json"), mtime("b_0.json"));   // round 1: A, B
+    EXPECT_LT(mtime("b_1.json"), mtime("a_1.json"));   // round 2: B, A
+    EXPECT_LT(mtime("a_2.json"), mtime("b_2.json"));
+    for (const char side : {'a', 'b'}) {
+        const json merged = cavity::core::readJsonFile(out + "/" + side + ".json").value();
+        std::vector<double> times, expected;
+        for (const auto& e : merged["benchmarks"])
+            if (e["run_name"].get<std::string>().find('@') == std::string::npos) {
+                EXPECT_EQ(e["repetition_index"], int(times.size()));
+                times.push_back(e["real_time"]);
+            }
+        for (int k = 0; k < 3; ++k) {
+            const json round = cavity::core::readJsonFile(out + "/" + side + "_" + std::to_string(k) + ".json").value();
+            for (const auto& e : round["benchmarks"])
+                if (e["run_type"] == "iteration" && e["run_name"].get<std::string>().find('@') == std::string::npos)
+                    expected.push_back(e["real_time"]);
+        }
+        EXPECT_EQ(times, expected) << side;
+    }
+    const json rows = rowsOf(out + "/compare.json");
+    ASSERT_FALSE(rows.empty());
+    for (const auto& row : rows) {
+        EXPECT_EQ(row["n_old"], 3) << row.dump();
+        EXPECT_EQ(row["n_new"], 3) << row.dump();
     }
 }
 

@@ -83,7 +83,11 @@ CompareRow compareSeries(const std::string& id, const std::string& pass, const S
     r.timerStepPct = pct(smallestStep(before->ms, after->ms));
     const double halfWidth = (r.highPct - r.lowPct) / 2;
     r.detectablePct = std::isnan(r.timerStepPct) ? halfWidth : std::max(halfWidth, r.timerStepPct);
-    r.thresholdPct = t.autoMinChange ? std::max(r.detectablePct, kAutoFloorPct) : t.minChangePct;
+    // auto lowers the threshold to what the samples can see, down to the
+    // floor, and never raises it over --min-change: noisier samples than that
+    // are inconclusive, not "same" at a wide threshold.
+    r.thresholdPct = t.autoMinChange ? std::clamp(r.detectablePct, std::min(kAutoFloorPct, t.minChangePct), t.minChangePct)
+                                     : t.minChangePct;
 
     const bool slower = r.p < t.alpha && r.changePct >= r.thresholdPct && r.lowPct > 0;
     const bool faster = r.p < t.alpha && r.changePct <= -r.thresholdPct && r.highPct < 0;

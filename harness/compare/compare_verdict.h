@@ -21,7 +21,8 @@ struct CompareThresholds {
     double alpha = 0.05;       // significance of the U test; the interval is at 1 - alpha
     double minChangePct = 2;   // smallest shift, in percent of the old median, worth a verdict
     // --min-change auto: each pass's threshold is its detectable change
-    // (below), never under kAutoFloorPct.
+    // (below), never under kAutoFloorPct nor over minChangePct (2%): noisier
+    // samples are inconclusive.
     bool autoMinChange = false;
 };
 

@@ -1,0 +1,193 @@
+// `cavity ab --a A --b B`: two builds measured interleaved on one GPU, as
+// Chromium's Pinpoint alternates them: round after round, one cavity_bench
+// process of each (A then B in odd rounds, B then A in even ones), each with
+// its configurations in a shuffled order; then every side's repetitions
+// merged and compared pass by pass (cavity compare). Drift of the machine
+// over the minutes of a measurement lands on both sides alike, where two
+// sequential runs put all of it on one.
+#include "cli.h"
+#include "core/json_file.h"
+#include "measure/results.h"
+#include "measure/runner.h"
+#include "report/compare_report.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <sstream>
+#include <iostream>
+#include <optional>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+namespace cavity::cli {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+const CommandSpec& abSpec() {
+    static const CommandSpec spec{
+        "cavity ab",
+        "Measures two builds interleaved on one GPU (A, B, B, A, ... cavity_bench processes, the configurations "
+        "shuffled in each), merges each side's repetitions and compares them pass by pass.",
+        {
+            {"--a", "PATH", "build A: a cavity_bench binary, a build folder (bench/cavity_bench) or a bundle (required)"},
+            {"--b", "PATH", "build B, the same (required)"},
+            {"--rounds", "N", "processes of each build (2..1000; default 10)"},
+            {"--filter", "REGEX", "the configurations to measure (--benchmark_filter of cavity_bench; default all)"},
+            {"--bench-args", "ARGS", "more flags for every cavity_bench process, space-separated (--frames 20 --max-time 0.5)"},
+            {"--out", "DIR", "where the runs, a.json, b.json and compare.json go (default out/ab)"},
+            {"--min-change", "P|auto", "as cavity compare (default auto)"},
+            {"--fail-on-slower", "", "exit 1 when any pass of B is slower than A's"},
+        },
+        "",
+        "",
+        "\nExit codes: 0 compared, 1 slower with --fail-on-slower, 2 bad input, 4 a cavity_bench process failed.",
+        {
+            "cavity ab --a main/build --b pr/build --filter 'corner/alchemy_fast/' --rounds 10",
+            "cavity ab --a main/.bundle --b pr/.bundle --rounds 6 --bench-args='--max-time 0.5' --fail-on-slower",
+        },
+    };
+    return spec;
+}
+
+Result<std::string> benchBinary(const std::string& flag, const std::string& path) {
+    std::error_code ec;
+    for (const fs::path& p : {fs::path(path), fs::path(path) / "bench" / "cavity_bench", fs::path(path) / "cavity_bench"})
+        if (fs::is_regular_file(p, ec) && ::access(p.c_str(), X_OK) == 0) return p.string();
+    return badInput(flag + " " + path + ": no cavity_bench there (a binary, a build folder with bench/cavity_bench, "
+                                        "or a bundle)");
+}
+
+// One cavity_bench process, its own flags and ours; its output goes to `log`.
+Status runBench(const std::string& exe, const std::vector<std::string>& args, const std::string& log) {
+    std::vector<char*> argv{const_cast<char*>(exe.c_str())};
+    for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    const pid_t pid = ::fork();
+    if (pid < 0) return internal("fork failed");
+    if (pid == 0) {
+        if (FILE* f = std::freopen(log.c_str(), "w", stdout)) ::dup2(::fileno(f), 2);
+        // A bundle's libraries are beside the binary.
+        const std::string lib = (fs::path(exe).parent_path() / "lib").string();
+        if (fs::is_directory(lib)) ::setenv("LD_LIBRARY_PATH", lib.c_str(), 1);
+        ::execv(exe.c_str(), argv.data());
+        std::_Exit(127);
+    }
+    int status = 0;
+    ::waitpid(pid, &status, 0);
+    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
+        return internal(exe + " failed (exit " + std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) + "); see " + log);
+    return {};
+}
+
+// The iteration entries of every round's file, each round one repetition.
+Result<json> mergeRounds(const std::vector<std::string>& files) {
+    json merged = {{"benchmarks", json::array()}};
+    for (size_t r = 0; r < files.size(); ++r) {
+        CAVITY_ASSIGN(const json doc, readJsonFile(files[r]));
+        if (!doc.contains("benchmarks")) return internal(files[r] + ": no benchmarks");
+        if (r == 0 && doc.contains("context")) merged["context"] = doc["context"];
+        for (json b : doc["benchmarks"]) {
+            if (b.value("run_type", "iteration") != "iteration") continue;
+            b["repetition_index"] = r;
+            b["repetitions"] = files.size();
+            merged["benchmarks"].push_back(std::move(b));
+        }
+    }
+    return merged;
+}
+
+struct AbFlags {
+    std::string a, b, filter, out = "out/ab";
+    std::vector<std::string> benchArgs;
+    int rounds = 10;
+    CompareThresholds thresholds;
+    bool failOnSlower = false;
+};
+
+Result<AbFlags> parseAb(const ParsedFlags& p) {
+    AbFlags f;
+    f.thresholds.autoMinChange = true;
+    f.failOnSlower = p.has("--fail-on-slower");
+    for (const auto& [flag, v] : p.values) {
+        if (flag == "--a") {
+            CAVITY_ASSIGN(f.a, benchBinary(flag, v));
+        } else if (flag == "--b") {
+            CAVITY_ASSIGN(f.b, benchBinary(flag, v));
+        } else if (flag == "--rounds") {
+            CAVITY_ASSIGN(f.rounds, parseInt(flag, v, 2, 1000));
+        } else if (flag == "--filter") {
+            CAVITY_ASSIGN(const auto checked, parseFilter(flag, v));
+            (void)checked;
+            f.filter = v;
+        } else if (flag == "--out") {
+            f.out = v;
+        } else if (flag == "--bench-args") {
+            std::istringstream words(v);
+            for (std::string w; words >> w;) f.benchArgs.push_back(w);
+        } else if (flag == "--min-change" && v != "auto") {
+            f.thresholds.autoMinChange = false;
+            CAVITY_ASSIGN(f.thresholds.minChangePct,
+                          parseNumber(flag, v, [](double x) { return x >= 0; }, "a percentage >= 0, or auto"));
+        }
+    }
+    if (f.a.empty() || f.b.empty()) return badInput(std::string(f.a.empty() ? "--a" : "--b") + ": required (a build to measure)");
+    return f;
+}
+
+}  // namespace
+
+int abCommand(const std::vector<std::string>& argv) {
+    const std::string program = "cavity ab";
+    auto parsed = parseFlags(abSpec(), argv);
+    if (!parsed) return fail(program, parsed.error());
+    if (parsed->help) {
+        std::cout << parsed->helpText;
+        return 0;
+    }
+    auto f = parseAb(*parsed);
+    if (!f) return fail(program, f.error());
+    if (auto st = checkWritableDir("--out", f->out); !st) return fail(program, st.error());
+    std::error_code ec;
+    fs::create_directories(f->out, ec);
+    if (ec) return fail(program, badInput("--out " + f->out + ": cannot be created: " + ec.message()));
+    std::vector<std::string> files[2];
+    for (int r = 0; r < f->rounds; ++r) {
+        // A B, then B A: a drift within a round falls on both sides alike.
+        for (int k = 0; k < 2; ++k) {
+            const int side = r % 2 == 0 ? k : 1 - k;
+            const std::string name = std::string(side == 0 ? "a" : "b") + "_" + std::to_string(r);
+            const std::string out = (fs::path(f->out) / (name + ".json")).string();
+            std::vector<std::string> args = {"--benchmark_repetitions=1", "--benchmark_enable_random_interleaving=true",
+                                             "--benchmark_out=" + out, "--benchmark_out_format=json"};
+            if (!f->filter.empty()) args.push_back("--benchmark_filter=" + f->filter);
+            args.insert(args.end(), f->benchArgs.begin(), f->benchArgs.end());
+            std::cerr << "cavity ab: round " << r + 1 << "/" << f->rounds << ": " << (side == 0 ? "A" : "B") << "\n";
+            if (auto st = runBench(side == 0 ? f->a : f->b, args, (fs::path(f->out) / (name + ".log")).string()); !st)
+                return fail(program, st.error());
+            files[side].push_back(out);
+        }
+    }
+    std::optional<SampleSets> sides[2];
+    for (int side = 0; side < 2; ++side) {
+        auto merged = mergeRounds(files[side]);
+        if (!merged) return fail(program, merged.error());
+        const std::string path = (fs::path(f->out) / (side == 0 ? "a.json" : "b.json")).string();
+        if (auto st = writeJson(path, *merged); !st) return fail(program, st.error());
+        auto sets = loadSampleSets(path);
+        if (!sets) return fail(program, sets.error());
+        sides[side] = std::move(*sets);
+    }
+    const auto rows = compareAll(*sides[0], *sides[1], f->thresholds);
+    if (auto st = writeJson((fs::path(f->out) / "compare.json").string(), compareJson(rows, *sides[0], *sides[1], f->thresholds));
+        !st)
+        return fail(program, st.error());
+    std::cout << compareTable(rows, *sides[0], *sides[1], f->thresholds);
+    const bool anySlower = std::any_of(rows.begin(), rows.end(), [](const auto& r) { return r.verdict == "slower"; });
+    return f->failOnSlower && anySlower ? 1 : 0;
+}
+
+}  // namespace cavity::cli
