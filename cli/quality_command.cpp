@@ -1,6 +1,7 @@
 // `cavity quality`: each AO kernel's error against the ray-traced ground
 // truth, as a table on stdout and quality.json.
 #include "cli.h"
+#include "quality_recommend.h"
 #include "pipeline/config_id.h"
 #include "pipeline/pipeline.h"
 #include "core/progress.h"
@@ -33,9 +34,12 @@ CommandSpec qualitySpec(const std::string& program) {
         {"--res", "WxH", "image size (default 160x90)"},
         {"--rays", "N", "the ground truth's rays per pixel, " + kernels::allowedValues(*kernels::findParam("rays")) + " (default 1024)"},
         {"--resolution", "full|half", "AO at full or half resolution (default full)"},
-        {"--reach", "seed|shared", "seed (default): each kernel at its own default reach, the truth at 0.5; "
-                                   "shared: every kernel and the truth at --radius"},
-        {"--radius", "R", "the shared reach (default 0.5; implies --reach shared)"},
+        {"--reach", "shared|seed", "shared (default): every kernel and the truth at --radius, so that errors "
+                                   "compare; seed: each kernel at its own default reach, the truth at 0.5"},
+        {"--radius", "R", "the shared reach (default 0.5)"},
+        {"--cost", "FILE", "a benchmark of the same kernels (cavity_bench JSON or results.json): adds each "
+                           "kernel's AO pipeline time, the screen-space Pareto front and --budget-ms"},
+        {"--budget-ms", "MS", "with --cost: the most accurate screen-space kernel whose pipeline fits in MS"},
         {"--blur", "R", "compare the AO after the pipeline's blur of radius R, " + kernels::allowedValues(*kernels::findParam("blur")) + " (default 0, the raw AO)"},
         {"--device", "K", "device index (0..64)"},
         {"--out", "DIR", "also write DIR/quality.json"},
@@ -44,7 +48,8 @@ CommandSpec qualitySpec(const std::string& program) {
         {"--quiet", "", "no progress lines on stderr"},
     };
     c.examples = {
-        program + " --kernel alchemy_fast,hemisphere_fast --samples 16 --reach shared",
+        program + " --kernel alchemy_fast,hemisphere_fast --samples 16 --reach seed",
+        program + " --cost bench.json --budget-ms 0.2",
         program + " --scene slats --res 640x360 --blur 4 --out out/quality",
     };
     return c;
@@ -58,6 +63,8 @@ struct QualityRequest {
     std::string out;
     std::optional<std::regex> filter;
     bool reachGiven = false, radiusGiven = false;
+    std::string cost;                  // --cost
+    std::optional<double> budgetMs;    // --budget-ms
 };
 
 // A kernel parameter's value from its flag, checked by its declaration.
@@ -100,6 +107,10 @@ Status qualityFlag(QualityRequest& q, const std::string& flag, const std::string
     } else if (flag == "--radius") {
         CAVITY_ASSIGN(o.radius, paramFlag("radius", v));
         q.radiusGiven = true;
+    } else if (flag == "--cost") {
+        q.cost = v;
+    } else if (flag == "--budget-ms") {
+        CAVITY_ASSIGN(q.budgetMs, parseNumber(flag, v, [](double x) { return x > 0; }, "a time in ms > 0"));
     } else if (flag == "--backend") {
         if (v != "gl" && v != "vk") return badInput("--backend " + v + ": must be gl or vk");
         q.api = v == "gl" ? gpu::Api::OpenGL : gpu::Api::Vulkan;
@@ -124,11 +135,12 @@ Status qualityFlag(QualityRequest& q, const std::string& flag, const std::string
 Result<QualityRequest> parseQuality(const ParsedFlags& parsed) {
     QualityRequest q;
     for (const auto& [flag, value] : parsed.values) CAVITY_TRY(qualityFlag(q, flag, value));
-    if (q.radiusGiven) {
-        if (q.reachGiven && !q.options.sharedReach)
-            return badInput("--radius " + std::to_string(q.options.radius) + ": only with --reach shared");
-        q.options.sharedReach = true;
-    }
+    if (q.radiusGiven && q.reachGiven && !q.options.sharedReach)
+        return badInput("--radius " + std::to_string(q.options.radius) + ": only with --reach shared");
+    // Shared by default: each kernel at its own reach measures a different
+    // quantity (sdf_multiscale read 0.5655 that way, an artifact).
+    if (!q.reachGiven) q.options.sharedReach = true;
+    if (q.budgetMs && q.cost.empty()) return badInput("--budget-ms: needs --cost FILE (the kernels' measured times)");
     return q;
 }
 
@@ -215,18 +227,51 @@ nlohmann::json qualityJson(const QualityRequest& q, const std::string& device, c
     return doc;
 }
 
-void printQuality(const QualityOptions& o, const std::vector<QualityRow>& rows) {
+void printQuality(const QualityOptions& o, std::vector<QualityRow> rows,
+                  const std::map<std::pair<std::string, int>, double>& costs) {
     if (o.sharedReach)
         std::printf("reach: shared, every kernel and the truth at R = %g\n", o.radius);
     else
         std::printf("reach: seed, each kernel at its own default reach, the truth at R = 0.5\n");
     using A = TextTable::Align;
+    // Each scene's rows, most accurate first.
+    std::stable_sort(rows.begin(), rows.end(), [](const QualityRow& a, const QualityRow& b) {
+        return a.scene != b.scene ? a.scene < b.scene : a.meanAbsError < b.meanAbsError;
+    });
     TextTable table({{"scene", A::Left}, {"kernel", A::Left}, {"samples", A::Right}, {"MAE", A::Right}, {"max", A::Right},
-                     {"mean AO", A::Right}, {"truth", A::Right}});
-    for (const auto& r : rows)
+                     {"mean AO", A::Right}, {"truth", A::Right}, {"cost ms", A::Right}});
+    for (const auto& r : rows) {
+        const auto c = costs.find({r.kernel, r.samples});
         table.add({r.scene, r.kernel, std::to_string(r.samples), TextTable::number(r.meanAbsError, 4),
-                   TextTable::number(r.maxAbsError, 4), TextTable::number(r.meanAo, 4), TextTable::number(r.meanTruth, 4)});
+                   TextTable::number(r.maxAbsError, 4), TextTable::number(r.meanAo, 4), TextTable::number(r.meanTruth, 4),
+                   c == costs.end() ? "-" : TextTable::number(c->second, 4)});
+    }
     table.print();
+}
+
+// The screen-space Pareto front and the best within --budget-ms, printed
+// and returned for quality.json.
+nlohmann::json recommend(const QualityRequest& q, const std::vector<QualityRow>& rows,
+                         const std::map<std::pair<std::string, int>, double>& costs) {
+    const auto all = candidates(rows, costs);
+    const auto front = paretoFront(all);
+    std::printf("\nscreen-space Pareto front (mean MAE over the scenes against the AO pipeline's time from %s; the SDF "
+                "kernels need the scene's distance function and are left out):\n", q.cost.c_str());
+    nlohmann::json out = {{"cost_file", q.cost}, {"pareto", nlohmann::json::array()}, {"candidates", nlohmann::json::array()}};
+    for (const auto& c : front) {
+        std::printf("  %-22s n%-3d MAE %.4f  %.4f ms\n", c.kernel.c_str(), c.samples, c.mae, *c.costMs);
+        out["pareto"].push_back(candidateJson(c));
+    }
+    for (const auto& c : all) out["candidates"].push_back(candidateJson(c));
+    if (q.budgetMs) {
+        out["budget_ms"] = *q.budgetMs;
+        const auto best = bestWithin(all, *q.budgetMs);
+        if (best) std::printf("best within %g ms: %s n%d (MAE %.4f, %.4f ms)\n", *q.budgetMs, best->kernel.c_str(),
+                              best->samples, best->mae, *best->costMs);
+        else std::printf("best within %g ms: none of the screen-space kernels measured fits\n", *q.budgetMs);
+        out["best"] = best ? candidateJson(*best) : nlohmann::json(nullptr);
+    }
+    return out;
 }
 
 }  // namespace
@@ -258,14 +303,22 @@ int qualityCommand(const std::vector<std::string>& argv, const std::string& prog
     if (!gpu) return failed(gpu.error());
     const std::string device = (*gpu)->info().deviceName;
     std::cerr << program << ": " << gpu::apiName(q->api) << ": " << device << "\n";
+    std::map<std::pair<std::string, int>, double> costs;
+    if (!q->cost.empty()) {
+        auto c = loadCosts(q->cost, q->options.half);
+        if (!c) return failed(c.error());
+        costs = std::move(*c);
+    }
     auto rows = runQuality(**gpu, *steps, parsed->has("--quiet"));
     if (!rows) return failed(rows.error());
-    printQuality(q->options, *rows);
+    printQuality(q->options, *rows, costs);
+    nlohmann::json doc = qualityJson(*q, device, *rows);
+    if (!costs.empty()) doc["recommendation"] = recommend(*q, *rows, costs);
     if (q->out.empty()) return 0;
     std::error_code ec;
     std::filesystem::create_directories(q->out, ec);
     const std::string path = (std::filesystem::path(q->out) / "quality.json").string();
-    if (auto st = writeJson(path, qualityJson(*q, device, *rows)); !st) return failed(st.error());
+    if (auto st = writeJson(path, doc); !st) return failed(st.error());
     std::printf("\nwrote %s\n", path.c_str());
     return 0;
 }

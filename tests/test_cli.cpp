@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <regex>
 #include <string>
@@ -162,6 +163,68 @@ TEST_F(Cli, MaxTimeBoundsARunThatAsksForMoreFrames) {
     const size_t frames = doc["runs"][0]["frame"]["samples_ms"].size();
     EXPECT_GE(frames, 3u);
     EXPECT_LT(frames, 100000u);
+}
+
+// cavity quality with the kernels' times: rows sorted by error, the
+// screen-space Pareto front, and the best within a budget, each checked
+// against the rows it came from.
+TEST_F(Cli, QualityRecommendsTheBestScreenSpaceKernelWithinABudget) {
+    fs::create_directories(dir);
+    const std::map<std::string, double> ms = {{"alchemy/n8", 0.10}, {"alchemy/n16", 0.20}, {"hemisphere_fast/n8", 0.08},
+                                              {"hemisphere_fast/n16", 0.15}, {"sdf_classic/n8", 0.01}, {"sdf_classic/n16", 0.02}};
+    nlohmann::json bench = {{"context", {{"cavity_sweep", "gpu"}}}, {"benchmarks", nlohmann::json::array()}};
+    for (const auto& [k, t] : ms)
+        bench["benchmarks"].push_back({{"name", "corner/" + k + "/b4/full/64x36/vk/compute/iterations:1/manual_time"},
+                                       {"run_type", "iteration"}, {"real_time", t}, {"time_unit", "ms"},
+                                       {"label", "clock=gpu-timestamp mode=batch"}});
+    const fs::path cost = dir / "bench.json";
+    std::ofstream(cost) << bench.dump();
+    const Outcome o = cavity("quality --kernel alchemy,hemisphere_fast,sdf_classic --samples 8,16 --res 64x36 --scene corner "
+                             "--quiet --cost " + cost.string() + " --budget-ms 0.16 --out " + (dir / "q").string());
+    ASSERT_EQ(o.code, 0) << o.output;
+    std::ifstream f(dir / "q" / "quality.json");
+    const auto doc = nlohmann::json::parse(f);
+    EXPECT_EQ(doc["reach"], "shared");   // the default now
+    const auto& rec = doc["recommendation"];
+    // The best within 0.16 ms: the least error among screen-space kernels that fit.
+    double best = 1e9;
+    for (const auto& c : rec["candidates"])
+        if (c["screen_space"].get<bool>() && c["cost_ms"].get<double>() <= 0.16) best = std::min(best, c["mae"].get<double>());
+    ASSERT_FALSE(rec["best"].is_null()) << o.output;
+    EXPECT_DOUBLE_EQ(rec["best"]["mae"].get<double>(), best);
+    EXPECT_NE(rec["best"]["kernel"], "sdf_classic");
+    // The front: cheapest first, each more accurate than the one before, and
+    // no screen-space candidate better on both counts than one of it.
+    double lastMae = 1e9, lastCost = -1;
+    for (const auto& p : rec["pareto"]) {
+        EXPECT_NE(p["kernel"], "sdf_classic");
+        EXPECT_LT(p["mae"].get<double>(), lastMae);
+        EXPECT_GE(p["cost_ms"].get<double>(), lastCost);
+        lastMae = p["mae"];
+        lastCost = p["cost_ms"];
+        for (const auto& c : rec["candidates"]) {
+            if (!c["screen_space"].get<bool>()) continue;
+            EXPECT_FALSE(c["mae"].get<double>() < p["mae"].get<double>() &&
+                         c["cost_ms"].get<double>() < p["cost_ms"].get<double>()) << c << " dominates " << p;
+        }
+    }
+    // The table is sorted by error within the scene.
+    double previous = -1;
+    std::istringstream lines(o.output);
+    for (std::string line; std::getline(lines, line);)
+        if (line.rfind("corner ", 0) == 0) {
+            std::istringstream cells(line);
+            std::string scene, kernel;
+            int samples = 0;
+            double mae = 0;
+            cells >> scene >> kernel >> samples >> mae;
+            EXPECT_GE(mae, previous) << line;
+            previous = mae;
+        }
+    // --budget-ms alone is refused.
+    const Outcome lone = cavity("quality --budget-ms 0.1");
+    EXPECT_EQ(lone.code, 2) << lone.output;
+    EXPECT_NE(lone.output.find("--budget-ms: needs --cost"), std::string::npos) << lone.output;
 }
 
 // stdout only (stderr to /dev/null), and the exit code.
