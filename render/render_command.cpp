@@ -114,7 +114,7 @@ Status judgeHere(Rendering& r, const gate::Judge& judge, JudgedHere& tally) {
         if (check.route != "tolerance") continue;
         RemoteCheck k;
         k.reference = check.reference;
-        k.referenceDigest = check.baseline.substr(std::string("store:").size());
+        k.referenceDigest = check.referenceDigest;
         k.passed = check.passed();
         k.failures = check.failures;
         k.metrics = check.metrics ? gate::metricsJson(*check.metrics) : nlohmann::json::object();

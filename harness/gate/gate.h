@@ -34,6 +34,7 @@ struct ImageCheck {
     // baseline, with the manifest's device overrides) or "<class> <api>/<stage>"
     // (the nearest approved image of the device's own class, from the store).
     std::string reference;
+    std::string referenceDigest;       // the approved image judged against, when of the device's class
     std::string baseline;              // path of the baseline file (relative to the repo root or absolute)
     std::string newPng, newExact;      // written new image: PNG to look at, and the exact file (.exr / .png)
     std::string baselinePng, diffPng;  // for the report

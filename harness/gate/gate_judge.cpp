@@ -126,14 +126,19 @@ Status judgeByTolerance(ImageCheck& check, const CheckedImage& ci, const HostIma
     return judgeAgainst(check, ci, now, base, dir);
 }
 
+// The nearest image approved for the device's own class (Approvals::reference).
+const Approval* classReference(const Judge& j, const ConfigResult& r, const std::string& image) {
+    const std::string stage = r.id.substr(r.id.rfind('/') + 1);
+    return j.approvals.reference(r.key, image, deviceClass(r.device), gpu::apiName(r.config.api), stage);
+}
+
 // An image judged where it was rendered and found to pass (its file stayed
 // there): its record, taken when it was judged with the tolerances this
 // judge would use against the reference it would choose.
 Result<ImageCheck> fromRemote(ImageCheck& check, const RemoteCheck& k, const ConfigResult& r, const Judge& j,
                               bool perceptual) {
     check.tolerance = j.manifest.forPipeline(r.config.kernel, "");
-    const std::string stage = r.id.substr(r.id.rfind('/') + 1);
-    const Approval* ref = j.approvals.reference(r.key, check.image, deviceClass(r.device), gpu::apiName(r.config.api), stage);
+    const Approval* ref = classReference(j, r, check.image);
     if (!ref || ref->digest != k.referenceDigest)
         return badInput(r.label() + ": " + check.image + " was judged where it was rendered against " + k.referenceDigest +
                         ", and approvals.json here names " + (ref ? ref->digest : std::string("no reference")) +
@@ -149,6 +154,7 @@ Result<ImageCheck> fromRemote(ImageCheck& check, const RemoteCheck& k, const Con
     check.reference = k.reference;
     check.approval = approvalText(*ref) + "; judged where it was rendered";
     check.baseline = "store:" + ref->digest;
+    check.referenceDigest = ref->digest;
     return check;
 }
 
@@ -187,12 +193,12 @@ Result<ImageCheck> judgeImage(const CheckedImage& ci, const HostImage* now, cons
         if (const auto k = judged.find(ci.name); k != judged.end()) return fromRemote(check, k->second, r, j, ci.perceptual);
         return internal(r.label() + ": " + ci.name + " holds no pixels and its digest " + digest + " is not approved");
     }
-    const std::string cls = deviceClass(r.device), stage = r.id.substr(r.id.rfind('/') + 1);
-    if (const Approval* ref = j.approvals.reference(r.key, ci.name, cls, gpu::apiName(r.config.api), stage)) {
+    if (const Approval* ref = classReference(j, r, ci.name)) {
         // Its own class's reference: the default tolerances, no device
         // override (those allow for another device's rounding).
         check.tolerance = j.manifest.forPipeline(r.config.kernel, "");
-        check.reference = cls + " " + ref->api + "/" + ref->stage;
+        check.reference = ref->deviceClass + " " + ref->api + "/" + ref->stage;
+        check.referenceDigest = ref->digest;
         check.approval = approvalText(*ref);
         check.baseline = "store:" + ref->digest;
         CAVITY_ASSIGN(const HostImage base, j.reference(ref->digest));

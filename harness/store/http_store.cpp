@@ -7,9 +7,7 @@
 // start (docs/store.md).
 #include "store/store.h"
 
-#include "core/digest.h"
 #include "core/json_file.h"
-#include "render/image_file.h"
 
 #include <curl/curl.h>
 
@@ -79,13 +77,13 @@ public:
         if (fs::is_regular_file(cached, ec)) {
             std::ifstream f(cached, std::ios::binary);
             std::string bytes((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
-            if (checkObject(bytes, digest, cached.string()).ok()) return bytes;
+            if (decodeObject(bytes, digest, cached.string()).ok()) return bytes;
             fs::remove(cached, ec);   // damaged in the cache: fetched again below
         }
         CAVITY_ASSIGN(Response r, request("GET", digest, nullptr));
         if (r.status == 404) return storeUnavailable("store " + url_ + ": no object " + digest + " (HTTP 404)");
         if (r.status != 200) return refused("GET", digest, r.status);
-        CAVITY_TRY(checkObject(r.body, digest, url_ + "/" + objectPath(digest)));
+        CAVITY_TRY(decodeObject(r.body, digest, url_ + "/" + objectPath(digest)));
         fs::create_directories(cached.parent_path(), ec);
         // The cache is a convenience: an object that cannot be kept there is
         // still returned, and one that is kept is whole (written, then renamed).
@@ -107,15 +105,6 @@ public:
     }
 
 private:
-    // A decodable image whose pixels have the digest it is filed under.
-    static Status checkObject(const std::string& bytes, const std::string& digest, const std::string& label) {
-        auto image = render::decodeImage(bytes, label);
-        if (!image) return storeCorrupt(image.error().message);
-        if (const std::string actual = imageDigest(*image); actual != digest)
-            return storeCorrupt(label + ": corrupt: its pixels have digest " + actual + ", not " + digest);
-        return {};
-    }
-
     Error refused(const std::string& method, const std::string& digest, long status) const {
         const std::string head = "store " + url_ + ": " + method + " " + objectPath(digest) + ": HTTP " + std::to_string(status);
         if (status == 401)

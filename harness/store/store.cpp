@@ -96,11 +96,14 @@ Result<std::unique_ptr<ImageStore>> openStore(const StoreOptions& o, const std::
 Result<HostImage> getImage(ImageStore& s, const std::string& digest) {
     if (!validDigest(digest)) return badInput("digest '" + digest + "': not fnv1a64: and 16 hex digits");
     CAVITY_ASSIGN(const std::string bytes, s.getBytes(digest));
-    const std::string label = s.where() + "/" + objectPath(digest);
+    return decodeObject(bytes, digest, s.where() + "/" + objectPath(digest));
+}
+
+Result<HostImage> decodeObject(const std::string& bytes, const std::string& digest, const std::string& label) {
     auto image = render::decodeImage(bytes, label);
     if (!image) return storeCorrupt(image.error().message);
-    const std::string actual = imageDigest(*image);
-    if (actual != digest) return storeCorrupt(label + ": corrupt: its pixels have digest " + actual + ", not " + digest);
+    if (const std::string actual = imageDigest(*image); actual != digest)
+        return storeCorrupt(label + ": corrupt: its pixels have digest " + actual + ", not " + digest);
     return image;
 }
 

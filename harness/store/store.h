@@ -65,8 +65,11 @@ Result<std::unique_ptr<ImageStore>> openStore(const StoreOptions& o, const std::
 // The default location: $CAVITY_STORE, else <baselines>/store.
 std::string defaultLocation(const std::string& baselines);
 
-// The image filed under `digest`, decoded and checked: a digest other than
-// the one it is filed under is ErrorCode::StoreCorrupt.
+// Bytes of an object decoded and checked against the digest they are filed
+// under (`label` names them in messages): anything else is
+// ErrorCode::StoreCorrupt.
+Result<HostImage> decodeObject(const std::string& bytes, const std::string& digest, const std::string& label);
+// The image filed under `digest`, decoded and checked (decodeObject).
 Result<HostImage> getImage(ImageStore& s, const std::string& digest);
 // Encodes and stores `image` under its own digest; returns the digest.
 Result<std::string> putImage(ImageStore& s, const HostImage& image);
