@@ -66,9 +66,12 @@ TEST_P(Timing, AColdProbeThatFailsDoesNotDecideTheClock) {
     coldFails.coldCounts = false;   // the rule of a GPU, on whatever renders here
     auto t = measurePasses(gpu(), **chain, o, nullptr, coldFails);
     ASSERT_TRUE(t) << t.error().message;
-    // llvmpipe's GL timestamps pass or fail the check by the host's load, so
-    // the claim is made where the warm GPU trusts them (lavapipe, GPUs).
-    if (plain->clock == "gpu-timestamp") {
+    // llvmpipe's GL timestamps pass or fail the check by the host's load: one
+    // measurement may trust them and the next not (it failed a clean-clone CI
+    // under ASan), so the claim is made where the warm check is deterministic:
+    // GPUs, and lavapipe, whose timestamps bracket the work.
+    const bool loadDecides = gpu().info().softwareRenderer && api() == gpu::Api::OpenGL;
+    if (plain->clock == "gpu-timestamp" && !loadDecides) {
         EXPECT_EQ(t->clock, "gpu-timestamp") << t->clockNote;
         EXPECT_NE(t->clockNote.find("cold probe"), std::string::npos) << t->clockNote;
         // A repetition told the first one used the wall clock decides again, and says so.
