@@ -110,6 +110,10 @@ void setTimingCounters(benchmark::State& state, const Timing& t) {
     std::string label = "clock=" + t.clock + " mode=" + timingModeName(t.mode) + " stop=" + t.stop;
     if (t.steadyChecked && !t.steady) label += " unsteady-warmup";
     if (t.clocks.moved()) label += " sm-clock-moved";
+    // How the clock was decided, where it was not simply on the first warm check.
+    if (t.clockNote.find("re-decided") != std::string::npos) label += " clock-re-decided";
+    else if (t.clock == "gpu-timestamp" && t.clockNote.find("the cold probe before warm-up had said") != std::string::npos)
+        label += " cold-probe-overruled";
     if (t.rejectedFrames) label += " rejected=" + std::to_string(t.rejectedFrames);
     state.SetLabel(label);
 }

@@ -33,7 +33,7 @@ const CommandSpec& compareSpec() {
         "OLD.json NEW.json",
         "a results.json (cavity run) or Google Benchmark JSON (cavity_bench --benchmark_out), each",
         "\nVerdicts: slower, faster, same, inconclusive (with its reason and what to do: too few samples, clocks "
-        "differ, mixed clocks, interval too wide, software renderer), new, gone.\n"
+        "differ, mixed clocks, interval too wide, SM clock differs, software renderer), new, gone.\n"
         "Exit codes: 0 compared, 1 slower with --fail-on-slower, 2 bad usage or input.",
         {
             "cavity compare main/results.json pr/results.json",

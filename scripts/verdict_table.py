@@ -3,12 +3,14 @@
 
     python3 scripts/verdict_table.py DIR [--cavity build/harness/cavity] > table.md
 
-DIR holds a1.json, a2.json (unchanged build), b5.json, b2.json (AO pass
-planted +5%, +2%), b10.json (every pass +10%) (each may be .json.gz), *.clocks.csv (nvidia-smi
-every 200 ms) and the plant files. Runs `cavity compare --json` for A/A and
-each A/B, and prints: repetition CV per pass, the A/A table, each A/B's
-detection table (planted pass called slower, untouched passes called
-changed), the budget check, and the clocks seen.
+DIR holds a1.json, a2.json (unchanged build) and b<N>.json (a slowdown of
+N percent planted as DIR/plant<N>.json says: b1, b2, b5 in the AO pass, b10
+in every pass), each may be .json.gz, *.clocks.csv (nvidia-smi every 200 ms).
+Runs `cavity compare --json` (--min-change as given, default auto) for A/A
+and each A/B, and prints: repetition CV per pass, the clock every
+configuration ended on in every process, the A/A table, each A/B's detection
+table (planted pass called slower, untouched passes called changed), the
+budget check, and the clocks seen.
 """
 import argparse
 import csv
@@ -48,7 +50,7 @@ def run_json(d, name):
     return cavity_json.resolve(os.path.join(d, name + ".json"))
 
 
-def compare(cavity, d, old, new):
+def compare(cavity, d, old, new, min_change="auto"):
     out = os.path.join(d, f"compare_{old}_{new}.json")
     with tempfile.TemporaryDirectory() as tmp:
         inputs = []
@@ -60,7 +62,8 @@ def compare(cavity, d, old, new):
                     f.write(cavity_json.read_bytes(path))
             else:
                 inputs.append(path)
-        subprocess.run([cavity, "compare", *inputs, "--json", out], check=True, stdout=subprocess.DEVNULL)
+        subprocess.run([cavity, "compare", *inputs, "--json", out, "--min-change", min_change], check=True,
+                       stdout=subprocess.DEVNULL)
     return {(r["id"], r["pass"]): r for r in json.load(open(out))["rows"]}
 
 
@@ -82,9 +85,13 @@ def main():
     ap.add_argument("--cavity", default=os.path.join(os.path.dirname(__file__), "..", "build", "harness", "cavity"))
     ap.add_argument("--budgets", default=os.path.join(os.path.dirname(__file__), "..", "baselines", "budgets.json"))
     ap.add_argument("--pattern", default="NVIDIA H200")
+    ap.add_argument("--min-change", default="auto", help="cavity compare's --min-change (default auto)")
     a = ap.parse_args()
     d = a.dir
-    runs = {n: reps(run_json(d, n)) for n in ("a1", "a2", "b5", "b2", "b10") if os.path.exists(run_json(d, n))}
+    planted = sorted((int(m.group(1)) for m in (re.match(r"b(\d+)\.json(\.gz)?$", f) for f in os.listdir(d)) if m),
+                     key=lambda n: (n == 10, n))
+    names = ["a1", "a2"] + [f"b{n}" for n in planted]
+    runs = {n: reps(run_json(d, n)) for n in names if os.path.exists(run_json(d, n))}
     a1 = runs["a1"]
     a2 = runs.get("a2", {})
     ids = sorted({k[0] for k in a1})
@@ -105,9 +112,10 @@ def main():
         print(f"| {cid} | " + " | ".join(cells) + " |")
     print(f"\nlargest repetition CV: {100 * worst:.2f}%\n")
 
+    print_clock_decisions(d)
     if not a2:   # scripts/gpu_budget_check.sh: no A/A, no A/B tables
         return budgets_and_clocks(a, d, runs, passes)
-    aa = compare(a.cavity, d, "a1", "a2")
+    aa = compare(a.cavity, d, "a1", "a2", a.min_change)
     diffs = [abs(r["new_median_ms"] / r["old_median_ms"] - 1) for r in aa.values()
              if r["old_median_ms"] and r["new_median_ms"]]
     called = [k for k, r in aa.items() if r["verdict"] in ("slower", "faster")]
@@ -116,12 +124,12 @@ def main():
           f"({100 * len(called) / max(1, len(aa)):.1f}%)")
     print(f"- largest |median change|: {100 * max(diffs):.2f}%; median |change|: {100 * statistics.median(diffs):.3f}%\n")
 
-    for name, planted_passes, size in (("b5", ["ao"], 5), ("b2", ["ao"], 2), ("b10", ["ao", "blur", "composite"], 10)):
-        if name not in runs:
-            continue
-        ab = compare(a.cavity, d, "a1", name)
-        plant = cavity_json.load(run_json(d, {"b5": "plant5", "b2": "plant2", "b10": "plant10"}[name]))
-        print(f"## A/B: {', '.join(planted_passes)} planted +{size}% ({name})\n")
+    for size in planted:
+        name = f"b{size}"
+        ab = compare(a.cavity, d, "a1", name, a.min_change)
+        plant = cavity_json.load(run_json(d, f"plant{size}"))
+        planted_passes = sorted({p for v in plant.values() for p in v})
+        print(f"## A/B: {', '.join(planted_passes)} planted +{size}% ({name}), --min-change {a.min_change}\n")
         print("| configuration | pass | FMAs | measured change [95% interval] | p | verdict |")
         print("|---|---|---:|---|---:|---|")
         hit = total = false_alarm = untouched = 0
@@ -143,10 +151,44 @@ def main():
                     change = "-" if r["change_pct"] is None else \
                         f"{r['change_pct']:+.2f}% [{r['ci_low_pct']:+.2f}, {r['ci_high_pct']:+.2f}]"
                     print(f"| {cid} | {p} | {plant.get(cid, {}).get(p, '-')} | {change} | {r['p']:.2g} | {r['verdict']} |")
-        print(f"\n- planted passes called slower: {hit} of {total} ({100 * hit / max(1, total):.0f}%)")
+        got = [ab[(cid, p)]["change_pct"] for cid in plant for p in plant[cid]
+               if (cid, p) in ab and ab[(cid, p)]["change_pct"] is not None]
+        if got:
+            print(f"\n- measured change of the planted passes: {min(got):+.2f}% to {max(got):+.2f}% "
+                  f"(median {statistics.median(got):+.2f}%)")
+        print(f"- planted passes called slower: {hit} of {total} ({100 * hit / max(1, total):.0f}%)")
         print(f"- untouched passes called changed: {false_alarm} of {untouched}\n")
 
     budgets_and_clocks(a, d, runs, passes)
+
+
+def print_clock_decisions(d):
+    """Every process's clock for every configuration: a configuration measured
+    on the wall clock on a GPU has no verdict against one on timestamps."""
+    print("## The clock each configuration ended on, per process\n")
+    print("| run | configurations x repetitions | on GPU timestamps | on the wall clock | re-decided | cold probe overruled |")
+    print("|---|---:|---:|---:|---:|---:|")
+    total = wall = 0
+    for f in sorted(os.listdir(d)):
+        m = re.match(r"(.+)\.json(\.gz)?$", f)
+        if not m:
+            continue
+        try:
+            doc = cavity_json.load(os.path.join(d, f))
+        except (OSError, ValueError):
+            continue
+        if not isinstance(doc, dict) or "benchmarks" not in doc:
+            continue
+        entries = [b for b in doc["benchmarks"]
+                   if b.get("run_type") == "iteration" and "@" not in b["name"] and not b.get("error_occurred")]
+        clocks = [re.search(r"clock=(\S+)", b.get("label", "")) for b in entries]
+        ts = sum(1 for c in clocks if c and c.group(1) == "gpu-timestamp")
+        redecided = sum(1 for b in entries if "clock-re-decided" in b.get("label", ""))
+        overruled = sum(1 for b in entries if "cold-probe-overruled" in b.get("label", ""))
+        total += len(entries)
+        wall += len(entries) - ts
+        print(f"| {m.group(1)} | {len(entries)} | {ts} | {len(entries) - ts} | {redecided} | {overruled} |")
+    print(f"\n- measurements not on GPU timestamps: {wall} of {total}\n")
 
 
 def budgets_and_clocks(a, d, runs, passes):
@@ -188,7 +230,7 @@ def budgets_and_clocks(a, d, runs, passes):
     print("## Clocks (nvidia-smi every 200 ms during each run)\n")
     print("| run | samples | SM MHz min / median / max | at 1980 MHz | memory MHz | event reasons |")
     print("|---|---:|---|---:|---|---|")
-    for name in ("a1", "a2", "b5", "b2", "b10"):
+    for name in sorted(f[:-len(".clocks.csv")] for f in os.listdir(d) if f.endswith(".clocks.csv")):
         path = os.path.join(d, name + ".clocks.csv")
         if not os.path.exists(path):
             continue

@@ -48,6 +48,7 @@ struct FakeConfig {
     std::string id;
     std::map<std::string, std::vector<double>> passMs;
     std::vector<std::string> clocks;   // one per repetition
+    double smMhz = NAN;                 // the SM clock NVML read, where it did
 };
 
 // Base times of the fabricated alchemy pipeline, ms.
@@ -94,6 +95,10 @@ std::string benchmarkJson(const std::vector<FakeConfig>& configs, bool withError
             e["real_time"] = 1000.0 * pipelineMs(c, r);
             e["cpu_time"] = 1300.0;
             for (const auto& [pass, ms] : c.passMs) e["pass_" + pass + "_ms"] = ms[r];
+            if (std::isfinite(c.smMhz)) {
+                e["sm_mhz_min"] = e["sm_mhz_median"] = e["sm_mhz_max"] = c.smMhz;
+                e["mem_mhz_median"] = 3201.0;
+            }
             e["label"] = "clock=" + c.clocks[r] + (c.clocks[r] == "wall" ? " (timestamps do not bracket the work)"
                                                                           : " mode=batch");
             benchmarks.push_back(e);
@@ -149,6 +154,9 @@ std::string resultsJson(const std::vector<FakeConfig>& configs) {
         }
         runs.push_back({{"id", c.id}, {"backend", "vk"}, {"clock", c.clocks[0]}, {"passes", passes},
                         {"frame", {{"samples_ms", frame}, {"stats", {{"median_ms", 0.0}}}}}});
+        runs.back()["gpu_clocks"] =
+            std::isfinite(c.smMhz) ? json{{"source", "nvml"}, {"sm_mhz", {{"min", c.smMhz}, {"median", c.smMhz}, {"max", c.smMhz}}}}
+                                   : json();
     }
     return json{{"schema", "cavity.results/1"}, {"runs", runs}}.dump(2);
 }
@@ -315,6 +323,74 @@ TEST(CompareVerdict, DetectableChangeIsTheIntervalOrTheTimersStep) {
     EXPECT_EQ(same.verdict, "same");
     EXPECT_DOUBLE_EQ(same.detectablePct, 0.0);
     EXPECT_DOUBLE_EQ(same.thresholdPct, cavity::compare::kAutoFloorPct);
+}
+
+// The SM clock moved between the runs: the change is judged in cycles (time x
+// clock) too, and a verdict stands only where both agree. By hand: 1.0 ms at
+// 2000 MHz is 2000 thousand cycles, 1.1 ms at 1800 MHz 1980: +10% in time,
+// -1% in cycles.
+TEST(CompareVerdict, AnSmClockDifferenceIsJudgedInCyclesToo) {
+    using cavity::compare::compareSeries;
+    cavity::compare::SampleSet a, b, c, d;
+    for (int i = 0; i < 5; ++i) {
+        a.add(1.0, "gpu-timestamp", 2000);
+        b.add(1.1, "gpu-timestamp", 1800);
+        c.add(1.2, "gpu-timestamp", 1800);
+        d.add(1.1, "gpu-timestamp", 1990);   // one 0.5% step: not a difference
+    }
+    const cavity::compare::CompareThresholds t;   // 2%
+    const auto clockOnly = compareSeries("x", "ao", &a, &b, t);
+    EXPECT_NEAR(clockOnly.changePct, 10.0, 1e-9);
+    EXPECT_DOUBLE_EQ(clockOnly.oldSmMhz, 2000);
+    EXPECT_DOUBLE_EQ(clockOnly.newSmMhz, 1800);
+    EXPECT_NEAR(clockOnly.cyclesChangePct, -1.0, 1e-9);
+    EXPECT_EQ(clockOnly.cyclesVerdict, "same");
+    EXPECT_EQ(clockOnly.verdict, "inconclusive");
+    EXPECT_EQ(clockOnly.reason, "SM clock differs");
+    EXPECT_NE(clockOnly.next.find("lock"), std::string::npos);
+    // 1.2 ms at 1800 MHz is 2160: +8% in cycles, +20% in time; both slower.
+    const auto both = compareSeries("x", "ao", &a, &c, t);
+    EXPECT_NEAR(both.cyclesChangePct, 8.0, 1e-9);
+    EXPECT_EQ(both.cyclesVerdict, "slower");
+    EXPECT_EQ(both.verdict, "slower");
+    // Within one NVML step the time alone decides, and no cycles are reported.
+    const auto oneStep = compareSeries("x", "ao", &a, &d, t);
+    EXPECT_EQ(oneStep.verdict, "slower");
+    EXPECT_TRUE(oneStep.cyclesVerdict.empty());
+    EXPECT_TRUE(std::isnan(oneStep.cyclesChangePct));
+    // A side without clocks: time alone, as before.
+    cavity::compare::SampleSet e;
+    for (int i = 0; i < 5; ++i) e.add(1.1, "gpu-timestamp");
+    const auto unknown = compareSeries("x", "ao", &a, &e, t);
+    EXPECT_TRUE(std::isnan(unknown.newSmMhz));
+    EXPECT_TRUE(unknown.cyclesVerdict.empty());
+    EXPECT_EQ(unknown.verdict, "slower");
+}
+
+// Both files carry the SM clock (cavity_bench's sm_mhz_median counter,
+// results.json's gpu_clocks) and `cavity compare` reports the cycles.
+TEST_F(Compare, TheSmClockOfEitherFileReachesTheVerdict) {
+    FakeConfig before = fakeConfig(kId, 10, 1, 0), after = fakeConfig(kId, 10, 2, 0.06);   // AO +10% in time
+    before.smMhz = 1980;
+    after.smMhz = 1800;   // -9.1%: the AO pass is +0% in cycles, blur and composite -9%
+    for (const bool bench : {true, false}) {
+        const std::string format = bench ? "bench" : "results";
+        const std::string o = write(format + "_old.json", bench ? benchmarkJson({before}) : resultsJson({before}));
+        const std::string n = write(format + "_new.json", bench ? benchmarkJson({after}) : resultsJson({after}));
+        const std::string out = (dir / "c.json").string();
+        const Outcome run = cavity("compare " + o + " " + n + " --json " + out);
+        ASSERT_EQ(run.code, 0) << run.output;
+        EXPECT_NE(run.output.find("SM MHz old/new"), std::string::npos) << run.output;
+        const json rows = rowsOf(out);
+        const json& ao = row(rows, kId, "ao");
+        EXPECT_EQ(ao["old_sm_mhz"], 1980.0) << format;
+        EXPECT_EQ(ao["new_sm_mhz"], 1800.0) << format;
+        EXPECT_EQ(ao["cycles_verdict"], "same") << format;
+        EXPECT_EQ(ao["verdict"], "inconclusive") << format;
+        EXPECT_EQ(ao["reason"], "SM clock differs") << format;
+        EXPECT_EQ(row(rows, kId, "blur")["cycles_verdict"], "faster") << format;
+        EXPECT_EQ(row(rows, kId, "blur")["verdict"], "inconclusive") << format;
+    }
 }
 
 // --min-change auto calls a change under the fixed 2% when the samples can

@@ -101,11 +101,14 @@ Result<SampleSets> readBenchmarkJson(const json& doc, const std::string& path) {
 
         const std::string id = configurationIdOf(name);
         const std::string clock = clockOfLabel(stringOr(b, "label", ""));
-        out.at(id, kPipelinePass).add(b["real_time"].get<double>() * factor, clock);
+        // The repetition's median SM clock (cavity_bench writes it where NVML reads one).
+        const double smMhz =
+            b.contains("sm_mhz_median") && b["sm_mhz_median"].is_number() ? b["sm_mhz_median"].get<double>() : NAN;
+        out.at(id, kPipelinePass).add(b["real_time"].get<double>() * factor, clock, smMhz);
         for (const auto& [key, value] : b.items()) {
             if (key.size() <= 8 || key.rfind("pass_", 0) != 0 || !endsWith(key, "_ms")) continue;
             SampleSet& pass = out.at(id, key.substr(5, key.size() - 8));
-            if (value.is_number()) pass.add(value.get<double>(), clock);
+            if (value.is_number()) pass.add(value.get<double>(), clock, smMhz);
         }
     }
     return out;

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <vector>
 
 namespace cavity::compare {
 
@@ -18,6 +19,54 @@ std::string percent(double x) {
     char b[32];
     std::snprintf(b, sizeof b, "%g%%", x);
     return b;
+}
+
+// The shift of `after` against `before` in percent of before's median, its
+// interval, and the verdict the rules give it at `thresholdPct`.
+struct Shift {
+    double p = NAN, changePct = NAN, lowPct = NAN, highPct = NAN;
+    std::string verdict;   // slower, faster, same
+};
+
+Shift shiftOf(const std::vector<double>& before, const std::vector<double>& after, double alpha, double thresholdPct) {
+    Shift s;
+    const double median = summarize(before).median;
+    if (!(median > 0)) return s;
+    s.p = stats::mannWhitneyU(before, after).p;
+    const auto hl = stats::hodgesLehmann(before, after, alpha);
+    s.changePct = 100 * hl.shift / median;
+    s.lowPct = 100 * hl.low / median;
+    s.highPct = 100 * hl.high / median;
+    if (s.p < alpha && s.changePct >= thresholdPct && s.lowPct > 0) s.verdict = "slower";
+    else if (s.p < alpha && s.changePct <= -thresholdPct && s.highPct < 0) s.verdict = "faster";
+    else s.verdict = "same";
+    return s;
+}
+
+std::vector<double> cycles(const SampleSet& s) {
+    std::vector<double> kcycles(s.ms.size());
+    for (size_t i = 0; i < s.ms.size(); ++i) kcycles[i] = s.ms[i] * s.smMhz[i];   // ms x MHz = thousands of cycles
+    return kcycles;
+}
+
+double medianClock(const SampleSet& s) { return s.smClockKnown() ? summarize(s.smMhz).median : NAN; }
+
+// The SM clock moved between the runs: a pass bound by the SM takes time in
+// proportion to 1/clock, so the change must show in cycles as well. Fills
+// r's cycles fields where both clocks are known and differ; true where the
+// verdict in cycles is not `timeVerdict`.
+bool judgeInCycles(CompareRow& r, const SampleSet& before, const SampleSet& after, const CompareThresholds& t,
+                   const std::string& timeVerdict) {
+    const bool clockDiffers = std::isfinite(r.oldSmMhz) && std::isfinite(r.newSmMhz) &&
+                              std::abs(r.newSmMhz - r.oldSmMhz) > kSmClockDiffersPct / 100 * r.oldSmMhz;
+    if (!clockDiffers) return false;
+    const Shift c = shiftOf(cycles(before), cycles(after), t.alpha, r.thresholdPct);
+    r.cyclesVerdict = c.verdict;
+    r.cyclesChangePct = c.changePct;
+    r.cyclesLowPct = c.lowPct;
+    r.cyclesHighPct = c.highPct;
+    r.cyclesP = c.p;
+    return c.verdict != timeVerdict;
 }
 
 CompareRow& inconclusive(CompareRow& r, std::string reason, std::string next) {
@@ -48,11 +97,13 @@ CompareRow compareSeries(const std::string& id, const std::string& pass, const S
         r.nOld = before->ms.size();
         r.oldClock = before->clock;
         r.oldMedianMs = medianOf(*before);
+        r.oldSmMhz = medianClock(*before);
     }
     if (after) {
         r.nNew = after->ms.size();
         r.newClock = after->clock;
         r.newMedianMs = medianOf(*after);
+        r.newSmMhz = medianClock(*after);
     }
     if (!before || !after) {
         r.verdict = before ? "gone" : "new";
@@ -91,6 +142,10 @@ CompareRow compareSeries(const std::string& id, const std::string& pass, const S
 
     const bool slower = r.p < t.alpha && r.changePct >= r.thresholdPct && r.lowPct > 0;
     const bool faster = r.p < t.alpha && r.changePct <= -r.thresholdPct && r.highPct < 0;
+    if (judgeInCycles(r, *before, *after, t, slower ? "slower" : faster ? "faster" : "same") && !software)
+        return inconclusive(r, "SM clock differs",
+                            "time and cycles (time x SM clock) disagree: lock the SM clock (nvidia-smi "
+                            "--lock-gpu-clocks), or run the two builds interleaved (cavity ab)");
     if ((slower || faster) && software)
         return inconclusive(r, "software renderer",
                             "judge speed on a GPU: a software renderer's times are the host CPU's and move with its load");

@@ -58,7 +58,20 @@ struct CompareRow {
     double confidence = NAN;   // the coverage the interval has (see ShiftEstimate)
     double p = NAN;
     bool exact = false;        // exact U distribution for p and interval
+    // The SM clocks the two sides ran at (medians over their samples, from
+    // NVML); NaN where a file records none. Where both are known and differ
+    // by more than kSmClockDiffersPct, the change is judged in cycles too
+    // (each sample's time x its clock), as nvbench's robust compare does: a
+    // verdict stands only where time and cycles agree.
+    double oldSmMhz = NAN, newSmMhz = NAN;
+    std::string cyclesVerdict;   // slower, faster, same; "" where not judged in cycles
+    double cyclesChangePct = NAN, cyclesLowPct = NAN, cyclesHighPct = NAN, cyclesP = NAN;
 };
+
+// Two runs whose median SM clocks differ by more than this, in percent, are
+// judged in cycles as well. NVML reads the clock in 15 MHz steps on Hopper
+// (0.76% of 1980 MHz), so one step is not a difference.
+constexpr double kSmClockDiffersPct = 1.0;
 
 // Either side may be null: the pass is new or gone. `software`: either run
 // was on a software renderer (llvmpipe, lavapipe), whose times are the host

@@ -3,19 +3,25 @@
 #include "core/json_input.h"
 #include "measure/results.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace cavity::compare {
 
 using nlohmann::json;
 
-void SampleSet::add(double value, const std::string& sampleClock) {
+void SampleSet::add(double value, const std::string& sampleClock, double sampleSmMhz) {
     if (ms.empty()) clock = sampleClock;
     else if (clock != sampleClock) {
         mixedClocks = true;
         clock = "mixed";
     }
     ms.push_back(value);
+    smMhz.push_back(sampleSmMhz > 0 && std::isfinite(sampleSmMhz) ? sampleSmMhz : NAN);
+}
+
+bool SampleSet::smClockKnown() const {
+    return !smMhz.empty() && std::all_of(smMhz.begin(), smMhz.end(), [](double m) { return std::isfinite(m); });
 }
 
 SampleSet& SampleSets::at(const std::string& id, const std::string& pass) {
@@ -33,12 +39,12 @@ namespace {
 // Numbers only: results.json writes a sample that was NaN as null, and a
 // sample that was never a time tells nothing about the change. A series with
 // no time at all would compare as "-100%", so it is bad input.
-Status addSamples(SampleSet& s, const JsonObject& owner, const std::string& clock) {
+Status addSamples(SampleSet& s, const JsonObject& owner, const std::string& clock, double smMhz) {
     CAVITY_ASSIGN(const auto samples, owner.numbers("samples_ms", 0, 1e12, true));
     size_t added = 0;
     for (double v : samples)
         if (std::isfinite(v)) {
-            s.add(v, clock);
+            s.add(v, clock, smMhz);
             ++added;
         }
     if (!added) return owner.bad("samples_ms", "holds no time (a run needs at least one finite sample)");
@@ -58,13 +64,19 @@ Result<SampleSets> readResultsJson(const json& doc, const std::string& path) {
         CAVITY_ASSIGN(const std::string clock, r.str("clock"));
         if (r.raw().contains("device") && r.raw()["device"].is_object())
             out.softwareRenderer |= r.raw()["device"].value("software_renderer", false);
+        // The run's median SM clock, where NVML read one (gpu_clocks is null otherwise).
+        double smMhz = NAN;
+        const json& clocks = r.raw().contains("gpu_clocks") ? r.raw()["gpu_clocks"] : json();
+        if (clocks.is_object() && clocks.contains("sm_mhz") && clocks["sm_mhz"].is_object() &&
+            clocks["sm_mhz"].contains("median") && clocks["sm_mhz"]["median"].is_number())
+            smMhz = clocks["sm_mhz"]["median"].get<double>();
         // The frame first, as a table reads best whole before parts.
         CAVITY_ASSIGN(const JsonObject frame, r.object("frame"));
-        CAVITY_TRY(addSamples(out.at(id, kFramePass), frame, clock));
+        CAVITY_TRY(addSamples(out.at(id, kFramePass), frame, clock, smMhz));
         CAVITY_ASSIGN(const auto passes, r.objects("passes"));
         for (const auto& p : passes) {
             CAVITY_ASSIGN(const std::string name, p.str("name"));
-            CAVITY_TRY(addSamples(out.at(id, name), p, clock));
+            CAVITY_TRY(addSamples(out.at(id, name), p, clock, smMhz));
         }
     }
     return out;

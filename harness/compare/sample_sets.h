@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cmath>
 #include <map>
 #include <string>
 #include <utility>
@@ -21,12 +22,17 @@ namespace cavity::compare {
 // took them: "gpu-timestamp" or "wall" (README, "Timing").
 struct SampleSet {
     std::vector<double> ms;
+    // The SM clock each sample was taken at (its run's or repetition's
+    // median, from NVML), beside ms; NaN where the file records none.
+    std::vector<double> smMhz;
     std::string clock;
     // Samples of this series came from different clocks: a wall-clock sample
     // and a timestamp sample measure different things, so they are never pooled.
     bool mixedClocks = false;
 
-    void add(double value, const std::string& sampleClock);
+    void add(double value, const std::string& sampleClock, double sampleSmMhz = NAN);
+    // Every sample's SM clock is known.
+    bool smClockKnown() const;
 };
 
 struct SampleSets {

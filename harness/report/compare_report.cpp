@@ -90,20 +90,30 @@ std::vector<CompareRow> compareAll(const SampleSets& before, const SampleSets& a
 std::string compareTable(const std::vector<CompareRow>& rows, const SampleSets& before, const SampleSets& after,
                          const CompareThresholds& t) {
     const std::string level = confidenceLabel(t.alpha);
+    // The change in cycles, only where some row's SM clock differed between the runs.
+    const bool anyCycles = std::any_of(rows.begin(), rows.end(), [](const CompareRow& r) { return !r.cyclesVerdict.empty(); });
     std::vector<std::vector<std::string>> cells = {
-        {"configuration", "pass", "old ms", "new ms", "change", level + " interval", "detectable", "p", "n old/new",
-         "verdict"}};
-    for (const auto& r : rows)
+        {"configuration", "pass", "old ms", "new ms", "change", level + " interval", "detectable", "p", "n old/new"}};
+    if (anyCycles) cells[0].push_back("SM MHz old/new: cycles");
+    cells[0].push_back("verdict");
+    for (const auto& r : rows) {
         cells.push_back({r.id, r.pass, format("%.4f", r.oldMedianMs), format("%.4f", r.newMedianMs),
                          format("%+.1f%%", r.changePct), formatInterval(r.lowPct, r.highPct),
                          format("%.2f%%", r.detectablePct), formatP(r.p),
-                         std::to_string(r.nOld) + "/" + std::to_string(r.nNew),
-                         r.verdict + (r.reason.empty() ? "" : ": " + r.reason)});
+                         std::to_string(r.nOld) + "/" + std::to_string(r.nNew)});
+        if (anyCycles)
+            cells.back().push_back(r.cyclesVerdict.empty() ? "-"
+                                                           : format("%.0f", r.oldSmMhz) + "/" + format("%.0f", r.newSmMhz) +
+                                                                 ": " + format("%+.1f%%", r.cyclesChangePct) + " " +
+                                                                 r.cyclesVerdict);
+        cells.back().push_back(r.verdict + (r.reason.empty() ? "" : ": " + r.reason));
+    }
     std::vector<size_t> width(cells[0].size(), 0);
     for (const auto& row : cells)
         for (size_t c = 0; c < row.size(); ++c) width[c] = std::max(width[c], row[c].size());
     // Names and the verdict read from the left, numbers line up on the right.
-    auto leftAligned = [](size_t c) { return c < 2 || c == 9; };
+    const size_t verdictColumn = cells[0].size() - 1;
+    auto leftAligned = [&](size_t c) { return c < 2 || c == verdictColumn; };
     std::string out = "old: " + describe(before) + "\nnew: " + describe(after) + "\n\n";
     for (const auto& row : cells) {
         std::string line;
@@ -162,7 +172,14 @@ json compareJson(const std::vector<CompareRow>& rows, const SampleSets& before, 
                         {"ci_high_pct", number(r.highPct)},
                         {"ci_coverage", number(r.confidence)},
                         {"p", number(r.p)},
-                        {"method", std::isnan(r.p) ? json() : json(r.exact ? "exact" : "asymptotic")}});
+                        {"method", std::isnan(r.p) ? json() : json(r.exact ? "exact" : "asymptotic")},
+                        {"old_sm_mhz", number(r.oldSmMhz)},
+                        {"new_sm_mhz", number(r.newSmMhz)},
+                        {"cycles_verdict", text(r.cyclesVerdict)},
+                        {"cycles_change_pct", number(r.cyclesChangePct)},
+                        {"cycles_ci_low_pct", number(r.cyclesLowPct)},
+                        {"cycles_ci_high_pct", number(r.cyclesHighPct)},
+                        {"cycles_p", number(r.cyclesP)}});
     return {{"schema", kCompareSchema},
             {"old", side(before)},
             {"new", side(after)},
