@@ -1,38 +1,13 @@
-// The lit image: a sky-and-ground ambient term, darkened by the AO, on
-// albedo; background shows the sky. AO multiplies the whole ambient term
-// (McGuire et al., HPG 2011): 1 leaves open surfaces alone, 0 blacks out a
-// fully enclosed point.
-#include "include/common.glsl"
-#include "include/noise.glsl"
-
-const vec3 SKY_COLOR = vec3(0.85, 0.92, 1.0);
-const vec3 GROUND_COLOR = vec3(0.55, 0.50, 0.45);
-
-// Hemisphere ambient light: surfaces facing up see the sky, surfaces facing
-// down see the ground. View-space +Y stands in for world up because the
-// scene cameras are nearly level (sdf_scenes.glsl), which keeps the
-// composite independent of any camera matrix.
-vec3 ambientLight(vec3 N) {
-    return mix(GROUND_COLOR, SKY_COLOR, 0.5 + 0.5 * N.y);
-}
+// The lit image (include/composite.glsl): albedo x sky/ground ambient x AO.
+#include "include/composite.glsl"
 
 void cavity_main(ivec2 pixel) {
     vec4 albedo = texelFetch(in_albedo, pixel, 0);
-    vec3 color;
-    // Albedo alpha is 1 on every hit and 0 where the ray missed.
-    if (albedo.a < 0.5) {
-        color = SKY_COLOR;
-    } else {
-        float ao = texelFetch(in_ao, pixel, 0).r;
-        vec3 N = texelFetch(in_normal, pixel, 0).xyz;
-        color = albedo.rgb * ambientLight(N) * ao;
+    float ao = 1.0;
+    vec3 N = vec3(0.0);
+    if (!isSky(albedo)) {
+        ao = texelFetch(in_ao, pixel, 0).r;
+        N = texelFetch(in_normal, pixel, 0).xyz;
     }
-    // An 8-bit target has 256 levels, and the slow gradients of blurred AO
-    // band visibly between them; +-half a level of IGN dither turns the
-    // bands into noise too fine to see (the hemisphere SSAO lesson (docs/kernels.md)).
-    if (P.dither != 0) {
-        precise float offset = (ign(vec2(pixel) + 0.5) - 0.5) * 0.003921569;   // 1/255
-        color += vec3(offset);
-    }
-    write_color(pixel, vec4(clamp(color, 0.0, 1.0), 1.0));
+    write_color(pixel, compositeColor(pixel, albedo, N, ao));
 }

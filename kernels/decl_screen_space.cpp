@@ -135,7 +135,7 @@ KernelDecl upsampleBilateral() {
     k.file = "upsample_bilateral.glsl";
     k.summary = "joint bilateral upsample of half-resolution AO: bilinear x tangent-plane distance x normal weights";
     k.role = Role::Upsample;
-    k.params = {use("upsample_depth_tolerance")};
+    k.params = {use("upsample_depth_tolerance"), use("fused_tail")};
     k.inputs = {{"ao_half", {}}, {"position_half", {}}, {"position", {}}, {"normal", {}}, {"normal_half", {}}};
     k.outputs = {{"ao", Format::R16F}};
     k.cost = [](const ParamValues&) {
@@ -144,6 +144,28 @@ KernelDecl upsampleBilateral() {
                     fetchSlots(kRgba32f) + fetchSlots(kRgba16f) +
                         4 * (fetchSlots(kR16f) + fetchSlots(kRgba32f) + fetchSlots(kRgba16f)),
                     kRgba32f + kRgba16f + (kR16f + kRgba32f + kRgba16f) / 4 + kR16f};
+    };
+    return k;
+}
+
+// The fused half-resolution tail: upsample_bilateral and composite in one
+// full-resolution pass (upsample_composite.glsl), picked by fused_tail.
+KernelDecl upsampleComposite() {
+    KernelDecl k;
+    k.name = "upsample_composite";
+    k.file = "upsample_composite.glsl";
+    k.summary = "the half-resolution tail in one pass: joint bilateral upsample, then the composite of its AO";
+    k.role = Role::Composite;
+    k.params = {use("upsample_depth_tolerance"), use("dither"), use("fused_tail")};
+    k.inputs = {{"ao_half", {}}, {"position_half", {}}, {"position", {}}, {"normal", {}}, {"normal_half", {}}, {"albedo", {}}};
+    k.outputs = {{"color", Format::RGBA8}, {"ao", Format::R16F}};
+    k.cost = [](const ParamValues&) {
+        // upsample_bilateral's fetches, plus the albedo; the AO is written
+        // once and never read back, and the normal is read once.
+        return Cost{15, kRgba32f + kRgba16f + 4 * (kR16f + kRgba32f + kRgba16f) + kRgba8 + kR16f + kRgba8,
+                    fetchSlots(kRgba32f) + fetchSlots(kRgba16f) +
+                        4 * (fetchSlots(kR16f) + fetchSlots(kRgba32f) + fetchSlots(kRgba16f)) + fetchSlots(kRgba8),
+                    kRgba32f + kRgba16f + (kR16f + kRgba32f + kRgba16f) / 4 + kRgba8 + kR16f + kRgba8};
     };
     return k;
 }
@@ -271,7 +293,7 @@ double skyTexels(const ParamValues& v) {
 
 std::vector<KernelDecl> screenSpaceKernels() {
     return {depthFromPosition(), hemisphere(),        hemisphereCosine(), blurBox(),      downsampleDepth(), upsampleBilateral(),
-            ssdo(),              blurBilateralSsdo(), ssdoIndirect(), compositeSsdo()};
+            upsampleComposite(), ssdo(),              blurBilateralSsdo(), ssdoIndirect(), compositeSsdo()};
 }
 
 std::vector<ConstantImageDecl> screenSpaceConstants() {

@@ -105,6 +105,10 @@ std::vector<ParamDecl> declare() {
              "distance of a half texel from the pixel's tangent plane, relative to depth, at which its "
              "weight falls to exp(-1/2)",
              true),
+        // The half-resolution tail as two passes (upsample_bilateral, then
+        // composite) or fused into one (upsample_composite): the same image.
+        flag("fused_tail", false,
+             "at half resolution, upsample and composite in one full-resolution pass (upsample_composite)"),
         choice("ssdo_mode", {"visibility", "radiance"},
                "visibility: SH sky ambient x visibility + bounce; radiance: direct sky radiance + bounce"),
         flag("dither", true, "add +-0.5/255 of interleaved gradient noise against 8-bit banding"),

@@ -25,7 +25,7 @@ bias_sign_flipped|ssao_alchemy.glsl|- P.bias|+ P.bias|^corner/alchemy/n16/b4/ful
 sample_count_off_by_one|ssao_alchemy.glsl|int n = P.samples;|int n = P.samples + 1;|^corner/alchemy/n16/b4/full/160x90/(gl|vk)/compute$
 near_clamp_c_eq_R|ssao_alchemy.glsl|float c = 0.1 * R;|float c = R;|^corner/alchemy/n16/b4/full/160x90/(gl|vk)/compute$
 range_check_removed|ssao_hemisphere.glsl|if (P.range_check != 0) rangeWeight = smoothstep(0.0, 1.0, P.radius / max(abs(p.z - q.z), 1e-6));||^corner/hemisphere/n16/b4/full/160x90/(gl|vk)/compute$
-upsample_offset_one_texel|upsample_bilateral.glsl|ivec2 base = ivec2(floor(c));|ivec2 base = ivec2(floor(c)) + ivec2(1, 0);|^corner/alchemy/n16/b4/half/160x90/(gl|vk)/compute$
+upsample_offset_one_texel|include/upsample.glsl|ivec2 base = ivec2(floor(c));|ivec2 base = ivec2(floor(c)) + ivec2(1, 0);|^corner/alchemy/n16/b4/half/160x90/(gl|vk)/compute$
 LIST
 tar -C "$work" -cf "$OUT/planted.tar" planted
 ls -la "$OUT"

@@ -27,11 +27,11 @@ plant alchemy_fast_level ssao_alchemy_fast.glsl '/alchemy_fast/' \
 # Alchemy's bias lowered by a tenth: a little more self-occlusion on flat ground.
 plant alchemy_bias ssao_alchemy.glsl '/alchemy/' 's|dot(N, omega) - P.bias|dot(N, omega) - 0.9 * P.bias|'
 # The composite's dither dropped: bands in the 8-bit gradients.
-plant no_dither composite.glsl '/full/' 's|if (P.dither != 0) {|if (P.dither != 0 \&\& false) {|'
+plant no_dither include/composite.glsl '/full/' 's|if (P.dither != 0) {|if (P.dither != 0 \&\& false) {|'
 # The separable blur's Gaussian read one weight off (w[i+1] for w[i]).
 plant blur_weight_shift include/blur_separable.glsl '_fast/' 's|return P.weights\[i >> 2\]\[i \& 3\];|return P.weights[(i + 1) >> 2][(i + 1) \& 3];|'
 # The bilateral upsample's normal weight to the 4th power instead of the 8th.
-plant upsample_normal upsample_bilateral.glsl '/half/' 's|float normalWeight = cn \* cn;|float normalWeight = cn;|'
+plant upsample_normal include/upsample.glsl '/half/' 's|float normalWeight = cn \* cn;|float normalWeight = cn;|'
 # hemisphere_fast's radius 5% short.
 plant hemisphere_fast_radius ssao_hemisphere_fast.glsl '/hemisphere_fast/' 's|float R = P.radius;|float R = 0.95 * P.radius;|'
 # ssdo_fast's bounce 10% weak.

@@ -99,7 +99,7 @@ std::vector<Defect> defects() {
         {"range check removed", "ssao_hemisphere.glsl",
          "if (P.range_check != 0) rangeWeight = smoothstep(0.0, 1.0, P.radius / max(abs(p.z - q.z), 1e-6));", "",
          "", {}, "^corner/hemisphere/n16/b4/full/160x90/vk/compute$", "corner/hemisphere/n16/b4/full/160x90/vk/compute"},
-        {"half-resolution upsample offset by one texel", "upsample_bilateral.glsl", "ivec2 base = ivec2(floor(c));",
+        {"half-resolution upsample offset by one texel", "include/upsample.glsl", "ivec2 base = ivec2(floor(c));",
          "ivec2 base = ivec2(floor(c)) + ivec2(1, 0);", "", {}, "^corner/alchemy/n16/b4/half/160x90/vk/compute$",
          "corner/alchemy/n16/b4/half/160x90/vk/compute"},
     };
@@ -214,14 +214,14 @@ INSTANTIATE_TEST_SUITE_P(Planted, PlantedNonFinite, ::testing::Range<size_t>(0, 
 TEST(Gate, DitherRemovedFailsOnDifferingPixelsWithAMargin) {
     REQUIRE_BACKENDS();
     const std::string find = "if (P.dither != 0) {";
-    std::string broken = *kernels::sourceFile("composite.glsl");
+    std::string broken = *kernels::sourceFile("include/composite.glsl");
     ASSERT_NE(broken.find(find), std::string::npos);
     broken.replace(broken.find(find), find.size(), "if (P.dither == 2) {");
     gate::GateOptions o;
     o.baselines = kBaselines;
     o.out = tempDir("dither").string();
     o.filter = "^corner/alchemy/n16/b4/full/160x90/vk/compute$";
-    o.overrides["composite.glsl"] = broken;
+    o.overrides["include/composite.glsl"] = broken;
     const auto run = runOrDie(o);
     ASSERT_EQ(run.results.size(), 1u);
     EXPECT_EQ(run.exitCode(), 1);

@@ -178,6 +178,16 @@ std::vector<PassSpec> buildPasses(const RunConfig& c) {
     const auto in = aoInputs(*k, half, p);
     if (packsKey(*k)) separableTail(*k, in, half, p);
     else bilateralTail(*k, c, in, half, p);
+    // fused_tail: the upsample and the composite as one pass, which writes
+    // the full-resolution AO as well for the gate and the quality measure.
+    if (half && c.params.count("fused_tail") && c.params.at("fused_tail") != 0) {
+        PassSpec& upsample = p.back();
+        upsample.name = "upsample_composite";
+        upsample.kernel = "upsample_composite";
+        upsample.inputs.push_back(ImageRef{"albedo"});
+        upsample.outputs = {"color", "ao_blur"};
+        return p;
+    }
     p.push_back({"composite", "composite", {"ao_blur", "normal", "albedo"}, {"color"}, false});
     return p;
 }

@@ -79,6 +79,10 @@ std::vector<RunConfig> benchmarkSweep(const SweepAxes& axes, const std::vector<g
                 // chart's every kernel x sample count x full/half.
                 if (sdfFamily(kernel)) add(around({{"samples", samples}}, {true}), base);
                 else add(around({{"samples", samples}, {"blur", blurs}}, {false, true}), base);
+                // The fused half-resolution tail against the two passes, at
+                // the default samples and blur.
+                if (pipeline::supportsHalf(kernel) && !sdfFamily(kernel))
+                    add(around({{"fused_tail", {1}}}, {true}), base);
             }
     return out;
 }

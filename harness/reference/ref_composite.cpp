@@ -14,16 +14,10 @@ const Vec3 kGround{0.55f, 0.50f, 0.45f};
 
 }  // namespace
 
-Result<std::vector<HostImage>> composite(const Context& ctx) {
-    CAVITY_TRY(requireInputs(ctx, {1, 3, 4}));
-    const HostImage& aoIn = *ctx.inputs[0];
-    const HostImage& normal = *ctx.inputs[1];
-    const HostImage& albedo = *ctx.inputs[2];
+void compositeInto(const Context& ctx, const HostImage& aoIn, const HostImage& normal, const HostImage& albedo,
+                   HostImage& color) {
     const auto& f = ctx.frame;
     const bool dither = intParam(ctx, "dither") != 0;
-
-    auto out = makeOutputs(ctx);
-    HostImage& color = out[0];
     for (int y = 0; y < f.size[1]; ++y) {
         for (int x = 0; x < f.size[0]; ++x) {
             Vec3 c = kSky;
@@ -42,6 +36,12 @@ Result<std::vector<HostImage>> composite(const Context& ctx) {
             color.at(x, y, 3) = 1.0f;
         }
     }
+}
+
+Result<std::vector<HostImage>> composite(const Context& ctx) {
+    CAVITY_TRY(requireInputs(ctx, {1, 3, 4}));
+    auto out = makeOutputs(ctx);
+    compositeInto(ctx, *ctx.inputs[0], *ctx.inputs[1], *ctx.inputs[2], out[0]);
     return out;
 }
 

@@ -1,4 +1,5 @@
-// References of kernels/downsample_depth.glsl and upsample_bilateral.glsl.
+// References of kernels/downsample_depth.glsl, upsample_bilateral.glsl and
+// upsample_composite.glsl (the two half-resolution tail passes fused).
 // The downsample only compares and copies, so it is exact. The upsample's
 // weights are continuous (exp), except where every weight vanishes and it
 // falls back to the half texel nearest in depth, a threshold the GPU and
@@ -60,7 +61,11 @@ Result<std::vector<HostImage>> downsampleDepth(const Context& ctx) {
     return out;
 }
 
-Result<std::vector<HostImage>> upsampleBilateral(const Context& ctx) {
+namespace {
+
+// upsample_bilateral's AO of every pixel of ctx.frame into `out` (1 channel);
+// ctx's first five inputs are upsample_bilateral's.
+Status upsampleInto(const Context& ctx, HostImage& out) {
     const auto& f = ctx.frame;
     const HostImage& aoHalf = *ctx.inputs[0];
     const HostImage& positionHalf = *ctx.inputs[1];
@@ -75,14 +80,13 @@ Result<std::vector<HostImage>> upsampleBilateral(const Context& ctx) {
     CAVITY_TRY(screen::requireInput(ctx, 4, hw, hh, 3));
     const float tolerance = floatParam(ctx, "upsample_depth_tolerance");
 
-    auto out = makeOutputs(ctx);
     for (int y = 0; y < f.size[1]; ++y)
         for (int x = 0; x < f.size[0]; ++x) {
             const Vec3 p = screen::texel3(position, x, y);
             const float pw = position.at(x, y, 3);
             const Vec3 nrm = screen::texel3(normal, x, y);
             if (isBackground(pw) || lengthSquared(nrm) == 0.0f) {
-                out[0].at(x, y) = 1.0f;
+                out.at(x, y) = 1.0f;
                 continue;
             }
             const float cx = float(x) * 0.5f - 0.25f, cy = float(y) * 0.5f - 0.25f;
@@ -113,8 +117,27 @@ Result<std::vector<HostImage>> upsampleBilateral(const Context& ctx) {
                     fallback = ao;
                 }
             }
-            out[0].at(x, y) = weightSum > 1e-5f ? sum / weightSum : fallback;
+            out.at(x, y) = weightSum > 1e-5f ? sum / weightSum : fallback;
         }
+    return {};
+}
+
+}  // namespace
+
+Result<std::vector<HostImage>> upsampleBilateral(const Context& ctx) {
+    auto out = makeOutputs(ctx);
+    CAVITY_TRY(upsampleInto(ctx, out[0]));
+    return out;
+}
+
+// upsample_composite.glsl: the upsample, then the composite of its AO in
+// full float (the test rounds the stored AO to half as the R16F image does).
+Result<std::vector<HostImage>> upsampleComposite(const Context& ctx) {
+    const auto& f = ctx.frame;
+    CAVITY_TRY(screen::requireInput(ctx, 5, f.size[0], f.size[1], 4));
+    auto out = makeOutputs(ctx);   // color, ao
+    CAVITY_TRY(upsampleInto(ctx, out[1]));
+    compositeInto(ctx, out[1], *ctx.inputs[3], *ctx.inputs[5], out[0]);
     return out;
 }
 

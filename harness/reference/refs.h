@@ -15,6 +15,9 @@ Result<std::vector<HostImage>> gbufferSdf(const Context& ctx);      // ref_gbuff
 Result<std::vector<HostImage>> alchemy(const Context& ctx);         // ref_alchemy.cpp
 Result<std::vector<HostImage>> blurBilateral(const Context& ctx);   // ref_blur_bilateral.cpp
 Result<std::vector<HostImage>> composite(const Context& ctx);       // ref_composite.cpp
+// The composite's colour of every pixel of ctx.frame into `color` (4 channels).
+void compositeInto(const Context& ctx, const HostImage& ao, const HostImage& normal, const HostImage& albedo,
+                   HostImage& color);
 
 // The kernel's outputs, frame-sized and zeroed, in declaration order.
 std::vector<HostImage> makeOutputs(const Context& ctx);

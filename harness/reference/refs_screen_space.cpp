@@ -26,6 +26,7 @@ Result<std::vector<HostImage>> depthFromPositionHalf(const Context& ctx);
 // ref_halfres.cpp
 Result<std::vector<HostImage>> downsampleDepth(const Context& ctx);
 Result<std::vector<HostImage>> upsampleBilateral(const Context& ctx);
+Result<std::vector<HostImage>> upsampleComposite(const Context& ctx);
 // ref_ssdo.cpp
 Result<std::vector<HostImage>> ssdoDirect(const Context& ctx);
 Result<std::vector<HostImage>> blurBilateralSsdo(const Context& ctx);
@@ -42,6 +43,7 @@ std::vector<RefEntry> screenSpaceRefs() {
         {"blur_box", blurBox},
         {"downsample_depth", downsampleDepth},
         {"upsample_bilateral", upsampleBilateral},
+        {"upsample_composite", upsampleComposite},
         {"ssdo", ssdoDirect},
         {"blur_bilateral_ssdo", blurBilateralSsdo},
         {"ssdo_indirect", ssdoIndirect},
