@@ -30,7 +30,7 @@ SWEEPS = [os.path.join(RESULTS, n) for n in ("2026-11-24_h100_full_sweep.json.gz
 QUALITY_COST = os.path.join(RESULTS, "2026-12-02_h200_quality_cost")
 FLOOR_LIFT = os.path.join(RESULTS, "2026-12-02_h200_floor3", "lift.json.gz")
 SINGLE_FILE_CHARTS = ("time_vs_samples", "time_vs_blur", "full_vs_half", "time_vs_megapixels",
-                      "gl_vs_vk", "compute_vs_fragment")
+                      "gl_vs_vk", "compute_vs_fragment", "passes")
 
 sys.path.insert(0, HERE)
 import charts  # noqa: E402  (pure functions only; matplotlib is imported when drawing)
@@ -98,7 +98,8 @@ class Computations(unittest.TestCase):
     def test_speedups_are_full_over_half(self):
         sp = charts.speedups(self.records)
         self.assertGreaterEqual(len(sp), 3)
-        for (kernel, api), (full, half, ratio) in sp.items():
+        for (kernel, api), (full, half, entry) in sp.items():
+            full, half, ratio = full["ms"], half["ms"], entry["ratio"]
             fid = f"corner/{kernel}/n16/b4/full/1920x1080/{api}/compute"
             hid = f"corner/{kernel}/n16/b4/half/1920x1080/{api}/compute"
             self.assertAlmostEqual(full, self.raw_median(fid))
@@ -148,7 +149,8 @@ class Command(unittest.TestCase):
 
             # the speed-ups written on full_vs_half are full/half from the data
             records = list(charts.load_results(SAMPLE)["records"].values())
-            expected = {charts.series_label(k): charts.format_ratio(v[2]) for k, v in charts.speedups(records).items()}
+            expected = {charts.series_label(k): charts.format_ratio(v[2]["ratio"])
+                        for k, v in charts.speedups(records).items()}
             entry = next(c for c in index["charts"] if c["name"] == "full_vs_half")
             self.assertEqual(entry["labels"], expected)
             with open(os.path.join(out, "full_vs_half.svg")) as f:
@@ -192,8 +194,9 @@ class Command(unittest.TestCase):
             self.assertEqual(r.returncode, 0, r.stderr)
             with open(os.path.join(out, "index.json")) as f:
                 index = json.load(f)
-            self.assertEqual([c["name"] for c in index["charts"]], ["time_vs_samples"])
-            self.assertEqual(sorted(os.listdir(out)), ["index.json", "time_vs_samples.png", "time_vs_samples.svg"])
+            self.assertEqual([c["name"] for c in index["charts"]], ["time_vs_samples", "passes"])
+            self.assertEqual(sorted(os.listdir(out)), ["index.json", "passes.png", "passes.svg", "time_vs_samples.png",
+                                                       "time_vs_samples.svg"])
 
     def check_bad(self, content, expect):
         with tempfile.TemporaryDirectory() as tmp:
@@ -212,7 +215,7 @@ class Command(unittest.TestCase):
             self.assertFalse(os.path.exists(out))
 
     def test_not_benchmark_json(self):
-        self.check_bad('{"runs": []}', "not Google Benchmark JSON (no 'benchmarks' list)")
+        self.check_bad('{"runs": []}', "neither Google Benchmark JSON (no 'benchmarks' list) nor a cavity results.json")
 
     def test_not_json(self):
         self.check_bad("corner/alchemy/n16 0.09 ms\n", "not JSON")
@@ -383,7 +386,7 @@ class QualityCost(unittest.TestCase):
         with tempfile.TemporaryDirectory() as d:
             full, half, bench = self.write_inputs(d)
             out = os.path.join(d, "out")
-            r = run_charts("quality-cost", "--quality", full, half, "--bench", bench, "--out", out)
+            r = run_charts("quality-cost", "--quality", full, half, "--bench", bench, "--out", out, "--cost", "estimate")
             self.assertEqual(r.returncode, 0, r.stderr)
             self.assertIn("corner/nobench/n16/b4/half/1920x1080/vk/compute", r.stderr)
             for name in ("quality_cost.png", "quality_cost.svg", "quality_cost.json"):
