@@ -71,7 +71,7 @@ def draw(c):
         end = max(end, left)
         text = f"pipeline {rec['ms']:.3g} ms"
         if spread.has_spread(rec):
-            text += f" (IQR {rec['q25']:.3g}–{rec['q75']:.3g})"
+            text += f" (IQR {rec['q25']:.4g}–{rec['q75']:.4g})"
         ax.annotate(text, (end, y), xytext=(6, 0), textcoords="offset points", va="center", fontsize=8)
         right = max(right, end)
     ax.set_yticks(ys)
