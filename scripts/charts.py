@@ -79,11 +79,11 @@ from cavity_charts.full_vs_half import speedups  # noqa: E402,F401
 from cavity_charts.gl_vs_vk import api_pairs  # noqa: E402,F401
 from cavity_charts.history import HISTORY_MAX_LINES, history_series  # noqa: E402,F401
 from cavity_charts.inputs import (DIMS, BadInput, bench_floor_rows, config_id, load_floor_rows,  # noqa: E402,F401
-                                  load_pass_times, load_quality, load_results, parse_id, strip_name)
+                                  load_quality, load_results, parse_id, strip_name)
 from cavity_charts.labels import (API_NAMES, device_line, device_name, driver_name, file_label,  # noqa: E402,F401
                                   fixed_line, format_ratio, is_compute_card, series_label, short_ids, shorten)
 from cavity_charts.plotting import DPI, Canvas, pick_slice  # noqa: E402,F401
-from cavity_charts.quality_cost import AO_COST_PASSES, join_quality_cost, pareto_front  # noqa: E402,F401
+from cavity_charts.quality_cost import AO_COST_PASSES, is_screen_space, join_quality_cost, pareto_front  # noqa: E402,F401
 from cavity_charts.quality_cost import main as quality_cost_main  # noqa: E402,F401
 from cavity_charts.time_vs_megapixels import fit_through_origin  # noqa: E402,F401
 

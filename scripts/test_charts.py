@@ -30,7 +30,7 @@ SWEEPS = [os.path.join(RESULTS, n) for n in ("2026-11-24_h100_full_sweep.json.gz
 QUALITY_COST = os.path.join(RESULTS, "2026-12-02_h200_quality_cost")
 FLOOR_LIFT = os.path.join(RESULTS, "2026-12-02_h200_floor3", "lift.json.gz")
 SINGLE_FILE_CHARTS = ("time_vs_samples", "time_vs_blur", "full_vs_half", "time_vs_megapixels",
-                      "gl_vs_vk", "compute_vs_fragment")
+                      "gl_vs_vk", "compute_vs_fragment", "passes")
 
 sys.path.insert(0, HERE)
 import charts  # noqa: E402  (pure functions only; matplotlib is imported when drawing)
@@ -98,7 +98,8 @@ class Computations(unittest.TestCase):
     def test_speedups_are_full_over_half(self):
         sp = charts.speedups(self.records)
         self.assertGreaterEqual(len(sp), 3)
-        for (kernel, api), (full, half, ratio) in sp.items():
+        for (kernel, api), (full, half, entry) in sp.items():
+            full, half, ratio = full["ms"], half["ms"], entry["ratio"]
             fid = f"corner/{kernel}/n16/b4/full/1920x1080/{api}/compute"
             hid = f"corner/{kernel}/n16/b4/half/1920x1080/{api}/compute"
             self.assertAlmostEqual(full, self.raw_median(fid))
@@ -148,7 +149,8 @@ class Command(unittest.TestCase):
 
             # the speed-ups written on full_vs_half are full/half from the data
             records = list(charts.load_results(SAMPLE)["records"].values())
-            expected = {charts.series_label(k): charts.format_ratio(v[2]) for k, v in charts.speedups(records).items()}
+            expected = {charts.series_label(k): charts.format_ratio(v[2]["ratio"])
+                        for k, v in charts.speedups(records).items()}
             entry = next(c for c in index["charts"] if c["name"] == "full_vs_half")
             self.assertEqual(entry["labels"], expected)
             with open(os.path.join(out, "full_vs_half.svg")) as f:
@@ -192,8 +194,9 @@ class Command(unittest.TestCase):
             self.assertEqual(r.returncode, 0, r.stderr)
             with open(os.path.join(out, "index.json")) as f:
                 index = json.load(f)
-            self.assertEqual([c["name"] for c in index["charts"]], ["time_vs_samples"])
-            self.assertEqual(sorted(os.listdir(out)), ["index.json", "time_vs_samples.png", "time_vs_samples.svg"])
+            self.assertEqual([c["name"] for c in index["charts"]], ["time_vs_samples", "passes"])
+            self.assertEqual(sorted(os.listdir(out)), ["index.json", "passes.png", "passes.svg", "time_vs_samples.png",
+                                                       "time_vs_samples.svg"])
 
     def check_bad(self, content, expect):
         with tempfile.TemporaryDirectory() as tmp:
@@ -212,7 +215,7 @@ class Command(unittest.TestCase):
             self.assertFalse(os.path.exists(out))
 
     def test_not_benchmark_json(self):
-        self.check_bad('{"runs": []}', "not Google Benchmark JSON (no 'benchmarks' list)")
+        self.check_bad('{"runs": []}', "neither Google Benchmark JSON (no 'benchmarks' list) nor a cavity results.json")
 
     def test_not_json(self):
         self.check_bad("corner/alchemy/n16 0.09 ms\n", "not JSON")
@@ -253,6 +256,8 @@ class Package(unittest.TestCase):
         self.assertEqual(r.returncode, 0, r.stderr)
         for name in cli.CHART_NAMES + ("quality-cost", "floor"):
             self.assertRegex(r.stdout, rf"(?m)^  {re.escape(name)} ", name)
+        self.assertIn("passes", cli.CHART_NAMES)
+        self.assertIn("results.json", r.stdout)
         self.assertEqual(cli.CHART_NAMES, SINGLE_FILE_CHARTS + ("history",))
         self.assertEqual(sorted(cli.SUBCOMMANDS), ["floor", "quality-cost"])
         for sub in cli.SUBCOMMANDS:
@@ -337,6 +342,248 @@ class Package(unittest.TestCase):
         self.assertGreater(len(r.stdout.splitlines()), 3)
 
 
+def bench_doc(times, software=False, clock="gpu-timestamp", clocks=None):
+    """cavity_bench JSON: {config id: [(pipeline ms, {pass: ms}) per repetition]}; clocks: {id: clock} overrides."""
+    benchmarks = []
+    for cid, reps in times.items():
+        for i, (ms, passes) in enumerate(reps):
+            e = {"name": cid + "/iterations:1/manual_time", "run_type": "iteration", "repetitions": len(reps),
+                 "repetition_index": i, "real_time": ms, "time_unit": "ms",
+                 "label": f"clock={(clocks or {}).get(cid, clock)} mode=drained"}
+            e.update({f"pass_{p}_ms": v for p, v in passes.items()})
+            benchmarks.append(e)
+    dev = "llvmpipe (LLVM 15.0.6, 256 bits)" if software else "NVIDIA H200"
+    return {"context": {"date": "2026-12-03T10:00:00+00:00", "cavity_device": f"gl: {dev}; vk: {dev}",
+                        "cavity_software_renderer": "true" if software else "false"}, "benchmarks": benchmarks}
+
+
+def results_doc(runs, software=True):
+    """A results.json: {config id: (clock, {pass: [ms per frame]})}."""
+    out = []
+    for cid, (clock, passes) in runs.items():
+        frames = len(next(iter(passes.values())))
+        out.append({"id": cid, "backend": cid.split("/")[6], "clock": clock,
+                    "device": {"name": "llvmpipe (LLVM 15.0.6, 256 bits)" if software else "NVIDIA H200",
+                               "software_renderer": software, "driver": "Mesa 22.3.6"},
+                    "frame": {"samples_ms": [sum(v[k] for v in passes.values()) for k in range(frames)]},
+                    "passes": [{"name": n, "samples_ms": v} for n, v in passes.items()]})
+    return {"schema": "cavity.results/1", "created_utc": "2026-12-03T10:00:00Z", "runs": out}
+
+
+def write_json(d, name, doc):
+    path = os.path.join(d, name)
+    with open(path, "w") as f:
+        json.dump(doc, f)
+    return path
+
+
+def index_of(out):
+    with open(os.path.join(out, "index.json")) as f:
+        return {c["name"]: c for c in json.load(f)["charts"]}
+
+
+def quartiles(v):
+    """The 25th and 75th percentiles, linear between order statistics, computed here independently."""
+    v = sorted(v)
+    def q(p):
+        pos = (len(v) - 1) * p
+        lo = int(pos)
+        return v[lo] + (v[min(lo + 1, len(v) - 1)] - v[lo]) * (pos - lo)
+    return q(0.25), q(0.75)
+
+
+# A CPU-renderer sweep like the one that misled: OpenGL at n16 once took 146 ms among repetitions of
+# about 60, so its median and its spread are wide, and full/half and gl/vk drawn from it are noise.
+NOISY = {
+    "corner/alchemy/n4/b4/full/320x180/gl/compute": [52, 50, 55],
+    "corner/alchemy/n16/b4/full/320x180/gl/compute": [60, 146, 95],
+    "corner/alchemy/n64/b4/full/320x180/gl/compute": [62, 61, 64],
+    "corner/alchemy/n16/b4/half/320x180/gl/compute": [22, 60, 30],
+    "corner/alchemy/n4/b4/full/320x180/vk/compute": [50, 51, 52],
+    "corner/alchemy/n16/b4/full/320x180/vk/compute": [58, 59, 61],
+    "corner/alchemy/n64/b4/full/320x180/vk/compute": [63, 62, 66],
+    "corner/alchemy/n16/b4/half/320x180/vk/compute": [20, 21, 22],
+}
+
+
+def noisy_doc(software=True, clock="wall", clocks=None):
+    return bench_doc({cid: [(ms, {"ao": ms * 0.2, "blur": ms * 0.75, "composite": ms * 0.05, "gbuffer": 3.0})
+                            for ms in reps] for cid, reps in NOISY.items()}, software, clock, clocks)
+
+
+class Spread(unittest.TestCase):
+    """Every timing chart draws the spread of each configuration's repetitions, and ratios carry theirs."""
+
+    def test_whiskers_are_the_repetitions_quartiles(self):
+        with tempfile.TemporaryDirectory() as d:
+            out = os.path.join(d, "out")
+            r = run_charts(write_json(d, "cpu.json", noisy_doc()), "--out", out)
+            self.assertEqual(r.returncode, 0, r.stderr)
+            index = index_of(out)
+            points = {p["id"]: p for s in index["time_vs_samples"]["points"].values() for p in s}
+            self.assertEqual(len(points), 6)
+            for cid, p in points.items():
+                q25, q75 = quartiles(NOISY[cid])
+                self.assertAlmostEqual(p["ms"], sorted(NOISY[cid])[1])
+                self.assertAlmostEqual(p["q25"], q25)
+                self.assertAlmostEqual(p["q75"], q75)
+                self.assertEqual(p["n"], 3)
+            self.assertIn("interquartile range of each configuration's 3 repetitions",
+                          index["time_vs_samples"]["spread"])
+
+    def test_ratios_carry_their_range_and_overlap(self):
+        with tempfile.TemporaryDirectory() as d:
+            out = os.path.join(d, "out")
+            r = run_charts(write_json(d, "cpu.json", noisy_doc()), "--out", out)
+            self.assertEqual(r.returncode, 0, r.stderr)
+            index = index_of(out)
+            gl = index["full_vs_half"]["ratios"]["alchemy · OpenGL"]
+            vk = index["full_vs_half"]["ratios"]["alchemy · Vulkan"]
+            full, half = quartiles(NOISY["corner/alchemy/n16/b4/full/320x180/gl/compute"]), \
+                quartiles(NOISY["corner/alchemy/n16/b4/half/320x180/gl/compute"])
+            self.assertAlmostEqual(gl["low"], full[0] / half[1])
+            self.assertAlmostEqual(gl["high"], full[1] / half[0])
+            self.assertFalse(gl["overlap"])          # 60..146 against 22..60: still apart
+            self.assertFalse(vk["overlap"])
+            self.assertLess(vk["high"] - vk["low"], gl["high"] - gl["low"])
+            pairs = {p["id"]: p for p in index["gl_vs_vk"]["pairs"]}
+            n16 = pairs["corner/alchemy/n16/b4/full/320x180/*/compute"]
+            self.assertAlmostEqual(n16["change_pct"], (59 / 95 - 1) * 100)
+            self.assertFalse(n16["overlap"])
+            n64 = pairs["corner/alchemy/n64/b4/full/320x180/*/compute"]
+            self.assertTrue(n64["overlap"])          # 61..64 against 62..66: the difference is noise
+            with open(os.path.join(out, "gl_vs_vk.svg")) as f:
+                self.assertTrue("2 of 4 differ by less than their spreads (hollow)" in f.read())
+
+    def test_one_repetition_says_so(self):
+        with tempfile.TemporaryDirectory() as d:
+            out = os.path.join(d, "out")
+            one = bench_doc({cid: [(reps[0], {"ao": 1.0})] for cid, reps in NOISY.items()})
+            self.assertEqual(run_charts(write_json(d, "one.json", one), "--out", out).returncode, 0)
+            entry = index_of(out)["time_vs_samples"]
+            self.assertIn("one sample per configuration: no spread to draw", entry["spread"])
+            self.assertTrue(all(p["q25"] is None for s in entry["points"].values() for p in s))
+
+
+class Clock(unittest.TestCase):
+    """The time axis and subtitle name the clock: GPU timestamps, a CPU renderer's wall clock, or mixed."""
+
+    def clock_of(self, doc, name="time_vs_samples"):
+        with tempfile.TemporaryDirectory() as d:
+            out = os.path.join(d, "out")
+            r = run_charts(write_json(d, "b.json", doc), "--out", out)
+            self.assertEqual(r.returncode, 0, r.stderr)
+            index = index_of(out)
+            with open(os.path.join(out, name + ".svg")) as f:
+                return index[name], f.read()
+
+    def test_gpu(self):
+        entry, svg = self.clock_of(noisy_doc(software=False, clock="gpu-timestamp"))
+        self.assertEqual(entry["clock"], "clock: GPU timestamps")
+        self.assertTrue(entry["axis"][0].endswith("GPU timestamps"), entry["axis"])
+        self.assertIn("GPU timestamps", svg)
+        self.assertNotIn("CPU renderer", svg)
+
+    def test_cpu_renderer(self):
+        entry, svg = self.clock_of(noisy_doc(software=True, clock="wall"))
+        self.assertEqual(entry["clock"], "clock: wall clock, CPU renderer")
+        self.assertTrue(entry["axis"][0].endswith("wall clock, CPU renderer"), entry["axis"])
+        self.assertNotIn("GPU time", svg)
+        self.assertNotIn("GPU timestamps", svg)
+
+    def test_mixed(self):
+        entry, _ = self.clock_of(noisy_doc(clocks={"corner/alchemy/n4/b4/full/320x180/vk/compute": "gpu-timestamp"}))
+        self.assertIn("MIXED CLOCKS in this chart: 5 on wall clock, CPU renderer, 1 on timestamps, CPU renderer",
+                      entry["clock"])
+        self.assertIn("mixed clocks", entry["axis"][0])
+
+
+RESULTS_RUNS = {
+    f"corner/alchemy/n{n}/b4/{res}/160x90/{api}/compute": (
+        "wall", {"gbuffer": [1.0, 1.1, 1.0, 1.2], "ao": [n * 0.1 * k for k in (1.0, 1.1, 0.9, 1.3)],
+                 "blur": [5.0, 5.5, 4.5, 6.0], "composite": [0.2, 0.2, 0.3, 0.2]})
+    for n in (4, 16, 64) for res in ("full", "half") for api in ("gl", "vk")}
+
+
+class ResultsJson(unittest.TestCase):
+    """cavity run's results.json charts like cavity_bench JSON: frames are the samples, the AO pipeline
+    of a frame its passes but the G-buffer."""
+
+    def test_main_charts(self):
+        with tempfile.TemporaryDirectory() as d:
+            path = write_json(d, "results.json", results_doc(RESULTS_RUNS))
+            out = os.path.join(d, "out")
+            r = run_charts(path, "--out", out)
+            self.assertEqual(r.returncode, 0, r.stderr)
+            index = index_of(out)
+            self.assertEqual(sorted(index), sorted(["time_vs_samples", "full_vs_half", "gl_vs_vk", "passes"]))
+            cid = "corner/alchemy/n16/b4/full/160x90/vk/compute"
+            passes = RESULTS_RUNS[cid][1]
+            frames = [passes["ao"][k] + passes["blur"][k] + passes["composite"][k] for k in range(4)]
+            point = next(p for s in index["time_vs_samples"]["points"].values() for p in s if p["id"] == cid)
+            self.assertAlmostEqual(point["ms"], (sorted(frames)[1] + sorted(frames)[2]) / 2)
+            self.assertAlmostEqual(point["q25"], quartiles(frames)[0])
+            self.assertEqual(point["n"], 4)
+            self.assertIn("4 frames", index["time_vs_samples"]["spread"])
+            self.assertEqual(index["time_vs_samples"]["clock"], "clock: wall clock, CPU renderer")
+
+    def test_bad_results_json(self):
+        runs = dict(RESULTS_RUNS)
+        doc = results_doc(runs)
+        doc["runs"][3]["clock"] = "sundial"
+        with tempfile.TemporaryDirectory() as d:
+            path = write_json(d, "results.json", doc)
+            out = os.path.join(d, "out")
+            r = run_charts(SAMPLE, path, "--out", out)
+            self.assertEqual(r.returncode, 2)
+            self.assertEqual(len(r.stderr.strip().splitlines()), 1, r.stderr)
+            self.assertIn(f"charts: {path}: runs[3] '{doc['runs'][3]['id']}': clock 'sundial' (gpu-timestamp or wall)",
+                          r.stderr)
+            self.assertEqual(r.stdout, "")
+            self.assertFalse(os.path.exists(out))
+
+
+class Passes(unittest.TestCase):
+    """The passes chart: each pass's median and spread per kernel and API, from both formats, G-buffer left out."""
+
+    def test_from_benchmark_json(self):
+        with tempfile.TemporaryDirectory() as d:
+            out = os.path.join(d, "out")
+            self.assertEqual(run_charts(write_json(d, "b.json", noisy_doc()), "--out", out).returncode, 0)
+            entry = index_of(out)["passes"]
+            rows = {row["id"]: row for row in entry["rows"]}
+            cid = "corner/alchemy/n16/b4/full/320x180/gl/compute"
+            self.assertIn(cid, rows)
+            self.assertEqual(entry["left_out"], ["gbuffer"])
+            self.assertEqual(entry["pass_order"], ["ao", "blur", "composite"])
+            ao = [ms * 0.2 for ms in NOISY[cid]]
+            self.assertAlmostEqual(rows[cid]["passes"]["ao"]["ms"], sorted(ao)[1])
+            self.assertAlmostEqual(rows[cid]["passes"]["ao"]["q75"], quartiles(ao)[1])
+            self.assertEqual(len(rows), 2)   # the slice: alchemy on both APIs at n16, full
+
+    def test_from_results_json(self):
+        with tempfile.TemporaryDirectory() as d:
+            out = os.path.join(d, "out")
+            self.assertEqual(run_charts(write_json(d, "r.json", results_doc(RESULTS_RUNS)), "--out", out).returncode, 0)
+            entry = index_of(out)["passes"]
+            self.assertEqual(entry["left_out"], ["gbuffer"])
+            for row in entry["rows"]:
+                raw = RESULTS_RUNS[row["id"]][1]
+                for name, st in row["passes"].items():
+                    self.assertAlmostEqual(st["q25"], quartiles(raw[name])[0])
+                    self.assertEqual(st["n"], 4)
+
+    def test_committed_sweep_with_repetitions(self):
+        with tempfile.TemporaryDirectory() as d:
+            r = run_charts(os.path.join(RESULTS, "2026-12-02_h200_floor3", "compute.json.gz"), "--out", d)
+            self.assertEqual(r.returncode, 0, r.stderr)
+            entry = index_of(d)["passes"]
+            kernels = {row["id"].split("/")[1] for row in entry["rows"]}
+            self.assertTrue({"alchemy_fast", "hemisphere_fast", "ssdo_fast"} <= kernels, kernels)
+            self.assertTrue(all(row["n"] == 10 for row in entry["rows"]))
+            self.assertEqual(entry["clock"], "clock: GPU timestamps")
+
+
 class QualityCost(unittest.TestCase):
     """The quality-cost subcommand: quality.json rows joined with the AO
     passes' time of the same configuration, and the Pareto front."""
@@ -383,7 +630,7 @@ class QualityCost(unittest.TestCase):
         with tempfile.TemporaryDirectory() as d:
             full, half, bench = self.write_inputs(d)
             out = os.path.join(d, "out")
-            r = run_charts("quality-cost", "--quality", full, half, "--bench", bench, "--out", out)
+            r = run_charts("quality-cost", "--quality", full, half, "--bench", bench, "--out", out, "--cost", "estimate")
             self.assertEqual(r.returncode, 0, r.stderr)
             self.assertIn("corner/nobench/n16/b4/half/1920x1080/vk/compute", r.stderr)
             for name in ("quality_cost.png", "quality_cost.svg", "quality_cost.json"):
@@ -399,6 +646,84 @@ class QualityCost(unittest.TestCase):
             # hemisphere (0.12 ms, 0.30) is beaten by half alchemy, ssdo (0.5, 0.05) is the most exact.
             self.assertEqual({k for k, p in pts.items() if p["pareto"]},
                              {("alchemy", "half"), ("alchemy", "full"), ("ssdo", "full")})
+
+    def test_front_is_screen_space_with_fast_kernels(self):
+        """An SDF kernel cheaper and closer to the truth than everything stays off the front (an engine
+        cannot run it on its G-buffer), as `cavity quality --cost` leaves it off; the _fast kernels are
+        points like any other. The cost is the whole pipeline (real_time), as cavity quality's."""
+        with tempfile.TemporaryDirectory() as d:
+            maes = {"alchemy": 0.07, "alchemy_fast": 0.07, "hemisphere_fast": 0.045, "ssdo_fast": 0.06,
+                    "sdf_multiplicative": 0.03}
+            rows = [{"scene": sc, "kernel": k, "samples": 16, "mae": m, "max_abs": 1, "mean_ao": 0.9,
+                     "mean_truth": 0.9, "pixels": 10} for k, m in maes.items() for sc in ("corner", "slats")]
+            q = write_json(d, "q.json", {"schema": "cavity.quality/1", "backend": "vk", "device": "Test GPU",
+                                         "width": 1920, "height": 1080, "rays": 1024, "resolution": "full",
+                                         "reach": "shared", "radius": 0.5, "blur": 4, "rows": rows})
+            pipeline = {"alchemy": 0.86, "alchemy_fast": 0.30, "hemisphere_fast": 0.43, "ssdo_fast": 2.27,
+                        "sdf_multiplicative": 0.25}
+            doc = bench_doc({f"corner/{k}/n16/b4/full/1920x1080/vk/compute":
+                             [(ms * f, {"ao": ms * 0.4 * f, "blur": ms * 0.5, "gbuffer": 0.08}) for f in (0.98, 1.0, 1.03)]
+                             for k, ms in pipeline.items()})
+            b = write_json(d, "bench.json", doc)
+            out = os.path.join(d, "out")
+            r = run_charts("quality-cost", "--quality", q, "--bench", b, "--out", out)
+            self.assertEqual(r.returncode, 0, r.stderr)
+            with open(os.path.join(out, "quality_cost.json")) as f:
+                result = json.load(f)
+            pts = {p["kernel"]: p for p in result["points"]}
+            self.assertEqual(set(pts), set(maes))
+            self.assertFalse(pts["sdf_multiplicative"]["screen_space"])
+            self.assertFalse(pts["sdf_multiplicative"]["pareto"])
+            self.assertEqual({k for k, p in pts.items() if p["pareto"]}, {"alchemy_fast", "hemisphere_fast"})
+            self.assertAlmostEqual(pts["hemisphere_fast"]["ms"], 0.43)
+            self.assertAlmostEqual(pts["hemisphere_fast"]["q75"], 0.43 * 1.015)
+            self.assertEqual(result["front"][0], "corner/alchemy_fast/n16/b4/full/1920x1080/vk/compute")
+            self.assertEqual(result["cost"], "pipeline")
+
+    def test_committed_results_front_and_labels(self):
+        """On the committed H200 data: no SDF kernel on the front, every fast kernel the data has is drawn,
+        and no two labels overlap."""
+        floor3 = os.path.join(RESULTS, "2026-12-02_h200_floor3")
+        sets = {"sdf": (["quality_full/quality.json", "quality_half/quality.json"], QUALITY_COST,
+                        [f"bench_{i}.json.gz" for i in range(3)]),
+                "fast": (["quality_corner_b4/quality.json", "quality_slats_b4/quality.json"], floor3,
+                         ["compute.json.gz"])}
+        for name, (quality, folder, bench) in sets.items():
+            with tempfile.TemporaryDirectory() as d:
+                r = run_charts("quality-cost", "--quality", *[os.path.join(folder, q) for q in quality],
+                               "--bench", *[os.path.join(folder, b) for b in bench], "--out", d)
+                self.assertEqual(r.returncode, 0, r.stderr)
+                with open(os.path.join(d, "quality_cost.json")) as f:
+                    result = json.load(f)
+                front = [p for p in result["points"] if p["pareto"]]
+                self.assertTrue(front, name)
+                self.assertTrue(all(not p["kernel"].startswith("sdf_") for p in front), name)
+                kernels = {p["kernel"] for p in result["points"]}
+                if name == "sdf":
+                    self.assertTrue(any(k.startswith("sdf_") for k in kernels))
+                else:
+                    self.assertTrue({"alchemy_fast", "hemisphere_fast", "ssdo_fast"} <= kernels, kernels)
+                    self.assertIn("corner/hemisphere_fast/n16/b4/full/1920x1080/vk/compute", result["front"])
+                boxes = [l["box"] for l in result["labels"]]
+                self.assertGreaterEqual(len(boxes), len(front))
+                for i, a in enumerate(boxes):
+                    for b in boxes[i + 1:]:
+                        apart = a[2] <= b[0] or b[2] <= a[0] or a[3] <= b[1] or b[3] <= a[1]
+                        self.assertTrue(apart, (name, a, b))
+
+    def test_quality_files_must_agree(self):
+        with tempfile.TemporaryDirectory() as d:
+            full, half, bench = self.write_inputs(d)
+            with open(half) as f:
+                doc = json.load(f)
+            doc["blur"] = 4
+            with open(half, "w") as f:
+                json.dump(doc, f)
+            r = run_charts("quality-cost", "--quality", full, half, "--bench", bench, "--out", os.path.join(d, "o"))
+            self.assertEqual(r.returncode, 2)
+            self.assertEqual(len(r.stderr.strip().splitlines()), 1, r.stderr)
+            self.assertIn(f"the --quality files differ in blur ({full}: None, {half}: 4)", r.stderr)
+            self.assertFalse(os.path.exists(os.path.join(d, "o")))
 
     def test_bad_input(self):
         with tempfile.TemporaryDirectory() as d:

@@ -1,5 +1,5 @@
 """The command line of scripts/charts.py: the main command (every time chart
-from cavity_bench JSON) and the subcommands quality-cost and floor."""
+from cavity_bench JSON or results.json) and the subcommands quality-cost and floor."""
 
 import argparse
 import importlib.util
@@ -8,14 +8,15 @@ import os
 import sys
 import textwrap
 
-from . import (compute_vs_fragment, floor, full_vs_half, gl_vs_vk, history, quality_cost, time_vs_blur,
+from . import (compute_vs_fragment, floor, full_vs_half, gl_vs_vk, history, passes, quality_cost, time_vs_blur,
                time_vs_megapixels, time_vs_samples)
 from .inputs import BadInput, load_results
 from .labels import device_line
 from .plotting import Canvas
 
 # The main command's charts, in the order drawn and listed in index.json.
-CHARTS = (time_vs_samples, time_vs_blur, full_vs_half, time_vs_megapixels, gl_vs_vk, compute_vs_fragment, history)
+CHARTS = (time_vs_samples, time_vs_blur, full_vs_half, time_vs_megapixels, gl_vs_vk, compute_vs_fragment, passes,
+          history)
 CHART_NAMES = tuple(m.NAME for m in CHARTS)
 # Subcommands: the first argument picks one; anything else is the main command.
 SUBCOMMANDS = {"quality-cost": quality_cost, "floor": floor}
@@ -55,7 +56,9 @@ class _Parser(argparse.ArgumentParser):
 
 
 def parse_args(argv):
-    p = _Parser(prog="charts", description="Charts from cavity_bench Google Benchmark JSON.",
+    p = _Parser(prog="charts", description="Charts from cavity_bench's Google Benchmark JSON or cavity run's "
+                "results.json: the median of each configuration's repetitions (or frames) with their "
+                "interquartile range as whiskers, on the clock they were timed on.",
                 usage="\n  ".join(["", USAGE] + [f"charts.py {n} ... (charts.py {n} --help)" for n in SUBCOMMANDS]),
                 epilog=epilog(), formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("results", nargs="+", metavar="RESULT.json")

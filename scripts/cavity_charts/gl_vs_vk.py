@@ -1,12 +1,14 @@
 """gl_vs_vk: OpenGL time against Vulkan time for the same configuration (log-log, the
-±10% band around y = x).
+±10% band around y = x), each point with both spreads; a difference within them is drawn hollow.
 
 draw(c) draws it on a plotting.Canvas (or says on stderr why it is skipped).
 """
 
 import math
 
-from .labels import short_ids, shorten
+from . import spread
+from .labels import short_ids, shorten, time_label
+from .plotting import whiskers
 
 NAME = "gl_vs_vk"
 
@@ -23,12 +25,34 @@ def api_pairs(records):
     return out
 
 
+def changes(pairs):
+    """Per pair: Vulkan against OpenGL in percent, its range from the two
+    spreads and whether the spreads overlap (spread.ratio_entry of vk / gl)."""
+    out = []
+    for g, k in pairs:
+        e = spread.ratio_entry(k, g)
+        out.append({"id": g["id"].replace("/gl/", "/*/"), "gl_ms": g["ms"], "vk_ms": k["ms"],
+                    "change_pct": (e["ratio"] - 1) * 100,
+                    "low_pct": (e["low"] - 1) * 100 if e["low"] is not None else None,
+                    "high_pct": (e["high"] - 1) * 100 if e["high"] is not None else None,
+                    "overlap": e["overlap"]})
+    return out
+
+
+def change_text(ch):
+    if ch["overlap"]:
+        return f"{ch['change_pct']:+.1f}% (spreads overlap)"
+    if ch["low_pct"] is not None:
+        return f"{ch['change_pct']:+.1f}% ({ch['low_pct']:+.0f} to {ch['high_pct']:+.0f}%)"
+    return f"{ch['change_pct']:+.1f}% (no spread)"
+
+
 def draw(c):
     pairs = api_pairs(c.records)
     if not pairs:
         return c.skip("gl_vs_vk", "no configuration measured on both OpenGL and Vulkan")
-    fig, ax = c.figure(width=7.0, height=7.0)
-    vals = [v for g, k in pairs for v in (g["ms"], k["ms"])]
+    fig, ax = c.figure(width=11.0, height=7.4)
+    vals = [v for g, k in pairs for r in (g, k) for v in (r["ms"], r.get("q25"), r.get("q75")) if v]
     lo, hi = min(vals) / 1.6, max(vals) * 1.6
     xs = [lo * (hi / lo) ** (i / 100) for i in range(101)]
     ax.fill_between(xs, [x * 0.9 for x in xs], [x * 1.1 for x in xs], color="#999999", alpha=0.22,
@@ -36,15 +60,25 @@ def draw(c):
     ax.plot(xs, xs, color="#555555", linewidth=1, label="y = x (same time)", zorder=2)
     markers = {"compute": "o", "fragment": "^"}
     seen = set()
-    for g, k in pairs:
+    chs = changes(pairs)
+    for (g, k), ch in zip(pairs, chs):
         kern, stage = g["kernel"], g["stage"]
-        ax.scatter(g["ms"], k["ms"], s=46, color=c.kcolor.get(kern, "#333333"),
-                   marker=markers.get(stage, "D"), edgecolor="white", linewidth=0.6, zorder=3)
+        colour = c.kcolor.get(kern, "#333333")
+        hollow = ch["overlap"] is True
+        whiskers(ax, [g["ms"]], [k["ms"]], [g], horizontal=True, ecolor=colour, elinewidth=0.9, alpha=0.7,
+                 capsize=2, zorder=2.5)
+        whiskers(ax, [g["ms"]], [k["ms"]], [k], ecolor=colour, elinewidth=0.9, alpha=0.7, capsize=2, zorder=2.5)
+        ax.scatter(g["ms"], k["ms"], s=46, marker=markers.get(stage, "D"), zorder=3,
+                   facecolor="white" if hollow else colour, edgecolor=colour if hollow else "white",
+                   linewidth=1.2 if hollow else 0.6)
         seen.add((kern, stage))
     for kern in sorted({k for k, _ in seen}):
         ax.plot([], [], linestyle="none", marker="o", color=c.kcolor.get(kern), label=kern)
     for stage in sorted({s for _, s in seen}):
         ax.plot([], [], linestyle="none", marker=markers.get(stage, "D"), color="#777777", label=f"{stage} stage")
+    if any(ch["overlap"] for ch in chs):
+        ax.plot([], [], linestyle="none", marker="o", markerfacecolor="white", markeredgecolor="#777777",
+                label="hollow: the APIs' spreads overlap")
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.set_xlim(lo, hi)
@@ -52,24 +86,32 @@ def draw(c):
     c.plain_log(ax.xaxis)
     c.plain_log(ax.yaxis)
     ax.set_aspect("equal")
-    ax.set_xlabel("OpenGL GPU time (ms, log scale)")
-    ax.set_ylabel("Vulkan GPU time (ms, log scale)")
-    within = sum(1 for g, k in pairs if abs(k["ms"] / g["ms"] - 1) <= 0.10)
-    vk_faster = sum(1 for g, k in pairs if k["ms"] < g["ms"])
+    gls, vks = [g for g, _ in pairs], [k for _, k in pairs]
+    ax.set_xlabel(time_label(gls, "OpenGL time", log=True).replace("\n", ", "))
+    ax.set_ylabel(time_label(vks, "Vulkan time", log=True).replace("\n", ", "))
+    within = sum(1 for ch in chs if abs(ch["change_pct"]) <= 10)
+    vk_faster = sum(1 for ch in chs if ch["change_pct"] < 0)
+    noise = sum(1 for ch in chs if ch["overlap"])
     text = (f"{len(pairs)} configurations on both APIs, {within} within ±10%\n"
             f"Vulkan faster in {vk_faster}, OpenGL in {len(pairs) - vk_faster} (below the line: Vulkan faster)")
-    outside = sorted(((k["ms"] / g["ms"], g) for g, k in pairs if abs(k["ms"] / g["ms"] - 1) > 0.10),
-                     key=lambda t: -abs(math.log(t[0])))
+    if any(ch["overlap"] is not None for ch in chs):
+        text += f"\n{noise} of {len(pairs)} differ by less than their spreads (hollow)"
+    outside = sorted((ch for ch in chs if abs(ch["change_pct"]) > 10),
+                     key=lambda ch: (ch["overlap"] is True, -abs(math.log(1 + ch["change_pct"] / 100))))
     if outside:
         ids = [g["id"] for g, _ in pairs]
         _, short = short_ids(ids) if len(ids) > 1 else ("", {ids[0]: ids[0]})
+        by_id = {g["id"].replace("/gl/", "/*/"): g["id"] for g in gls}
         text += "\noutside the band (Vulkan time vs OpenGL time):"
-        for ratio, g in outside[:5]:
-            text += f"\n  {shorten(short[g['id']].replace('/gl', ''), 40)}: {(ratio - 1) * 100:+.1f}%"
+        for ch in outside[:5]:
+            name = shorten(short[by_id[ch["id"]]].replace("/gl", ""), 40)
+            text += f"\n  {name}: {change_text(ch)}"
         if len(outside) > 5:
             text += f"\n  and {len(outside) - 5} more"
-    ax.text(0.98, 0.03, text, transform=ax.transAxes, ha="right", va="bottom", fontsize=8, linespacing=1.35, multialignment="left",
+    # beside the axes, not on them: a box over the plot hides the points it is about
+    ax.text(1.03, 0.0, text, transform=ax.transAxes, ha="left", va="bottom", fontsize=8, linespacing=1.35,
+            multialignment="left",
             bbox=dict(boxstyle="round", facecolor="white", edgecolor="#cccccc"))
     c.finish("gl_vs_vk", fig, ax, "OpenGL vs Vulkan, same configuration",
              "every configuration measured on both APIs (all scenes, sizes, samples)",
-             legend_kw=dict(loc="upper left"))
+             legend_kw=dict(loc="upper left", bbox_to_anchor=(1.03, 1.0), ncol=1), drawn=gls + vks, extra={"pairs": chs})

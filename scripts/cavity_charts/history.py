@@ -7,6 +7,8 @@ draw(c) draws it on a plotting.Canvas (or says on stderr why it is skipped).
 import math
 import re
 
+from . import spread
+from .plotting import whiskers
 from .labels import device_line, device_name, driver_name, file_label, short_ids, shorten
 
 HISTORY_MAX_LINES = 8
@@ -35,14 +37,18 @@ def draw(c):
     xs = list(range(len(c.files)))
     common, short = short_ids(chosen) if len(chosen) > 1 else ("", {chosen[0]: chosen[0]})
     cmap = c.plt.get_cmap("tab10")
-    all_v, all_rel = [], []
+    all_v, all_rel, drawn = [], [], []
     for i, cid in enumerate(chosen):
         v = values[cid]
         rel = [(x / v[0] - 1) * 100 for x in v]
         all_v += v
         all_rel += rel
         st = dict(marker="o", linewidth=1.8, color=cmap(i % 10))
+        recs = [f["records"][cid] for f in c.files]
+        drawn += recs
+        all_v += spread.whisker_values(recs)
         ax.plot(xs, v, label=f"{short[cid]}  {v[0]:.3g} → {v[-1]:.3g} ms  ({rel[-1]:+.1f}%)", **st)
+        whiskers(ax, xs, v, recs, ecolor=st["color"], capsize=3)
         ax2.plot(xs, rel, **st)
     devices = {device_name(f["context"]) for f in c.files}
     drivers = {driver_name(f["context"]) for f in c.files}
@@ -63,8 +69,8 @@ def draw(c):
         a.tick_params(axis="x", labelbottom=True)
         a.set_xlim(-0.25, len(xs) - 0.75)
         a.set_xlabel("result file, in the order given")
-    c.ms_axis(ax, all_v, log_if=8.0)
-    ax.set_title("median GPU time", loc="left", fontsize=9)
+    c.ms_axis(ax, all_v, drawn, log_if=8.0)
+    ax.set_title("median time, whiskers: spread", loc="left", fontsize=9)
     ax2.axhline(0, color="#555555", linewidth=1)
     ax2.axhspan(-10, 10, color="#999999", alpha=0.15, label="±10%")
     span = max(12.0, max(abs(r) for r in all_rel) * 1.15)
@@ -80,4 +86,4 @@ def draw(c):
     if len(devices) > 1 or len(drivers) > 1:
         what_differs = "devices" if len(devices) > 1 else "drivers"
         sub = f"latest: {device_line(c.context)}  ({what_differs} differ: see x axis)\n{sub}"
-    c.finish("history", fig, [ax, ax2], "GPU time across runs", sub, legend=False, device=False)
+    c.finish("history", fig, [ax, ax2], "AO time across runs", sub, legend=False, device=False, drawn=drawn)

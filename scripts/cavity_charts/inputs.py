@@ -1,7 +1,7 @@
 """Reading the inputs of every chart: Google Benchmark JSON from cavity_bench
-(load_results for the time charts, load_pass_times for quality-cost,
-bench_floor_rows for floor), `cavity quality`'s quality.json (load_quality)
-and `cavity run`'s results.json (load_floor_rows). Each file may be gzip
+and `cavity run`'s results.json: load_results for the time charts and
+quality-cost's cost, load_floor_rows (bench_floor_rows) for floor, and
+`cavity quality`'s quality.json (load_quality). Each file may be gzip
 (X.json.gz, as bench/results/ keeps them): see scripts/cavity_json.py.
 
 Every loader raises BadInput with the one line printed (naming the file)
@@ -16,6 +16,8 @@ import statistics
 from collections import OrderedDict, defaultdict
 
 import cavity_json
+
+from . import spread
 
 DIMS = ("scene", "kernel", "samples", "blur", "res", "size", "api", "stage")
 TIME_UNIT_MS = {"ns": 1e-6, "us": 1e-3, "ms": 1.0, "s": 1e3}
@@ -124,21 +126,52 @@ def read_json(path, prefix):
 
 
 def load_results(path):
-    """Reads and checks one Google Benchmark JSON file. Returns
-    {"path", "name", "date", "context", "records": {id: record}, "dropped"};
-    a record is the configuration (DIMS) plus "id", "ms" and "wall". Raises BadInput
-    with the one-line message (naming the file) when it is not usable."""
+    """Reads and checks one file the time charts draw: cavity_bench's Google
+    Benchmark JSON or `cavity run`'s results.json (cavity.results/1). Returns
+    {"path", "name", "date", "context", "records": {id: record}, "dropped", "format"};
+    a record is the configuration (DIMS) plus "id", "ms" (the median), "q25",
+    "q75", "n" and "per" (its samples' spread: spread.summary), "times" (the samples),
+    "clock" (gpu-timestamp, wall or mixed), "software" (a CPU renderer) and
+    "passes" ({pass: [ms per sample]}). Raises BadInput with the one-line
+    message (naming the file) when it is not usable."""
+    data = read_json(path, "charts")
+    if isinstance(data, dict) and data.get("schema") == RESULTS_SCHEMA:
+        return results_json_records(path, data)
+    if not isinstance(data, dict) or not isinstance(data.get("benchmarks"), list):
+        raise BadInput(f"charts: {path}: neither Google Benchmark JSON (no 'benchmarks' list) nor a cavity "
+                       f"results.json (schema {RESULTS_SCHEMA})")
+    return benchmark_records(path, data)
+
+
+RESULTS_SCHEMA = "cavity.results/1"
+PASS_COUNTER = re.compile(r"pass_(\w+)_ms")
+# The G-buffer stands for the engine's own: cavity_bench's time leaves it out
+# and so does the AO pipeline taken from a results.json.
+ENGINE_PASSES = ("gbuffer",)
+
+
+def clock_of(label):
+    """gpu-timestamp or wall from a cavity_bench label ("clock=wall mode=drained ..."), else None."""
+    m = re.search(r"\bclock=([\w-]+)", label) if isinstance(label, str) else None
+    return m.group(1) if m else None
+
+
+def pooled_clock(clocks):
+    found = {c for c in clocks if c}
+    return found.pop() if len(found) == 1 else "mixed" if found else None
+
+
+def benchmark_records(path, data):
     def bad(what):
         return BadInput(f"charts: {path}: {what}")
 
-    data = read_json(path, "charts")
-    if not isinstance(data, dict) or not isinstance(data.get("benchmarks"), list):
-        raise bad("not Google Benchmark JSON (no 'benchmarks' list)")
     context = data.get("context")
     if context is not None and not isinstance(context, dict):
         raise bad("not Google Benchmark JSON ('context' is not an object)")
     context = context or {}
-    groups = defaultdict(lambda: {"median": [], "mean": [], "iteration": [], "cfg": None, "wall": False})
+    software = str(context.get("cavity_software_renderer", "")).lower() == "true"
+    groups = defaultdict(lambda: {"median": [], "mean": [], "iteration": [], "cfg": None, "clocks": [],
+                                  "passes": defaultdict(list)})
     for i, e in enumerate(data["benchmarks"]):
         if not isinstance(e, dict):
             raise bad(f"not Google Benchmark JSON (benchmarks[{i}] is not an object)")
@@ -161,8 +194,12 @@ def load_results(path):
         g["cfg"] = cfg
         kind = agg if e.get("run_type") == "aggregate" else "iteration"
         g[kind].append(e["real_time"] * TIME_UNIT_MS[unit])
-        if isinstance(e.get("label"), str) and "clock=wall" in e["label"]:
-            g["wall"] = True
+        if kind == "iteration":
+            g["clocks"].append(clock_of(e.get("label")))
+            for key, v in e.items():
+                m = PASS_COUNTER.fullmatch(key)
+                if m and is_number(v):
+                    g["passes"][m.group(1)].append(float(v))
     if not groups:
         n = len(data["benchmarks"])
         raise bad(f"no usable benchmark entries (none of its {n} is named by a Cavity configuration id "
@@ -170,20 +207,87 @@ def load_results(path):
     records = OrderedDict()
     dropped = []
     for cid, g in groups.items():
-        for kind in ("median", "mean", "iteration"):
-            if g[kind]:
-                ms = sum(g[kind]) / len(g[kind])
-                break
-        if ms > 0:
-            records[cid] = dict(g["cfg"], id=cid, ms=ms, wall=g["wall"])
+        # each iteration entry is one repetition; the file's own median, where it has one, is the centre
+        samples = g["iteration"]
+        centre = g["median"][0] if g["median"] else None
+        if not samples:
+            samples = g["mean"]
+        st = spread.summary(samples, centre)
+        if st["ms"] > 0:
+            records[cid] = dict(g["cfg"], id=cid, times=samples, per="repetitions",
+                                clock=pooled_clock(g["clocks"]),
+                                software=software, passes=dict(g["passes"]), **st)
         else:
             dropped.append(cid)  # a zero time is a timer that did not run; it has no ratio or log
     if not records:
         raise bad("no usable benchmark entries (every time is zero)")
     date = context.get("date") if isinstance(context.get("date"), str) else None
     return {"path": path, "name": os.path.basename(path), "date": date, "context": context, "records": records,
-            "dropped": dropped}
+            "dropped": dropped, "format": "google-benchmark"}
 
+
+def results_json_records(path, doc):
+    """The records of a results.json: one per run, its samples the frames. A
+    frame's AO pipeline time is the sum of its passes but the G-buffer (what
+    cavity_bench times, and what `cavity quality --cost` reads from a
+    results.json), so the two formats chart the same quantity."""
+    def bad(what):
+        return BadInput(f"charts: {path}: {what}")
+
+    runs = doc.get("runs")
+    if not isinstance(runs, list):
+        raise bad(f"not a cavity results.json ('runs' is not a list; schema {RESULTS_SCHEMA})")
+    records, dropped = OrderedDict(), []
+    devices, drivers, software_any = {}, {}, False
+    for i, run in enumerate(runs):
+        if not isinstance(run, dict):
+            raise bad(f"runs[{i}] is not an object")
+        rid = run.get("id")
+        cfg = parse_id(rid) if isinstance(rid, str) else None
+        if cfg is None:
+            raise bad(f"runs[{i}] id {rid!r} is not a configuration id "
+                      "(scene/kernel/nS/bB/full|half/WxH/gl|vk/compute|fragment)")
+        clock = run.get("clock")
+        if clock not in ("gpu-timestamp", "wall"):
+            raise bad(f"runs[{i}] '{rid}': clock {clock!r} (gpu-timestamp or wall)")
+        passes = run.get("passes")
+        if not isinstance(passes, list) or not passes:
+            raise bad(f"runs[{i}] '{rid}': no 'passes' list")
+        by_pass = OrderedDict()
+        for j, p in enumerate(passes):
+            samples = p.get("samples_ms") if isinstance(p, dict) else None
+            if not isinstance(p, dict) or not isinstance(p.get("name"), str) or not isinstance(samples, list) \
+                    or not samples or not all(is_number(v) for v in samples):
+                raise bad(f"runs[{i}] '{rid}': passes[{j}] has no name or no numeric 'samples_ms'")
+            by_pass[p["name"]] = [float(v) for v in samples]
+        pipeline = [n for n in by_pass if n not in ENGINE_PASSES]
+        lengths = {len(by_pass[n]) for n in pipeline}
+        if not pipeline or len(lengths) != 1:
+            raise bad(f"runs[{i}] '{rid}': its passes' samples_ms differ in length ({sorted(lengths)} frames); "
+                      "one sample per frame is needed to add them up")
+        samples = [sum(by_pass[n][k] for n in pipeline) for k in range(lengths.pop())]
+        dev = run.get("device") if isinstance(run.get("device"), dict) else {}
+        software = bool(dev.get("software_renderer"))
+        software_any |= software
+        devices.setdefault(cfg["api"], dev.get("name") or "unknown device")
+        if dev.get("driver"):
+            drivers.setdefault(cfg["api"], dev["driver"])
+        st = spread.summary(samples)
+        if st["ms"] > 0:
+            records[rid] = dict(cfg, id=rid, times=samples, per="frames", clock=clock, software=software,
+                                passes=dict(by_pass), **st)
+        else:
+            dropped.append(rid)
+    if not records:
+        raise bad("no runs with a time" if runs else "no runs ('runs' is empty)")
+    context = {"cavity_device": "; ".join(f"{a}: {d}" for a, d in sorted(devices.items())),
+               "cavity_driver": "; ".join(f"{a}: {d}" for a, d in sorted(drivers.items())),
+               "cavity_software_renderer": "true" if software_any else "false"}
+    date = doc.get("created_utc") if isinstance(doc.get("created_utc"), str) else None
+    if date:
+        context["date"] = date
+    return {"path": path, "name": os.path.basename(path), "date": date, "context": context, "records": records,
+            "dropped": dropped, "format": "results.json"}
 
 
 def load_quality(path):
@@ -207,39 +311,6 @@ def load_quality(path):
             raise BadInput(f"charts: {path}: rows[{i}] lacks kernel, samples or a numeric mae")
         rows.append((r.get("scene", "?"), r["kernel"], r["samples"], res, float(r["mae"])))
     return data, rows
-
-
-def load_pass_times(path):
-    """{config id: {pass: median ms over the iteration entries}} from cavity_bench JSON."""
-    try:
-        data = cavity_json.load(path)
-    except OSError as e:
-        raise BadInput(f"charts: {path}: cannot read ({e.strerror or e})")
-    except ValueError as e:   # not UTF-8, not JSON, a broken gzip
-        raise BadInput(f"charts: {path}: not JSON ({e})")
-    if not isinstance(data, dict) or not isinstance(data.get("benchmarks"), list):
-        raise BadInput(f"charts: {path}: not Google Benchmark JSON (no 'benchmarks' list)")
-    samples = defaultdict(lambda: defaultdict(list))
-    for e in data["benchmarks"]:
-        if not isinstance(e, dict) or e.get("run_type") == "aggregate" or e.get("error_occurred"):
-            continue
-        cfg = parse_id(e.get("name", ""), e) if isinstance(e.get("name"), str) and "@" not in e["name"] else None
-        if cfg is None:
-            continue
-        for key, v in e.items():
-            m = re.fullmatch(r"pass_(\w+)_ms", key)
-            if m and is_number(v):
-                samples[config_id(cfg)][m.group(1)].append(float(v))
-    if not samples:
-        raise BadInput(f"charts: {path}: no benchmark entry with pass_<name>_ms counters")
-
-    def median(v):
-        v = sorted(v)
-        n = len(v)
-        return v[n // 2] if n % 2 else 0.5 * (v[n // 2 - 1] + v[n // 2])
-
-    return data.get("context") or {}, {cid: {p: median(v) for p, v in ps.items()} for cid, ps in samples.items()}
-
 
 
 def load_floor_rows(path):

@@ -38,7 +38,7 @@ def device_line(context, driver=True):
     if drv and driver:
         bits.append("driver " + drv)
     if str(context.get("cavity_software_renderer", "")).lower() == "true":
-        bits.append("SOFTWARE RENDERER (CPU times)")
+        bits.append("CPU renderer")
     line = "  ·  ".join(bits)
     return line if len(line) <= 110 else line[:107] + "..."
 
@@ -92,3 +92,37 @@ def short_ids(ids):
     common = "/".join(p for k, p in enumerate(split[ids[0]][:n]) if same[k])
     short = {i: "/".join(p for k, p in enumerate(s) if k >= n or not same[k]) or i for i, s in split.items()}
     return common, short
+
+
+def clock_name(clock, software):
+    """How one record's clock is written on a chart. A CPU renderer's
+    "timestamps" are the renderer's own account of its work on the CPU, not a
+    GPU's, so they never read "GPU"."""
+    if clock == "gpu-timestamp":
+        return "timestamps, CPU renderer" if software else "GPU timestamps"
+    if clock == "wall":
+        return "wall clock, CPU renderer" if software else "wall clock (GPU timestamps unusable)"
+    if clock == "mixed":
+        return "clocks mixed within a configuration's repetitions"
+    return "clock not recorded"
+
+
+def clock_text(records):
+    """(axis text, subtitle line or "") for the records a chart draws: the
+    one clock they were timed on, or, where they differ, that they do and
+    how many on each."""
+    counts = {}
+    for r in records:
+        name = clock_name(r.get("clock"), r.get("software"))
+        counts[name] = counts.get(name, 0) + 1
+    if len(counts) == 1:
+        name = next(iter(counts))
+        return name, f"clock: {name}"
+    parts = ", ".join(f"{n} on {name}" for name, n in sorted(counts.items(), key=lambda kv: -kv[1]))
+    return "mixed clocks, see subtitle", f"MIXED CLOCKS in this chart: {parts}; times on different clocks do not compare"
+
+
+def time_label(records, what="AO pipeline time", log=False):
+    """The time axis: what was timed, its unit, scale and clock."""
+    clock, _ = clock_text(records)
+    return f"{what} (ms{', log scale' if log else ''})\n{clock}"

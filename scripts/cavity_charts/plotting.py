@@ -8,8 +8,9 @@ import sys
 import textwrap
 from collections import Counter, OrderedDict, defaultdict
 
+from . import spread
 from .inputs import DIMS
-from .labels import API_NAMES, device_line, format_ratio, series_label
+from .labels import API_NAMES, clock_text, device_line, format_ratio, series_label, time_label
 
 DPI = 150
 LEGEND_MAX = 12
@@ -125,13 +126,18 @@ class Canvas:
         return f"{self.prefix}: {text}" if self.prefix else text
 
     def finish(self, name, fig, ax, title, subtitle_extra=None, legend=True, legend_kw=None, extra=None,
-               device=True):
+               device=True, drawn=None):
+        """Title block, grid, legend, PNG + SVG and the index.json entry. drawn: the
+        records the chart shows; the subtitle says their clock and what the
+        whiskers are, and index.json carries both ("clock", "spread")."""
         axes = ax if isinstance(ax, (list, tuple)) else [ax]
         ax = axes[0]
         dev = device_line(self.context) if device else ""
-        if dev and any(r["wall"] for r in self.records):
-            dev += "  ·  some times are drained wall clock (timestamps unusable)"
-        sub = "\n".join(t for t in (dev, subtitle_extra) if t)
+        drawn = list(drawn) if drawn is not None else []
+        clock_line = clock_text(drawn)[1] if drawn else ""
+        spread_line = spread.spread_line(drawn) if drawn else ""
+        sub = "\n".join(t for t in (dev, subtitle_extra, "  ·  ".join(t for t in (clock_line, spread_line) if t))
+                        if t)
         # 9 pt text: about 14 characters an inch
         cols = int(fig.get_figwidth() * 14)
         sub = "\n".join(textwrap.fill(line, cols, subsequent_indent="  ") for line in sub.split("\n"))
@@ -158,6 +164,10 @@ class Canvas:
         fig.savefig(svg)
         self.plt.close(fig)
         entry = {"name": name, "title": self.title(title), "png": name + ".png", "svg": name + ".svg"}
+        if drawn:
+            entry["clock"] = clock_line
+            entry["spread"] = spread_line
+            entry["axis"] = [a.get_ylabel() for a in axes]
         entry.update(extra or {})
         self.written.append(entry)
         print(png)
@@ -175,53 +185,108 @@ class Canvas:
         axis.set_minor_locator(t.LogLocator(base=10, subs=(3.0, 4.0, 6.0, 7.0, 8.0, 9.0)))
         axis.set_minor_formatter(t.NullFormatter())
 
-    def ms_axis(self, ax, values, log_if=40.0):
+    def ms_axis(self, ax, values, records, log_if=40.0, what="AO pipeline time"):
+        """A time axis for values (whisker ends included), labelled with the records' clock."""
         lo, hi = min(values), max(values)
         if lo > 0 and hi / lo > log_if:
             ax.set_yscale("log")
             self.plain_log(ax.yaxis)
-            ax.set_ylabel("GPU time (ms, log scale)")
+            ax.set_ylabel(time_label(records, what, log=True))
         else:
             ax.set_ylim(0, hi * 1.12)
-            ax.set_ylabel("GPU time (ms)")
+            ax.set_ylabel(time_label(records, what))
 
 
-def paired(records, axis, a, b, ratio):
-    """{series: (a_ms, b_ms, ratio(a_ms, b_ms))} for the series of the slice that
-    varies `axis` which were measured at both values a and b."""
+def paired(records, axis, a, b):
+    """{series: (record at a, record at b, spread.ratio_entry(a, b))} for the
+    series of the slice that varies `axis` which were measured at both values."""
     _, by_series = pick_slice(records, axis)
     out = OrderedDict()
     for key, pts in by_series.items():
         if a in pts and b in pts:
-            x, y = pts[a]["ms"], pts[b]["ms"]
-            out[key] = (x, y, ratio(x, y))
+            out[key] = (pts[a], pts[b], spread.ratio_entry(pts[a], pts[b]))
     return out
 
 
+def whiskers(ax, xs, ys, recs, horizontal=False, **kw):
+    """Each record's spread as a whisker around (x, y), only where it has one
+    (a zero-length whisker would draw its caps as if it had been measured)."""
+    keep = [i for i, r in enumerate(recs) if spread.has_spread(r)]
+    if not keep:
+        return
+    sub = [recs[i] for i in keep]
+    err = {"xerr" if horizontal else "yerr": spread.errors(sub)}
+    style = dict(fmt="none", ecolor="#222222", elinewidth=1.1, capsize=4, capthick=1.1, zorder=4)
+    style.update(kw)
+    ax.errorbar([xs[i] for i in keep], [ys[i] for i in keep], **err, **style)
+
+
 def plot_series(c, ax, by_series):
-    """One line per series of a slice, styled by series; returns the x values
-    drawn (sorted) and every y value."""
-    xs_all, ys_all = set(), []
+    """One line per series of a slice, styled by series, with each point's
+    spread as whiskers; returns the x values drawn (sorted), every value the
+    axis must fit and, per series label, what was drawn at each x."""
+    xs_all, ys_all, drawn = set(), [], {}
     for key, pts in by_series.items():
         xs = list(pts)
-        ys = [pts[x]["ms"] for x in xs]
+        recs = [pts[x] for x in xs]
         xs_all.update(xs)
-        ys_all += ys
-        ax.plot(xs, ys, label=series_label(key), **c.style(key))
-    return sorted(xs_all), ys_all
+        ys_all += spread.whisker_values(recs)
+        st = c.style(key)
+        ys = [r["ms"] for r in recs]
+        ax.plot(xs, ys, label=series_label(key), **st)
+        whiskers(ax, xs, ys, recs, ecolor=st["color"], capsize=3.5, zorder=st.get("zorder", 2.5))
+        drawn[series_label(key)] = [spread_point(x, r) for x, r in zip(xs, recs)]
+    return sorted(xs_all), ys_all, drawn
 
 
-def label_pairs(ax, table):
-    """Under each pair of bars its kernel and API, above it the pair's ratio
-    (table as paired() returns it); returns {series label: ratio text}."""
+def spread_point(x, r):
+    """A drawn point as index.json lists it."""
+    x = "x".join(map(str, x)) if isinstance(x, tuple) else x
+    return {"x": x, "id": r["id"], "ms": r["ms"], "q25": r.get("q25"), "q75": r.get("q75"), "n": r.get("n", 1)}
+
+
+def ratio_text(entry):
+    """The ratio written above a pair and the line under it: its range from
+    the two spreads, or that the spreads overlap."""
+    main = format_ratio(entry["ratio"])
+    if entry["overlap"]:
+        return main, "spreads overlap"
+    if entry["low"] is not None:
+        return main, f"{format_ratio(entry['low'])[:-1]}–{format_ratio(entry['high'])}"
+    return main, "no spread"
+
+
+def bar_pairs(c, ax, table, names, colours, edge=None):
+    """Two bars per series (table as paired() returns it) with their
+    whiskers; above each pair its ratio and the ratio's range, in grey when
+    the two spreads overlap. Returns (every value drawn, {series label:
+    ratio text}, {series label: ratio entry})."""
     keys = list(table)
     xs = list(range(len(keys)))
-    written = {}
+    w = 0.38
+    vals = []
+    for side, (name, colour) in enumerate(zip(names, colours)):
+        recs = [table[k][side] for k in keys]
+        vals += spread.whisker_values(recs)
+        bx = [x + (side - 0.5) * w for x in xs]
+        ax.bar(bx, [r["ms"] for r in recs], w, label=name, color=colour, edgecolor=edge, zorder=3)
+        whiskers(ax, bx, [r["ms"] for r in recs], recs)
+    written, entries = {}, {}
+    any_spread = any(table[k][2]["low"] is not None for k in keys)
     for x, k in zip(xs, keys):
-        text = format_ratio(table[k][2])
-        written[series_label(k)] = text
-        ax.annotate(text, (x, max(table[k][0], table[k][1])), xytext=(0, 4), textcoords="offset points",
-                    ha="center", va="bottom", fontsize=10, fontweight="bold")
+        a, b, entry = table[k]
+        main, sub = ratio_text(entry)
+        written[series_label(k)] = main
+        entries[series_label(k)] = dict(entry, text=main, note=sub)
+        top = max(r.get("q75") or r["ms"] for r in (a, b))
+        grey = entry["overlap"] is True
+        ax.annotate(main, (x, top), xytext=(0, 14 if any_spread else 4), textcoords="offset points", ha="center",
+                    va="bottom", fontsize=10, fontweight="normal" if grey else "bold",
+                    color="#888888" if grey else "black")
+        if any_spread:   # with no spread anywhere the subtitle says so once
+            ax.annotate(sub, (x, top), xytext=(0, 3), textcoords="offset points", ha="center", va="bottom",
+                        fontsize=7.5, color="#b03030" if grey else "#555555",
+                        fontstyle="italic" if grey else "normal")
     ax.set_xticks(xs)
     ax.set_xticklabels([f"{k[0]}\n{API_NAMES.get(k[1], k[1])}" for k in keys])
-    return written
+    return vals, written, entries

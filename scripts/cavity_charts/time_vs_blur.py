@@ -1,4 +1,4 @@
-"""time_vs_blur: GPU time against the bilateral blur radius, a line per (kernel, API).
+"""time_vs_blur: AO pipeline time against the bilateral blur radius, a line per (kernel, API).
 
 draw(c) draws it on a plotting.Canvas (or says on stderr why it is skipped).
 """
@@ -14,10 +14,11 @@ def draw(c):
     if not by_series:
         return c.skip("time_vs_blur", "no configurations that differ only in blur radius")
     fig, ax = c.figure()
-    ticks, ys_all = plot_series(c, ax, by_series)
+    ticks, ys_all, points = plot_series(c, ax, by_series)
     ax.set_xticks(ticks)
     ax.set_xticklabels(["0 (off)" if t == 0 else str(t) for t in ticks])
     ax.set_xlabel("blur radius (px)")
-    c.ms_axis(ax, ys_all)
-    c.finish("time_vs_blur", fig, ax, "AO GPU time vs bilateral blur radius", fixed_line(fixed),
-             legend_kw=dict(loc="lower right"))
+    recs = [r for pts in by_series.values() for r in pts.values()]
+    c.ms_axis(ax, ys_all, recs)
+    c.finish("time_vs_blur", fig, ax, "AO time vs bilateral blur radius", fixed_line(fixed),
+             legend_kw=dict(loc="lower right"), drawn=recs, extra={"points": points})

@@ -1,11 +1,12 @@
-"""time_vs_megapixels: GPU time against image size, with a linear fit through the origin, and the cost
+"""time_vs_megapixels: AO pipeline time against image size, with a linear fit through the origin, and the cost
 per megapixel beside it (flat = linear in pixels).
 
 draw(c) draws it on a plotting.Canvas (or says on stderr why it is skipped).
 """
 
-from .labels import fixed_line, series_label
-from .plotting import pick_slice
+from . import spread
+from .labels import fixed_line, series_label, time_label
+from .plotting import pick_slice, spread_point, whiskers
 
 NAME = "time_vs_megapixels"
 
@@ -31,18 +32,23 @@ def draw(c):
     xmax = ymax = 0
     fits = {}
     per_mp = []
+    recs_all, points = [], {}
     for key, pts in by_series.items():
         st = c.style(key)
         xs = [w * h / 1e6 for (w, h) in pts]
-        ys = [r["ms"] for r in pts.values()]
+        recs = list(pts.values())
+        ys = [r["ms"] for r in recs]
+        recs_all += recs
+        points[series_label(key)] = [spread_point(s, r) for s, r in pts.items()]
         sizes.update(pts)
         slope, r2 = fit_through_origin(xs, ys)
         fits[series_label(key)] = {"ms_per_mp": slope, "r2": r2}
         ax.plot(xs, ys, linestyle="none", marker=st["marker"], markersize=7, color=st["color"], zorder=3,
                 label=f"{series_label(key)}:  {slope:.3g} ms/MP,  R²={r2:.3f}")
+        whiskers(ax, xs, ys, recs, ecolor=st["color"], capsize=3.5)
         xe = max(xs) * 1.05
         ax.plot([0, xe], [0, slope * xe], linestyle="--", linewidth=1.2, color=st["color"], alpha=0.8, zorder=2)
-        xmax, ymax = max(xmax, xe), max(ymax, max(ys), slope * xe)
+        xmax, ymax = max(xmax, xe), max(ymax, max(r.get("q75") or r["ms"] for r in recs), slope * xe)
         # right: cost per megapixel; flat means time is linear in pixels
         ratios = [y / x for x, y in zip(xs, ys)]
         per_mp += ratios
@@ -53,7 +59,7 @@ def draw(c):
     ax.set_xlim(0, xmax * 1.02)
     ax.set_ylim(0, ymax * 1.08)
     ax.set_xlabel("megapixels (output image)")
-    ax.set_ylabel("GPU time (ms)")
+    ax.set_ylabel(time_label(recs_all))
     ax.set_title("measured time (markers) and linear fit through the origin (dashed)", loc="left", fontsize=9)
     ss = sorted(sizes, key=lambda s: s[0] * s[1])
     ax2.set_xscale("log")
@@ -64,7 +70,8 @@ def draw(c):
     ax2.set_xlim(min(mps) / 1.6, max(mps) * 1.6)
     ax2.set_ylim(0, max(per_mp) * 1.15)
     ax2.set_xlabel("image size (megapixels, log scale)")
-    ax2.set_ylabel("GPU time per megapixel (ms/MP)")
+    ax2.set_ylabel("time per megapixel (ms/MP)")
     ax2.set_title("cost per megapixel (dotted: fitted slope); flat = linear", loc="left", fontsize=9)
-    c.finish("time_vs_megapixels", fig, [ax, ax2], "AO GPU time vs image size", fixed_line(fixed),
-             legend_kw=dict(loc="upper left", ncol=1, fontsize=8.5), extra={"fits": fits})
+    c.finish("time_vs_megapixels", fig, [ax, ax2], "AO time vs image size", fixed_line(fixed),
+             legend_kw=dict(loc="upper left", ncol=1, fontsize=8.5), drawn=recs_all,
+             extra={"fits": fits, "points": points})

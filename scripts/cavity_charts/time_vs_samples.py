@@ -1,4 +1,4 @@
-"""time_vs_samples: GPU time against AO samples per pixel, a line per (kernel, API).
+"""time_vs_samples: AO pipeline time against AO samples per pixel, a line per (kernel, API).
 
 draw(c) draws it on a plotting.Canvas (or says on stderr why it is skipped).
 """
@@ -14,13 +14,14 @@ def draw(c):
     if not by_series:
         return c.skip("time_vs_samples", "no configurations that differ only in sample count")
     fig, ax = c.figure()
-    ticks, ys_all = plot_series(c, ax, by_series)
+    ticks, ys_all, points = plot_series(c, ax, by_series)
     ax.set_xscale("log", base=2)
     ax.set_xticks(ticks)
     ax.set_xticklabels([str(t) for t in ticks])
     ax.minorticks_off()
     ax.set_xlim(min(ticks) / 1.25, max(ticks) * 1.25)
     ax.set_xlabel("samples per pixel (log2 scale)")
-    c.ms_axis(ax, ys_all)
-    c.finish("time_vs_samples", fig, ax, "AO GPU time vs sample count", fixed_line(fixed),
-             legend_kw=dict(loc="upper left"))
+    recs = [r for pts in by_series.values() for r in pts.values()]
+    c.ms_axis(ax, ys_all, recs)
+    c.finish("time_vs_samples", fig, ax, "AO time vs sample count", fixed_line(fixed),
+             legend_kw=dict(loc="upper left"), drawn=recs, extra={"points": points})
