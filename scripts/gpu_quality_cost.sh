@@ -25,7 +25,7 @@ for res in full half; do
 done
 # Benchmark runs, each writes its JSON at its end: screen-space, then SDF in two halves.
 i=0
-for k in 'alchemy|alchemy_fast|hemisphere|hemisphere_cosine|ssdo|ssdo_marched' 'sdf_classic|sdf_multiplicative|sdf_multiscale' \
+for k in 'alchemy|alchemy_fast|hemisphere|hemisphere_cosine|hemisphere_fast|ssdo|ssdo_marched|ssdo_fast' 'sdf_classic|sdf_multiplicative|sdf_multiscale' \
          'sdf_jittered|sdf_hemisphere|sdf_fibonacci'; do
   timeout "$bs" "$bundle"/run.sh --sweep gpu --backend vk --max-time 0.5 \
     --benchmark_filter="^corner/($k)/n[0-9]+/b4/(full|half)/1920x1080/vk/compute" \
