@@ -86,7 +86,9 @@ std::vector<gpu::BindingSlot> bindingLayout(const KernelDecl& k, gpu::Stage stag
     uint32_t b = kFirstImageBinding;
     for (size_t i = 0; i < k.inputs.size(); ++i) slots.push_back({b++, gpu::BindingKind::SampledImage, {}});
     if (stage == gpu::Stage::Compute)
-        for (const auto& o : k.outputs) slots.push_back({b++, gpu::BindingKind::StorageImage, o.format});
+        for (const auto& o : k.outputs)
+            for (int l = 0; l < (o.oneDispatch ? o.mipLevels : 1); ++l)
+                slots.push_back({b++, gpu::BindingKind::StorageImage, o.format});
     return slots;
 }
 
@@ -176,7 +178,19 @@ Result<gpu::ShaderSource> assemble(const KernelDecl& k, gpu::Stage stage,
     for (const auto& in : k.inputs) p << "layout(binding = " << b++ << ") uniform sampler2D in_" << in.name << ";\n";
     int location = 0;
     for (const auto& o : k.outputs) {
-        if (stage == gpu::Stage::Compute) {
+        if (stage == gpu::Stage::Compute && o.oneDispatch && o.mipLevels > 1) {
+            // A binding per level; write_<name> stores level 0.
+            p << "#define CAVITY_LEVELS_" << o.name << " " << o.mipLevels << "\n";
+            for (int l = 0; l < o.mipLevels; ++l)
+                p << "layout(binding = " << b++ << ", " << imageQualifier(o.format) << ") uniform writeonly image2D out_"
+                  << o.name << "_" << l << ";\n";
+            p << "void write_" << o.name << "(ivec2 pixel, vec4 v) { imageStore(out_" << o.name << "_0, pixel, v); }\n"
+              << "void write_" << o.name << "_level(int level, ivec2 pixel, vec4 v) {\n";
+            for (int l = 0; l < o.mipLevels; ++l)
+                p << "    " << (l ? "else if" : "if") << " (level == " << l << ") imageStore(out_" << o.name << "_" << l
+                  << ", pixel, v);\n";
+            p << "}\n";
+        } else if (stage == gpu::Stage::Compute) {
             p << "layout(binding = " << b++ << ", " << imageQualifier(o.format) << ") uniform writeonly image2D out_"
               << o.name << ";\n"
               << "void write_" << o.name << "(ivec2 pixel, vec4 v) { imageStore(out_" << o.name << ", pixel, v); }\n";

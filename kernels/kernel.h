@@ -46,6 +46,12 @@ struct OutputDecl {
     // as compute whatever the configuration's stage: a fragment pass would
     // need a render target per level, which no kernel's speed depends on.
     int mipLevels = 1;
+    // With mipLevels > 1: every level written by one dispatch over level 0,
+    // through a storage binding per level and
+    //     void write_<name>_level(int level, ivec2 pixel, vec4 value);
+    // (CAVITY_LEVELS_<name> is the level count) instead of a dispatch per
+    // level a barrier apart.
+    bool oneDispatch = false;
 };
 
 struct ArrayDecl {

@@ -105,6 +105,10 @@ std::vector<ParamDecl> declare() {
              "distance of a half texel from the pixel's tangent plane, relative to depth, at which its "
              "weight falls to exp(-1/2)",
              true),
+        // The depth pyramid of the fast kernels: one dispatch (depth_pyramid_single)
+        // or one per level, a barrier apart (depth_pyramid): the same levels.
+        flag("pyramid_per_level", false,
+             "build the fast kernels' depth pyramid a dispatch per level (depth_pyramid), not in one (depth_pyramid_single)"),
         // The half-resolution tail as two passes (upsample_bilateral, then
         // composite) or fused into one (upsample_composite): the same image.
         flag("fused_tail", false,

@@ -120,12 +120,35 @@ KernelDecl depthPyramid() {
     // Level l reads level l - 1 of its own output: "zmip" is both.
     k.inputs = {{"position", {}}, {"zmip", {gpu::Filter::Nearest, gpu::Address::ClampToEdge, true}}};
     k.outputs = {{"zmip", Format::R32F, kPyramidLevels}};
+    k.params = {use("pyramid_per_level")};
     // Per level-0 pixel: one RGBA32F fetch and a 4-byte store at level 0,
     // and a third more of both (1/4 + 1/16 + ...) for the smaller levels.
     k.cost = [](const ParamValues&) {
         const double rest = (1 - std::pow(0.25, kPyramidLevels - 1)) / 3;
         return Cost{1 + rest, kRgba32f + kR32f + rest * 2 * kR32f, fetchSlots(kRgba32f) + rest * fetchSlots(kR32f),
                     kRgba32f + kR32f + rest * 2 * kR32f};
+    };
+    return k;
+}
+
+// The same pyramid in one dispatch (depth_pyramid_single.glsl): each level's
+// texel written by the thread of the level-0 pixel it picked.
+KernelDecl depthPyramidSingle() {
+    KernelDecl k;
+    k.name = "depth_pyramid_single";
+    k.file = "depth_pyramid_single.glsl";
+    k.summary = "depth_pyramid's levels in one dispatch: each texel written by the thread of the pixel it picks";
+    k.role = Role::Pyramid;
+    k.inputs = {{"position", {}}};
+    OutputDecl zmip{"zmip", Format::R32F, kPyramidLevels};
+    zmip.oneDispatch = true;
+    k.outputs = {zmip};
+    k.params = {use("pyramid_per_level")};
+    // Per level-0 pixel: one RGBA32F fetch, a 4-byte store at level 0 and a
+    // third of one (1/4 + 1/16 + ...) for the smaller levels; nothing is read twice.
+    k.cost = [](const ParamValues&) {
+        const double rest = (1 - std::pow(0.25, kPyramidLevels - 1)) / 3;
+        return Cost{1, kRgba32f + kR32f + rest * kR32f, fetchSlots(kRgba32f), kRgba32f + kR32f + rest * kR32f};
     };
     return k;
 }
@@ -293,7 +316,7 @@ std::vector<KernelDecl>& registryForTests() {
         std::vector<KernelDecl> k = {gbufferSdf(), alchemy(), blurBilateral(), composite()};
         for (auto& d : screenSpaceKernels()) k.push_back(std::move(d));
         for (auto& d : qualityVariantKernels()) k.push_back(std::move(d));
-        for (auto& d : {depthPyramid(), alchemyFast(), hemisphereFast(), blurSeparable("x"), blurSeparable("y"), ssdoFast(),
+        for (auto& d : {depthPyramid(), depthPyramidSingle(), alchemyFast(), hemisphereFast(), blurSeparable("x"), blurSeparable("y"), ssdoFast(),
                         ssdoFastIndirect(), blurSeparableSsdo("x"), blurSeparableSsdo("y")})
             k.push_back(d);
         for (auto& d : sdfAoKernels()) k.push_back(std::move(d));

@@ -18,6 +18,7 @@
 #include "pipeline/pipeline.h"
 #include "reference/reference.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -154,41 +155,62 @@ TEST_P(KernelVsReference, OtherScenes160x90) {
 // see (a readback holds level 0): each must be the rotated-grid pick of the
 // level above, bit for bit, at sizes that go odd (45, 11, 5 rows). A level
 // that averaged, took the wrong texel of its block, or was never written
-// (all zero) fails here.
+// (all zero) fails here. Both builds, one dispatch (the default,
+// depth_pyramid_single) and one per level (depth_pyramid), and each level
+// of the one bit for bit the other's; and at 37x21, where levels run down to
+// 2x1 and the pick's clamp acts.
 TEST_P(KernelVsReference, DepthPyramidLevels) {
-    for (bool half : {false, true}) {
-        RunConfig c;
-        c.api = api();
-        c.width = 160;
-        c.height = 90;
-        c.kernel = "alchemy_fast";
-        c.half = half;
-        ASSERT_TRUE(setParam(c, "scene", "slats").ok());
-        auto chain = PassChain::create(gpu(), c);
-        ASSERT_TRUE(chain) << chain.error().message;
-        gpu().beginFrame();
-        (*chain)->record();
-        ASSERT_TRUE(gpu().endFrame().ok());
-        const std::string image = half ? "zmip_half" : "zmip";
-        auto level0 = (*chain)->read(image);
-        ASSERT_TRUE(level0) << level0.error().message;
-        const auto* decl = kernels::find("depth_pyramid");
-        ASSERT_NE(decl, nullptr);
-        const int levels = decl->outputs[0].mipLevels;
-        ASSERT_GT(levels, 2);
-        const auto want = reference::pyramidLevels(*level0, levels);
-        for (int l = 1; l < levels; ++l) {
-            SCOPED_TRACE(image + " level " + std::to_string(l));
-            auto got = (*chain)->read(image, l);
-            ASSERT_TRUE(got) << got.error().message;
-            ASSERT_EQ(got->width, want[size_t(l)].width);
-            ASSERT_EQ(got->height, want[size_t(l)].height);
-            EXPECT_EQ(got->pixels, want[size_t(l)].pixels);
-            long long surface = 0;
-            for (float v : got->pixels) surface += v > 0;
-            EXPECT_GT(surface, 0) << "no surface depth at all";
+    for (auto [w, h] : {std::pair{160, 90}, std::pair{37, 21}})
+        for (bool half : {false, true}) {
+            std::vector<HostImage> built[2];
+            for (int perLevel = 0; perLevel < 2; ++perLevel) {
+                RunConfig c;
+                c.api = api();
+                c.width = w;
+                c.height = h;
+                c.kernel = "alchemy_fast";
+                c.half = half;
+                ASSERT_TRUE(setParam(c, "scene", "slats").ok());
+                ASSERT_TRUE(setParam(c, "pyramid_per_level", perLevel ? "1" : "0").ok());
+                auto chain = PassChain::create(gpu(), c);
+                ASSERT_TRUE(chain) << chain.error().message;
+                const std::string builder = perLevel ? "depth_pyramid" : "depth_pyramid_single";
+                EXPECT_TRUE(std::any_of((*chain)->passes().begin(), (*chain)->passes().end(),
+                                        [&](const auto& pass) { return pass.kernel == builder; }))
+                    << configId(c) << " builds no " << builder;
+                gpu().beginFrame();
+                (*chain)->record();
+                ASSERT_TRUE(gpu().endFrame().ok());
+                const std::string image = half ? "zmip_half" : "zmip";
+                auto level0 = (*chain)->read(image);
+                ASSERT_TRUE(level0) << level0.error().message;
+                const auto* decl = kernels::find(builder);
+                ASSERT_NE(decl, nullptr);
+                const int levels = decl->outputs[0].mipLevels;
+                ASSERT_GT(levels, 2);
+                const auto want = reference::pyramidLevels(*level0, levels);
+                built[perLevel].push_back(*level0);
+                for (int l = 1; l < levels; ++l) {
+                    SCOPED_TRACE(builder + " " + std::to_string(w) + "x" + std::to_string(h) + " " + image + " level " +
+                                 std::to_string(l));
+                    auto got = (*chain)->read(image, l);
+                    ASSERT_TRUE(got) << got.error().message;
+                    ASSERT_EQ(got->width, want[size_t(l)].width);
+                    ASSERT_EQ(got->height, want[size_t(l)].height);
+                    EXPECT_EQ(got->pixels, want[size_t(l)].pixels);
+                    // (A 1x1 level of the tiny image may pick the sky.)
+                    long long surface = 0;
+                    for (float v : got->pixels) surface += v > 0;
+                    if (got->pixels.size() >= 16) {
+                        EXPECT_GT(surface, 0) << "no surface depth at all";
+                    }
+                    built[perLevel].push_back(std::move(*got));
+                }
+            }
+            ASSERT_EQ(built[0].size(), built[1].size());
+            for (size_t l = 0; l < built[0].size(); ++l)
+                EXPECT_EQ(built[0][l].pixels, built[1][l].pixels) << "level " << l << " differs between the two builds";
         }
-    }
 }
 
 // The fused half-resolution tail (upsample_composite) against the two passes

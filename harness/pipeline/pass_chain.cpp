@@ -148,10 +148,15 @@ Status PassChain::createPass(const PassSpec& spec, const RunConfig& c, const Sou
     const auto layout = kernels::bindingLayout(k, pass->stage);
     if (pass->stage == gpu::Stage::Compute) {
         auto b = uint32_t(kernels::kFirstImageBinding + spec.inputs.size());
-        for (const auto& out : spec.outputs) pass->binds.push_back({b++, images_[out].image, {}, {}});
+        for (size_t o = 0; o < spec.outputs.size(); ++o) {
+            const auto& decl = k.outputs[o];
+            // A one-dispatch mip chain binds its image once per level.
+            for (int l = 0; l < (decl.oneDispatch ? decl.mipLevels : 1); ++l)
+                pass->binds.push_back({b++, images_[spec.outputs[o]].image, {}, {}, l});
+        }
         gpu::ComputePipelineDesc d{std::move(body), layout, 8, 8, spec.name};
         CAVITY_ASSIGN(pass->pipeline, gpu_.createComputePipeline(d));
-        CAVITY_TRY(createComputeLevels(*pass, spec, c, mipLevels));
+        if (k.outputs.empty() || !k.outputs[0].oneDispatch) CAVITY_TRY(createComputeLevels(*pass, spec, c, mipLevels));
     } else {
         gpu::GraphicsPipelineDesc d;
         d.vertex = kernels::fullscreenVertex();

@@ -13,6 +13,14 @@ namespace {
 
 bool isConstant(const std::string& name) { return kernels::findConstant(name) != nullptr; }
 
+// The linear-depth pyramid of the fast kernels, from `position` into `zmip`:
+// one dispatch, or one per level with pyramid_per_level.
+PassSpec pyramidPass(const RunConfig& c, const std::string& position, const std::string& zmip, bool half) {
+    if (c.params.count("pyramid_per_level") && c.params.at("pyramid_per_level") != 0)
+        return {"pyramid", "depth_pyramid", {position, zmip}, {zmip}, half};
+    return {"pyramid", "depth_pyramid_single", {position}, {zmip}, half};
+}
+
 bool isSsdo(const kernels::KernelDecl& k) {
     return k.outputs.size() >= 2 && k.outputs[0].name == "visibility" && k.outputs[1].name == "radiance";
 }
@@ -48,11 +56,11 @@ namespace {
 // The SSDO chain: direct pass, its blur, the one-bounce indirect pass and its
 // blur, the composite. Visibility plays the part of AO in the outputs a user
 // and the gate see.
-void ssdoPasses(const kernels::KernelDecl& k, std::vector<PassSpec>& p) {
+void ssdoPasses(const kernels::KernelDecl& k, const RunConfig& c, std::vector<PassSpec>& p) {
     std::vector<ImageRef> in;
     for (const auto& i : k.inputs) {
         in.push_back({i.name, isConstant(i.name) ? ImageSource::Constant : ImageSource::Pass});
-        if (i.name == "zmip") p.push_back({"pyramid", "depth_pyramid", {"position", "zmip"}, {"zmip"}, false});
+        if (i.name == "zmip") p.push_back(pyramidPass(c, "position", "zmip", false));
     }
     // A variant's bounce pass is "<kernel>_indirect" (ssdo_marched_indirect): it
     // must walk the very points the direct pass did, so it carries the
@@ -88,7 +96,7 @@ void ssdoPasses(const kernels::KernelDecl& k, std::vector<PassSpec>& p) {
 // make them: the depth (put back on each half texel's own ray at half
 // resolution: depth_from_position_half.glsl says why) and the linear-depth
 // pyramid of the fast kernels, all its levels in one pass.
-std::vector<ImageRef> aoInputs(const kernels::KernelDecl& k, bool half, std::vector<PassSpec>& p) {
+std::vector<ImageRef> aoInputs(const kernels::KernelDecl& k, const RunConfig& c, bool half, std::vector<PassSpec>& p) {
     const std::string suffix = half ? "_half" : "";
     const std::string position = "position" + suffix, normal = "normal" + suffix;
     std::vector<ImageRef> in;
@@ -108,7 +116,7 @@ std::vector<ImageRef> aoInputs(const kernels::KernelDecl& k, bool half, std::vec
                 p.push_back({"depth", "depth_from_position", {position}, {"depth"}, false});
         }
         if (i.name == "zmip")
-            p.push_back({"pyramid", "depth_pyramid", {position, "zmip" + suffix}, {"zmip" + suffix}, half});
+            p.push_back(pyramidPass(c, position, "zmip" + suffix, half));
     }
     return in;
 }
@@ -167,7 +175,7 @@ std::vector<PassSpec> buildPasses(const RunConfig& c) {
         p.push_back({"gbuffer", c.raster ? "gbuffer_raster" : "gbuffer_sdf", {}, {"position", "normal", "albedo"}, false});
     if (!k) return p;
     if (isSsdo(*k)) {
-        ssdoPasses(*k, p);
+        ssdoPasses(*k, c, p);
         return p;
     }
     // Half resolution: a depth-aware 2x2 downsample of the G-buffer, AO and
@@ -175,7 +183,7 @@ std::vector<PassSpec> buildPasses(const RunConfig& c) {
     // plain upsample leaves halos at silhouettes).
     const bool half = c.half && supportsHalf(c.kernel);
     if (half) p.push_back({"downsample", "downsample_depth", {"position", "normal"}, {"position_half", "normal_half"}, true});
-    const auto in = aoInputs(*k, half, p);
+    const auto in = aoInputs(*k, c, half, p);
     if (packsKey(*k)) separableTail(*k, in, half, p);
     else bilateralTail(*k, c, in, half, p);
     // fused_tail: the upsample and the composite as one pass, which writes

@@ -224,6 +224,16 @@ Result<std::vector<HostImage>> depthPyramid(const Context& ctx) {
     return out;
 }
 
+// depth_pyramid_single: the same level 0 (its other levels are checked
+// against pyramidLevels by the tests, as depth_pyramid's are).
+Result<std::vector<HostImage>> depthPyramidSingle(const Context& ctx) {
+    CAVITY_TRY(requireInputs(ctx, {4}));
+    auto out = makeOutputs(ctx);
+    for (int y = 0; y < ctx.frame.size[1]; ++y)
+        for (int x = 0; x < ctx.frame.size[0]; ++x) out[0].at(x, y) = ctx.inputs[0]->at(x, y, 3);
+    return out;
+}
+
 Result<std::vector<HostImage>> alchemyFast(const Context& ctx) {
     CAVITY_TRY(requireInputs(ctx, {1, 3}));
     const auto zmip = pyramidLevels(*ctx.inputs[0], pyramid::levelCount());
@@ -353,6 +363,7 @@ Result<std::vector<HostImage>> blurSeparableSsdoY(const Context& ctx) { return b
 
 std::vector<RefEntry> fastRefs() {
     return {{"depth_pyramid", depthPyramid},
+            {"depth_pyramid_single", depthPyramidSingle},
             {"alchemy_fast", alchemyFast},
             {"hemisphere_fast", hemisphereFast},
             {"blur_separable_x", blurSeparableX},
