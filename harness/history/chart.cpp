@@ -99,7 +99,7 @@ std::string screenshot(const std::string& html, const std::string& png, size_t c
         why = "chromium is not installed (apt-get install chromium): no PNG written; index.html is complete without it";
         return "";
     }
-    // Two columns of 620 px charts at 1300 px; each row about 370 px.
+    // Two columns of charts at 1300 px (the page's grid: 560 px and up); each row about 372 px.
     const size_t height = std::min<size_t>(120 + (charts + 1) / 2 * 372, 16000);
     const std::string cmd = "timeout 120 " + shellQuoted(chromium) +
                             " --headless=new --no-sandbox --disable-gpu --hide-scrollbars --virtual-time-budget=5000"

@@ -143,12 +143,13 @@
         scales: {
           x: { type: 'linear', min: -0.5, max: s.points.length - 0.5,
                title: { display: true, text: 'commit (oldest left)' },
-               ticks: { autoSkip: true, maxTicksLimit: 12, maxRotation: 40, minRotation: 0, precision: 0,
+               ticks: { stepSize: 1, autoSkip: true, autoSkipPadding: 8, maxRotation: 40, minRotation: 0, precision: 0,
                         callback: (v) => (Number.isInteger(v) && s.points[v] ? short(s.points[v].commit) : '') } },
           y: { grace: '8%', title: { display: true, text: s.y_label }, ticks: { callback: (v) => fmt(v) } },
         },
         plugins: {
-          legend: { labels: { filter: (item) => !item.text.startsWith('_'), boxWidth: 14 } },
+          legend: { labels: { boxWidth: 14, filter: (item, d) => !item.text.startsWith('_') &&
+                                                    d.datasets[item.datasetIndex].data.length > 0 } },
           stepLines: { steps: s.change_points },
           tooltip: {
             filter: (item) => item.datasetIndex === 2,
