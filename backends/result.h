@@ -15,7 +15,8 @@ enum class ErrorCode {
     BadInput = 2,             // a flag, file or value the user gave is wrong
     BackendUnavailable = 3,   // no ICD, no EGL device, ...
     Internal = 4,             // a GPU call failed after the backend started
-    StoreUnavailable = 5,     // the image store cannot be reached, refused us, or lacks an object
+    StoreUnavailable = 5,     // the image store or the results database server (cavity history) cannot be
+                              // reached, refused us, or lacks an object
     StoreCorrupt = 6,         // a store object's pixels do not have the digest it is filed under
 };
 

@@ -71,6 +71,7 @@ int approveCommand(const std::vector<std::string>& args);   // cavity baselines 
 int compareCommand(const std::vector<std::string>& args);
 int storeCommand(const std::vector<std::string>& args);     // cavity store check
 int abCommand(const std::vector<std::string>& args);        // cavity ab
+int historyCommand(const std::vector<std::string>& args);   // cavity history ingest|show|chart|alerts
 // `program` starts every message: "cavity quality", "cavity_render quality".
 int qualityCommand(const std::vector<std::string>& args, const std::string& program = "cavity quality");
 

@@ -1,7 +1,8 @@
 // The cavity command. Exit codes (README.md, "Exit codes"): 0 success,
 // 1 a regression (gate), 2 bad usage or input, 3 a backend could not start,
 // 4 an internal GPU error, 5 the image store cannot be reached, 6 a store
-// object does not match its digest.
+// object does not match its digest. `cavity history` uses 5 for a database
+// server that cannot be reached or refuses the connection.
 #include "cli.h"
 
 #include <iostream>
@@ -21,6 +22,7 @@ constexpr const char* kUsage =
     "  ab         two builds measured interleaved on one GPU, then compared pass by pass\n"
     "  compare    two runs (results.json or cavity_bench JSON) pass by pass: change, interval, verdict\n"
     "  quality    each AO kernel's mean absolute error against the ray-traced ground truth\n"
+    "  history    runs kept in a database over commits: ingest, show, chart, alerts (change points)\n"
     "`cavity COMMAND --help` lists a command's flags. `cavity` alone prints this and exits 2;\n"
     "`cavity --help` prints it and exits 0.\n"
     "\n"
@@ -46,8 +48,9 @@ int main(int argc, char** argv) {
     if (command == "store") return cavity::cli::storeCommand(args);
     if (command == "ab") return cavity::cli::abCommand(args);
     if (command == "quality") return cavity::cli::qualityCommand(args);
+    if (command == "history") return cavity::cli::historyCommand(args);
     // One line, as every usage error (README "Exit codes").
-    const std::string near = cavity::cli::nearest(command, {"run", "gate", "baselines", "compare", "quality", "store", "ab"});
+    const std::string near = cavity::cli::nearest(command, {"run", "gate", "baselines", "compare", "quality", "store", "ab", "history"});
     std::cerr << "cavity: unknown command '" << command << "'" << (near.empty() ? "" : " (did you mean " + near + "?)")
               << "; see cavity --help\n";
     return 2;

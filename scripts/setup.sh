@@ -26,6 +26,10 @@ packages=(
   chromium                                                      # the HTML report test (headless screenshot)
   cmark-gfm                                                     # tests/validate_summary.py: summary.md as GitHub renders it
   universal-ctags                                               # tests/code_size.py: function lengths
+  libsqlite3-dev                                                # cavity history: the results database in a file
+  libpq-dev                                                     # cavity history: the results database on a PostgreSQL server
+  libjs-chart.js                                                # cavity history chart: Chart.js, inlined into the page at build time
+  postgresql                                                    # tests/test_history_postgres.py: a real server started by the test
 )
 missing=()
 for p in "${packages[@]}"; do

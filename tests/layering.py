@@ -12,7 +12,7 @@ import sys
 
 # Bottom first: a folder may include itself and what is above it in this list.
 LAYERS = ["core", "stats", "reference", "pipeline", "images", "plan", "measure",
-          "render", "store", "gate", "compare", "report"]
+          "render", "store", "gate", "compare", "report", "history"]
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"', re.M)
 NAMESPACE = re.compile(r"^\s*namespace\s+([A-Za-z_][\w:]*)\s*\{(?!\})", re.M)
 

@@ -40,7 +40,9 @@ GOOGLE_BENCHMARK_FLAGS = {
 # Subcommands: program -> {subcommand words: ()}; () is the program itself.
 SUBCOMMANDS = {
     "cavity": [("run",), ("quality",), ("compare",), ("gate", "judge"), ("gate", "merge"), ("gate",),
-               ("baselines", "update"), ("baselines", "approve"), ("store", "check"), ("ab",)],
+               ("baselines", "update"), ("baselines", "approve"), ("store", "check"), ("ab",),
+               ("history", "ingest"), ("history", "show"), ("history", "chart"), ("history", "alerts"),
+               ("history",)],
     "cavity_render": [("quality",)],
     "cavity_bench": [],
 }

@@ -1,0 +1,105 @@
+// `cavity history alerts`: the change points of every series that matches,
+// as a table, as JSON for a bot, and as the bisect command for each slowdown.
+#include "history_command.h"
+#include "core/json_file.h"
+#include "core/text_table.h"
+
+#include <nlohmann/json.hpp>
+
+#include <cstdio>
+#include <iostream>
+
+namespace cavity::cli {
+
+using nlohmann::json;
+
+namespace {
+
+const CommandSpec& alertsSpec() {
+    static const CommandSpec spec = [] {
+        CommandSpec s;
+        s.program = "cavity history alerts";
+        s.description =
+            "Lists the change points of every (configuration, pass, device) series: E-divisive means over each "
+            "commit's median, each step kept when Student's t test between the segments either side gives p < --alpha "
+            "and the change reaches --min-change. Each with the first commit after the step and the last before it.";
+        s.flags = {historyDbFlag()};
+        for (auto& f : historyFilterFlags(false)) s.flags.push_back(f);
+        for (auto& f : historyDetectorFlags()) s.flags.push_back(f);
+        s.flags.push_back({"--json", "FILE", "also write the alerts as JSON (cavity.history.alerts/1)"});
+        s.flags.push_back({"--bisect", "", "print the scripts/bisect.sh command of each slowdown's commit range"});
+        s.footer = "\n--since keeps the change points from that date or commit on; the series before it are still "
+                   "read to find them.\nExit codes: 0 listed (alerts or none), 2 bad input (a flag, no such database, a "
+                   "filter that matches nothing, a database from a newer cavity), 5 the database server cannot be "
+                   "reached or refuses the connection.";
+        s.examples = {"cavity history alerts --db history.sqlite --since 4415bc7 --json alerts.json",
+                      "cavity history alerts --db history.sqlite --pass ao --min-change 5 --bisect"};
+        return s;
+    }();
+    return spec;
+}
+
+std::string pText(double p) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, p < 1e-4 ? "%.1e" : "%.4f", p);
+    return buf;
+}
+
+json alertJson(const history::Alert& a) {
+    return {{"id", a.configId}, {"pass", a.pass}, {"device", a.device}, {"clock", a.clock}, {"commit", a.commit},
+            {"previous_commit", a.previousCommit}, {"date", a.date}, {"change_pct", a.changePct}, {"p_value", a.pValue},
+            {"direction", a.slower() ? "slower" : "faster"}, {"before_ms", a.before}, {"after_ms", a.after}};
+}
+
+// scripts/bisect.sh's --pass mode judges with `cavity compare` on
+// results.json, whose whole-configuration series is "frame"; cavity_bench's
+// "pipeline" (the AO passes without the G-buffer) has no twin there.
+std::string bisectLine(const history::Alert& a) {
+    const std::string pass = a.pass == "pipeline" ? "frame" : a.pass;
+    std::string line = "scripts/bisect.sh " + a.previousCommit + " " + a.commit + " --id " + a.configId + " --pass " + pass;
+    if (a.pass == "pipeline") line += "   # cavity_bench's pipeline: bisected on the whole frame";
+    return line;
+}
+
+}  // namespace
+
+int historyAlerts(const std::vector<std::string>& argv) {
+    const auto& spec = alertsSpec();
+    auto parsed = parseFlags(spec, argv);
+    if (!parsed) return fail(spec.program, parsed.error());
+    if (parsed->help) {
+        std::cout << parsed->helpText;
+        return 0;
+    }
+    auto q = historyQuery(*parsed);
+    if (!q) return fail(spec.program, q.error());
+    auto series = matchingSeries(*q);
+    if (!series) return fail(spec.program, series.error());
+    const auto alerts = history::findAlerts(*series, q->detector, q->since);
+    TextTable t({{"configuration"}, {"pass"}, {"device"}, {"commit"}, {"after"}, {"change", TextTable::Align::Right},
+                 {"p", TextTable::Align::Right}, {"before ms", TextTable::Align::Right}, {"after ms", TextTable::Align::Right}});
+    json out = json::array();
+    for (const auto& a : alerts) {
+        char change[32];
+        std::snprintf(change, sizeof change, "%+.1f%%", a.changePct);
+        t.add({a.configId, a.pass, a.device, a.commit.substr(0, 12), a.previousCommit.substr(0, 12), change, pText(a.pValue),
+               TextTable::number(a.before, 4), TextTable::number(a.after, 4)}, a.slower() ? " slower" : " faster");
+        out.push_back(alertJson(a));
+    }
+    if (!alerts.empty()) std::cout << t.str();
+    std::cout << alerts.size() << " change points in " << series->size() << " series (alpha " << q->detector.alpha
+              << ", min change " << q->detector.minChange * 100 << "%)\n";
+    if (parsed->has("--bisect"))
+        for (const auto& a : alerts)
+            if (a.slower()) std::cout << bisectLine(a) << "\n";
+    for (const auto& [flag, path] : parsed->values) {
+        if (flag != "--json") continue;
+        const json doc = {{"schema", "cavity.history.alerts/1"}, {"alpha", q->detector.alpha},
+                          {"min_change_pct", q->detector.minChange * 100}, {"alerts", out}};
+        const Status w = writeFileAtomically(path, doc.dump(2) + "\n");
+        if (!w) return fail(spec.program, w.error());
+    }
+    return 0;
+}
+
+}  // namespace cavity::cli

@@ -1,0 +1,36 @@
+#include "history/alerts.h"
+
+namespace cavity::history {
+
+std::vector<Alert> seriesAlerts(const Series& s, const DetectorOptions& options) {
+    std::vector<double> medians;
+    for (const auto& p : s.points) medians.push_back(p.median);
+    std::vector<Alert> out;
+    for (const auto& c : detectChangePoints(medians, options)) {
+        Alert a;
+        a.configId = s.configId;
+        a.pass = s.pass;
+        a.device = s.device;
+        a.clock = s.clock;
+        a.index = c.index;
+        a.commit = s.points[c.index].commit;
+        a.date = s.points[c.index].date;
+        a.previousCommit = s.points[c.index - 1].commit;
+        a.changePct = c.change() * 100;
+        a.pValue = c.pValue;
+        a.before = c.meanBefore;
+        a.after = c.meanAfter;
+        out.push_back(std::move(a));
+    }
+    return out;
+}
+
+std::vector<Alert> findAlerts(const std::vector<Series>& series, const DetectorOptions& options, const std::string& since) {
+    std::vector<Alert> out;
+    for (const auto& s : series)
+        for (auto& a : seriesAlerts(s, options))
+            if (since.empty() || a.date >= since) out.push_back(std::move(a));
+    return out;
+}
+
+}  // namespace cavity::history

@@ -1,0 +1,34 @@
+// The change points of every series: E-divisive (edivisive.h) over each
+// series' per-commit medians. One point per commit, not one per repetition:
+// the repetitions of one run share its build, clocks, thermal state and
+// machine, so they are not independent draws of what the commit costs.
+// Pooled as separate points they would give the t test the small
+// within-run variance and many degrees of freedom, and every run-to-run
+// wobble would read as a step. Between commits the variance the test sees
+// is the one a regression must stand out from. The repetitions still give
+// each point its interval (series.h), drawn in the charts.
+#pragma once
+
+#include "history/edivisive.h"
+#include "history/series.h"
+
+namespace cavity::history {
+
+struct Alert {
+    std::string configId, pass, device, clock;
+    std::string commit, previousCommit, date;   // the first commit after the step, the last before; its date
+    size_t index = 0;                           // of `commit` in its series' points
+    double changePct = 0, pValue = 1;
+    double before = 0, after = 0;               // mean of the per-commit medians of the segments either side
+    bool slower() const { return changePct > 0; }
+};
+
+// Change points of each series, in the series' order; an alert whose commit
+// is dated before `since` (normalized, "" none) is left out, the series
+// before it still being read to find it.
+std::vector<Alert> findAlerts(const std::vector<Series>& series, const DetectorOptions& options, const std::string& since = "");
+
+// Change points of one series (the chart marks them).
+std::vector<Alert> seriesAlerts(const Series& s, const DetectorOptions& options);
+
+}  // namespace cavity::history

@@ -1,0 +1,100 @@
+#include "history/ingest.h"
+#include "measure/results.h"
+
+#include <filesystem>
+#include <map>
+
+namespace cavity::history {
+
+namespace {
+
+Result<int64_t> firstInt(const std::vector<Row>& rows, const std::string& what) {
+    if (rows.empty() || rows[0].empty() || !rows[0][0]) return internal("no id returned for " + what);
+    return std::stoll(*rows[0][0]);
+}
+
+Param textOrNull(const std::string& s) { return s.empty() ? Param{} : Param{s}; }
+Param mhz(double v) { return v > 0 ? Param{v} : Param{}; }
+
+Result<int64_t> configurationId(Database& db, const std::string& id, std::map<std::string, int64_t>& cache) {
+    if (auto it = cache.find(id); it != cache.end()) return it->second;
+    CAVITY_TRY(db.exec("INSERT INTO configurations (config_id) VALUES (?) ON CONFLICT (config_id) DO NOTHING", {id}));
+    CAVITY_ASSIGN(const auto rows, db.query("SELECT id FROM configurations WHERE config_id = ?", {id}));
+    CAVITY_ASSIGN(const int64_t out, firstInt(rows, "configuration " + id));
+    cache[id] = out;
+    return out;
+}
+
+// The samples of one pass, many rows a statement: a file of thousands of
+// samples is a few dozen round trips to a server, not thousands.
+Status insertSamples(Database& db, int64_t passId, const std::vector<Sample>& samples) {
+    constexpr size_t kRowsPerStatement = 200;
+    for (size_t at = 0; at < samples.size(); at += kRowsPerStatement) {
+        std::string sql = "INSERT INTO samples (pass_id, repetition, ms, sm_mhz, mem_mhz) VALUES ";
+        std::vector<Param> params;
+        for (size_t i = at; i < std::min(samples.size(), at + kRowsPerStatement); ++i) {
+            sql += i == at ? "(?, ?, ?, ?, ?)" : ", (?, ?, ?, ?, ?)";
+            const Sample& s = samples[i];
+            params.insert(params.end(), {passId, int64_t(s.repetition), s.ms, mhz(s.smMhz), mhz(s.memMhz)});
+        }
+        CAVITY_TRY(db.exec(sql, params));
+    }
+    return {};
+}
+
+// The run's id, or 0 when this content is already stored for this commit
+// (ON CONFLICT: two jobs ingesting the same file at once store it once).
+Result<int64_t> insertRun(Database& db, const RunFile& file, const RunInfo& info) {
+    std::string date = info.date.empty() ? normalizeDate(file.date) : info.date;
+    if (date.empty()) date = measure::utcTimestamp();
+    CAVITY_ASSIGN(const auto rows,
+                  db.query("INSERT INTO runs (file_digest, commit_sha, parent_sha, branch, run_date, device, driver, api, "
+                           "build_type, cavity_version, format, file_name, ingested_utc, ingested_by) "
+                           "VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?) "
+                           "ON CONFLICT (file_digest, commit_sha) DO NOTHING RETURNING id",
+                           {file.digest, info.commit, textOrNull(info.parent), textOrNull(info.branch), date,
+                            textOrNull(file.device), textOrNull(file.driver), textOrNull(file.api),
+                            textOrNull(info.buildType), textOrNull(file.cavityVersion), file.format,
+                            std::filesystem::path(file.path).filename().string(), measure::utcTimestamp(),
+                            measure::gitCommit()}));
+    if (rows.empty()) return int64_t(0);
+    return firstInt(rows, "run");
+}
+
+}  // namespace
+
+bool isCommit(const std::string& s) {
+    return s.size() >= 4 && s.size() <= 64 &&
+           s.find_first_not_of("0123456789abcdefABCDEF") == std::string::npos;
+}
+
+Result<Ingested> ingest(Database& db, const RunFile& file, const RunInfo& info) {
+    Ingested out;
+    Transaction t(db);
+    CAVITY_TRY(t.begin());
+    CAVITY_ASSIGN(out.runId, insertRun(db, file, info));
+    if (out.runId == 0) {
+        CAVITY_ASSIGN(const auto seen, db.query("SELECT id FROM runs WHERE file_digest = ? AND commit_sha = ?",
+                                                {file.digest, info.commit}));
+        out.alreadyThere = true;
+        CAVITY_ASSIGN(out.runId, firstInt(seen, "run"));
+        return out;   // the transaction rolls back: it wrote nothing
+    }
+    std::map<std::string, int64_t> configs;
+    for (const auto& s : file.series) {
+        CAVITY_ASSIGN(const int64_t config, configurationId(db, s.configId, configs));
+        CAVITY_ASSIGN(const auto rows,
+                      db.query("INSERT INTO passes (run_id, configuration_id, pass, device, api, clock, timing_mode, "
+                               "software_renderer) VALUES (?, ?, ?, ?, ?, ?, ?, ?) RETURNING id",
+                               {out.runId, config, s.pass, s.device, textOrNull(s.api), s.clock,
+                                textOrNull(s.timingMode), int64_t(s.softwareRenderer ? 1 : 0)}));
+        CAVITY_ASSIGN(const int64_t passId, firstInt(rows, "pass"));
+        CAVITY_TRY(insertSamples(db, passId, s.samples));
+        ++out.passes;
+        out.samples += s.samples.size();
+    }
+    CAVITY_TRY(t.commit());
+    return out;
+}
+
+}  // namespace cavity::history

@@ -1,0 +1,130 @@
+// The PostgreSQL side of history/database.h, through libpq. Parameters go
+// as text and the server types them from their place in the statement;
+// results come back as text (float8 in its shortest form that reads back
+// exactly, PostgreSQL 12 and later).
+#include "history/database.h"
+
+#include <libpq-fe.h>
+
+#include <cstdlib>
+
+namespace cavity::history {
+
+namespace {
+
+std::string firstLine(const char* text) {
+    std::string s = text ? text : "";
+    if (const auto nl = s.find('\n'); nl != std::string::npos) s.erase(nl);
+    return s;
+}
+
+// `?` placeholders numbered $1, $2, ... outside quoted literals.
+std::string numbered(const std::string& sql) {
+    std::string out;
+    int n = 0;
+    bool quoted = false;
+    for (char c : sql) {
+        if (c == '\'') quoted = !quoted;
+        if (c == '?' && !quoted) {
+            out.push_back('$');
+            out.append(std::to_string(++n));
+        } else {
+            out.push_back(c);
+        }
+    }
+    return out;
+}
+
+class PostgresDatabase final : public Database {
+public:
+    PostgresDatabase(PGconn* conn, std::string where) : conn_(conn), where_(std::move(where)) {}
+    ~PostgresDatabase() override { PQfinish(conn_); }
+
+    Dialect dialect() const override { return Dialect::PostgreSQL; }
+    const std::string& where() const override { return where_; }
+    Status begin() override { return exec("BEGIN", {}); }
+
+    Status exec(const std::string& sql, const std::vector<Param>& params) override {
+        auto rows = run(sql, params);
+        if (!rows) return rows.error();
+        return {};
+    }
+    Result<std::vector<Row>> query(const std::string& sql, const std::vector<Param>& params) override {
+        return run(sql, params);
+    }
+
+private:
+    Result<std::vector<Row>> run(const std::string& sql, const std::vector<Param>& params) {
+        std::vector<std::string> text(params.size());
+        std::vector<const char*> values(params.size(), nullptr);
+        for (size_t i = 0; i < params.size(); ++i) {
+            if (std::holds_alternative<std::monostate>(params[i])) continue;
+            if (const auto* n = std::get_if<int64_t>(&params[i])) text[i] = std::to_string(*n);
+            else if (const auto* d = std::get_if<double>(&params[i])) text[i] = exactText(*d);
+            else text[i] = std::get<std::string>(params[i]);
+            values[i] = text[i].c_str();
+        }
+        PGresult* res = PQexecParams(conn_, numbered(sql).c_str(), int(params.size()), nullptr, values.data(), nullptr,
+                                     nullptr, 0);
+        std::unique_ptr<PGresult, void (*)(PGresult*)> guard(res, PQclear);
+        const auto status = PQresultStatus(res);
+        if (status != PGRES_COMMAND_OK && status != PGRES_TUPLES_OK) {
+            const std::string what = where_ + ": " + firstLine(PQerrorMessage(conn_));
+            // A server that went away mid-way is unavailable, not our bug.
+            if (PQstatus(conn_) == CONNECTION_BAD) return storeUnavailable(what);
+            return internal(what + " in: " + sql.substr(0, 80));
+        }
+        std::vector<Row> rows;
+        for (int r = 0; r < PQntuples(res); ++r) {
+            Row row;
+            for (int c = 0; c < PQnfields(res); ++c)
+                row.push_back(PQgetisnull(res, r, c) ? std::nullopt : std::optional<std::string>(PQgetvalue(res, r, c)));
+            rows.push_back(std::move(row));
+        }
+        return rows;
+    }
+
+    PGconn* conn_;
+    std::string where_;
+};
+
+void quiet(void*, const char*) {}   // NOTICEs ("relation exists, skipping") are not the user's business
+
+}  // namespace
+
+bool isPostgresUrl(const std::string& location) {
+    return location.rfind("postgresql://", 0) == 0 || location.rfind("postgres://", 0) == 0;
+}
+
+std::string redactUrl(const std::string& url) {
+    const auto scheme = url.find("://");
+    const auto at = url.find('@', scheme == std::string::npos ? 0 : scheme + 3);
+    if (scheme == std::string::npos || at == std::string::npos) return url;
+    const auto colon = url.find(':', scheme + 3);
+    if (colon == std::string::npos || colon > at) return url;
+    return url.substr(0, colon + 1) + "***" + url.substr(at);
+}
+
+Result<std::unique_ptr<Database>> openPostgres(const std::string& url) {
+    const std::string where = redactUrl(url);
+    // A server that does not answer fails within 10 s unless the URL or
+    // PGCONNECT_TIMEOUT says otherwise (the URL's own setting wins: it is expanded after).
+    const char* timeout = std::getenv("PGCONNECT_TIMEOUT");
+    const char* keys[] = {"connect_timeout", "dbname", nullptr};
+    const char* values[] = {timeout && *timeout ? timeout : "10", url.c_str(), nullptr};
+    PGconn* conn = PQconnectdbParams(keys, values, 1);
+    if (!conn) return internal(where + ": libpq could not allocate a connection");
+    if (PQstatus(conn) != CONNECTION_OK) {
+        const std::string why = firstLine(PQerrorMessage(conn));
+        PQfinish(conn);
+        // A URL libpq cannot parse is the user's; every other failure (down,
+        // refused, wrong password, no such database) is the server's answer.
+        if (why.find("invalid") != std::string::npos && why.find("URI") != std::string::npos)
+            return badInput("--db " + where + ": " + why);
+        return storeUnavailable("--db " + where + ": cannot connect: " + why);
+    }
+    PQsetNoticeProcessor(conn, quiet, nullptr);
+    return std::unique_ptr<Database>(std::make_unique<PostgresDatabase>(conn, where));
+}
+
+}  // namespace cavity::history

@@ -1,0 +1,53 @@
+// Reading the database back as series over commits: one per (configuration,
+// pass, device, clock), since a wall-clock time and a GPU-timestamp time
+// measure different things and never share a line. A point is one commit:
+// every repetition of every run of that commit pooled, its median and the
+// 95% distribution-free interval of that median.
+#pragma once
+
+#include "history/database.h"
+
+#include <optional>
+#include <regex>
+
+namespace cavity::history {
+
+struct SeriesFilter {
+    std::optional<std::regex> id;   // searched in configuration ids
+    std::string idText;             // as given, for messages
+    std::string pass;               // exact; "" all
+    std::string device;             // a part of the device name; "" all
+    std::string since, until;       // normalized dates, inclusive; "" open
+};
+
+struct Point {
+    std::string commit, date;       // the commit's first run's date
+    std::vector<double> ms;         // every repetition, sorted
+    int runs = 0;
+    double median = 0, lo = 0, hi = 0;   // the median and its 95% interval
+    double min = 0, max = 0;
+    bool intervalCoversLess = false;     // too few repetitions for 95%: lo, hi are min, max
+};
+
+struct Series {
+    std::string configId, pass, device, clock;
+    bool softwareRenderer = false;
+    std::vector<Point> points;   // in date order
+    std::string key() const { return configId + " " + pass + " " + device; }
+};
+
+Result<std::vector<Series>> loadSeries(Database& db, const SeriesFilter& filter);
+
+// --since / --until: a date (normalizeDate's forms) or a commit (4..40 hex
+// digits, a prefix of one run's commit) whose first (since) or last (until)
+// run's date it stands for. Bad input for a date that does not parse, a commit
+// the database has no run of, or a prefix of two commits.
+Result<std::string> resolveBound(Database& db, const std::string& flag, const std::string& value, bool since);
+
+// The 95% interval of a sample's median from order statistics (the
+// binomial(n, 1/2) distribution of how many values lie below it): the
+// narrowest [x_(k), x_(n+1-k)] covering at least 95%. With fewer than 6
+// values none does: [min, max], and `coversLess` is set.
+void medianInterval(const std::vector<double>& sorted, double& lo, double& hi, bool& coversLess);
+
+}  // namespace cavity::history

@@ -1,0 +1,291 @@
+// `cavity history` on SQLite files, as a user runs it: ingest (the same file
+// twice is one run; every bad input one line, exit 2, nothing written),
+// migrations and a database from a newer cavity, show, alerts (a planted
+// step found at its commit) and the chart page. The PostgreSQL side:
+// tests/test_history_postgres.py, against a real server.
+#include "run_binary.h"
+#include "history/database.h"
+#include "history/ingest.h"
+#include "history/schema.h"
+
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include <unistd.h>
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+using ::cavity::test::Outcome;
+namespace history = ::cavity::history;
+
+const std::string kId = "corner/alchemy/n16/b4/full/160x90/gl/compute";
+const std::string kOther = "corner/alchemy/n16/b4/full/160x90/vk/compute";
+
+Outcome cavity(const std::string& args) { return ::cavity::test::runBinary(CAVITY_EXE, args); }
+
+std::string commitOf(int i) {
+    char buf[48];
+    std::snprintf(buf, sizeof buf, "%08x%032x", 0xabc00000u + unsigned(i), unsigned(i * 2654435761u));
+    return buf;
+}
+
+// cavity_bench JSON of commit i: 5 repetitions of two configurations, the
+// AO pass of kId 10% slower from commit `stepAt` on; +-0.5% deterministic noise.
+json benchDoc(int i, int stepAt) {
+    json benchmarks = json::array();
+    for (const auto& id : {kId, kOther})
+        for (int r = 0; r < 5; ++r) {
+            const double wobble = 1 + 0.005 * std::sin(double(i * 7 + r * 3 + (id == kId ? 0 : 11)));
+            const double ao = 0.2 * wobble * (id == kId && i >= stepAt ? 1.10 : 1.0), blur = 0.3 * wobble;
+            benchmarks.push_back({{"name", id + "/iterations:20/manual_time"}, {"run_name", id + "/iterations:20/manual_time"},
+                                  {"run_type", "iteration"}, {"repetitions", 5}, {"repetition_index", r},
+                                  {"real_time", ao + blur}, {"time_unit", "ms"}, {"pass_ao_ms", ao}, {"pass_blur_ms", blur},
+                                  {"sm_mhz_median", 1980.0}, {"mem_mhz_median", 3201.0}, {"label", "clock=gpu-timestamp"}});
+        }
+    char date[40];
+    std::snprintf(date, sizeof date, "2026-11-%02dT12:00:00+00:00", 1 + i);
+    return {{"context", {{"date", date}, {"cavity_device", "gl: NVIDIA H200/PCIe/SSE2; vk: NVIDIA H200"},
+                         {"cavity_driver", "gl: 580; vk: 580"}, {"cavity_api_versions", "gl: 4.5; vk: 1.4"},
+                         {"cavity_software_renderer", "false"}}},
+            {"benchmarks", benchmarks}};
+}
+
+class History : public ::testing::Test {
+protected:
+    void SetUp() override {
+        dir_ = fs::temp_directory_path() / ("cavity-history-" + std::to_string(::getpid()) + "-" +
+                                            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+        fs::remove_all(dir_);
+        fs::create_directories(dir_);
+        db_ = (dir_ / "h.sqlite").string();
+    }
+    void TearDown() override { fs::remove_all(dir_); }
+
+    std::string write(const std::string& name, const std::string& text) {
+        const std::string path = (dir_ / name).string();
+        std::ofstream(path) << text;
+        return path;
+    }
+    std::string bench(int i, int stepAt = 8) { return write("bench_" + std::to_string(i) + ".json", benchDoc(i, stepAt).dump()); }
+    // Commits 0..n-1, one file each.
+    void history(int n, int stepAt = 8) {
+        for (int i = 0; i < n; ++i) {
+            const Outcome o = cavity("history ingest --db " + db_ + " --commit " + commitOf(i) + " " + bench(i, stepAt));
+            ASSERT_EQ(o.code, 0) << o.output;
+        }
+    }
+    long long count(const std::string& table) {
+        auto db = history::openSqlite(db_, false);
+        EXPECT_TRUE(db.ok());
+        if (!db) return -1;
+        auto rows = (*db)->query("SELECT count(*) FROM " + table);
+        return rows.ok() ? std::stoll(*(*rows)[0][0]) : -1;
+    }
+    // Exit 2, one line naming `needle`, and the database as it was.
+    void refused(const std::string& args, const std::string& needle, int code = 2) {
+        const bool existed = fs::exists(db_);
+        const long long before = existed ? count("samples") : 0;
+        const Outcome o = cavity(args);
+        EXPECT_EQ(o.code, code) << args << "\n" << o.output;
+        EXPECT_EQ(std::count(o.output.begin(), o.output.end(), '\n'), 1) << args << "\n" << o.output;
+        EXPECT_NE(o.output.find(needle), std::string::npos) << args << "\n" << o.output;
+        EXPECT_EQ(fs::exists(db_), existed) << args;
+        if (existed) {
+            EXPECT_EQ(count("samples"), before) << args;
+        }
+    }
+
+    fs::path dir_;
+    std::string db_;
+};
+
+TEST_F(History, SameFileTwiceIsOneRun) {
+    const std::string file = bench(0);
+    const std::string args = "history ingest --db " + db_ + " --commit " + commitOf(0) + " " + file;
+    const Outcome first = cavity(args);
+    ASSERT_EQ(first.code, 0) << first.output;
+    EXPECT_NE(first.output.find("6 series, 30 samples"), std::string::npos) << first.output;
+    const Outcome again = cavity(args);
+    ASSERT_EQ(again.code, 0) << again.output;
+    EXPECT_NE(again.output.find("already stored"), std::string::npos) << again.output;
+    EXPECT_EQ(count("runs"), 1);
+    EXPECT_EQ(count("samples"), 30);   // pipeline, ao and blur of two configurations, 5 repetitions each
+    // The same content for another commit is another run.
+    ASSERT_EQ(cavity("history ingest --db " + db_ + " --commit " + commitOf(1) + " " + file).code, 0);
+    EXPECT_EQ(count("runs"), 2);
+    EXPECT_EQ(count("configurations"), 2);
+}
+
+TEST_F(History, StoresClocksDevicesAndMetadata) {
+    ASSERT_EQ(cavity("history ingest --db " + db_ + " --commit ABCDEF12 --parent 1234abcd --branch main --build-type Release "
+                     "--date 2026-11-30T14:00:00+02:00 " + bench(0)).code, 0);
+    auto db = history::openSqlite(db_, false);
+    ASSERT_TRUE(db.ok());
+    auto run = (*db)->query("SELECT commit_sha, parent_sha, branch, run_date, build_type, format FROM runs");
+    ASSERT_TRUE(run.ok());
+    EXPECT_EQ(*(*run)[0][0], "abcdef12");
+    EXPECT_EQ(*(*run)[0][1], "1234abcd");
+    EXPECT_EQ(*(*run)[0][2], "main");
+    EXPECT_EQ(*(*run)[0][3], "2026-11-30T12:00:00Z");
+    EXPECT_EQ(*(*run)[0][4], "Release");
+    EXPECT_EQ(*(*run)[0][5], "google-benchmark");
+    auto pass = (*db)->query("SELECT p.device, p.api, p.clock, s.sm_mhz, s.mem_mhz FROM passes p JOIN samples s ON "
+                             "s.pass_id = p.id JOIN configurations c ON c.id = p.configuration_id WHERE c.config_id = ? "
+                             "AND p.pass = 'ao'", {kOther});
+    ASSERT_TRUE(pass.ok());
+    ASSERT_EQ(pass->size(), 5u);
+    EXPECT_EQ(*(*pass)[0][0], "NVIDIA H200");
+    EXPECT_EQ(*(*pass)[0][1], "vk");
+    EXPECT_EQ(*(*pass)[0][2], "gpu-timestamp");
+    EXPECT_EQ(std::stod(*(*pass)[0][3]), 1980.0);
+    EXPECT_EQ(std::stod(*(*pass)[0][4]), 3201.0);
+}
+
+TEST_F(History, MigratesAnOlderDatabaseAndRefusesANewerOne) {
+    {
+        auto db = history::openSqlite(db_, true);
+        ASSERT_TRUE(db.ok());
+        ASSERT_TRUE(history::migrate(**db, 1).ok());
+        EXPECT_EQ(*history::schemaVersion(**db), 1);
+    }
+    history(1);
+    {
+        auto db = history::openSqlite(db_, false);
+        EXPECT_EQ(*history::schemaVersion(**db), history::kSchemaVersion);
+        auto idx = (*db)->query("SELECT count(*) FROM sqlite_master WHERE type = 'index' AND name = 'passes_series'");
+        EXPECT_EQ(*(*idx)[0][0], "1");
+        ASSERT_TRUE((*db)->exec("UPDATE schema_version SET version = 99").ok());
+    }
+    refused("history show --db " + db_, "schema version 99 is newer than this cavity's (2)");
+    refused("history ingest --db " + db_ + " --commit " + commitOf(5) + " " + bench(5), "schema version 99");
+}
+
+TEST_F(History, AFailureHalfwayLeavesNothing) {
+    auto file = history::readRunFile(bench(0));
+    ASSERT_TRUE(file.ok()) << file.error().message;
+    file->series.push_back(file->series.front());   // the same (configuration, pass, device) twice: refused at its insert
+    auto db = history::openDatabase(db_, true);
+    ASSERT_TRUE(db.ok());
+    auto done = history::ingest(**db, *file, {commitOf(0), "", "", "", ""});
+    EXPECT_FALSE(done.ok());
+    db->reset();
+    EXPECT_EQ(count("runs"), 0);
+    EXPECT_EQ(count("passes"), 0);
+    EXPECT_EQ(count("samples"), 0);
+}
+
+TEST_F(History, BadInputsAreOneLineAndWriteNothing) {
+    const std::string good = bench(0), ingest = "history ingest --db " + db_ + " ";
+    const std::string commit = " --commit " + commitOf(0) + " ";
+    refused(ingest + good, "--commit: missing");
+    refused(ingest + "--commit xyz123 " + good, "--commit xyz123: must be a commit of 4..64 hex digits");
+    refused(ingest + "--commit '' " + good, "--commit");
+    refused(ingest + commit + "--parent 12 " + good, "--parent 12");
+    refused(ingest + commit + "--date yesterday " + good, "--date yesterday: must be an ISO 8601 date");
+    refused(ingest + commit + "--date 2026-02-30 " + good, "--date 2026-02-30");
+    refused(ingest + commit, "no FILE given");
+    refused(ingest + commit + (dir_ / "missing.json").string(), "missing.json: cannot be read (no such file)");
+    refused(ingest + commit + dir_.string(), "is a folder");
+    refused(ingest + commit + write("empty.json", ""), "empty.json: is empty");
+    refused(ingest + commit + write("other.json", "{\"a\": 1}"), "other.json: not a run file");
+    json nan = benchDoc(0, 8);
+    nan["benchmarks"][3]["real_time"] = nullptr;
+    refused(ingest + commit + good + " " + write("nan.json", nan.dump()), "nan.json");
+    refused(ingest + commit + write("broken.json", "{\"benchmarks\": [") , "broken.json: does not parse");
+    refused("history ingest --db " + dir_.string() + commit + good, "is a folder");
+    refused("history ingest --db " + (dir_ / "no/such/folder/h.sqlite").string() + commit + good, "does not exist");
+    refused("history ingest --db ''" + commit + good, "--db");
+    EXPECT_FALSE(fs::exists(db_));
+    refused("history show --db " + db_, "no such database");
+    history(1);
+    refused("history show --db " + db_ + " --id '('", "--id (: not a regular expression");
+    refused("history show --db " + db_ + " --pass nosuch", "matches --pass nosuch");
+    refused("history show --db " + db_ + " --since deadbeef", "--since deadbeef: no run of that commit");
+    refused("history show --db " + db_ + " --until 2026-13-01", "--until 2026-13-01: neither a date");
+    refused("history alerts --db " + db_ + " --alpha nan", "--alpha 'nan': must be a number in (0, 0.5]");
+    refused("history alerts --db " + db_ + " --alpha 0", "--alpha '0'");
+    refused("history alerts --db " + db_ + " --min-change -1", "--min-change '-1'");
+    refused("history chart --db " + db_, "--out: missing");
+    refused("history chart --db " + db_ + " --out " + good, "is a file");
+    refused("history nosuch", "unknown subcommand 'nosuch'");
+    refused("history", "needs a subcommand");
+    refused("history show", "--db: missing");
+    EXPECT_EQ(count("runs"), 1);
+}
+
+TEST_F(History, ShowTablesAndJson) {
+    history(3);
+    const std::string out = (dir_ / "show.json").string();
+    const Outcome o = cavity("history show --db " + db_ + " --id '/gl/' --pass ao --json " + out);
+    ASSERT_EQ(o.code, 0) << o.output;
+    EXPECT_NE(o.output.find(kId + "  ao  NVIDIA H200/PCIe/SSE2  (GPU timestamps, ms)"), std::string::npos) << o.output;
+    std::ifstream f(out);
+    const json j = json::parse(f);
+    ASSERT_EQ(j["series"].size(), 1u);
+    const auto& points = j["series"][0]["points"];
+    ASSERT_EQ(points.size(), 3u);
+    EXPECT_EQ(points[0]["commit"], commitOf(0));
+    EXPECT_EQ(points[0]["n"], 5);
+    EXPECT_NEAR(points[0]["median_ms"].get<double>(), 0.2, 0.002);
+    EXPECT_LE(points[0]["lo_ms"].get<double>(), points[0]["median_ms"].get<double>());
+    // --since and --until by commit and by date.
+    const Outcome since = cavity("history show --db " + db_ + " --id '/gl/' --pass ao --since " + commitOf(1).substr(0, 10) +
+                                 " --until 2026-11-02");
+    ASSERT_EQ(since.code, 0) << since.output;
+    EXPECT_EQ(since.output.find(commitOf(0).substr(0, 12)), std::string::npos) << since.output;
+    EXPECT_NE(since.output.find(commitOf(1).substr(0, 12)), std::string::npos) << since.output;
+    EXPECT_EQ(since.output.find(commitOf(2).substr(0, 12)), std::string::npos) << since.output;
+}
+
+TEST_F(History, AlertsFindThePlantedStep) {
+    history(14, 8);
+    const std::string out = (dir_ / "alerts.json").string();
+    const Outcome o = cavity("history alerts --db " + db_ + " --json " + out + " --bisect");
+    ASSERT_EQ(o.code, 0) << o.output;
+    std::ifstream f(out);
+    const json j = json::parse(f);
+    // The AO pass of kId and, through it, its pipeline: nothing else moved.
+    ASSERT_EQ(j["alerts"].size(), 2u) << j.dump(2);
+    const auto& a = j["alerts"][0];
+    EXPECT_EQ(a["id"], kId);
+    EXPECT_EQ(a["pass"], "ao");
+    EXPECT_EQ(a["device"], "NVIDIA H200/PCIe/SSE2");
+    EXPECT_EQ(a["commit"], commitOf(8));
+    EXPECT_EQ(a["previous_commit"], commitOf(7));
+    EXPECT_EQ(a["direction"], "slower");
+    EXPECT_NEAR(a["change_pct"].get<double>(), 10.0, 1.0);
+    EXPECT_LT(a["p_value"].get<double>(), 0.001);
+    EXPECT_EQ(j["alerts"][1]["pass"], "pipeline");
+    EXPECT_NE(o.output.find("scripts/bisect.sh " + commitOf(7) + " " + commitOf(8) + " --id " + kId + " --pass ao"),
+              std::string::npos) << o.output;
+    // After the step: none; a threshold over the change: none.
+    const Outcome later = cavity("history alerts --db " + db_ + " --since " + commitOf(9));
+    EXPECT_NE(later.output.find("0 change points"), std::string::npos) << later.output;
+    const Outcome big = cavity("history alerts --db " + db_ + " --min-change 15");
+    EXPECT_NE(big.output.find("0 change points"), std::string::npos) << big.output;
+}
+
+TEST_F(History, ChartPageIsSelfContained) {
+    history(10, 6);
+    const Outcome o = cavity("history chart --db " + db_ + " --pass ao --out " + (dir_ / "chart").string());
+    ASSERT_EQ(o.code, 0) << o.output;
+    std::ifstream f(dir_ / "chart" / "index.html");
+    const std::string page((std::istreambuf_iterator<char>(f)), {});
+    EXPECT_NE(page.find("Chart.js v3"), std::string::npos) << "Chart.js inlined";
+    EXPECT_EQ(page.find("<script src"), std::string::npos) << "nothing fetched";
+    EXPECT_NE(page.find("GPU timestamps, ms"), std::string::npos);
+    EXPECT_NE(page.find(commitOf(6)), std::string::npos);
+    EXPECT_NE(page.find("\"change_points\":[{"), std::string::npos) << "the step is marked";
+    EXPECT_TRUE(o.output.find("index.png") != std::string::npos || o.output.find("chromium is not installed") != std::string::npos)
+        << o.output;
+}
+
+}  // namespace
