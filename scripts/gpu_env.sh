@@ -2,13 +2,17 @@
 # from the repository root with .gl and .bundle carried: unpacks the GL and
 # Vulkan loaders, points them at the NVIDIA driver where the image does not,
 # and sets OUT (the folder that comes back).
-for f in .gl/*.deb; do dpkg -x "$f" /; done
-ldconfig
-if ! ls /usr/share/vulkan/icd.d/*nvidia* >/dev/null 2>&1 && ! ls /etc/vulkan/icd.d/*nvidia* >/dev/null 2>&1; then
-  export VK_DRIVER_FILES=/usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json
-fi
-if ! ls /usr/share/glvnd/egl_vendor.d/*nvidia* >/dev/null 2>&1; then
-  export __EGL_VENDOR_LIBRARY_FILENAMES=/usr/local/nvidia/share/glvnd/egl_vendor.d/10_nvidia.json
+# Only there: on a machine without the NVIDIA driver (a dry run of a
+# script on a CPU renderer) the system's own loaders stay as they are.
+if command -v nvidia-smi >/dev/null 2>&1; then
+  for f in .gl/*.deb; do dpkg -x "$f" /; done
+  ldconfig
+  if ! ls /usr/share/vulkan/icd.d/*nvidia* >/dev/null 2>&1 && ! ls /etc/vulkan/icd.d/*nvidia* >/dev/null 2>&1; then
+    export VK_DRIVER_FILES=/usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json
+  fi
+  if ! ls /usr/share/glvnd/egl_vendor.d/*nvidia* >/dev/null 2>&1; then
+    export __EGL_VENDOR_LIBRARY_FILENAMES=/usr/local/nvidia/share/glvnd/egl_vendor.d/10_nvidia.json
+  fi
 fi
 OUT="${OUT:-/tmp/out}"
 mkdir -p "$OUT"
@@ -16,6 +20,7 @@ export OUT
 # Never change the clocks; record them. One row every 200 ms while $1 runs:
 #   smi_start FILE; ...; smi_stop
 smi_start() {
+  command -v nvidia-smi >/dev/null 2>&1 || { echo "no nvidia-smi here" > "$1"; SMI_PID=; return 0; }
   nvidia-smi --query-gpu=timestamp,clocks.sm,clocks.mem,power.draw,temperature.gpu,clocks_event_reasons.active \
     --format=csv -lms 200 > "$1" 2>&1 &
   SMI_PID=$!
