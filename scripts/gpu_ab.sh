@@ -24,7 +24,7 @@ ab() {   # name, B binary
   t0=$(date +%s.%N)
   smi_start "$OUT/$name.clocks.csv"
   .bundle/cavity.sh ab --a .bundle/cavity_bench --b "$b" --rounds "$rounds" --filter "$filter" \
-    --bench-args "--sweep gpu --max-time $maxt" --out "$OUT/$name" > "$OUT/$name.txt" 2> "$OUT/$name.err"
+    --bench-args="--sweep gpu --max-time $maxt" --out "$OUT/$name" > "$OUT/$name.txt" 2> "$OUT/$name.err"
   local rc=$?
   smi_stop
   echo "== $name: exit $rc, $(python3 -c "import time; print(round(time.time() - $t0, 1))") s"

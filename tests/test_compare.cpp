@@ -325,6 +325,28 @@ TEST(CompareVerdict, DetectableChangeIsTheIntervalOrTheTimersStep) {
     EXPECT_DOUBLE_EQ(same.thresholdPct, cavity::compare::kAutoFloorPct);
 }
 
+// Samples so few that the U test cannot reach alpha give no verdict, however
+// far apart: 3 against 3 reach p = 2 / C(6, 3) = 0.1 at best, and would
+// otherwise read "same" for any change. 4 against 4: 2 / 70.
+TEST(CompareVerdict, TooFewToReachAlphaIsInconclusive) {
+    using cavity::compare::smallestAttainableP;
+    EXPECT_DOUBLE_EQ(smallestAttainableP(3, 3), 0.1);
+    EXPECT_DOUBLE_EQ(smallestAttainableP(4, 4), 2.0 / 70.0);
+    EXPECT_DOUBLE_EQ(smallestAttainableP(3, 5), 2.0 / 56.0);
+    EXPECT_DOUBLE_EQ(smallestAttainableP(10, 10), 2.0 / 184756.0);
+    cavity::compare::SampleSet a, b;
+    for (double v : {1.0, 1.01, 1.02}) a.add(v, "gpu-timestamp");
+    for (double v : {2.0, 2.01, 2.02}) b.add(v, "gpu-timestamp");   // +100%
+    const cavity::compare::CompareThresholds t;
+    const auto r = cavity::compare::compareSeries("x", "ao", &a, &b, t);
+    EXPECT_EQ(r.verdict, "inconclusive");
+    EXPECT_EQ(r.reason, "too few samples");
+    EXPECT_NE(r.next.find("at least 4"), std::string::npos) << r.next;
+    b.add(2.03, "gpu-timestamp");
+    a.add(1.03, "gpu-timestamp");
+    EXPECT_EQ(cavity::compare::compareSeries("x", "ao", &a, &b, t).verdict, "slower");
+}
+
 // The SM clock moved between the runs: the change is judged in cycles (time x
 // clock) too, and a verdict stands only where both agree. By hand: 1.0 ms at
 // 2000 MHz is 2000 thousand cycles, 1.1 ms at 1800 MHz 1980: +10% in time,

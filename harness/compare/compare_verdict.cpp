@@ -78,6 +78,13 @@ CompareRow& inconclusive(CompareRow& r, std::string reason, std::string next) {
 
 }  // namespace
 
+double smallestAttainableP(size_t n, size_t m) {
+    // C(n + m, n) built up as a double: exact well past any repetition count used here.
+    double ways = 1;
+    for (size_t k = 1; k <= std::min(n, m); ++k) ways = ways * double(std::max(n, m) + k) / double(k);
+    return std::min(1.0, 2.0 / ways);
+}
+
 double smallestStep(const std::vector<double>& a, const std::vector<double>& b) {
     std::vector<double> v(a);
     v.insert(v.end(), b.begin(), b.end());
@@ -114,8 +121,17 @@ CompareRow compareSeries(const std::string& id, const std::string& pass, const S
     const std::string oneClock = "time both runs on one clock (docs/timing.md), or run them interleaved";
     if (before->mixedClocks || after->mixedClocks) return inconclusive(r, "mixed clocks", oneClock);
     if (before->clock != after->clock) return inconclusive(r, "clocks differ", oneClock);
-    if (r.nOld < kMinSamples || r.nNew < kMinSamples)
-        return inconclusive(r, "too few samples", "measure at least " + std::to_string(kMinSamples) + " repetitions a side");
+    // Samples so few that even two wholly apart cannot reach alpha would read
+    // "same" for any change: no verdict (3 against 3 reach only p = 0.1).
+    if (r.nOld < kMinSamples || r.nNew < kMinSamples || smallestAttainableP(r.nOld, r.nNew) >= t.alpha) {
+        size_t n = kMinSamples;
+        while (smallestAttainableP(n, n) >= t.alpha) ++n;
+        char alpha[32];
+        std::snprintf(alpha, sizeof alpha, "%g", t.alpha);
+        return inconclusive(r, "too few samples",
+                            "measure at least " + std::to_string(n) + " repetitions a side (fewer cannot reach p < " +
+                                alpha + ")");
+    }
 
     const auto u = stats::mannWhitneyU(before->ms, after->ms);
     const auto hl = stats::hodgesLehmann(before->ms, after->ms, t.alpha);

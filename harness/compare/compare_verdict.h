@@ -36,6 +36,11 @@ constexpr double kAutoFloorPct = 0.5;
 // smallest two-sided p the U test can give is 1/3.
 constexpr size_t kMinSamples = 3;
 
+// The smallest two-sided p the exact U test can give n against m samples
+// (the two samples wholly apart, no ties): 2 / C(n + m, n). 3 against 3 give
+// 0.1, 4 against 4 0.029: below alpha, a change can be called at all.
+double smallestAttainableP(size_t n, size_t m);
+
 struct CompareRow {
     std::string id, pass;
     // slower, faster, same, inconclusive, new, gone
