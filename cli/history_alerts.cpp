@@ -6,6 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <iostream>
 
@@ -28,8 +29,9 @@ const CommandSpec& alertsSpec() {
         for (auto& f : historyDetectorFlags()) s.flags.push_back(f);
         s.flags.push_back({"--json", "FILE", "also write the alerts as JSON (cavity.history.alerts/1)"});
         s.flags.push_back({"--bisect", "", "print the scripts/bisect.sh command of each slowdown's commit range"});
+        s.flags.push_back({"--fail-on-slower", "", "exit 1 when any change point is a slowdown (a CI job's gate)"});
         s.footer = "\n--since keeps the change points from that date or commit on; the series before it are still "
-                   "read to find them.\nExit codes: 0 listed (alerts or none), 2 bad input (a flag, no such database, a "
+                   "read to find them.\nExit codes: 0 listed (alerts or none), 1 a slowdown with --fail-on-slower, 2 bad input (a flag, no such database, a "
                    "filter that matches nothing, a database from a newer cavity), 5 the database server cannot be "
                    "reached or refuses the connection.";
         s.examples = {"cavity history alerts --db history.sqlite --since 4415bc7 --json alerts.json",
@@ -99,7 +101,8 @@ int historyAlerts(const std::vector<std::string>& argv) {
         const Status w = writeFileAtomically(path, doc.dump(2) + "\n");
         if (!w) return fail(spec.program, w.error());
     }
-    return 0;
+    const bool anySlower = std::any_of(alerts.begin(), alerts.end(), [](const auto& a) { return a.slower(); });
+    return parsed->has("--fail-on-slower") && anySlower ? 1 : 0;
 }
 
 }  // namespace cavity::cli

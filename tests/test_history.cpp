@@ -271,6 +271,9 @@ TEST_F(History, AlertsFindThePlantedStep) {
     EXPECT_NE(later.output.find("0 change points"), std::string::npos) << later.output;
     const Outcome big = cavity("history alerts --db " + db_ + " --min-change 15");
     EXPECT_NE(big.output.find("0 change points"), std::string::npos) << big.output;
+    // A CI job's gate: exit 1 on the slowdown, 0 where none is left.
+    EXPECT_EQ(cavity("history alerts --db " + db_ + " --fail-on-slower").code, 1);
+    EXPECT_EQ(cavity("history alerts --db " + db_ + " --since " + commitOf(9) + " --fail-on-slower").code, 0);
 }
 
 TEST_F(History, ChartPageIsSelfContained) {
