@@ -161,11 +161,17 @@ Result<gpu::ShaderSource> assemble(const KernelDecl& k, gpu::Stage stage,
     std::ostringstream p;
     p << "#version 450\n";
     p << (stage == gpu::Stage::Compute ? "#define CAVITY_STAGE_COMPUTE 1\n" : "#define CAVITY_STAGE_FRAGMENT 1\n");
+    // The precision contract (include/common.glsl): `precise` on the values
+    // that feed discrete decisions, unless the kernel declares `exact` and
+    // is run with it 0.
+    bool exact = true;
     if (values) {
         const ParamValues all = withDefaults(k, *values);
         for (const auto& name : k.compileTime)
             if (all.count(name)) p << "#define CAVITY_CONST_" << name << " " << intValue(all, name) << "\n";
+        exact = !all.count("exact") || intValue(all, "exact") != 0;
     }
+    p << (exact ? "#define EXACT precise\n" : "#define EXACT\n#define CAVITY_INEXACT 1\n");
     p << "layout(std140, binding = " << kFrameBinding << ") uniform Frame {\n"
          "    mat4 proj;\n    mat4 invProj;\n    vec4 camera;\n"
          "    ivec2 size;\n    ivec2 srcSize;\n    vec2 invSize;\n    int level;\n    int pad_;\n} frame;\n";

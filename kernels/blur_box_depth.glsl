@@ -32,7 +32,7 @@ void cavity_main(ivec2 pixel) {
     }
     nrm = portableNormalize(nrm);
     vec3 p = viewFromDepth(pixel, depth);
-    precise float tolerance = 0.1 * P.radius;
+    EXACT float tolerance = 0.1 * P.radius;
     // The same window as blur_box.glsl: it slides inwards at the border.
     ivec2 start = clamp(pixel - 2, ivec2(0), max(size - 4, ivec2(0)));
     float sum = 0.0, count = 0.0;
@@ -43,10 +43,10 @@ void cavity_main(ivec2 pixel) {
             vec3 nt = texelFetch(in_normal, t, 0).xyz;
             if (dt >= 1.0 || lengthSquared(nt) == 0.0) continue;
             nt = portableNormalize(nt);
-            precise vec3 q = viewFromDepth(t, dt);
-            precise vec3 qp = q - p;
-            precise float fromCentre = abs(orderedDot(nrm, qp));
-            precise float fromTap = abs(orderedDot(nt, qp));
+            EXACT vec3 q = viewFromDepth(t, dt);
+            EXACT vec3 qp = q - p;
+            EXACT float fromCentre = abs(orderedDot(nrm, qp));
+            EXACT float fromTap = abs(orderedDot(nt, qp));
             if (max(fromCentre, fromTap) > tolerance) continue;
             sum += texelFetch(in_ao, t, 0).r;
             count += 1.0;

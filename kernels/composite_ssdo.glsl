@@ -33,7 +33,7 @@ void cavity_main(ivec2 pixel) {
         }
     }
     if (P.dither != 0) {
-        precise float offset = (ign(vec2(pixel) + 0.5) - 0.5) * 0.003921569;
+        EXACT float offset = (ign(vec2(pixel) + 0.5) - 0.5) * 0.003921569;
         color += vec3(offset);
     }
     write_color(pixel, vec4(clamp(color, 0.0, 1.0), 1.0));

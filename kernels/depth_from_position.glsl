@@ -11,8 +11,8 @@ void cavity_main(ivec2 pixel) {
     if (!isBackground(p.w)) {
         // clip.w = -z > 0 in front of the camera. Exact ops, so the depth the
         // hemisphere reference is given matches this one bit for bit.
-        precise vec4 clip = mulPoint(frame.proj, p.xyz, 1.0);
-        precise float d = clip.z * portableReciprocal(clip.w);
+        EXACT vec4 clip = mulPoint(frame.proj, p.xyz, 1.0);
+        EXACT float d = clip.z * portableReciprocal(clip.w);
         depth = d;
     }
     write_depth(pixel, vec4(depth, 0.0, 0.0, 0.0));

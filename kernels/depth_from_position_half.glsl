@@ -26,18 +26,18 @@ void cavity_main(ivec2 pixel) {
     vec3 n = texelFetch(in_normal, pixel, 0).xyz;
     float depth = 1.0;
     if (!isBackground(p.w)) {
-        precise vec3 surface = p.xyz;
-        precise vec2 ndc = (vec2(pixel) + 0.5) * frame.invSize * 2.0 - 1.0;
-        precise vec3 ray = vec3(ndc.x * frame.camera.x, -ndc.y * frame.camera.y, -1.0);
-        precise float facing = orderedDot(n, ray);
+        EXACT vec3 surface = p.xyz;
+        EXACT vec2 ndc = (vec2(pixel) + 0.5) * frame.invSize * 2.0 - 1.0;
+        EXACT vec3 ray = vec3(ndc.x * frame.camera.x, -ndc.y * frame.camera.y, -1.0);
+        EXACT float facing = orderedDot(n, ray);
         if (lengthSquared(n) > 0.0 && facing < 0.0) {
             // ray.z = -1, so t is the linear depth of the hit.
-            precise float t = orderedDot(n, p.xyz) * portableReciprocal(facing);
-            precise float moved = abs(t + p.z);
+            EXACT float t = orderedDot(n, p.xyz) * portableReciprocal(facing);
+            EXACT float moved = abs(t + p.z);
             if (t > 0.0 && moved <= 0.05 * -p.z) surface = ray * t;
         }
-        precise vec4 clip = mulPoint(frame.proj, surface, 1.0);
-        precise float d = clip.z * portableReciprocal(clip.w);
+        EXACT vec4 clip = mulPoint(frame.proj, surface, 1.0);
+        EXACT float d = clip.z * portableReciprocal(clip.w);
         depth = d;
     }
     write_depth(pixel, vec4(depth, 0.0, 0.0, 0.0));

@@ -49,7 +49,7 @@ float sdfAmbientOcclusion(ivec2 pixel, SdfSurface s) {
     int open = 0;
     for (int i = 0; i < n; ++i) {
         float u = (float(i) + 0.5) / float(n);
-        precise float turns = float(i) * 0.618034 + rotation;   // unfused, as on the CPU
+        EXACT float turns = float(i) * 0.618034 + rotation;   // unfused, as on the CPU
         vec2 cs = cosSinTurns(turns);
         float r = sqrt(u);
         vec3 dir = t * (r * cs.x) + b * (r * cs.y) + s.normal * sqrt(max(0.0, 1.0 - u));

@@ -169,7 +169,9 @@ std::vector<std::byte> packParams(const KernelDecl& k, const ParamValues& values
 
 // The full translation unit for one stage: preamble + includes + body + entry.
 // `overrides` maps a kernel file name to replacement text (planted-bug tests).
-// With `values`, the kernel's compileTime parameters are also #defined.
+// With `values`, the kernel's compileTime parameters are also #defined, and a
+// kernel that declares `exact` run with it 0 gets EXACT defined empty and
+// CAVITY_INEXACT (include/common.glsl); otherwise EXACT is `precise`.
 // `plantedFmas` > 0 plants a slowdown (the timing-verdict check,
 // scripts/gpu_verdict.sh): that many dependent FMAs per pixel after the body,
 // whose result is never written, so the images stay bit-identical.

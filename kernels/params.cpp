@@ -105,6 +105,12 @@ std::vector<ParamDecl> declare() {
              "distance of a half texel from the pixel's tangent plane, relative to depth, at which its "
              "weight falls to exp(-1/2)",
              true),
+        // The precision contract (include/common.glsl, docs/kernels.md): the
+        // CPU reference bit for bit, or the hardware's own arithmetic and a
+        // stated tolerance.
+        flag("exact", true,
+             "the fast kernels' CPU-exact arithmetic (precise, portable division and sine); 0: the GPU's own, "
+             "faster, held to a stated tolerance of the CPU reference"),
         // The depth pyramid of the fast kernels: one dispatch (depth_pyramid_single)
         // or one per level, a barrier apart (depth_pyramid): the same levels.
         flag("pyramid_per_level", false,

@@ -176,6 +176,7 @@ KernelDecl alchemyFast() {
     // pixel's phase once computed, where evaluating cos and sin per sample
     // was a sixth of the pass on the H200 (bench/ROOFLINE.md). Whatever the
     // table's last bits, the shader and the CPU reference read the same ones.
+    k.params.push_back(use("exact"));
     k.arrays = {{"spiral", 256}};
     k.derive = [](const ParamValues&, std::map<std::string, std::vector<float>>& arrays) {
         std::vector<float> table(256 * 4, 0.0f);
@@ -208,6 +209,7 @@ KernelDecl hemisphereFast() {
         use("range_check"),
         use("step_jitter"),
         use("steps", 4, "points along each ray; at a given n more steps mean fewer rays"),
+        use("exact"),
     };
     for (auto& p : k.params)
         if (p.name() == "step_jitter") p.def = 1;

@@ -15,7 +15,7 @@ float sdfAmbientOcclusion(ivec2 pixel, SdfSurface s) {
     for (int i = 1; i <= n; ++i) {
         // precise: no fused multiply-add, so the CPU gets the same j
         // (fract() would turn an ulp at a wrap into a whole probe step).
-        precise float turn = u + float(i) * 0.618034;
+        EXACT float turn = u + float(i) * 0.618034;
         float j = fract(turn);
         float l = (float(i) + j) * P.radius / float(n);
         occ += (l - sceneMap(s.position + s.normal * l)) / (1.0 + l);

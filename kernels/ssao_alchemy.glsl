@@ -39,7 +39,7 @@ void cavity_main(ivec2 pixel) {
         vec4 Pi = texelFetch(in_position, s, 0);
         if (isBackground(Pi.w)) continue;
 
-        precise vec3 omega = Pi.xyz - X;
+        EXACT vec3 omega = Pi.xyz - X;
         float omega2 = lengthSquared(omega);
         // H = step(0, R - |w|), compared squared: no sqrt, so the test
         // cannot come out differently on the CPU at |w| = R.

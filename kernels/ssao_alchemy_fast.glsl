@@ -29,9 +29,9 @@
 // of the phase once per pixel instead of once per sample.
 ivec2 spiralSampleTurned(int i, vec2 phase, float discScale, vec2 fragCentre, out float h) {
     vec2 d = P.spiral[i].xy;
-    precise vec2 dirCS = vec2(d.x * phase.x - d.y * phase.y, d.x * phase.y + d.y * phase.x);
-    precise float radius = (float(i) + 0.5) * discScale;
-    precise vec2 samplePos = fragCentre + dirCS * radius;
+    EXACT vec2 dirCS = vec2(d.x * phase.x - d.y * phase.y, d.x * phase.y + d.y * phase.x);
+    EXACT float radius = (float(i) + 0.5) * discScale;
+    EXACT vec2 samplePos = fragCentre + dirCS * radius;
     h = radius;
     return ivec2(floor(samplePos));
 }
@@ -66,7 +66,7 @@ void cavity_main(ivec2 pixel) {
         float zs = texelFetch(in_zmip, t, level).r;
         if (isBackground(zs)) continue;
 
-        precise vec3 omega = positionAt(sourcePixel(t, level), zs) - X;
+        EXACT vec3 omega = positionAt(sourcePixel(t, level), zs) - X;
         float omega2 = lengthSquared(omega);
         if (omega2 > R * R) continue;
         S += weight * max(0.0, dot(N, omega) - P.bias) / max(c * c, omega2);

@@ -28,7 +28,7 @@ void cavity_main(ivec2 pixel) {
         // kernel orientation nearly unique, hiding the 4-pixel grid (seed
         // 004, "IGN jitter"). cosSinTurns: GLSL's cos/sin are too loose.
         vec2 cs = cosSinTurns(ign(vec2(pixel) + 0.5));
-        precise vec2 rotated = vec2(r.x * cs.x - r.y * cs.y, r.x * cs.y + r.y * cs.x);
+        EXACT vec2 rotated = vec2(r.x * cs.x - r.y * cs.y, r.x * cs.y + r.y * cs.x);
         r = rotated;
     }
     // The noise vector, Gram-Schmidt against N: a random tangent (seed 004, step 4).
@@ -52,10 +52,10 @@ void cavity_main(ivec2 pixel) {
     int inGroup = 0;
     for (int i = 0; i < n; ++i) {
         vec4 k = P.kernel[i];
-        precise float lengthScale = P.radius;
+        EXACT float lengthScale = P.radius;
         if (P.step_jitter != 0)
             lengthScale = P.radius * (1.0 - sampleHash(pixel, int(directions)) * portableReciprocal(float(inGroup + 1)));
-        precise vec3 s = p + (t * k.x + b * k.y + nrm * k.z) * lengthScale;
+        EXACT vec3 s = p + (t * k.x + b * k.y + nrm * k.z) * lengthScale;
         float hit = 0.0;
         ivec2 texel;
         // A sample behind the camera plane has no depth to test against.
@@ -83,18 +83,18 @@ void cavity_main(ivec2 pixel) {
             // only where the sample's ray and the texel's centre ray part
             // across an edge, a convex one most of all. Not an occluder.
             vec3 nq = texelFetch(in_normal, texel, 0).xyz;
-            precise vec3 rise = q - p;
+            EXACT vec3 rise = q - p;
             bool occluded = false;
             if (orderedDot(nrm, rise) <= 0.0) {
                 occluded = false;
             } else if (lengthSquared(nq) > 0.0 && orderedDot(nq, q) < 0.0) {
                 nq = portableNormalize(nq);
-                precise vec3 rel = s - q;
+                EXACT vec3 rel = s - q;
                 occluded = orderedDot(nq, rel) < -P.bias;
             } else {
                 // View z grows towards the camera: the stored surface hides
                 // the sample when its z is larger, by at least `bias`.
-                precise float threshold = s.z + P.bias;
+                EXACT float threshold = s.z + P.bias;
                 occluded = q.z >= threshold;
             }
             // Range check (seed 004): a surface much further than R in depth

@@ -47,7 +47,7 @@
 // lengthScale) is occluded: 0 or 1, or the range check's fade.
 float occludedBy(PyramidView v, vec3 X, vec3 N, float level, float d, vec3 k, vec3 tn, vec3 b, float lengthScale,
                  ivec2 pixel) {
-    precise vec3 s = X + (tn * k.x + b * k.y + N * k.z) * lengthScale;
+    EXACT vec3 s = X + (tn * k.x + b * k.y + N * k.z) * lengthScale;
     ivec2 source;
     float zq;
     if (!pyramidBlocks(v, N, level, s, pixel, P.bias, source, zq)) return 0.0;
@@ -85,7 +85,7 @@ void cavity_main(ivec2 pixel) {
         vec4 k = P.kernel[i];
         if (inGroup == 0 && P.step_jitter != 0) u = sampleHash(pixel, int(directions));
         if (blocked < 1.0) {
-            precise float lengthScale = R;
+            EXACT float lengthScale = R;
             if (P.step_jitter != 0) lengthScale = R * (1.0 - u * portableReciprocal(float(inGroup + 1)));
             blocked = max(blocked, occludedBy(view, X, N, level, d, k.xyz, tn, b, lengthScale, pixel));
         }

@@ -9,8 +9,8 @@
 // portableReciprocal keeps discScale identical on CPU and GPU, because
 // floor() turns any difference into a different sample pixel.
 float spiralDiscScale(float R, int n, float d) {
-    precise float focal = 0.5 * float(frame.size.y) * portableReciprocal(frame.camera.y);
-    precise float discScale = R * focal * portableReciprocal(float(n) * d);
+    EXACT float focal = 0.5 * float(frame.size.y) * portableReciprocal(frame.camera.y);
+    EXACT float discScale = R * focal * portableReciprocal(float(n) * d);
     return discScale;
 }
 
@@ -21,10 +21,10 @@ float spiralDiscScale(float R, int n, float d) {
 // alpha = (i + 0.5) / n the angle in turns is (i + 0.5) 7/9 + u, whatever n
 // is: 7/9 of a turn per sample spreads successive samples evenly round the disc.
 ivec2 spiralSample(int i, float u, float discScale, vec2 fragCentre, out float h) {
-    precise float turns = (float(i) + 0.5) * 0.7777778 + u;
+    EXACT float turns = (float(i) + 0.5) * 0.7777778 + u;
     vec2 dirCS = cosSinTurns(turns);
-    precise float radius = (float(i) + 0.5) * discScale;
-    precise vec2 samplePos = fragCentre + dirCS * radius;
+    EXACT float radius = (float(i) + 0.5) * discScale;
+    EXACT vec2 samplePos = fragCentre + dirCS * radius;
     h = radius;
     return ivec2(floor(samplePos));
 }

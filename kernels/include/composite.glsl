@@ -29,7 +29,7 @@ vec4 compositeColor(ivec2 pixel, vec4 albedo, vec3 N, float ao) {
     // band visibly between them; +-half a level of IGN dither turns the
     // bands into noise too fine to see (the hemisphere SSAO lesson (docs/kernels.md)).
     if (P.dither != 0) {
-        precise float offset = (ign(vec2(pixel) + 0.5) - 0.5) * 0.003921569;   // 1/255
+        EXACT float offset = (ign(vec2(pixel) + 0.5) - 0.5) * 0.003921569;   // 1/255
         color += vec3(offset);
     }
     return vec4(clamp(color, 0.0, 1.0), 1.0);

@@ -29,7 +29,7 @@ float pixelHash(ivec2 pixel) {
 // well spread over any small block, so a +-half-step dither built from it
 // breaks up 8-bit bands without looking like grain. `p` is a pixel centre.
 float ign(vec2 p) {
-    precise float inner = 0.06711056 * p.x + 0.00583715 * p.y;
-    precise float outer = 52.982918 * (inner - floor(inner));
+    EXACT float inner = 0.06711056 * p.x + 0.00583715 * p.y;
+    EXACT float outer = 52.982918 * (inner - floor(inner));
     return outer - floor(outer);
 }

@@ -9,8 +9,8 @@ const int LOG_MAX_OFFSET = 3;
 // viewRayAt(pixel) * depth with each operation rounded as the CPU's is: the
 // rebuilt positions feed discrete decisions (a radius or a depth test).
 vec3 positionAt(ivec2 pixel, float depth) {
-    precise vec2 ndc = (vec2(pixel) + 0.5) * frame.invSize * 2.0 - 1.0;
-    precise vec3 p = vec3(ndc.x * frame.camera.x * depth, -ndc.y * frame.camera.y * depth, -depth);
+    EXACT vec2 ndc = (vec2(pixel) + 0.5) * frame.invSize * 2.0 - 1.0;
+    EXACT vec3 p = vec3(ndc.x * frame.camera.x * depth, -ndc.y * frame.camera.y * depth, -depth);
     return p;
 }
 
@@ -58,7 +58,7 @@ struct PyramidView {
 };
 
 PyramidView pyramidView() {
-    precise vec2 toPixel = vec2(0.5, -0.5) * vec2(frame.size) *
+    EXACT vec2 toPixel = vec2(0.5, -0.5) * vec2(frame.size) *
                            vec2(portableReciprocal(frame.camera.x), portableReciprocal(frame.camera.y));
     return PyramidView(toPixel, 0.5 * vec2(frame.size), textureQueryLevels(in_zmip) - 1);
 }
@@ -72,7 +72,7 @@ bool pyramidLookup(PyramidView v, vec3 s, ivec2 pixel, out ivec2 source, out flo
     source = ivec2(-1);
     zq = 0.0;
     if (s.z >= 0.0) return false;
-    precise vec2 sp = s.xy * portableReciprocal(-s.z) * v.toPixel + v.centre;
+    EXACT vec2 sp = s.xy * portableReciprocal(-s.z) * v.toPixel + v.centre;
     ivec2 texel = ivec2(floor(clamp(sp, vec2(-1.0), vec2(frame.size))));
     if (any(lessThan(texel, ivec2(0))) || any(greaterThanEqual(texel, frame.size))) return false;
     ivec2 away = abs(texel - pixel);
@@ -106,11 +106,11 @@ bool pyramidBlocks(PyramidView v, vec3 N, float receiverLevel, vec3 s, ivec2 pix
                    out float zq) {
     if (!pyramidLookup(v, s, pixel, source, zq)) return false;
     float along = orderedDot(N, positionAt(source, 1.0));
-    precise float height = zq * along;
-    precise float rise = height - orderedDot(N, s);
+    EXACT float height = zq * along;
+    EXACT float rise = height - orderedDot(N, s);
     if (along < 0.0 && rise > bias) return true;
-    precise float threshold = zq + bias;
+    EXACT float threshold = zq + bias;
     if (threshold >= -s.z) return false;
-    precise float lift = height - receiverLevel;
+    EXACT float lift = height - receiverLevel;
     return along >= 0.0 || lift > bias;
 }

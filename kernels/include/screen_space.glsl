@@ -13,14 +13,14 @@
 
 // a.b with the additions in a fixed order (dot() leaves the order open).
 float orderedDot(vec3 a, vec3 b) {
-    precise float r = a.x * b.x + a.y * b.y + a.z * b.z;
+    EXACT float r = a.x * b.x + a.y * b.y + a.z * b.z;
     return r;
 }
 
 // a x b, each component's products rounded before the difference (cross()
 // is an extended instruction, which `precise` is not sure to reach).
 vec3 orderedCross(vec3 a, vec3 b) {
-    precise vec3 r = vec3(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x);
+    EXACT vec3 r = vec3(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x);
     return r;
 }
 
@@ -28,17 +28,21 @@ vec3 orderedCross(vec3 a, vec3 b) {
 // may be 2 ulp off): an exponent-bit estimate (error under 3.5%) and four
 // Newton steps y' = y (1.5 - x/2 y^2), which converge to rounding.
 float portableInverseSqrt(float x) {
-    precise float h = 0.5 * x;
-    precise float y = intBitsToFloat(0x5F375A86 - (floatBitsToInt(x) >> 1));
+#ifdef CAVITY_INEXACT
+    return inversesqrt(x);
+#else
+    EXACT float h = 0.5 * x;
+    EXACT float y = intBitsToFloat(0x5F375A86 - (floatBitsToInt(x) >> 1));
     y = y * (1.5 - h * y * y);
     y = y * (1.5 - h * y * y);
     y = y * (1.5 - h * y * y);
     y = y * (1.5 - h * y * y);
     return y;
+#endif
 }
 
 vec3 portableNormalize(vec3 v) {
-    precise vec3 r = v * portableInverseSqrt(lengthSquared(v));
+    EXACT vec3 r = v * portableInverseSqrt(lengthSquared(v));
     return r;
 }
 
@@ -50,7 +54,7 @@ vec3 portableNormalize(vec3 v) {
 // perpendicular of r in xy is then a tangent instead.
 void tangentFrame(vec2 r, vec3 n, out vec3 t, out vec3 b) {
     vec3 rv = vec3(r, 0.0);
-    precise vec3 g = rv - n * orderedDot(rv, n);
+    EXACT vec3 g = rv - n * orderedDot(rv, n);
     if (lengthSquared(g) < 1e-6) {
         rv = vec3(-r.y, r.x, 0.0);
         g = rv - n * orderedDot(rv, n);
@@ -60,7 +64,7 @@ void tangentFrame(vec2 r, vec3 n, out vec3 t, out vec3 b) {
 }
 
 vec4 mulPoint(mat4 m, vec3 v, float w) {
-    precise vec4 r = m[0] * v.x + m[1] * v.y + m[2] * v.z + m[3] * w;
+    EXACT vec4 r = m[0] * v.x + m[1] * v.y + m[2] * v.z + m[3] * w;
     return r;
 }
 
@@ -70,10 +74,10 @@ vec4 mulPoint(mat4 m, vec3 v, float w) {
 // already sends +Y up to NDC y = -1 = row 0, so unlike the seed's
 // D3D-style code there is no flip of y: row 0 maps straight to NDC y = -1.
 vec3 viewFromDepth(ivec2 texel, float depth) {
-    precise vec2 ndc = (vec2(texel) + 0.5) * frame.invSize * 2.0 - 1.0;
-    precise vec4 v = mulPoint(frame.invProj, vec3(ndc, depth), 1.0);
+    EXACT vec2 ndc = (vec2(texel) + 0.5) * frame.invSize * 2.0 - 1.0;
+    EXACT vec4 v = mulPoint(frame.invProj, vec3(ndc, depth), 1.0);
     // v.w = -1 / z_view > 0 for every point in front of the camera.
-    precise vec3 p = v.xyz * portableReciprocal(v.w);
+    EXACT vec3 p = v.xyz * portableReciprocal(v.w);
     return p;
 }
 
@@ -82,13 +86,13 @@ vec3 viewFromDepth(ivec2 texel, float depth) {
 // camera. `texel` may lie outside the image; the caller decides whether
 // that means "clamp" (hemisphere) or "open sky" (SSDO).
 bool texelOfView(vec3 p, out ivec2 texel) {
-    precise vec4 clip = mulPoint(frame.proj, p, 1.0);
+    EXACT vec4 clip = mulPoint(frame.proj, p, 1.0);
     texel = ivec2(-1);
     if (clip.w <= 0.0) return false;
     // Clamped before the int conversion, which is undefined for huge values
     // (a point just in front of the camera plane).
-    precise vec2 uv = clamp(clip.xy * portableReciprocal(clip.w) * 0.5 + 0.5, vec2(-1.0), vec2(2.0));
-    precise vec2 t = floor(uv * vec2(frame.size));
+    EXACT vec2 uv = clamp(clip.xy * portableReciprocal(clip.w) * 0.5 + 0.5, vec2(-1.0), vec2(2.0));
+    EXACT vec2 t = floor(uv * vec2(frame.size));
     texel = ivec2(t);
     return true;
 }

@@ -18,9 +18,9 @@ float portableAtan2(float y, float x) {
     float ax = abs(x), ay = abs(y);
     float hi = max(ax, ay), lo = min(ax, ay);
     if (hi == 0.0) return 0.0;
-    precise float a = lo * portableReciprocal(hi);
-    precise float a2 = a * a;
-    precise float r = a * (0.99997726 + a2 * (-0.33262347 + a2 * (0.19354346 + a2 * (-0.11643287 + a2 * (0.05265332 + a2 * -0.01172120)))));
+    EXACT float a = lo * portableReciprocal(hi);
+    EXACT float a2 = a * a;
+    EXACT float r = a * (0.99997726 + a2 * (-0.33262347 + a2 * (0.19354346 + a2 * (-0.11643287 + a2 * (0.05265332 + a2 * -0.01172120)))));
     if (ay > ax) r = 1.5707964 - r;
     if (x < 0.0) r = 3.1415927 - r;
     return y < 0.0 ? -r : r;
@@ -32,10 +32,10 @@ float portableAtan2(float y, float x) {
 // never reach there. v = 0 is the zenith (row 0, the top); v is
 // acos(y) / pi, written as atan2(sqrt(1 - y^2), y).
 vec2 skyUv(vec3 d) {
-    precise float u = portableAtan2(d.x, d.z) * 0.15915494 + 0.5;
-    precise float s2 = max(1.0 - d.y * d.y, 0.0);
-    precise float s = s2 > 0.0 ? s2 * portableInverseSqrt(s2) : 0.0;
-    precise float v = portableAtan2(s, d.y) * 0.31830987;
+    EXACT float u = portableAtan2(d.x, d.z) * 0.15915494 + 0.5;
+    EXACT float s2 = max(1.0 - d.y * d.y, 0.0);
+    EXACT float s = s2 > 0.0 ? s2 * portableInverseSqrt(s2) : 0.0;
+    EXACT float v = portableAtan2(s, d.y) * 0.31830987;
     return vec2(u, v);
 }
 

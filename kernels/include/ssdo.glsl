@@ -41,14 +41,14 @@ bool ssdoBlocked(SsdoBasis f, vec3 p, vec3 point, float bias, out ivec2 texel) {
     // sample's ray and its texel's centre ray part across an edge, a convex
     // edge most of all (the texel shows the far face, whose plane the sample
     // is behind): 0.972 on an open convex corner at 160x90. Not an occluder.
-    precise vec3 rise = q.xyz - p;
+    EXACT vec3 rise = q.xyz - p;
     if (orderedDot(f.n, rise) <= 0.0) return false;
     if (orderedDot(m, q.xyz) < 0.0) {
-        precise vec3 rel = point - q.xyz;
+        EXACT vec3 rel = point - q.xyz;
         return orderedDot(m, rel) < -bias;
     }
-    precise float reach = lengthSquared(q.xyz);
-    precise float limit = reach * portableInverseSqrt(reach) + bias;
+    EXACT float reach = lengthSquared(q.xyz);
+    EXACT float limit = reach * portableInverseSqrt(reach) + bias;
     return lengthSquared(point) > limit * limit;
 }
 
@@ -73,10 +73,10 @@ SsdoSample ssdoSample(SsdoBasis f, vec3 p, ivec2 pixel, int i, int count, int st
     s.visible = true;
     s.texel = ivec2(-1);
     float u = sampleHash(pixel, i);
-    precise float perStep = portableReciprocal(float(steps));
+    EXACT float perStep = portableReciprocal(float(steps));
     for (int j = 0; j < steps; ++j) {
-        precise float lambda = radius * ((float(j + 1) - u) * perStep);
-        precise vec3 point = p + s.dir * lambda;
+        EXACT float lambda = radius * ((float(j + 1) - u) * perStep);
+        EXACT vec3 point = p + s.dir * lambda;
         ivec2 texel;
         if (ssdoBlocked(f, p, point, bias, texel)) {
             s.visible = false;

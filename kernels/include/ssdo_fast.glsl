@@ -28,10 +28,10 @@ FastSample ssdoFastSample(PyramidView v, SsdoBasis f, vec3 p, float level, ivec2
     s.dir = ssdoDirection(f, i, count);
     s.visible = true;
     float u = sampleHash(pixel, i);
-    precise float perStep = portableReciprocal(float(steps));
+    EXACT float perStep = portableReciprocal(float(steps));
     for (int j = 0; j < steps; ++j) {
-        precise float lambda = radius * ((float(j + 1) - u) * perStep);
-        precise vec3 point = p + s.dir * lambda;
+        EXACT float lambda = radius * ((float(j + 1) - u) * perStep);
+        EXACT vec3 point = p + s.dir * lambda;
         if (pyramidBlocks(v, f.n, level, point, pixel, bias, s.sender, s.senderDepth)) {
             s.visible = false;
             return s;

@@ -31,13 +31,13 @@ SsdoBasis ssdoBasis(ivec2 pixel, vec3 n) {
 // T, B, N are orthonormal and the local vector is unit, so the seed's
 // final normalize would change only rounding; it is left out.
 vec3 ssdoDirection(SsdoBasis f, int i, int count) {
-    precise float alpha = (float(i) + 0.5) * portableReciprocal(float(count));
-    precise float cosE = 1.0 - alpha;
-    precise float sin2 = 1.0 - cosE * cosE;
-    precise float sinE = sin2 * portableInverseSqrt(sin2);
-    precise float turns = (float(i) + 0.5) * 0.7777778 + f.phiTurns;
+    EXACT float alpha = (float(i) + 0.5) * portableReciprocal(float(count));
+    EXACT float cosE = 1.0 - alpha;
+    EXACT float sin2 = 1.0 - cosE * cosE;
+    EXACT float sinE = sin2 * portableInverseSqrt(sin2);
+    EXACT float turns = (float(i) + 0.5) * 0.7777778 + f.phiTurns;
     vec2 cs = cosSinTurns(turns);
-    precise vec3 d = f.t * (sinE * cs.x) + f.b * (sinE * cs.y) + f.n * cosE;
+    EXACT vec3 d = f.t * (sinE * cs.x) + f.b * (sinE * cs.y) + f.n * cosE;
     return d;
 }
 
