@@ -5,6 +5,7 @@
 #include "pipeline/config_id.h"
 #include "pipeline/pipeline.h"
 
+#include <algorithm>
 #include <set>
 
 namespace cavity::plan {
@@ -35,6 +36,16 @@ namespace {
 bool sdfFamily(const std::string& kernel) {
     const auto* k = kernels::find(kernel);
     return k && kernels::evaluatesScene(*k);
+}
+
+bool declares(const std::string& kernel, const std::string& param) {
+    const auto* k = kernels::find(kernel);
+    return k && std::any_of(k->params.begin(), k->params.end(), [&](const auto& p) { return p.name() == param; });
+}
+
+bool readsPyramid(const std::string& kernel) {
+    const auto* k = kernels::find(kernel);
+    return k && std::any_of(k->inputs.begin(), k->inputs.end(), [](const auto& i) { return i.name == "zmip"; });
 }
 
 }  // namespace
@@ -83,6 +94,10 @@ std::vector<RunConfig> benchmarkSweep(const SweepAxes& axes, const std::vector<g
                 // the default samples and blur.
                 if (pipeline::supportsHalf(kernel) && !sdfFamily(kernel))
                     add(around({{"fused_tail", {1}}}, {true}), base);
+                // The precision contract's other side, where a kernel offers it.
+                if (declares(kernel, "exact")) add(around({{"exact", {0}}}), base);
+                // The depth pyramid a dispatch per level, against the one dispatch.
+                if (readsPyramid(kernel)) add(around({{"pyramid_per_level", {1}}}), base);
             }
     return out;
 }
