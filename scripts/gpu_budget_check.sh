@@ -13,17 +13,6 @@ maxt="${2:-0.35}"
 filter="${3:-^corner/(alchemy|hemisphere)/n(16|32)/b4/(full|half)/1920x1080/(gl|vk)/compute/}"
 passes=gbuffer,downsample,depth,ao,box,blur,upsample,composite
 start=$(date +%s)
-bench() {   # name, extra flags...
-  local name=$1; shift
-  echo "== $name ($(( $(date +%s) - start )) s)"
-  smi_start "$OUT/$name.clocks.csv"
-  .bundle/run.sh --sweep gpu --benchmark_filter="$filter" --benchmark_repetitions="$reps" \
-    --benchmark_enable_random_interleaving=true --max-time "$maxt" \
-    --benchmark_out="$OUT/$name.json" --benchmark_out_format=json "$@" > "$OUT/$name.txt" 2> "$OUT/$name.err"
-  local rc=$?
-  smi_stop
-  return $rc
-}
 plant_all() { local n=$1; echo "$passes" | sed "s/\([a-z]*\)/\1:$n/g"; }
 bench a1 || exit 1
 for n in 64 256 1024; do bench "cal$n" --plant "$(plant_all $n)" --benchmark_repetitions=3; done

@@ -26,3 +26,20 @@ smi_start() {
   SMI_PID=$!
 }
 smi_stop() { [ -n "${SMI_PID:-}" ] && kill "$SMI_PID" 2>/dev/null; wait "$SMI_PID" 2>/dev/null; SMI_PID=; }
+# One cavity_bench run of the gpu sweep, its configurations' repetitions
+# interleaved, with the clocks sampled beside it: $OUT/NAME.json, .txt, .err
+# and .clocks.csv. The caller sets filter, reps and maxt (and start, for the
+# elapsed seconds it prints); later flags override earlier ones.
+#   bench NAME [more cavity_bench flags...]
+bench() {
+  local name=$1; shift
+  echo "== $name ($(( $(date +%s) - ${start:-$(date +%s)} )) s)"
+  smi_start "$OUT/$name.clocks.csv"
+  .bundle/run.sh --sweep gpu --benchmark_filter="$filter" --benchmark_repetitions="$reps" \
+    --benchmark_enable_random_interleaving=true --max-time "$maxt" \
+    --benchmark_out="$OUT/$name.json" --benchmark_out_format=json "$@" > "$OUT/$name.txt" 2> "$OUT/$name.err"
+  local rc=$?
+  smi_stop
+  tail -1 "$OUT/$name.err"
+  return $rc
+}

@@ -17,18 +17,6 @@ targets="${3:-0.01 0.02}"
 filter="${4:-^corner/(alchemy|alchemy_fast|hemisphere|hemisphere_fast)/n16/b4/(full|half)/1920x1080/(gl|vk)/compute/}"
 start=$(date +%s)
 elapsed() { echo $(( $(date +%s) - start )); }
-bench() {   # name, extra flags...
-  local name=$1; shift
-  echo "== $name ($(elapsed) s)"
-  smi_start "$OUT/$name.clocks.csv"
-  .bundle/run.sh --sweep gpu --benchmark_filter="$filter" --benchmark_repetitions="$reps" \
-    --benchmark_enable_random_interleaving=true --max-time "$maxt" \
-    --benchmark_out="$OUT/$name.json" --benchmark_out_format=json "$@" > "$OUT/$name.txt" 2> "$OUT/$name.err"
-  local rc=$?
-  smi_stop
-  tail -1 "$OUT/$name.err"
-  return $rc
-}
 pct() { python3 -c "print(round(100 * $1))"; }
 bench a1 || exit 1
 bench cal512 --plant ao:512 --benchmark_repetitions=3

@@ -14,18 +14,6 @@ maxt="${2:-0.35}"
 filter="${3:-^corner/(alchemy|hemisphere)/n(16|32)/b4/(full|half)/1920x1080/(gl|vk)/compute/}"
 start=$(date +%s)
 elapsed() { echo $(( $(date +%s) - start )); }
-bench() {   # name, extra flags...
-  local name=$1; shift
-  echo "== $name ($(elapsed) s)"
-  smi_start "$OUT/$name.clocks.csv"
-  .bundle/run.sh --sweep gpu --benchmark_filter="$filter" --benchmark_repetitions="$reps" \
-    --benchmark_enable_random_interleaving=true --max-time "$maxt" \
-    --benchmark_out="$OUT/$name.json" --benchmark_out_format=json "$@" > "$OUT/$name.txt" 2> "$OUT/$name.err"
-  local rc=$?
-  smi_stop
-  tail -1 "$OUT/$name.err"
-  return $rc
-}
 calibrate() {   # out, passes, target, refinement points...
   local out=$1 passes=$2 target=$3; shift 3
   python3 scripts/plant_calibrate.py "$OUT/a1.json" --point "512:$OUT/cal512.json" --point "2048:$OUT/cal2048.json" \

@@ -47,6 +47,35 @@ Tolerance toleranceFor(const std::string& kernel) {
     return {1e-3, 0.0};
 }
 
+// The CPU reference of one pass of a recorded chain, fed the very images the
+// GPU pass read (CPU-made constants at level 0); outputs in its order.
+Result<std::vector<HostImage>> referenceOf(PassChain& chain, const PassSpec& pass, const RunConfig& c) {
+    const auto* k = kernels::find(pass.kernel);
+    if (!k) return internal("no kernel " + pass.kernel);
+    const auto params = kernels::withDefaults(*k, c.params);
+    std::vector<HostImage> inputs;
+    for (const auto& in : pass.inputs) {
+        if (in.source == ImageSource::Constant) {
+            const auto* decl = kernels::findConstant(in.name);
+            if (!decl) return internal("no constant " + in.name);
+            const auto levels = decl->make(params);
+            HostImage img(levels[0].width, levels[0].height, gpu::channelCount(decl->format));
+            img.pixels = levels[0].pixels;
+            inputs.push_back(std::move(img));
+            continue;
+        }
+        CAVITY_ASSIGN(auto img, chain.read(in.name));
+        inputs.push_back(std::move(img));
+    }
+    std::map<std::string, std::vector<float>> arrays;
+    if (k->derive) k->derive(params, arrays);
+    const int w = pass.half ? (c.width + 1) / 2 : c.width, h = pass.half ? (c.height + 1) / 2 : c.height;
+    const auto frame = frameUniforms(w, h, c.width, c.height);
+    reference::Context ctx{*k, params, arrays, frame, {}};
+    for (const auto& i : inputs) ctx.inputs.push_back(&i);
+    return reference::run(ctx);
+}
+
 void checkChain(gpu::Backend& gpu, gpu::Api api, const Case& cs) {
     RunConfig c;
     c.api = api;
@@ -69,30 +98,7 @@ void checkChain(gpu::Backend& gpu, gpu::Api api, const Case& cs) {
         SCOPED_TRACE(configId(c) + " pass " + pass.name);
         const auto* k = kernels::find(pass.kernel);
         ASSERT_NE(k, nullptr);
-        std::vector<HostImage> inputs;
-        for (const auto& in : pass.inputs) {
-            if (in.source == ImageSource::Constant) {
-                // CPU-made inputs: the reference gets the level-0 data itself.
-                const auto* decl = kernels::findConstant(in.name);
-                ASSERT_NE(decl, nullptr) << in.name;
-                const auto levels = decl->make(kernels::withDefaults(*k, c.params));
-                HostImage img(levels[0].width, levels[0].height, gpu::channelCount(decl->format));
-                img.pixels = levels[0].pixels;
-                inputs.push_back(std::move(img));
-                continue;
-            }
-            auto img = (*chain)->read(in.name);
-            ASSERT_TRUE(img) << img.error().message;
-            inputs.push_back(std::move(*img));
-        }
-        const auto params = kernels::withDefaults(*k, c.params);
-        std::map<std::string, std::vector<float>> arrays;
-        if (k->derive) k->derive(params, arrays);
-        const int w = pass.half ? (c.width + 1) / 2 : c.width, h = pass.half ? (c.height + 1) / 2 : c.height;
-        const auto frame = frameUniforms(w, h, c.width, c.height);
-        reference::Context ctx{*k, params, arrays, frame, {}};
-        for (const auto& i : inputs) ctx.inputs.push_back(&i);
-        auto expected = reference::run(ctx);
+        auto expected = referenceOf(**chain, pass, c);
         ASSERT_TRUE(expected) << expected.error().message;
         ASSERT_EQ(expected->size(), pass.outputs.size());
         for (size_t o = 0; o < pass.outputs.size(); ++o) {
@@ -300,19 +306,7 @@ TEST_P(KernelVsReference, InexactFastKernelsHoldTheStatedTolerance) {
             auto src = kernels::assemble(*k, gpu::Stage::Compute, {}, &c.params);
             ASSERT_TRUE(src) << src.error().message;
             EXPECT_NE(src->glsl.find("#define CAVITY_INEXACT 1"), std::string::npos);
-            std::vector<HostImage> inputs;
-            for (const auto& in : ao->inputs) {
-                auto img = (*chain)->read(in.name);
-                ASSERT_TRUE(img) << img.error().message;
-                inputs.push_back(std::move(*img));
-            }
-            const auto params = kernels::withDefaults(*k, c.params);
-            std::map<std::string, std::vector<float>> arrays;
-            if (k->derive) k->derive(params, arrays);
-            const auto frame = frameUniforms(c.width, c.height, c.width, c.height);
-            reference::Context ctx{*k, params, arrays, frame, {}};
-            for (const auto& i : inputs) ctx.inputs.push_back(&i);
-            auto expected = reference::run(ctx);
+            auto expected = referenceOf(**chain, *ao, c);
             ASSERT_TRUE(expected) << expected.error().message;
             HostImage want = (*expected)[0];
             quantize(want, k->outputs[0].format);
