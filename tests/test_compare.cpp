@@ -347,6 +347,24 @@ TEST(CompareVerdict, TooFewToReachAlphaIsInconclusive) {
     EXPECT_EQ(cavity::compare::compareSeries("x", "ao", &a, &b, t).verdict, "slower");
 }
 
+// On a CPU renderer two runs of one build may take different clocks (the
+// check follows the host's load): the verdict is the software renderer's,
+// which says so, not "clocks differ".
+TEST(CompareVerdict, ASoftwareRenderersClocksApartAreItsOwnVerdict) {
+    cavity::compare::SampleSet a, b;
+    for (double v : {1.0, 1.01, 1.02, 1.03, 1.04}) {
+        a.add(v, "gpu-timestamp");
+        b.add(v, "wall");
+    }
+    const cavity::compare::CompareThresholds t;
+    const auto gpu = cavity::compare::compareSeries("x", "ao", &a, &b, t, false);
+    EXPECT_EQ(gpu.reason, "clocks differ");
+    const auto cpu = cavity::compare::compareSeries("x", "ao", &a, &b, t, true);
+    EXPECT_EQ(cpu.verdict, "inconclusive");
+    EXPECT_EQ(cpu.reason, "software renderer");
+    EXPECT_NE(cpu.next.find("clock each run takes"), std::string::npos) << cpu.next;
+}
+
 // The SM clock moved between the runs: the change is judged in cycles (time x
 // clock) too, and a verdict stands only where both agree. By hand: 1.0 ms at
 // 2000 MHz is 2000 thousand cycles, 1.1 ms at 1800 MHz 1980: +10% in time,

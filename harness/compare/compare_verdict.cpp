@@ -69,11 +69,28 @@ bool judgeInCycles(CompareRow& r, const SampleSet& before, const SampleSet& afte
     return c.verdict != timeVerdict;
 }
 
+const char* const kSoftwareNext =
+    "judge speed on a GPU: a software renderer's times are the host CPU's, move with its load, and so may the clock "
+    "each run takes";
+
 CompareRow& inconclusive(CompareRow& r, std::string reason, std::string next) {
     r.verdict = "inconclusive";
     r.reason = std::move(reason);
     r.next = std::move(next);
     return r;
+}
+
+// Samples so few that even two wholly apart cannot reach alpha would read
+// "same" for any change: no verdict (3 against 3 reach only p = 0.1).
+bool tooFewSamples(CompareRow& r, const CompareThresholds& t) {
+    if (r.nOld >= kMinSamples && r.nNew >= kMinSamples && smallestAttainableP(r.nOld, r.nNew) < t.alpha) return false;
+    size_t n = kMinSamples;
+    while (smallestAttainableP(n, n) >= t.alpha) ++n;
+    char alpha[32];
+    std::snprintf(alpha, sizeof alpha, "%g", t.alpha);
+    inconclusive(r, "too few samples",
+                 "measure at least " + std::to_string(n) + " repetitions a side (fewer cannot reach p < " + alpha + ")");
+    return true;
 }
 
 }  // namespace
@@ -119,19 +136,14 @@ CompareRow compareSeries(const std::string& id, const std::string& pass, const S
     // A wall-clock time includes submission and the drain around each pass;
     // a timestamp does not. Their difference is the harness, not the change.
     const std::string oneClock = "time both runs on one clock (docs/timing.md), or run them interleaved";
+    const bool clocksApart = before->mixedClocks || after->mixedClocks || before->clock != after->clock;
+    // A CPU renderer's clock check passes or fails with the host's load, so
+    // two runs of one build may take different clocks: that is the host, and
+    // its verdict is the software renderer's.
+    if (clocksApart && software) return inconclusive(r, "software renderer", kSoftwareNext);
     if (before->mixedClocks || after->mixedClocks) return inconclusive(r, "mixed clocks", oneClock);
     if (before->clock != after->clock) return inconclusive(r, "clocks differ", oneClock);
-    // Samples so few that even two wholly apart cannot reach alpha would read
-    // "same" for any change: no verdict (3 against 3 reach only p = 0.1).
-    if (r.nOld < kMinSamples || r.nNew < kMinSamples || smallestAttainableP(r.nOld, r.nNew) >= t.alpha) {
-        size_t n = kMinSamples;
-        while (smallestAttainableP(n, n) >= t.alpha) ++n;
-        char alpha[32];
-        std::snprintf(alpha, sizeof alpha, "%g", t.alpha);
-        return inconclusive(r, "too few samples",
-                            "measure at least " + std::to_string(n) + " repetitions a side (fewer cannot reach p < " +
-                                alpha + ")");
-    }
+    if (tooFewSamples(r, t)) return r;
 
     const auto u = stats::mannWhitneyU(before->ms, after->ms);
     const auto hl = stats::hodgesLehmann(before->ms, after->ms, t.alpha);
@@ -162,9 +174,7 @@ CompareRow compareSeries(const std::string& id, const std::string& pass, const S
         return inconclusive(r, "SM clock differs",
                             "time and cycles (time x SM clock) disagree: lock the SM clock (nvidia-smi "
                             "--lock-gpu-clocks), or run the two builds interleaved (cavity ab)");
-    if ((slower || faster) && software)
-        return inconclusive(r, "software renderer",
-                            "judge speed on a GPU: a software renderer's times are the host CPU's and move with its load");
+    if ((slower || faster) && software) return inconclusive(r, "software renderer", kSoftwareNext);
     if (slower) r.verdict = "slower";
     else if (faster) r.verdict = "faster";
     else if (r.detectablePct > r.thresholdPct)
