@@ -33,6 +33,8 @@ const CommandSpec& runSpec() {
             {"--timing", "batch|drained", "batch: back-to-back frames; drained: wait for the GPU after each (default: the device's)", timing},
             {"--max-noise", "PCT", "stop measuring once the median's noise is under PCT percent (0..100; 0: a fixed count)", timing},
             {"--max-time", "S", "stop measuring after S seconds (0.001..3600)", timing},
+            {"--views", "N", "camera views measured in turn, frame f on view f mod N, as cavity_bench measures (1..4; "
+                             "default 1: every frame on one chain); the images are view 0's", timing},
             {"--device", "K", "device index (0..64; default 0)", output},
             {"--validation", "", "enable the Vulkan validation layers and the GL debug output", output},
             {"--out", "DIR", "output folder (default out)", output},
@@ -116,6 +118,8 @@ Status runFlag(Sweep& s, const std::string& flag, const std::string& v) {
         s.options.maxNoise = pct / 100;
     } else if (flag == "--max-time") {
         CAVITY_ASSIGN(s.options.maxSeconds, parseNumber(flag, v, 0.001, 3600));
+    } else if (flag == "--views") {
+        CAVITY_ASSIGN(s.options.views, parseInt(flag, v, 1, 4));
     } else if (flag == "--device") {
         CAVITY_ASSIGN(s.backend.deviceIndex, parseInt(flag, v, 0, 64));
     } else if (flag == "--out") {

@@ -50,6 +50,7 @@ const cli::CommandSpec& renderSpec() {
             {"--timing", "batch|drained", "batch: back-to-back frames; drained: wait for the GPU after each (default: the device's)"},
             {"--max-noise", "PCT", "stop measuring once the median's noise is under PCT percent (0..100)"},
             {"--max-time", "S", "stop measuring after S seconds (0.001..3600)"},
+            {"--views", "N", "camera views measured in turn, as cavity_bench measures (1..4; default 1)"},
             {"--kernel-source", "NAME=FILE", "render with kernels/NAME replaced by FILE's text (a planted defect); repeatable",
              "Options", true},
             {"--store", "DIR|URL",
@@ -207,6 +208,8 @@ Result<RenderCommand> parseRenderFlags(const std::vector<std::string>& argv) {
             o.render.maxNoise = pct / 100;
         } else if (flag == "--max-time") {
             CAVITY_ASSIGN(o.render.maxSeconds, cli::parseNumber(flag, v, 0.001, 3600));
+        } else if (flag == "--views") {
+            CAVITY_ASSIGN(o.render.views, cli::parseInt(flag, v, 1, 4));
         } else if (flag == "--store") {
             if (!o.store) o.store.emplace();
             o.store->location = v;

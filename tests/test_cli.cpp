@@ -165,6 +165,32 @@ TEST_F(Cli, MaxTimeBoundsARunThatAsksForMoreFrames) {
     EXPECT_LT(frames, 100000u);
 }
 
+// --views measures camera views in turn, as cavity_bench does, and keeps
+// view 0's images: the same bytes as a run on one chain.
+TEST_F(Cli, ViewsMeasuredInTurnKeepViewZerosImages) {
+    std::string bytes[2][2];
+    for (int views : {1, 4}) {
+        const fs::path out = dir / ("views" + std::to_string(views));
+        const Outcome o = cavity("run --backend vk --kernel alchemy_fast --res 64x36 --frames 8 --warmup 1 --quiet --views " +
+                                 std::to_string(views) + " --out " + out.string());
+        ASSERT_EQ(o.code, 0) << o.output;
+        std::ifstream f(out / "results.json");
+        const auto doc = nlohmann::json::parse(f);
+        ASSERT_EQ(doc["runs"].size(), 1u);
+        EXPECT_EQ(doc["runs"][0]["timing"]["views"], views);
+        EXPECT_EQ(doc["runs"][0]["frame"]["samples_ms"].size(), 8u);
+        const fs::path id = out / "corner/alchemy_fast/n16/b4/full/64x36/vk/compute";
+        for (int i = 0; i < 2; ++i) {
+            std::ifstream png(id / (i ? "color.png" : "ao_blur.png"), std::ios::binary);
+            bytes[views == 4][i].assign(std::istreambuf_iterator<char>(png), {});
+            EXPECT_FALSE(bytes[views == 4][i].empty());
+        }
+    }
+    EXPECT_EQ(bytes[0][0], bytes[1][0]) << "ao_blur.png differs";
+    EXPECT_EQ(bytes[0][1], bytes[1][1]) << "color.png differs";
+    EXPECT_EQ(cavity("run --views 5 --list").code, 2);
+}
+
 // cavity quality with the kernels' times: rows sorted by error, the
 // screen-space Pareto front, and the best within a budget, each checked
 // against the rows it came from.

@@ -151,7 +151,11 @@ json toJson(const RunRecord& r) {
           {"stage", r.config.stage == gpu::Stage::Compute ? "compute" : "fragment"},
           {"api", gpu::apiName(r.config.api)}, {"params", params}}},
         {"frames", {{"warmup", r.timing.warmupFrames}, {"measured", int(r.timing.frame.ms.size())}}},
-        {"timing", timingJson(r.timingOptions, r.timing)},
+        {"timing", [&] {
+             json t = timingJson(r.timingOptions, r.timing);
+             t["views"] = r.views;
+             return t;
+         }()},
         {"gpu_clocks", clocksJson(r.timing.clocks)},
         {"floor_device", floorDeviceJson(r.floorDevice)},
         {"floor_device_reason", r.floorDevice.reason},

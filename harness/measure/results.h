@@ -23,6 +23,7 @@ struct RunRecord {
     RunConfig config;
     gpu::DeviceInfo device;
     TimingOptions timingOptions;      // what was asked for
+    int views = 1;                    // camera views measured in turn (RunOptions::views)
     Timing timing;                    // what was measured
     std::vector<PassSpec> passes;
     std::vector<std::pair<int, int>> passSizes;

@@ -78,7 +78,18 @@ Result<RunRecord> runConfig(gpu::Backend& gpu, const RunConfig& given, const Run
     r.timingOptions = timingOptions(gpu.info(), o);
     GpuClocks* clocks = GpuClocks::forDevice(gpu.info());
     r.floorDevice = deviceFloor(gpu.info(), clocks ? clocks->maxSmMhz() : std::nullopt);
-    CAVITY_ASSIGN(r.timing, measurePasses(gpu, *chain, r.timingOptions, clocks));
+    // More views: more chains measured in turn (an imported G-buffer has one).
+    std::vector<std::unique_ptr<PassChain>> others;
+    std::vector<PassChain*> turn{chain.get()};
+    for (int view = 1; view < (c.imported() ? 1 : o.views); ++view) {
+        RunConfig v = c;
+        v.params["view"] = view;
+        CAVITY_ASSIGN(auto other, PassChain::create(gpu, v, o.overrides));
+        others.push_back(std::move(other));
+        turn.push_back(others.back().get());
+    }
+    r.views = int(turn.size());
+    CAVITY_ASSIGN(r.timing, measurePasses(gpu, turn, r.timingOptions, clocks));
     r.debugMessages = gpu.takeDebugMessages();
     CAVITY_ASSIGN(r.nonFinite, chain->findNonFinite());
     if (o.keepImages || o.checkDeterminism) {

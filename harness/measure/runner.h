@@ -26,6 +26,11 @@ struct RunOptions {
     SourceOverrides overrides;        // planted-bug tests
     bool keepImages = false;          // RunRecord::pixels
     bool checkDeterminism = false;    // render once more and compare bit for bit
+    // Camera views (the scene's poses 0..views-1) measured in turn, frame f on
+    // view f % views, as cavity_bench measures (4): no frame then reads what
+    // the frame before left in the caches or wrote to the same images. The
+    // images and the record are view 0's. 1: one chain, every frame alike.
+    int views = 1;
 };
 
 // The timing options runConfig uses on this device.

@@ -57,6 +57,7 @@ Status renderEntries(const plan::Matrix& m, const std::vector<plan::MatrixEntry>
                 ro.mode = o.mode;
                 ro.maxNoise = o.maxNoise;
                 ro.maxSeconds = o.maxSeconds;
+                ro.views = o.views;
                 auto rec = runConfig(gpu, e->config, ro);
                 if (!rec) {
                     r.error = rec.error().message;

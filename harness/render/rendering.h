@@ -79,6 +79,7 @@ struct RenderOptions {
     // render of 160x90 images to seconds on a GPU.
     std::optional<TimingMode> mode;
     std::optional<double> maxNoise, maxSeconds;
+    int views = 1;                // camera views measured in turn (measure::RunOptions::views)
 };
 
 using RenderSink = std::function<Status(Rendering&&)>;
