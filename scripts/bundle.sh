@@ -13,14 +13,25 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 out="${1:-.bundle}"
 build="${BUILD_DIR:-build}"
-cmake --build "$build" --target cavity_bench cavity_render cavity >/dev/null
+# BUNDLE_BINARIES picks fewer (the device tool carries 64 MiB with the
+# repository): "cavity_bench" alone for the timing scripts, "cavity_bench
+# cavity" for cavity ab; cavity and its libraries (libcurl, libpq, SQLite)
+# are about half the bundle.
+binaries=(${BUNDLE_BINARIES:-cavity_bench cavity_render cavity})
+declare -A path=([cavity_bench]=bench/cavity_bench [cavity_render]=render/cavity_render [cavity]=harness/cavity)
+for b in "${binaries[@]}"; do
+  [ -n "${path[$b]:-}" ] || { echo "bundle: BUNDLE_BINARIES: $b: not one of cavity_bench cavity_render cavity" >&2; exit 2; }
+done
+cmake --build "$build" --target "${binaries[@]}" >/dev/null
 rm -rf "$out"
 mkdir -p "$out/lib" "$out/baselines"
 # cavity travels without its OpenImageIO module: there it judges render
 # folders whose images are all approved by digest (docs/gate.md), which
 # reads no image file; anything that needs pixels says it cannot load the module.
-cp "$build/bench/cavity_bench" "$build/render/cavity_render" "$build/harness/cavity" "$out/"
-strip "$out/cavity_bench" "$out/cavity_render" "$out/cavity"
+for b in "${binaries[@]}"; do
+  cp "$build/${path[$b]}" "$out/"
+  strip "$out/$b"
+done
 # matrices.json to render, approvals.json to leave approved images out, the
 # tolerances and budgets to judge there (cavity_render --store, cavity gate judge).
 cp baselines/matrices.json baselines/manifest.json baselines/budgets.json "$out/baselines/"
@@ -30,7 +41,7 @@ cp baselines/matrices.json baselines/manifest.json baselines/budgets.json "$out/
 # (Ubuntu's zlib1g is "required"), and the system's own must win: the NVIDIA
 # driver's libraries load it too, and ours (Debian 12's) is older.
 system='^(linux-vdso|libc\.so|libm\.so|libdl\.so|librt\.so|libpthread\.so|ld-linux|libstdc\+\+|libgcc_s|libz\.so|libvulkan|libEGL|libGL|libOpenGL|libGLX|libGLdispatch|libX|libxcb)'
-for exe in cavity_bench cavity_render cavity; do
+for exe in "${binaries[@]}"; do
   ldd "$out/$exe" | awk '/=>/ {print $1, $3}'
 done | sort -u | while read -r name path; do
   if ! [[ "$name" =~ $system ]]; then cp -L "$path" "$out/lib/"; fi
@@ -61,5 +72,5 @@ exec "$here/cavity" "$@"
 CAVITY
 chmod +x "$out/run.sh" "$out/render.sh" "$out/cavity.sh"
 size=$(du -sm "$out" | cut -f1)
-echo "bundle: $out ($size MiB): cavity_bench cavity_render cavity baselines/ lib/: $(ls "$out/lib" | tr '\n' ' ')"
+echo "bundle: $out ($size MiB): ${binaries[*]} baselines/ lib/: $(ls "$out/lib" | tr '\n' ' ')"
 if [ "$size" -gt 56 ]; then echo "bundle: over the 56 MiB limit" >&2; exit 1; fi
