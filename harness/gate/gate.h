@@ -15,6 +15,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cmath>
 #include <map>
 #include <optional>
 #include <string>
@@ -47,6 +48,7 @@ struct ImageCheck {
 struct TimingCheck {
     std::string pass;
     double medianMs = 0;
+    double lowMs = NAN, highMs = NAN;   // the median's 95% interval over the frames; NaN: too few
     std::optional<double> budgetMs;
     std::string clock;
     // Measured on a software renderer (llvmpipe, lavapipe): the time is the

@@ -46,6 +46,8 @@ json toJson(const GateRun& run) {
         json timings = json::array();
         for (const auto& t : r.timings)
             timings.push_back({{"pass", t.pass}, {"median_ms", t.medianMs}, {"clock", t.clock},
+                               {"ci_low_ms", std::isfinite(t.lowMs) ? json(t.lowMs) : json()},
+                               {"ci_high_ms", std::isfinite(t.highMs) ? json(t.highMs) : json()},
                                {"budget_ms", t.budgetMs ? json(*t.budgetMs) : json(nullptr)}, {"advisory", t.advisory},
                                {"within_budget", t.withinBudget()}, {"passed", t.passed()}});
         results.push_back({{"id", r.id}, {"repetition", r.repetition}, {"baseline_key", r.key}, {"device", r.device}, {"driver", r.driver}, {"kernel", r.config.kernel},
@@ -154,6 +156,12 @@ Result<ConfigResult> readResult(const JsonObject& rj) {
         CAVITY_ASSIGN(t.medianMs, tj.number("median_ms", 0, kAny));
         CAVITY_ASSIGN(t.clock, tj.str("clock"));
         CAVITY_ASSIGN(t.budgetMs, tj.numberOrNull("budget_ms", 0, kAny));
+        // The median's interval: absent before it was recorded, null with too few frames.
+        for (auto [key, field] : {std::pair{"ci_low_ms", &t.lowMs}, std::pair{"ci_high_ms", &t.highMs}})
+            if (tj.has(key)) {
+                CAVITY_ASSIGN(const auto v, tj.numberOrNull(key, 0, kAny));
+                *field = v ? *v : NAN;
+            }
         // Absent before software renderers' budgets were advisory: every budget failed.
         if (tj.has("advisory")) {
             CAVITY_ASSIGN(t.advisory, tj.boolean("advisory"));

@@ -254,6 +254,8 @@ Result<ConfigResult> judgeRendering(const render::Rendering& rend, const Judge& 
         TimingCheck t;
         t.pass = p.pass;
         t.medianMs = p.medianMs;
+        t.lowMs = p.lowMs;
+        t.highMs = p.highMs;
         t.clock = p.clock;
         t.budgetMs = j.budgets.find(r.device, r.id, p.pass);
         t.advisory = rend.device.softwareRenderer && !j.enforceCpuBudgets;

@@ -1,5 +1,7 @@
 #include "render/render_manifest.h"
 
+#include <cmath>
+
 namespace cavity::render {
 
 using nlohmann::json;
@@ -13,7 +15,10 @@ json toJson(const gpu::DeviceInfo& d) {
 
 json toJson(const RenderEntry& r) {
     json timings = json::array(), images = json::array();
-    for (const auto& t : r.timings) timings.push_back({{"pass", t.pass}, {"median_ms", t.medianMs}, {"clock", t.clock}});
+    auto orNull = [](double x) { return std::isfinite(x) ? json(x) : json(); };
+    for (const auto& t : r.timings)
+        timings.push_back({{"pass", t.pass}, {"median_ms", t.medianMs}, {"clock", t.clock}, {"ci_low_ms", orNull(t.lowMs)},
+                           {"ci_high_ms", orNull(t.highMs)}});
     for (const auto& i : r.images) {
         images.push_back({{"name", i.name}, {"file", i.file.empty() ? json(nullptr) : json(i.file)},
                           {"width", i.stored.width}, {"height", i.stored.height}, {"channels", i.stored.channels},
@@ -115,7 +120,11 @@ Result<RenderManifest> parseManifest(const json& j, const std::string& path) {
                 r.error = rj.at("error");
                 r.errorCode = rj.at("error_code");
                 r.deterministic = rj.at("deterministic");
-                for (const auto& t : rj.at("timings")) r.timings.push_back({t.at("pass"), t.at("median_ms"), t.at("clock")});
+                for (const auto& t : rj.at("timings")) {
+                    // The interval is absent from older manifests.
+                    auto num = [&](const char* k) { return t.contains(k) && t.at(k).is_number() ? t.at(k).get<double>() : NAN; };
+                    r.timings.push_back({t.at("pass"), t.at("median_ms"), t.at("clock"), num("ci_low_ms"), num("ci_high_ms")});
+                }
                 for (const auto& ij : rj.at("images")) {
                     ImageEntry i;
                     i.name = ij.at("name");

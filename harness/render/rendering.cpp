@@ -69,7 +69,12 @@ Status renderEntries(const plan::Matrix& m, const std::vector<plan::MatrixEntry>
                     r.errorCode = int(ErrorCode::Regression);
                 } else {
                     r.deterministic = rec->deterministic;
-                    for (const auto& p : rec->timing.passes) r.timings.push_back({p.name, p.stats.median, rec->timing.clock});
+                    for (const auto& p : rec->timing.passes) {
+                        const double half = measure::medianNoise(p.ms) * p.stats.median;
+                        r.timings.push_back({p.name, p.stats.median, rec->timing.clock,
+                                             std::isfinite(half) ? p.stats.median - half : NAN,
+                                             std::isfinite(half) ? p.stats.median + half : NAN});
+                    }
                     for (const auto& ci : plan::checkedImages()) {
                         HostImage& img = rec->pixels.at(ci.name);
                         r.digests[ci.name] = imageDigest(img);

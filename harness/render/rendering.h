@@ -17,6 +17,7 @@
 #include <functional>
 #include <map>
 #include <optional>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,9 @@ struct PassTime {
     std::string pass;
     double medianMs = 0;
     std::string clock;            // Timing::clock: "gpu-timestamp" or "wall"
+    // The median's distribution-free 95% interval over the frames
+    // (measure::medianNoise); NaN where the frames are too few for one.
+    double lowMs = NAN, highMs = NAN;
 };
 
 // An image judged where it was rendered (cavity_render --store): against

@@ -116,10 +116,15 @@
 
   function timings(r) {
     const table = el('table', {}, el('tr', {}, el('th', {class: 'l'}, 'pass'), el('th', {}, 'median ms'),
-                                    el('th', {}, 'budget ms'), el('th', {}, 'clock')));
+                                    el('th', {}, '95% interval of the median'), el('th', {}, 'budget ms'),
+                                    el('th', {}, 'clock')));
+    const interval = (t) => t.ci_low_ms === undefined || t.ci_low_ms === null ? 'too few frames'
+                                                                               : num(t.ci_low_ms) + ' to ' + num(t.ci_high_ms);
+    const clock = (t) => t.clock === 'wall' ? 'wall clock' + (t.advisory ? ', CPU renderer' : '') : 'GPU timestamps';
     for (const t of r.timings)
       table.append(el('tr', {}, el('td', {class: 'l'}, t.pass), el('td', {class: t.passed ? '' : 'bad'}, num(t.median_ms)),
-                      el('td', {}, t.budget_ms === null ? 'none for this device' : num(t.budget_ms)), el('td', {}, t.clock)));
+                      el('td', {}, interval(t)),
+                      el('td', {}, t.budget_ms === null ? 'none for this device' : num(t.budget_ms)), el('td', {}, clock(t))));
     return table;
   }
 
