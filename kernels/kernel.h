@@ -153,6 +153,8 @@ const KernelDecl* find(const std::string& name);
 // declaration's derive function for a broken one and put it back.
 std::vector<KernelDecl>& registryForTests();
 
+// Whether the kernel takes the parameter `name`.
+bool declares(const KernelDecl& k, const std::string& name);
 // True for a kernel that evaluates the analytic scene itself (it declares
 // --scene) outside the G-buffer passes: the SDF AO family and the ground
 // truth. They cannot run on an imported G-buffer.

@@ -329,11 +329,12 @@ std::vector<KernelDecl>& registryForTests() {
 
 const std::vector<KernelDecl>& all() { return registryForTests(); }
 
-bool evaluatesScene(const KernelDecl& k) {
-    if (k.role == Role::GBuffer) return false;
+bool declares(const KernelDecl& k, const std::string& name) {
     for (const auto& p : k.params)
-        if (p.name() == "scene") return true;
+        if (p.name() == name) return true;
     return false;
 }
+
+bool evaluatesScene(const KernelDecl& k) { return k.role != Role::GBuffer && declares(k, "scene"); }
 
 }  // namespace cavity::kernels

@@ -47,6 +47,15 @@ Tolerance toleranceFor(const std::string& kernel) {
     return {1e-3, 0.0};
 }
 
+// The chain of `c` on `gpu`, one frame of it recorded and finished.
+Result<std::unique_ptr<PassChain>> recordedChain(gpu::Backend& gpu, const RunConfig& c) {
+    CAVITY_ASSIGN(auto chain, PassChain::create(gpu, c));
+    gpu.beginFrame();
+    chain->record();
+    CAVITY_TRY(gpu.endFrame());
+    return chain;
+}
+
 // The CPU reference of one pass of a recorded chain, fed the very images the
 // GPU pass read (CPU-made constants at level 0); outputs in its order.
 Result<std::vector<HostImage>> referenceOf(PassChain& chain, const PassSpec& pass, const RunConfig& c) {
@@ -88,11 +97,8 @@ void checkChain(gpu::Backend& gpu, gpu::Api api, const Case& cs) {
     if (cs.fusedTail) {
         ASSERT_TRUE(setParam(c, "fused_tail", "1").ok());
     }
-    auto chain = PassChain::create(gpu, c);
+    auto chain = recordedChain(gpu, c);
     ASSERT_TRUE(chain) << chain.error().message;
-    gpu.beginFrame();
-    (*chain)->record();
-    ASSERT_TRUE(gpu.endFrame().ok());
 
     for (const auto& pass : (*chain)->passes()) {
         SCOPED_TRACE(configId(c) + " pass " + pass.name);
@@ -178,15 +184,12 @@ TEST_P(KernelVsReference, DepthPyramidLevels) {
                 c.half = half;
                 ASSERT_TRUE(setParam(c, "scene", "slats").ok());
                 ASSERT_TRUE(setParam(c, "pyramid_per_level", perLevel ? "1" : "0").ok());
-                auto chain = PassChain::create(gpu(), c);
+                auto chain = recordedChain(gpu(), c);
                 ASSERT_TRUE(chain) << chain.error().message;
                 const std::string builder = perLevel ? "depth_pyramid" : "depth_pyramid_single";
                 EXPECT_TRUE(std::any_of((*chain)->passes().begin(), (*chain)->passes().end(),
                                         [&](const auto& pass) { return pass.kernel == builder; }))
                     << configId(c) << " builds no " << builder;
-                gpu().beginFrame();
-                (*chain)->record();
-                ASSERT_TRUE(gpu().endFrame().ok());
                 const std::string image = half ? "zmip_half" : "zmip";
                 auto level0 = (*chain)->read(image);
                 ASSERT_TRUE(level0) << level0.error().message;
@@ -242,14 +245,11 @@ TEST_P(KernelVsReference, FusedTailMakesTheImagesOfUpsampleThenComposite) {
                     c.stage = stage;
                     ASSERT_TRUE(setParam(c, "scene", scene).ok());
                     ASSERT_TRUE(setParam(c, "fused_tail", fused ? "1" : "0").ok());
-                    auto chain = PassChain::create(gpu(), c);
+                    auto chain = recordedChain(gpu(), c);
                     ASSERT_TRUE(chain) << chain.error().message;
                     bool hasFusedPass = false;
                     for (const auto& pass : (*chain)->passes()) hasFusedPass |= pass.kernel == "upsample_composite";
                     EXPECT_EQ(hasFusedPass, fused == 1) << configId(c);
-                    gpu().beginFrame();
-                    (*chain)->record();
-                    ASSERT_TRUE(gpu().endFrame().ok());
                     for (const std::string image : {"ao_blur", "color"}) {
                         auto got = (*chain)->read(image);
                         ASSERT_TRUE(got) << got.error().message;
@@ -277,11 +277,15 @@ TEST_P(KernelVsReference, FusedTailMakesTheImagesOfUpsampleThenComposite) {
 // the mean 9.4e-5. The bound leaves room for a GPU, whose sine Vulkan lets
 // be 2^-11 off, which moves a far sample by a tenth of a pixel: 1% of the
 // pixels, a mean of 5e-4 (an eighth of an 8-bit step).
+// The CPU renderers, which CI runs, are held near what they measured (6x the
+// share and 2x the mean), so that the test still sees a change for the
+// worse there; the contract's bound is for a GPU.
 struct InexactTolerance {
     double overShare;   // share of pixels more than 1e-3 off
     double meanAbs;     // mean |difference| over the image
 };
 const InexactTolerance kInexactTolerance{0.01, 5e-4};
+const InexactTolerance kInexactOnCpuRenderers{1e-4, 2e-4};
 
 TEST_P(KernelVsReference, InexactFastKernelsHoldTheStatedTolerance) {
     for (const std::string scene : {"corner", "slats"})
@@ -293,11 +297,8 @@ TEST_P(KernelVsReference, InexactFastKernelsHoldTheStatedTolerance) {
             c.kernel = kernel;
             ASSERT_TRUE(setParam(c, "scene", scene).ok());
             ASSERT_TRUE(setParam(c, "exact", "0").ok());
-            auto chain = PassChain::create(gpu(), c);
+            auto chain = recordedChain(gpu(), c);
             ASSERT_TRUE(chain) << chain.error().message;
-            gpu().beginFrame();
-            (*chain)->record();
-            ASSERT_TRUE(gpu().endFrame().ok());
             const auto& passes = (*chain)->passes();
             const auto ao = std::find_if(passes.begin(), passes.end(), [](const auto& p) { return p.name == "ao"; });
             ASSERT_NE(ao, passes.end());
@@ -316,8 +317,9 @@ TEST_P(KernelVsReference, InexactFastKernelsHoldTheStatedTolerance) {
             const double share = double(d.over) / double(d.compared);
             std::printf("[ inexact  ] %s %s %s: %.4f%% of pixels over 1e-3, max %.4f, mean %.2e\n", apiName(api()),
                         scene.c_str(), kernel.c_str(), 100 * share, d.maxAbs, d.meanAbs);
-            EXPECT_LE(share, kInexactTolerance.overShare) << scene << " " << kernel;
-            EXPECT_LE(d.meanAbs, kInexactTolerance.meanAbs) << scene << " " << kernel;
+            const auto& bound = gpu().info().softwareRenderer ? kInexactOnCpuRenderers : kInexactTolerance;
+            EXPECT_LE(share, bound.overShare) << scene << " " << kernel;
+            EXPECT_LE(d.meanAbs, bound.meanAbs) << scene << " " << kernel;
         }
 }
 
@@ -347,11 +349,8 @@ TEST(ApiAgreement, GlAndVkProduceTheSameImages) {
             RunConfig c;
             c.api = g->api();
             ASSERT_TRUE(setParam(c, "scene", scene).ok());
-            auto chain = PassChain::create(*g, c);
+            auto chain = recordedChain(*g, c);
             ASSERT_TRUE(chain) << chain.error().message;
-            g->beginFrame();
-            (*chain)->record();
-            ASSERT_TRUE(g->endFrame().ok());
             for (const std::string name : {"position", "normal", "ao", "ao_blur", "color"}) {
                 auto img = (*chain)->read(name);
                 ASSERT_TRUE(img) << img.error().message;
@@ -404,11 +403,8 @@ TEST_P(KernelVsReference, FullBarriersChangeNoImage) {
             std::map<std::string, HostImage> images[2];
             int which = 0;
             for (gpu::Backend* g : {&gpu(), full->get()}) {
-                auto chain = PassChain::create(*g, c);
+                auto chain = recordedChain(*g, c);
                 ASSERT_TRUE(chain) << chain.error().message;
-                g->beginFrame();
-                (*chain)->record();
-                ASSERT_TRUE(g->endFrame().ok());
                 for (const std::string name : {"ao", "ao_blur", "color"}) {
                     auto img = (*chain)->read(name);
                     ASSERT_TRUE(img) << img.error().message;

@@ -47,9 +47,7 @@ bool differsFromDefault(const RunConfig& c, const std::string& name, double v) {
 std::string configId(const RunConfig& c) {
     const std::string scene = c.imported() ? importStem(c.gbufferFile) + "+import" : c.scene() + (c.raster ? "+raster" : "");
     const auto* k = kernels::find(c.kernel);
-    auto declares = [&](const std::string& name) {
-        return k && std::any_of(k->params.begin(), k->params.end(), [&](const auto& p) { return p.name() == name; });
-    };
+    auto declares = [&](const std::string& name) { return k && kernels::declares(*k, name); };
     std::string count = "n";
     count += std::to_string(c.samples());
     std::string countParam = "samples";

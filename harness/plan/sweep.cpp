@@ -40,7 +40,7 @@ bool sdfFamily(const std::string& kernel) {
 
 bool declares(const std::string& kernel, const std::string& param) {
     const auto* k = kernels::find(kernel);
-    return k && std::any_of(k->params.begin(), k->params.end(), [&](const auto& p) { return p.name() == param; });
+    return k && kernels::declares(*k, param);
 }
 
 bool readsPyramid(const std::string& kernel) {
