@@ -149,6 +149,16 @@ Status expand(const std::string& name, const std::map<std::string, std::string>&
     return {};
 }
 
+// The layers of a kernel that declares `interleave` (KernelDecl::interleaved,
+// OutputDecl::layered): k, each layer's size, and where pixel p lies in
+// the atlas of the layers side by side.
+std::string interleavePreamble(int k) {
+    const std::string n = std::to_string(k);
+    return "#define CAVITY_INTERLEAVE " + n + "\n"
+           "ivec2 cavityLayerSize() { return (frame.size + " + std::to_string(k - 1) + ") / " + n + "; }\n"
+           "ivec2 cavityLayerTexel(ivec2 p) { return (p % " + n + ") * cavityLayerSize() + p / " + n + "; }\n";
+}
+
 }  // namespace
 
 Result<gpu::ShaderSource> assemble(const KernelDecl& k, gpu::Stage stage,
@@ -165,11 +175,13 @@ Result<gpu::ShaderSource> assemble(const KernelDecl& k, gpu::Stage stage,
     // that feed discrete decisions, unless the kernel declares `exact` and
     // is run with it 0.
     bool exact = true;
+    int interleave = 1;
     if (values) {
         const ParamValues all = withDefaults(k, *values);
         for (const auto& name : k.compileTime)
             if (all.count(name)) p << "#define CAVITY_CONST_" << name << " " << intValue(all, name) << "\n";
         exact = !all.count("exact") || intValue(all, "exact") != 0;
+        if (all.count("interleave")) interleave = intValue(all, "interleave");
     }
     p << (exact ? "#define EXACT precise\n" : "#define EXACT\n#define CAVITY_INEXACT 1\n");
     p << "layout(std140, binding = " << kFrameBinding << ") uniform Frame {\n"
@@ -180,6 +192,7 @@ Result<gpu::ShaderSource> assemble(const KernelDecl& k, gpu::Stage stage,
     if (k.params.empty() && k.arrays.empty()) p << "    int unused_;\n";
     for (const auto& a : k.arrays) p << "    vec4 " << a.name << "[" << a.vec4Count << "];\n";
     p << "} P;\n";
+    if (declares(k, "interleave")) p << interleavePreamble(interleave);
     uint32_t b = kFirstImageBinding;
     for (const auto& in : k.inputs) p << "layout(binding = " << b++ << ") uniform sampler2D in_" << in.name << ";\n";
     int location = 0;
@@ -219,10 +232,17 @@ Result<gpu::ShaderSource> assemble(const KernelDecl& k, gpu::Stage stage,
     // The two thin entry points around the one body.
     src.glsl += "#line 1 0\n";
     if (stage == gpu::Stage::Compute) {
+        // An interleaved pass: invocation (layer l, texel q) of the layers
+        // laid side by side shades pixel q * k + l.
+        const std::string pixel = k.interleaved && interleave > 1
+                                      ? "    ivec2 atlas = ivec2(gl_GlobalInvocationID.xy);\n"
+                                        "    ivec2 layer = atlas / cavityLayerSize();\n"
+                                        "    if (any(greaterThanEqual(layer, ivec2(CAVITY_INTERLEAVE)))) return;\n"
+                                        "    ivec2 pixel = (atlas - layer * cavityLayerSize()) * CAVITY_INTERLEAVE + layer;\n"
+                                      : "    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);\n";
         src.glsl +=
             "layout(local_size_x = 8, local_size_y = 8) in;\n"
-            "void main() {\n"
-            "    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);\n"
+            "void main() {\n" + pixel +
             "    if (pixel.x >= frame.size.x || pixel.y >= frame.size.y) return;\n"
             "    cavity_main(pixel);\n" + plant +
             "}\n";

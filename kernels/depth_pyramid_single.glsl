@@ -21,9 +21,29 @@ ivec2 levelSizeOf(int l) {
     return max(frame.size >> l, ivec2(1));
 }
 
+#ifdef CAVITY_INTERLEAVE
+// depth_pyramid_layered: level 0 again, split into the AO pass's k x k
+// layers (OutputDecl::layered). The last row's and column's threads also
+// fill the atlas's padding, which no pixel maps to, so that no texel of it
+// is left undefined.
+void writeLayers(ivec2 pixel, vec4 depth) {
+    write_zlayers(cavityLayerTexel(pixel), depth);
+    if (pixel.x < frame.size.x - 1 && pixel.y < frame.size.y - 1) return;
+    ivec2 padded = cavityLayerSize() * CAVITY_INTERLEAVE;
+    ivec2 last = ivec2(pixel.x == frame.size.x - 1 ? padded.x - 1 : pixel.x,
+                       pixel.y == frame.size.y - 1 ? padded.y - 1 : pixel.y);
+    for (int y = pixel.y; y <= last.y; ++y)
+        for (int x = pixel.x; x <= last.x; ++x)
+            if (ivec2(x, y) != pixel) write_zlayers(cavityLayerTexel(ivec2(x, y)), vec4(0.0));
+}
+#endif
+
 void cavity_main(ivec2 pixel) {
     vec4 depth = vec4(texelFetch(in_position, pixel, 0).w, 0.0, 0.0, 0.0);
     write_zmip(pixel, depth);
+#ifdef CAVITY_INTERLEAVE
+    writeLayers(pixel, depth);
+#endif
     // A pixel no texel of level k picked is picked by no smaller level
     // either (the chain passes through level k), and neither is one past an
     // odd level's last texel: the first such level ends the work. Three

@@ -52,6 +52,12 @@ struct OutputDecl {
     // (CAVITY_LEVELS_<name> is the level count) instead of a dispatch per
     // level a barrier apart.
     bool oneDispatch = false;
+    // An atlas of the kernel's `interleave` x `interleave` layers (docs/kernels.md,
+    // "Interleaved layers"): the pass's size rounded up to a multiple of
+    // k in each axis, layer l = pixel % k holding pixel p at
+    // cavityLayerTexel(p) = l * layerSize + p / k. Written by the pass that
+    // makes it (the depth pyramid's "zlayers"), read by an interleaved kernel.
+    bool layered = false;
 };
 
 struct ArrayDecl {
@@ -117,6 +123,14 @@ struct KernelDecl {
     // scene): CPU renderers (llvmpipe's GL) otherwise run every path of a
     // branch on a uniform, and the ray march got 2.2x slower with six scenes.
     std::vector<std::string> compileTime;
+    // Runs as k x k interleaved layers when its `interleave` parameter k is
+    // over 1: one compute dispatch over the layers side by side, invocation
+    // (layer l, texel q) shading pixel q * k + l, so that a workgroup's
+    // pixels are every k-th one and share l's sample phase; the result is
+    // stored straight back at its pixel. An input named "zlayers" reads the
+    // linear depth split into those layers (the pyramid's atlas); with k = 1
+    // it is the pyramid itself, and the pass one plain dispatch.
+    bool interleaved = false;
 };
 
 // The fixed uniform block every kernel sees at binding 0 (std140).

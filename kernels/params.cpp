@@ -115,6 +115,13 @@ std::vector<ParamDecl> declare() {
         // or one per level, a barrier apart (depth_pyramid): the same levels.
         flag("pyramid_per_level", false,
              "build the fast kernels' depth pyramid a dispatch per level (depth_pyramid), not in one (depth_pyramid_single)"),
+        // Interleaved layers (docs/kernels.md, "Interleaved layers"): the AO
+        // pass as k x k layers of every k-th pixel, one dispatch over all of
+        // them, each layer with one sample phase, reading the depth split into
+        // those layers; as HBAO+ and ASSAO render AO, for cache coherence.
+        make("interleave", T::Int, 1, 1, 4, "layers per axis",
+             "run the AO pass as k x k interleaved layers of every k-th pixel, one sample phase per layer, reading "
+             "the depth split into layers (1: every pixel its own phase, one plain dispatch)"),
         // The half-resolution tail as two passes (upsample_bilateral, then
         // composite) or fused into one (upsample_composite): the same image.
         flag("fused_tail", false,

@@ -153,6 +153,25 @@ KernelDecl depthPyramidSingle() {
     return k;
 }
 
+// depth_pyramid_single that also splits level 0 into the AO pass's
+// interleaved layers ("zlayers", OutputDecl::layered): one more 4-byte
+// store per pixel, in a pass that has just read the depth.
+KernelDecl depthPyramidLayered() {
+    KernelDecl k = depthPyramidSingle();
+    k.name = "depth_pyramid_layered";
+    k.summary = "depth_pyramid_single, and level 0 split into the AO pass's k x k interleaved layers (zlayers)";
+    OutputDecl zlayers{"zlayers", Format::R32F};
+    zlayers.layered = true;
+    k.outputs.push_back(zlayers);
+    k.params = {use("interleave")};
+    k.cost = [](const ParamValues&) {
+        const double rest = (1 - std::pow(0.25, kPyramidLevels - 1)) / 3;
+        const double bytes = kRgba32f + 2 * kR32f + rest * kR32f;
+        return Cost{1, bytes, fetchSlots(kRgba32f), bytes};
+    };
+    return k;
+}
+
 // A fast AO kernel's cost: the pixel's depth and normal, n R32F samples
 // of the pyramid, the AO and its packed key written; the pyramid's smaller
 // levels are a third of level 0 in DRAM.
@@ -169,14 +188,16 @@ KernelDecl alchemyFast() {
     k.file = "ssao_alchemy_fast.glsl";
     k.summary = "Alchemy obscurance on a linear-depth mip pyramid with a separable blur (after SAO, McGuire et al. 2012)";
     k.sources = {"McGuire et al., HPG 2011"};
-    k.inputs = {{"zmip", {gpu::Filter::Nearest, gpu::Address::ClampToEdge, true}}, {"normal", {}}};
+    k.inputs = {{"zmip", {gpu::Filter::Nearest, gpu::Address::ClampToEdge, true}}, {"normal", {}}, {"zlayers", {}}};
     k.outputs = {{"ao", Format::R16F}, {"ao_key", Format::RGBA16F}};
+    k.interleaved = true;
     // Sample i's spiral direction at phase 0, (cos, sin) of (i + 0.5) 7/9
     // turns, one vec4 each for samples up to 256: the kernel turns it by the
     // pixel's phase once computed, where evaluating cos and sin per sample
     // was a sixth of the pass on the H200 (bench/ROOFLINE.md). Whatever the
     // table's last bits, the shader and the CPU reference read the same ones.
     k.params.push_back(use("exact"));
+    k.params.push_back(use("interleave"));
     k.arrays = {{"spiral", 256}};
     k.derive = [](const ParamValues&, std::map<std::string, std::vector<float>>& arrays) {
         std::vector<float> table(256 * 4, 0.0f);
@@ -210,11 +231,13 @@ KernelDecl hemisphereFast() {
         use("step_jitter"),
         use("steps", 4, "points along each ray; at a given n more steps mean fewer rays"),
         use("exact"),
+        use("interleave"),
     };
     for (auto& p : k.params)
         if (p.name() == "step_jitter") p.def = 1;
-    k.inputs = {{"zmip", {gpu::Filter::Nearest, gpu::Address::ClampToEdge, true}}, {"normal", {}}};
+    k.inputs = {{"zmip", {gpu::Filter::Nearest, gpu::Address::ClampToEdge, true}}, {"normal", {}}, {"zlayers", {}}};
     k.outputs = {{"ao", Format::R16F}, {"ao_key", Format::RGBA16F}};
+    k.interleaved = true;
     k.arrays = {{"kernel", maxKernelPoints()}};
     k.derive = [](const ParamValues& v, std::map<std::string, std::vector<float>>& arrays) {
         arrays["kernel"] = cosineKernel(intValue(v, "samples"), intValue(v, "steps"));
@@ -318,7 +341,7 @@ std::vector<KernelDecl>& registryForTests() {
         std::vector<KernelDecl> k = {gbufferSdf(), alchemy(), blurBilateral(), composite()};
         for (auto& d : screenSpaceKernels()) k.push_back(std::move(d));
         for (auto& d : qualityVariantKernels()) k.push_back(std::move(d));
-        for (auto& d : {depthPyramid(), depthPyramidSingle(), alchemyFast(), hemisphereFast(), blurSeparable("x"), blurSeparable("y"), ssdoFast(),
+        for (auto& d : {depthPyramid(), depthPyramidSingle(), depthPyramidLayered(), alchemyFast(), hemisphereFast(), blurSeparable("x"), blurSeparable("y"), ssdoFast(),
                         ssdoFastIndirect(), blurSeparableSsdo("x"), blurSeparableSsdo("y")})
             k.push_back(d);
         for (auto& d : sdfAoKernels()) k.push_back(std::move(d));

@@ -37,7 +37,7 @@ ivec2 spiralSampleTurned(int i, vec2 phase, float discScale, vec2 fragCentre, ou
 }
 
 void cavity_main(ivec2 pixel) {
-    float d = texelFetch(in_zmip, pixel, 0).r;
+    float d = pyramidDepth(pixel, 0);
     if (isBackground(d)) {
         write_ao(pixel, vec4(1.0));
         write_ao_key(pixel, vec4(1.0, 0.0, 0.0, 0.0));
@@ -52,7 +52,7 @@ void cavity_main(ivec2 pixel) {
     float c = 0.1 * R;
     float weight = 2.0 * PI * c / float(n);
     float discScale = spiralDiscScale(R, n, d);
-    vec2 phase = cosSinTurns(pixelHash(pixel));
+    vec2 phase = cosSinTurns(samplePhase(pixel));
     vec2 fragCentre = vec2(pixel) + 0.5;
 
     float S = 0.0;
@@ -63,7 +63,7 @@ void cavity_main(ivec2 pixel) {
         // h < 2^31 here: the sample is inside the image.
         int level = pyramidLevel(int(h), maxLevel);
         ivec2 t = min(s >> level, levelSize(level) - 1);
-        float zs = texelFetch(in_zmip, t, level).r;
+        float zs = pyramidDepth(t, level);
         if (isBackground(zs)) continue;
 
         EXACT vec3 omega = positionAt(sourcePixel(t, level), zs) - X;

@@ -56,7 +56,7 @@ float occludedBy(PyramidView v, vec3 X, vec3 N, float level, float d, vec3 k, ve
 }
 
 void cavity_main(ivec2 pixel) {
-    float d = texelFetch(in_zmip, pixel, 0).r;
+    float d = pyramidDepth(pixel, 0);
     vec3 N = texelFetch(in_normal, pixel, 0).xyz;
     if (isBackground(d) || lengthSquared(N) == 0.0) {
         write_ao(pixel, vec4(1.0));
@@ -70,7 +70,7 @@ void cavity_main(ivec2 pixel) {
 
     // The kernel's tangent frame, turned about N by the pixel's phase.
     vec3 tn, b;
-    tangentFrame(cosSinTurns(pixelHash(pixel)), N, tn, b);
+    tangentFrame(cosSinTurns(samplePhase(pixel)), N, tn, b);
 
     // Points come in groups along one ray (P.kernel[i].w = 1 closes one):
     // a ray is blocked when any of its points is, and once one point has
@@ -83,7 +83,7 @@ void cavity_main(ivec2 pixel) {
     int inGroup = 0;
     for (int i = 0; i < n; ++i) {
         vec4 k = P.kernel[i];
-        if (inGroup == 0 && P.step_jitter != 0) u = sampleHash(pixel, int(directions));
+        if (inGroup == 0 && P.step_jitter != 0) u = sampleHash(phasePixel(pixel), int(directions));
         if (blocked < 1.0) {
             EXACT float lengthScale = R;
             if (P.step_jitter != 0) lengthScale = R * (1.0 - u * portableReciprocal(float(inGroup + 1)));

@@ -32,6 +32,7 @@ struct Case {
     bool half = false;
     gpu::Stage stage = gpu::Stage::Compute;
     bool fusedTail = false;
+    int interleave = 1;   // the AO pass's interleaved layers per axis
 };
 
 class KernelVsReference : public GpuTest {};
@@ -96,6 +97,9 @@ void checkChain(gpu::Backend& gpu, gpu::Api api, const Case& cs) {
     ASSERT_TRUE(setParam(c, "scene", cs.scene).ok());
     if (cs.fusedTail) {
         ASSERT_TRUE(setParam(c, "fused_tail", "1").ok());
+    }
+    if (cs.interleave > 1) {
+        ASSERT_TRUE(setParam(c, "interleave", std::to_string(cs.interleave)).ok());
     }
     auto chain = recordedChain(gpu, c);
     ASSERT_TRUE(chain) << chain.error().message;
@@ -265,6 +269,48 @@ TEST_P(KernelVsReference, FusedTailMakesTheImagesOfUpsampleThenComposite) {
                 // Only rounding: a step on a few pixels, not a shifted image.
                 EXPECT_LT(color.meanAbs, 0.25 / 255.0) << scene << " " << kernel;
             }
+}
+
+// Interleaved layers (KernelDecl::interleaved): the AO pass dispatched as
+// k x k layers over the depth split into them, against the CPU reference,
+// which shades the same pixels with the same phases in a plain loop over
+// the image: every pass, the pyramid's atlas of layers included, as closely
+// as the plain dispatch is held. Sizes that divide into the layers and
+// sizes that do not (the atlas's padding), full and half resolution, and
+// the fragment stage, whose interleaved pass runs as compute.
+TEST_P(KernelVsReference, InterleavedLayersShadeAsThePlainReferenceDoes) {
+    for (const std::string kernel : {"alchemy_fast", "hemisphere_fast"})
+        for (int k : {2, 4})
+            for (auto [w, h] : {std::pair{160, 90}, std::pair{37, 21}})
+                for (bool half : {false, true}) {
+                    const std::string scene = (w + k) % 2 ? "corner" : "slats";
+                    const auto stage = half && k == 4 ? gpu::Stage::Fragment : gpu::Stage::Compute;
+                    Case cs{scene, w, h, kernel, half, stage, false, k};
+                    checkChain(gpu(), api(), cs);
+                    RunConfig c;
+                    c.api = api();
+                    c.width = w;
+                    c.height = h;
+                    c.kernel = kernel;
+                    c.half = half;
+                    c.stage = stage;
+                    ASSERT_TRUE(setParam(c, "interleave", std::to_string(k)).ok());
+                    auto chain = recordedChain(gpu(), c);
+                    ASSERT_TRUE(chain) << chain.error().message;
+                    bool layered = false;
+                    for (const auto& pass : (*chain)->passes()) layered |= pass.kernel == "depth_pyramid_layered";
+                    EXPECT_TRUE(layered) << configId(c) << ": no pass splits the depth into layers";
+                    // The layers' phases reached the shader, and the atlas is whole layers.
+                    const auto* decl = kernels::find(kernel);
+                    auto src = kernels::assemble(*decl, gpu::Stage::Compute, {}, &c.params);
+                    ASSERT_TRUE(src) << src.error().message;
+                    EXPECT_NE(src->glsl.find("#define CAVITY_INTERLEAVE " + std::to_string(k)), std::string::npos);
+                    auto atlas = (*chain)->read(half ? "zlayers_half" : "zlayers");
+                    ASSERT_TRUE(atlas) << atlas.error().message;
+                    const int pw = half ? (w + 1) / 2 : w, ph = half ? (h + 1) / 2 : h;
+                    EXPECT_EQ(atlas->width, (pw + k - 1) / k * k);
+                    EXPECT_EQ(atlas->height, (ph + k - 1) / k * k);
+                }
 }
 
 // The precision contract: a fast kernel run with --exact 0 (the GPU's own

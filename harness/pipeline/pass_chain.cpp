@@ -136,10 +136,12 @@ Status PassChain::createPass(const PassSpec& spec, const RunConfig& c, const Sou
     if (k.inputs.size() != spec.inputs.size() || k.outputs.size() != spec.outputs.size())
         return internal("pass '" + spec.name + "' wires the wrong number of images for kernel " + k.name);
     const int mipLevels = k.outputs.empty() ? 1 : k.outputs[0].mipLevels;
-    pass->stage = mipLevels > 1 ? gpu::Stage::Compute : c.stage;
+    // A mip chain and interleaved layers are compute work whatever the stage.
+    const bool interleaved = k.interleaved && c.params.count("interleave") && c.params.at("interleave") > 1;
+    pass->stage = mipLevels > 1 || interleaved ? gpu::Stage::Compute : c.stage;
     pass->width = spec.half ? (c.width + 1) / 2 : c.width;
     pass->height = spec.half ? (c.height + 1) / 2 : c.height;
-    CAVITY_TRY(createOutputs(*pass, spec));
+    CAVITY_TRY(createOutputs(*pass, spec, c));
     CAVITY_TRY(createUniforms(*pass, spec, c));
     CAVITY_TRY(bindInputs(*pass, spec, c));
     const auto planted = plant.find(spec.name);
@@ -173,12 +175,16 @@ Status PassChain::createPass(const PassSpec& spec, const RunConfig& c, const Sou
     return {};
 }
 
-// Outputs are created by the pass that writes them.
-Status PassChain::createOutputs(Pass& pass, const PassSpec& spec) {
+// Outputs are created by the pass that writes them; an atlas of interleaved
+// layers (OutputDecl::layered) is the pass's size rounded up to whole layers.
+Status PassChain::createOutputs(Pass& pass, const PassSpec& spec, const RunConfig& c) {
     const auto& k = *pass.kernel;
+    const int layers = c.params.count("interleave") ? int(c.params.at("interleave")) : 1;
     for (size_t o = 0; o < spec.outputs.size(); ++o) {
         const uint32_t written = pass.stage == gpu::Stage::Compute ? gpu::ImageStorage : gpu::ImageColorTarget;
-        gpu::ImageDesc d{pass.width, pass.height, k.outputs[o].format, k.outputs[o].mipLevels, spec.outputs[o],
+        const int round = k.outputs[o].layered ? layers : 1;
+        gpu::ImageDesc d{(pass.width + round - 1) / round * round, (pass.height + round - 1) / round * round,
+                         k.outputs[o].format, k.outputs[o].mipLevels, spec.outputs[o],
                          outputUsage(specs_, spec.outputs[o], written)};
         CAVITY_ASSIGN(gpu::Image img, gpu_.createImage(d));
         images_[spec.outputs[o]] = {img, d.width, d.height, d.format};

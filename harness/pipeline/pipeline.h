@@ -122,7 +122,7 @@ private:
     // One pass of create(): its outputs, uniform blocks, bindings and pipeline.
     Status createPass(const PassSpec& spec, const RunConfig& c, const SourceOverrides& overrides,
                       const PlantedSlowdown& plant);
-    Status createOutputs(Pass& pass, const PassSpec& spec);
+    Status createOutputs(Pass& pass, const PassSpec& spec, const RunConfig& c);
     Status createUniforms(Pass& pass, const PassSpec& spec, const RunConfig& c);
     Status bindInputs(Pass& pass, const PassSpec& spec, const RunConfig& c);
     Status createComputeLevels(Pass& pass, const PassSpec& spec, const RunConfig& c, int mipLevels);

@@ -13,9 +13,17 @@ namespace {
 
 bool isConstant(const std::string& name) { return kernels::findConstant(name) != nullptr; }
 
+// The layers per axis of an interleaved AO pass (KernelDecl::interleaved): 1 for a plain one.
+int interleaveOf(const RunConfig& c) {
+    return c.params.count("interleave") ? int(c.params.at("interleave")) : 1;
+}
+
 // The linear-depth pyramid of the fast kernels, from `position` into `zmip`:
-// one dispatch, or one per level with pyramid_per_level.
+// one dispatch, or one per level with pyramid_per_level; with interleaved
+// layers, one dispatch that also writes level 0 split into them.
 PassSpec pyramidPass(const RunConfig& c, const std::string& position, const std::string& zmip, bool half) {
+    if (interleaveOf(c) > 1)
+        return {"pyramid", "depth_pyramid_layered", {position}, {zmip, "zlayers" + std::string(half ? "_half" : "")}, half};
     if (c.params.count("pyramid_per_level") && c.params.at("pyramid_per_level") != 0)
         return {"pyramid", "depth_pyramid", {position, zmip}, {zmip}, half};
     return {"pyramid", "depth_pyramid_single", {position}, {zmip}, half};
@@ -105,6 +113,9 @@ std::vector<ImageRef> aoInputs(const kernels::KernelDecl& k, const RunConfig& c,
         else if (i.name == "normal") in.push_back(normal);
         else if (i.name == "depth") in.push_back("depth" + suffix);
         else if (i.name == "zmip") in.push_back("zmip" + suffix);
+        // The depth split into interleaved layers, or with none the pyramid,
+        // whose level 0 the kernel then reads in place.
+        else if (i.name == "zlayers") in.push_back((interleaveOf(c) > 1 ? "zlayers" : "zmip") + suffix);
         else if (isConstant(i.name)) in.push_back({i.name, ImageSource::Constant});
         else in.push_back(i.name);
     }
@@ -226,6 +237,9 @@ Status validate(const RunConfig& c) {
                                         "(--gbuffer import); use a screen-space kernel (have: " + screenSpaceAoNames() + ")");
     if (c.half && !supportsHalf(c.kernel))
         return badInput("--resolution half: kernel " + c.kernel + " has no half-resolution pipeline (use full)");
+    if (interleaveOf(c) > 1 && c.params.count("pyramid_per_level") && c.params.at("pyramid_per_level") != 0)
+        return badInput("--pyramid_per_level 1: the interleaved layers (--interleave " + std::to_string(interleaveOf(c)) +
+                        ") are written by the one-dispatch pyramid; use one or the other");
     // Values set in code (sweeps, matrices, tests) rather than parsed.
     for (const auto& [name, v] : c.params) {
         const auto* p = kernels::findParam(name);

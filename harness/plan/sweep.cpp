@@ -98,6 +98,10 @@ std::vector<RunConfig> benchmarkSweep(const SweepAxes& axes, const std::vector<g
                 if (declares(kernel, "exact")) add(around({{"exact", {0}}}), base);
                 // The depth pyramid a dispatch per level, against the one dispatch.
                 if (readsPyramid(kernel)) add(around({{"pyramid_per_level", {1}}}), base);
+                // Interleaved layers against the plain dispatch, full and
+                // half, at the samples the AO pass's targets name.
+                if (declares(kernel, "interleave"))
+                    add(around({{"interleave", {4}}, {"samples", {16, 32}}}, {false, true}), base);
             }
     return out;
 }

@@ -18,6 +18,16 @@ inline float hashToUnit(uint32_t h) { return float(h >> 8u) * (1.0f / 16777216.0
 
 inline float pixelHash(int x, int y) { return hashToUnit(pcgHash(uint32_t(x) + uint32_t(y) * 65521u)); }
 
+// phasePixel() with k interleaved layers per axis: the pixel itself, or its layer.
+inline int phaseCoord(int v, int k) { return k > 1 ? v % k : v; }
+
+// samplePhase(): the pixel's hash, or its layer's evenly spaced phase.
+inline float samplePhase(int x, int y, int k) {
+    if (k <= 1) return pixelHash(x, y);
+    const int n = k * k;
+    return float((y % k * k + x % k) * 7 % n) * (1.0f / float(n));
+}
+
 // IGN at a pixel centre (px, py) = (x + 0.5, y + 0.5).
 inline float ign(float px, float py) {
     const float inner = 0.06711056f * px + 0.00583715f * py;

@@ -8,6 +8,7 @@
 #include "reference/refs.h"
 #include "reference/vec.h"
 
+#include <utility>
 #include <vector>
 
 namespace cavity::reference::pyramid {
@@ -15,6 +16,13 @@ namespace cavity::reference::pyramid {
 // positionAt(): view position on the ray through the centre of (x, y) at
 // linear depth `depth`.
 Vec3 positionAt(const kernels::FrameUniforms& f, int x, int y, float depth);
+
+// cavityLayerTexel(): where pixel (x, y) lies in the atlas of k x k
+// interleaved layers of a pass of f's size (OutputDecl::layered).
+inline std::pair<int, int> layerTexel(const kernels::FrameUniforms& f, int k, int x, int y) {
+    const int lw = (f.size[0] + k - 1) / k, lh = (f.size[1] + k - 1) / k;
+    return {x % k * lw + x / k, y % k * lh + y / k};
+}
 
 // The levels of depth_pyramid's output.
 int levelCount();

@@ -234,6 +234,23 @@ Result<std::vector<HostImage>> depthPyramidSingle(const Context& ctx) {
     return out;
 }
 
+// depth_pyramid_layered: that level 0, and again split into k x k layers
+// (OutputDecl::layered), pixel p at layerTexel(p); the padding past the
+// last pixel holds 0.
+Result<std::vector<HostImage>> depthPyramidLayered(const Context& ctx) {
+    CAVITY_TRY(depthPyramidSingle(ctx));
+    auto out = makeOutputs(ctx);
+    const int k = intParam(ctx, "interleave");
+    for (int y = 0; y < ctx.frame.size[1]; ++y)
+        for (int x = 0; x < ctx.frame.size[0]; ++x) {
+            const float z = ctx.inputs[0]->at(x, y, 3);
+            out[0].at(x, y) = z;
+            const auto [tx, ty] = pyramid::layerTexel(ctx.frame, k, x, y);
+            out[1].at(tx, ty) = z;
+        }
+    return out;
+}
+
 Result<std::vector<HostImage>> alchemyFast(const Context& ctx) {
     CAVITY_TRY(requireInputs(ctx, {1, 3}));
     const auto zmip = pyramidLevels(*ctx.inputs[0], pyramid::levelCount());
@@ -244,6 +261,7 @@ Result<std::vector<HostImage>> alchemyFast(const Context& ctx) {
     const float bias = floatParam(ctx, "bias");
     const float scale = floatParam(ctx, "scale");
     const float contrast = floatParam(ctx, "contrast");
+    const int layers = intParam(ctx, "interleave");
     const float c = 0.1f * R;
     const float weight = 2.0f * kPi * c / float(n);
     const int maxLevel = int(zmip.size()) - 1;
@@ -262,7 +280,7 @@ Result<std::vector<HostImage>> alchemyFast(const Context& ctx) {
             const Vec3 X = positionAt(f, x, y, d);
             const Vec3 N{normal.at(x, y, 0), normal.at(x, y, 1), normal.at(x, y, 2)};
             const float discScale = spiralDiscScale(f, R, n, d);
-            const Vec2 phase = cosSinTurns(pixelHash(x, y));
+            const Vec2 phase = cosSinTurns(samplePhase(x, y, layers));
             float S = 0.0f;
             for (int i = 0; i < n; ++i) {
                 // spiralSampleTurned() of the kernel: the table's direction turned by the phase.
@@ -300,6 +318,7 @@ Result<std::vector<HostImage>> hemisphereFast(const Context& ctx) {
     const float R = floatParam(ctx, "radius");
     const float bias = floatParam(ctx, "bias");
     const float contrast = floatParam(ctx, "contrast");
+    const int layers = intParam(ctx, "interleave");
     const bool rangeCheck = intParam(ctx, "range_check") != 0;
     const bool stepJitter = intParam(ctx, "step_jitter") != 0;
     const std::vector<float>& kernel = array(ctx, "kernel");
@@ -320,7 +339,7 @@ Result<std::vector<HostImage>> hemisphereFast(const Context& ctx) {
             const Vec3 X = positionAt(f, x, y, d);
             const float level = dot(N, X);
             Vec3 t, b;
-            screen::tangentFrame(cosSinTurns(pixelHash(x, y)), N, t, b);
+            screen::tangentFrame(cosSinTurns(samplePhase(x, y, layers)), N, t, b);
 
             // One point's occlusion: occludedBy() of the kernel.
             auto occludedBy = [&](const float* k, float lengthScale) -> float {
@@ -336,7 +355,7 @@ Result<std::vector<HostImage>> hemisphereFast(const Context& ctx) {
             int inGroup = 0;
             for (int i = 0; i < n; ++i) {
                 const float* k = &kernel[size_t(i) * 4];
-                if (inGroup == 0 && stepJitter) u = screen::sampleHash(x, y, int(directions));
+                if (inGroup == 0 && stepJitter) u = screen::sampleHash(phaseCoord(x, layers), phaseCoord(y, layers), int(directions));
                 if (blocked < 1.0f) {
                     float lengthScale = R;
                     if (stepJitter) lengthScale = R * (1.0f - u * portableReciprocal(float(inGroup + 1)));
@@ -364,6 +383,7 @@ Result<std::vector<HostImage>> blurSeparableSsdoY(const Context& ctx) { return b
 std::vector<RefEntry> fastRefs() {
     return {{"depth_pyramid", depthPyramid},
             {"depth_pyramid_single", depthPyramidSingle},
+            {"depth_pyramid_layered", depthPyramidLayered},
             {"alchemy_fast", alchemyFast},
             {"hemisphere_fast", hemisphereFast},
             {"blur_separable_x", blurSeparableX},

@@ -16,8 +16,13 @@ std::vector<RefEntry> firstSliceRefs() {
 
 std::vector<HostImage> makeOutputs(const Context& ctx) {
     std::vector<HostImage> out;
-    for (const auto& o : ctx.kernel.outputs)
-        out.emplace_back(ctx.frame.size[0], ctx.frame.size[1], gpu::channelCount(o.format));
+    // An atlas of interleaved layers is rounded up to whole layers.
+    const int k = ctx.params.count("interleave") ? int(ctx.params.at("interleave")) : 1;
+    for (const auto& o : ctx.kernel.outputs) {
+        const int r = o.layered ? k : 1;
+        out.emplace_back((ctx.frame.size[0] + r - 1) / r * r, (ctx.frame.size[1] + r - 1) / r * r,
+                         gpu::channelCount(o.format));
+    }
     return out;
 }
 

@@ -24,6 +24,33 @@ float pixelHash(ivec2 pixel) {
     return hashToUnit(pcgHash(uint(pixel.x) + uint(pixel.y) * 65521u));
 }
 
+// The pixel that seeds a pixel's per-pixel randomness: itself, or with
+// interleaved layers (CAVITY_INTERLEAVE k > 1, KernelDecl::interleaved) its
+// layer pixel % k, which every pixel of that layer shares: a workgroup of
+// the interleaved dispatch then puts its samples at one offset from each of
+// its pixels, and its fetches move through the layer together.
+ivec2 phasePixel(ivec2 pixel) {
+#if defined(CAVITY_INTERLEAVE) && CAVITY_INTERLEAVE > 1
+    return pixel % CAVITY_INTERLEAVE;
+#else
+    return pixel;
+#endif
+}
+
+// A pixel's sample phase in turns: its hash, or its layer's. The k x k
+// layers' phases are evenly spaced, (7 i mod k^2) / k^2 for layer
+// i = l.y k + l.x, so that any k x k block of pixels, which the blur
+// averages, holds every phase once. Exact in float for k = 2 and 4.
+float samplePhase(ivec2 pixel) {
+#if defined(CAVITY_INTERLEAVE) && CAVITY_INTERLEAVE > 1
+    ivec2 l = phasePixel(pixel);
+    const int n = CAVITY_INTERLEAVE * CAVITY_INTERLEAVE;
+    return float((l.y * CAVITY_INTERLEAVE + l.x) * 7 % n) * (1.0 / float(n));
+#else
+    return pixelHash(pixel);
+#endif
+}
+
 // Interleaved gradient noise (Jimenez 2014; the hemisphere SSAO lesson (docs/kernels.md)):
 // values in [0, 1) that differ strongly between neighbouring pixels yet are
 // well spread over any small block, so a +-half-step dither built from it

@@ -51,6 +51,16 @@ ivec2 sourcePixel(ivec2 t, int level) {
 // What projecting a view-space point onto this pass's pixels takes:
 // x_px = x / depth * toPixel.x + size.x / 2, and y likewise with the flip
 // (positionAt() inverted); and the pyramid's last level.
+// The depth of texel t of level l. Level 0 comes from the interleaved
+// layers where the kernel has them (an input "zlayers", KernelDecl::interleaved):
+// the same value, at the texel where the warp's neighbours read theirs.
+float pyramidDepth(ivec2 t, int level) {
+#ifdef CAVITY_INTERLEAVE
+    if (level == 0) return texelFetch(in_zlayers, cavityLayerTexel(t), 0).r;
+#endif
+    return texelFetch(in_zmip, t, level).r;
+}
+
 struct PyramidView {
     vec2 toPixel;
     vec2 centre;
@@ -78,7 +88,7 @@ bool pyramidLookup(PyramidView v, vec3 s, ivec2 pixel, out ivec2 source, out flo
     ivec2 away = abs(texel - pixel);
     int level = pyramidLevel(max(away.x, away.y), v.maxLevel);
     ivec2 tl = min(texel >> level, levelSize(level) - 1);
-    zq = texelFetch(in_zmip, tl, level).r;
+    zq = pyramidDepth(tl, level);
     if (isBackground(zq)) return false;
     source = sourcePixel(tl, level);
     return true;
