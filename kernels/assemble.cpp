@@ -159,6 +159,25 @@ std::string interleavePreamble(int k) {
            "ivec2 cavityLayerTexel(ivec2 p) { return (p % " + n + ") * cavityLayerSize() + p / " + n + "; }\n";
 }
 
+// main() around cavity_main: a compute invocation per pixel, or for an
+// interleaved pass, invocation (layer l, texel q) of the layers laid side by
+// side shading pixel q * k + l; a fragment per pixel.
+std::string entryPoint(gpu::Stage stage, bool interleaved, const std::string& plant) {
+    if (stage != gpu::Stage::Compute)
+        return "void main() {\n    ivec2 pixel = ivec2(gl_FragCoord.xy);\n    cavity_main(pixel);\n" + plant + "}\n";
+    const std::string pixel = interleaved
+                                  ? "    ivec2 atlas = ivec2(gl_GlobalInvocationID.xy);\n"
+                                    "    ivec2 layer = atlas / cavityLayerSize();\n"
+                                    "    if (any(greaterThanEqual(layer, ivec2(CAVITY_INTERLEAVE)))) return;\n"
+                                    "    ivec2 pixel = (atlas - layer * cavityLayerSize()) * CAVITY_INTERLEAVE + layer;\n"
+                                  : "    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);\n";
+    return "layout(local_size_x = 8, local_size_y = 8) in;\n"
+           "void main() {\n" + pixel +
+           "    if (pixel.x >= frame.size.x || pixel.y >= frame.size.y) return;\n"
+           "    cavity_main(pixel);\n" + plant +
+           "}\n";
+}
+
 }  // namespace
 
 Result<gpu::ShaderSource> assemble(const KernelDecl& k, gpu::Stage stage,
@@ -230,25 +249,7 @@ Result<gpu::ShaderSource> assemble(const KernelDecl& k, gpu::Stage stage,
                 "    for (int i = 0; i < " + std::to_string(plantedFmas) + "; ++i) plant_ = fma(plant_, 0.9999, frame.invSize.y);\n"
                 "    if (plant_ < 0.0) write_" + k.outputs[0].name + "(pixel, vec4(plant_));\n";
     // The two thin entry points around the one body.
-    src.glsl += "#line 1 0\n";
-    if (stage == gpu::Stage::Compute) {
-        // An interleaved pass: invocation (layer l, texel q) of the layers
-        // laid side by side shades pixel q * k + l.
-        const std::string pixel = k.interleaved && interleave > 1
-                                      ? "    ivec2 atlas = ivec2(gl_GlobalInvocationID.xy);\n"
-                                        "    ivec2 layer = atlas / cavityLayerSize();\n"
-                                        "    if (any(greaterThanEqual(layer, ivec2(CAVITY_INTERLEAVE)))) return;\n"
-                                        "    ivec2 pixel = (atlas - layer * cavityLayerSize()) * CAVITY_INTERLEAVE + layer;\n"
-                                      : "    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);\n";
-        src.glsl +=
-            "layout(local_size_x = 8, local_size_y = 8) in;\n"
-            "void main() {\n" + pixel +
-            "    if (pixel.x >= frame.size.x || pixel.y >= frame.size.y) return;\n"
-            "    cavity_main(pixel);\n" + plant +
-            "}\n";
-    } else {
-        src.glsl += "void main() {\n    ivec2 pixel = ivec2(gl_FragCoord.xy);\n    cavity_main(pixel);\n" + plant + "}\n";
-    }
+    src.glsl += "#line 1 0\n" + entryPoint(stage, k.interleaved && interleave > 1, plant);
     return src;
 }
 

@@ -44,9 +44,38 @@ ParamDecl choice(std::string name, std::vector<std::string> choices, std::string
 // (decl_screen_space.cpp).
 constexpr double kMaxSamples = 256;
 
-std::vector<ParamDecl> declare() {
+// The fast pipelines' switches: each picks another way to compute the same
+// (or, stated, nearly the same) image.
+std::vector<ParamDecl> declareSwitches() {
     using T = ParamType;
     return {
+        // The precision contract (include/common.glsl, docs/kernels.md): the
+        // CPU reference bit for bit, or the hardware's own arithmetic and a
+        // stated tolerance.
+        flag("exact", true,
+             "the fast kernels' CPU-exact arithmetic (precise, portable division and sine); 0: the GPU's own, "
+             "faster, held to a stated tolerance of the CPU reference"),
+        // The depth pyramid of the fast kernels: one dispatch (depth_pyramid_single)
+        // or one per level, a barrier apart (depth_pyramid): the same levels.
+        flag("pyramid_per_level", false,
+             "build the fast kernels' depth pyramid a dispatch per level (depth_pyramid), not in one (depth_pyramid_single)"),
+        // Interleaved layers (docs/kernels.md, "Interleaved layers"): the AO
+        // pass as k x k layers of every k-th pixel, one dispatch over all of
+        // them, each layer with one sample phase, reading the depth split into
+        // those layers; as HBAO+ and ASSAO render AO, for cache coherence.
+        make("interleave", T::Int, 1, 1, 4, "layers per axis",
+             "run the AO pass as k x k interleaved layers of every k-th pixel, one sample phase per layer, reading "
+             "the depth split into layers (1: every pixel its own phase, one plain dispatch)"),
+        // The half-resolution tail as two passes (upsample_bilateral, then
+        // composite) or fused into one (upsample_composite): the same image.
+        flag("fused_tail", false,
+             "at half resolution, upsample and composite in one full-resolution pass (upsample_composite)"),
+    };
+}
+
+std::vector<ParamDecl> declare() {
+    using T = ParamType;
+    std::vector<ParamDecl> decls = {
         // The scene and camera pose: read by the G-buffer kernels and by every
         // kernel that evaluates the signed-distance scene itself (the SDF AO
         // family), so one --scene drives them all. Order is
@@ -105,31 +134,12 @@ std::vector<ParamDecl> declare() {
              "distance of a half texel from the pixel's tangent plane, relative to depth, at which its "
              "weight falls to exp(-1/2)",
              true),
-        // The precision contract (include/common.glsl, docs/kernels.md): the
-        // CPU reference bit for bit, or the hardware's own arithmetic and a
-        // stated tolerance.
-        flag("exact", true,
-             "the fast kernels' CPU-exact arithmetic (precise, portable division and sine); 0: the GPU's own, "
-             "faster, held to a stated tolerance of the CPU reference"),
-        // The depth pyramid of the fast kernels: one dispatch (depth_pyramid_single)
-        // or one per level, a barrier apart (depth_pyramid): the same levels.
-        flag("pyramid_per_level", false,
-             "build the fast kernels' depth pyramid a dispatch per level (depth_pyramid), not in one (depth_pyramid_single)"),
-        // Interleaved layers (docs/kernels.md, "Interleaved layers"): the AO
-        // pass as k x k layers of every k-th pixel, one dispatch over all of
-        // them, each layer with one sample phase, reading the depth split into
-        // those layers; as HBAO+ and ASSAO render AO, for cache coherence.
-        make("interleave", T::Int, 1, 1, 4, "layers per axis",
-             "run the AO pass as k x k interleaved layers of every k-th pixel, one sample phase per layer, reading "
-             "the depth split into layers (1: every pixel its own phase, one plain dispatch)"),
-        // The half-resolution tail as two passes (upsample_bilateral, then
-        // composite) or fused into one (upsample_composite): the same image.
-        flag("fused_tail", false,
-             "at half resolution, upsample and composite in one full-resolution pass (upsample_composite)"),
-        choice("ssdo_mode", {"visibility", "radiance"},
-               "visibility: SH sky ambient x visibility + bounce; radiance: direct sky radiance + bounce"),
-        flag("dither", true, "add +-0.5/255 of interleaved gradient noise against 8-bit banding"),
     };
+    for (auto& d : declareSwitches()) decls.push_back(std::move(d));
+    decls.push_back(choice("ssdo_mode", {"visibility", "radiance"},
+                           "visibility: SH sky ambient x visibility + bounce; radiance: direct sky radiance + bounce"));
+    decls.push_back(flag("dither", true, "add +-0.5/255 of interleaved gradient noise against 8-bit banding"));
+    return decls;
 }
 
 std::string number(double x) {

@@ -5,7 +5,10 @@
 # (docs/timing.md, "One chain or several views")? On the GPU machine, in one
 # call: ROUNDS rounds, each cavity_render of alchemy_fast at 1920x1080 on both
 # APIs with --views 1 and --views 4, and cavity_bench of the same
-# configuration, the three in a shuffled order; the clocks beside them.
+# configuration, and with --views 4 the composite reduced to its store
+# (store4) and to an empty dispatch (empty4, scripts/gl_gap/), which part
+# of GL's per-pass cost is the pass itself; the five in a shuffled order,
+# the clocks beside them.
 # Leaves gl_gap.tgz (the render manifests, the benchmark JSON) in $OUT.
 #   scripts/gpu_gl_gap.sh [ROUNDS (3)]
 set -uo pipefail
@@ -16,12 +19,17 @@ id='corner/alchemy_fast/n16/b4/full/1920x1080/(gl|vk)/compute'
 work=$(mktemp -d)
 smi_start "$work/clocks.csv"
 for r in $(seq 1 "$rounds"); do
-  for k in $(printf 'views1\nviews4\nbench\n' | shuf); do
+  for k in $(printf 'views1\nviews4\nbench\nstore4\nempty4\n' | shuf); do
     d="$work/$k.r$r"
     case $k in
-      views1|views4)
+      views1|views4|store4|empty4)
+        src=()
+        case $k in
+          store4) src=(--kernel-source composite.glsl=scripts/gl_gap/composite_store.glsl) ;;
+          empty4) src=(--kernel-source composite.glsl=scripts/gl_gap/composite_empty.glsl) ;;
+        esac
         timeout 180 .bundle/render.sh --matrix gpu --filter "^$id\$" --max-noise 0.5 --max-time 1 \
-          --views "${k#views}" --out "$d" > "$d.log" 2>&1
+          --views "${k: -1}" "${src[@]}" --out "$d" > "$d.log" 2>&1
         echo "$k r$r: rc $? $(tail -1 "$d.log")"
         find "$d" -type f ! -name manifest.json -delete ;;
       bench)

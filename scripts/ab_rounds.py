@@ -1,0 +1,89 @@
+#!/usr/bin/env python3
+"""How many rounds of `cavity ab` it took to call a planted change.
+
+    python3 scripts/ab_rounds.py AB_DIR [--pass ao] [--cavity build/harness/cavity] > rounds.md
+
+AB_DIR is one `cavity ab --out` folder (scripts/gpu_ab.sh brings back ab1/,
+A against A with a plant, and aa/, A against A): a_<r>.json and b_<r>.json,
+one process per side and round. For every prefix of 3..R rounds it merges
+each side's first rounds (repetition k = round k, as `cavity ab` does),
+compares them with `cavity compare --min-change auto`, and prints how many
+configurations had the planted pass called slower, how many untouched
+(configuration, pass) pairs were called different, and the seconds the
+prefix took (the processes' log times, which tar keeps). Exit 0; 2 on a
+folder without rounds.
+"""
+import argparse
+import glob
+import json
+import os
+import re
+import subprocess
+import sys
+import tempfile
+
+
+def rounds(d):
+    found = {}
+    for f in glob.glob(os.path.join(d, "[ab]_*.json")):
+        m = re.match(r"([ab])_(\d+)\.json$", os.path.basename(f))
+        if m:
+            found.setdefault(int(m.group(2)), {})[m.group(1)] = f
+    return [found[r] for r in sorted(found) if len(found[r]) == 2]
+
+
+def merge(files, path):
+    merged = {"benchmarks": []}
+    for k, f in enumerate(files):
+        doc = json.load(open(f))
+        merged.setdefault("context", doc.get("context", {}))
+        for b in doc.get("benchmarks", []):
+            if b.get("run_type", "iteration") != "iteration":
+                continue
+            b["repetition_index"], b["repetitions"] = k, len(files)
+            merged["benchmarks"].append(b)
+    json.dump(merged, open(path, "w"))
+
+
+def elapsed(rs, n):
+    """Seconds from the first process's start (its log's mtime less its own
+    run, estimated as the mean process time) to the end of round n."""
+    ends = sorted(os.path.getmtime(f) for r in rs for f in r.values())
+    per = (ends[-1] - ends[0]) / max(1, len(ends) - 1)
+    last = max(os.path.getmtime(f) for f in rs[n - 1].values())
+    return last - ends[0] + per
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("dir")
+    ap.add_argument("--pass", dest="planted", default="ao", help="the planted pass (default ao)")
+    ap.add_argument("--cavity", default=os.path.join(os.path.dirname(__file__), "..", "build", "harness", "cavity"))
+    a = ap.parse_args()
+    rs = rounds(a.dir)
+    if len(rs) < 3:
+        print(f"ab_rounds: {a.dir}: {len(rs)} complete rounds (a_<r>.json and b_<r>.json); need 3", file=sys.stderr)
+        return 2
+    print(f"## {os.path.basename(os.path.normpath(a.dir))}: rounds needed, --min-change auto\n")
+    print(f"| rounds | seconds | configurations | {a.planted} slower | {a.planted} inconclusive | "
+          "untouched pairs | untouched called different |")
+    print("|---:|---:|---:|---:|---:|---:|---:|")
+    with tempfile.TemporaryDirectory() as tmp:
+        for n in range(3, len(rs) + 1):
+            for side in "ab":
+                merge([r[side] for r in rs[:n]], os.path.join(tmp, side + ".json"))
+            out = os.path.join(tmp, "compare.json")
+            subprocess.run([a.cavity, "compare", os.path.join(tmp, "a.json"), os.path.join(tmp, "b.json"),
+                            "--min-change", "auto", "--json", out], check=True, stdout=subprocess.DEVNULL)
+            rows = json.load(open(out))["rows"]
+            planted = [r for r in rows if r["pass"] == a.planted]
+            rest = [r for r in rows if r["pass"] != a.planted]
+            slower = sum(r["verdict"] == "slower" for r in planted)
+            unsure = sum(r["verdict"] == "inconclusive" for r in planted)
+            moved = sum(r["verdict"] in ("slower", "faster") for r in rest)
+            print(f"| {n} | {elapsed(rs, n):.0f} | {len(planted)} | {slower} | {unsure} | {len(rest)} | {moved} |")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
