@@ -41,6 +41,11 @@ CommandSpec qualitySpec(const std::string& program) {
                            "kernel's AO pipeline time, the screen-space Pareto front and --budget-ms"},
         {"--budget-ms", "MS", "with --cost: the most accurate screen-space kernel whose pipeline fits in MS"},
         {"--blur", "R", "compare the AO after the pipeline's blur of radius R, " + kernels::allowedValues(*kernels::findParam("blur")) + " (default 0, the raw AO)"},
+        {"--exact", "0|1", "the fast kernels' arithmetic: 0 the GPU's own (docs/kernels.md, \"The precision contract\"); "
+                           "set on the kernels that declare it (default 1)"},
+        {"--interleave", "K", "the fast kernels' AO pass as K x K interleaved layers, " +
+                                  kernels::allowedValues(*kernels::findParam("interleave")) +
+                                  "; set on the kernels that declare it (default 1)"},
         {"--device", "K", "device index (0..64)"},
         {"--out", "DIR", "also write DIR/quality.json"},
         {"--filter", "REGEX", "only the configurations whose id matches (searched; ids as --list prints them)"},
@@ -122,6 +127,8 @@ Status qualityFlag(QualityRequest& q, const std::string& flag, const std::string
     } else if (flag == "--resolution") {
         if (v != "full" && v != "half") return badInput("--resolution " + v + ": must be full or half");
         o.half = v == "half";
+    } else if (flag == "--exact" || flag == "--interleave") {
+        CAVITY_ASSIGN(o.switches[flag.substr(2)], paramFlag(flag.substr(2), v));
     } else if (flag == "--device") {
         CAVITY_ASSIGN(q.backend.deviceIndex, parseInt("--device", v, 0, 64));
     } else if (flag == "--out") {
@@ -168,6 +175,7 @@ Result<std::vector<QualityStep>> planQuality(const QualityRequest& q) {
     std::vector<QualityStep> steps;
     CAVITY_TRY(plan::forEachConfig(axes, base, [&](RunConfig c) -> Status {
         c.half = o.half && supportsHalf(c.kernel);
+        applySwitches(c, o.switches);
         const std::string id = configId(c);
         if (q.filter && !std::regex_search(id, *q.filter)) return {};
         const bool sameStep = !steps.empty() && steps.back().options.scenes[0] == c.scene() &&
@@ -214,6 +222,7 @@ nlohmann::json qualityJson(const QualityRequest& q, const std::string& device, c
                           {"resolution", o.half ? "half" : "full"},
                           {"reach", o.sharedReach ? "shared" : "seed"},
                           {"radius", o.sharedReach ? nlohmann::json(o.radius) : nlohmann::json(nullptr)},
+                          {"switches", o.switches},
                           {"rows", nlohmann::json::array()}};
     for (const auto& r : rows)
         doc["rows"].push_back({{"scene", r.scene},

@@ -60,6 +60,12 @@ QualityRow compareToTruth(const HostImage& ao, const GroundTruth& truth) {
     return r;
 }
 
+void applySwitches(RunConfig& c, const kernels::ParamValues& switches) {
+    const auto* k = kernels::find(c.kernel);
+    for (const auto& [name, value] : switches)
+        if (k && kernels::declares(*k, name)) c.params[name] = value;
+}
+
 Result<std::vector<QualityRow>> measureQuality(gpu::Backend& gpu, const QualityOptions& o) {
     std::vector<std::string> names = o.kernels;
     if (names.empty())
@@ -77,6 +83,7 @@ Result<std::vector<QualityRow>> measureQuality(gpu::Backend& gpu, const QualityO
                 if (o.sharedReach) c.params["radius"] = o.radius;
                 c.half = o.half && supportsHalf(kernel);
                 c.stage = o.stage;
+                applySwitches(c, o.switches);
                 CAVITY_ASSIGN(auto images, renderImages(gpu, c, {"ao_blur"}));
                 QualityRow r = compareToTruth(images["ao_blur"], truth);
                 r.scene = scene;

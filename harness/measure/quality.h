@@ -11,6 +11,7 @@
 
 #include "measure/namespace.h"
 #include "backend.h"
+#include "core/config.h"
 #include "core/image.h"
 #include "result.h"
 
@@ -39,7 +40,13 @@ struct QualityOptions {
     // (the 2-D bilateral, or alchemy_fast's separable pair), against the same
     // unblurred truth, which is how a blur's cost in accuracy shows.
     int blur = 0;
+    // Switches of the fast kernels (--exact 0, --interleave 4): each set on
+    // every kernel that declares it, the others left as they are.
+    kernels::ParamValues switches;
 };
+
+// `c` with the switches its kernel declares.
+void applySwitches(RunConfig& c, const kernels::ParamValues& switches);
 
 struct QualityRow {
     std::string scene, kernel;
