@@ -95,6 +95,8 @@ TEST_F(Cli, QualityBadInputExitsTwoWithOneLine) {
         {"--res 0x1", "cavity quality: --res 0x1: must be WIDTHxHEIGHT with each in 1..16384"},
         {"--resolution quarter", "cavity quality: --resolution quarter: must be full or half"},
         {"--nope 1", "cavity quality: --nope: unknown flag (see cavity quality --help)"},
+        {"--interleave 8", "cavity quality: --interleave 8: must be an integer in 1..4"},
+        {"--exact NaN", "cavity quality: --exact 'NaN': must be 0 or 1"},
     };
     for (const auto& c : cases) {
         const Outcome o = cavity("quality " + c.args + " --out " + dir.string());
@@ -103,6 +105,17 @@ TEST_F(Cli, QualityBadInputExitsTwoWithOneLine) {
         EXPECT_EQ(std::count(o.output.begin(), o.output.end(), '\n'), 1) << c.args << "\n" << o.output;
         EXPECT_FALSE(fs::exists(dir)) << c.args;
     }
+}
+
+// A switch reaches exactly the kernels that declare it: the ids say so.
+TEST_F(Cli, QualitySwitchesSetOnlyTheKernelsThatDeclareThem) {
+    const Outcome o = cavity("quality --list --scene corner --samples 16 --kernel alchemy,alchemy_fast,hemisphere_fast "
+                             "--interleave 4 --exact 0");
+    ASSERT_EQ(o.code, 0) << o.output;
+    EXPECT_NE(o.output.find("corner/alchemy/n16/"), std::string::npos) << o.output;
+    EXPECT_EQ(o.output.find("alchemy/n16/exact"), std::string::npos) << o.output;
+    for (const std::string k : {"alchemy_fast", "hemisphere_fast"})
+        EXPECT_NE(o.output.find("corner/" + k + "/n16/b0/exact=0/interleave=4/full/"), std::string::npos) << o.output;
 }
 
 TEST_F(Cli, UnwritableOutputFolderExitsTwo) {
