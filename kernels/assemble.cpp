@@ -79,12 +79,20 @@ std::vector<std::byte> packParams(const KernelDecl& k, const ParamValues& values
     return bytes;
 }
 
+uint32_t storageBindingCount(const KernelDecl& k, gpu::Stage stage) {
+    uint32_t n = 0;
+    if (stage == gpu::Stage::Compute)
+        for (const auto& o : k.outputs) n += uint32_t(o.oneDispatch ? o.mipLevels : 1);
+    return n;
+}
+
 std::vector<gpu::BindingSlot> bindingLayout(const KernelDecl& k, gpu::Stage stage) {
     std::vector<gpu::BindingSlot> slots;
     slots.push_back({kFrameBinding, gpu::BindingKind::UniformBuffer, {}});
     slots.push_back({kParamsBinding, gpu::BindingKind::UniformBuffer, {}});
-    uint32_t b = kFirstImageBinding;
+    uint32_t b = firstInputBinding(k, stage);
     for (size_t i = 0; i < k.inputs.size(); ++i) slots.push_back({b++, gpu::BindingKind::SampledImage, {}});
+    b = kFirstImageBinding;
     if (stage == gpu::Stage::Compute)
         for (const auto& o : k.outputs)
             for (int l = 0; l < (o.oneDispatch ? o.mipLevels : 1); ++l)
@@ -212,8 +220,9 @@ Result<gpu::ShaderSource> assemble(const KernelDecl& k, gpu::Stage stage,
     for (const auto& a : k.arrays) p << "    vec4 " << a.name << "[" << a.vec4Count << "];\n";
     p << "} P;\n";
     if (declares(k, "interleave")) p << interleavePreamble(interleave);
-    uint32_t b = kFirstImageBinding;
+    uint32_t b = firstInputBinding(k, stage);
     for (const auto& in : k.inputs) p << "layout(binding = " << b++ << ") uniform sampler2D in_" << in.name << ";\n";
+    b = kFirstImageBinding;
     int location = 0;
     for (const auto& o : k.outputs) {
         if (stage == gpu::Stage::Compute && o.oneDispatch && o.mipLevels > 1) {

@@ -204,6 +204,14 @@ std::vector<gpu::BindingSlot> bindingLayout(const KernelDecl& k, gpu::Stage stag
 constexpr uint32_t kFrameBinding = 0;
 constexpr uint32_t kParamsBinding = 1;
 constexpr uint32_t kFirstImageBinding = 2;
+// A compute pass binds its storage images first, from kFirstImageBinding,
+// and its sampled inputs after them: GL numbers image units apart from
+// texture units, and the NVIDIA driver has 8 image units (GL_MAX_IMAGE_UNITS),
+// which a pass with many inputs before its outputs overran.
+uint32_t storageBindingCount(const KernelDecl& k, gpu::Stage stage);
+inline uint32_t firstInputBinding(const KernelDecl& k, gpu::Stage stage) {
+    return kFirstImageBinding + storageBindingCount(k, stage);
+}
 
 // The text of an embedded kernel file (kernels/*.glsl, kernels/include/*.glsl).
 const std::string* sourceFile(const std::string& name);

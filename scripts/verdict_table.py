@@ -151,7 +151,7 @@ def main():
                 if is_planted or (p != "pipeline" and r["verdict"] != "same"):
                     change = "-" if r["change_pct"] is None else \
                         f"{r['change_pct']:+.2f}% [{r['ci_low_pct']:+.2f}, {r['ci_high_pct']:+.2f}]"
-                    print(f"| {cid} | {p} | {plant.get(cid, {}).get(p, '-')} | {change} | {r['p']:.2g} | {r['verdict']} |")
+                    print(f"| {cid} | {p} | {plant.get(cid, {}).get(p, '-')} | {change} | {'-' if r['p'] is None else format(r['p'], '.2g')} | {r['verdict']} |")
         got = [ab[(cid, p)]["change_pct"] for cid in plant for p in plant[cid]
                if (cid, p) in ab and ab[(cid, p)]["change_pct"] is not None]
         if got:

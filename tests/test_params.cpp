@@ -92,3 +92,26 @@ TEST(Params, SetParamRejectsAnOutOfRangeValueAtParseTime) {
 }
 
 }  // namespace
+
+namespace cavity::test {
+namespace {
+
+// Every compute pass's storage images fit the 8 image units the NVIDIA
+// driver's GL has (GL_MAX_IMAGE_UNITS; Mesa has more, so only this check
+// sees a pass that would fail there): storage images are bound first, from
+// kFirstImageBinding, and the sampled inputs after them, in texture units.
+TEST(Bindings, StorageImagesFitEightGlImageUnits) {
+    for (const auto& k : kernels::all()) {
+        const auto layout = kernels::bindingLayout(k, gpu::Stage::Compute);
+        std::set<uint32_t> used;
+        for (const auto& slot : layout) {
+            EXPECT_TRUE(used.insert(slot.binding).second) << k.name << ": binding " << slot.binding << " twice";
+            if (slot.kind == gpu::BindingKind::StorageImage) {
+                EXPECT_LT(slot.binding, 8u) << k.name << ": storage image at image unit " << slot.binding;
+            }
+        }
+    }
+}
+
+}  // namespace
+}  // namespace cavity::test

@@ -55,7 +55,7 @@ Result<std::vector<HostImage>> runKernel(gpu::Backend& gpu, const KernelRun& run
         CAVITY_TRY(gpu.updateBuffer(fb, std::as_bytes(std::span(&frame, 1))));
         CAVITY_TRY(gpu.updateBuffer(pb, params));
         std::vector<gpu::Bind> binds{{kernels::kFrameBinding, {}, fb, {}}, {kernels::kParamsBinding, {}, pb, {}}};
-        uint32_t b = kernels::kFirstImageBinding;
+        uint32_t b = kernels::firstInputBinding(k, run.stage);
         for (size_t i = 0; i < run.inputs.size(); ++i) {
             const HostImage& in = *run.inputs[i];
             const gpu::Format f = i < run.inputFormats.size() ? run.inputFormats[i] : floatFormat(in.channels);
@@ -74,6 +74,7 @@ Result<std::vector<HostImage>> runKernel(gpu::Backend& gpu, const KernelRun& run
         CAVITY_ASSIGN(auto src, kernels::assemble(k, run.stage, run.overrides, &run.params));
         const auto layout = kernels::bindingLayout(k, run.stage);
         if (run.stage == gpu::Stage::Compute) {
+            b = kernels::kFirstImageBinding;
             for (auto o : outs) binds.push_back({b++, o, {}, {}});
             CAVITY_ASSIGN(pipeline, gpu.createComputePipeline({std::move(src), layout, 8, 8, k.name}));
             gpu.beginFrame();

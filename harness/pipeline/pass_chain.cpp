@@ -149,7 +149,7 @@ Status PassChain::createPass(const PassSpec& spec, const RunConfig& c, const Sou
                                                planted == plant.end() ? 0 : planted->second));
     const auto layout = kernels::bindingLayout(k, pass->stage);
     if (pass->stage == gpu::Stage::Compute) {
-        auto b = uint32_t(kernels::kFirstImageBinding + spec.inputs.size());
+        auto b = kernels::kFirstImageBinding;
         for (size_t o = 0; o < spec.outputs.size(); ++o) {
             const auto& decl = k.outputs[o];
             // A one-dispatch mip chain binds its image once per level.
@@ -208,7 +208,7 @@ Status PassChain::createUniforms(Pass& pass, const PassSpec& spec, const RunConf
 // The inputs in the kernel's order: images earlier passes wrote, and the
 // CPU-made constants, created on first use.
 Status PassChain::bindInputs(Pass& pass, const PassSpec& spec, const RunConfig& c) {
-    uint32_t b = kernels::kFirstImageBinding;
+    uint32_t b = kernels::firstInputBinding(*pass.kernel, pass.stage);
     for (size_t i = 0; i < spec.inputs.size(); ++i) {
         const ImageRef& in = spec.inputs[i];
         const bool constant = in.source == ImageSource::Constant;
