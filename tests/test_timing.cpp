@@ -80,6 +80,27 @@ TEST_P(Timing, AColdProbeThatFailsDoesNotDecideTheClock) {
     ASSERT_TRUE(rep) << rep.error().message;
     EXPECT_EQ(rep->clock, "gpu-timestamp");
     EXPECT_NE(rep->clockNote.find("re-decided"), std::string::npos) << rep->clockNote;
+    // A warm check that fails once (a host hiccup during its drained
+    // frames) is tried again and does not move the clock; one that fails
+    // every time does. A failing check asks the timer once, and with no
+    // warm-up frames (whose submissions are checked too) the cold probe
+    // and the warm checks are all that ask.
+    o.clock = "gpu-timestamp";
+    o.warmup = 0;
+    ClockCheck hiccup;
+    hiccup.distrustFirst = 2;   // the cold probe and the first warm check
+    hiccup.trustRest = true;
+    hiccup.coldCounts = false;
+    auto h = measurePasses(gpu(), **chain, o, nullptr, hiccup);
+    ASSERT_TRUE(h) << h.error().message;
+    EXPECT_EQ(h->clock, "gpu-timestamp") << h->clockNote;
+    EXPECT_NE(h->clockNote.find("passed when tried again"), std::string::npos) << h->clockNote;
+    ClockCheck broken = hiccup;
+    broken.distrustFirst = 2 + kClockRetries;   // the cold probe and every warm check
+    auto b = measurePasses(gpu(), **chain, o, nullptr, broken);
+    ASSERT_TRUE(b) << b.error().message;
+    EXPECT_EQ(b->clock, "wall") << b->clockNote;
+    EXPECT_NE(b->clockNote.find("re-decided"), std::string::npos) << b->clockNote;
     // On a software renderer a cold failure keeps the wall clock (the default rule).
     if (gpu().info().softwareRenderer) {
         ClockCheck strict;

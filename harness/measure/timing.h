@@ -97,6 +97,10 @@ struct Timing {
 // When the GPU timestamps are believed: they may not exceed the drained wall
 // time (plus timer slop), and they must account for at least half of it
 // unless the difference is within the fixed submission overhead.
+// A warm check that fails is tried this many times more before the clock
+// moves to the wall clock (decideWarm, timing.cpp).
+constexpr int kClockRetries = 2;
+
 struct ClockCheck {
     double maxOverWall = 1.05, slopMs = 0.02;
     double minFraction = 0.5, overheadMs = 0.3;
