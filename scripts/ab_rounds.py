@@ -10,11 +10,12 @@ each side's first rounds (repetition k = round k, as `cavity ab` does),
 compares them with `cavity compare --min-change auto`, and prints how many
 configurations had the planted pass called slower, how many untouched
 (configuration, pass) pairs were called different, and the seconds the
-prefix took (the processes' log times, which tar keeps). The pipeline row,
+prefix took (from the processes' start times in their JSON). The pipeline row,
 which holds the planted pass, counts as neither. Exit 0; 2 on a
 folder without rounds.
 """
 import argparse
+import datetime
 import glob
 import json
 import os
@@ -23,11 +24,13 @@ import subprocess
 import sys
 import tempfile
 
+import cavity_json   # scripts/cavity_json.py: plain or gzip (X.json.gz)
+
 
 def rounds(d):
     found = {}
-    for f in glob.glob(os.path.join(d, "[ab]_*.json")):
-        m = re.match(r"([ab])_(\d+)\.json$", os.path.basename(f))
+    for f in glob.glob(os.path.join(d, "[ab]_*.json*")):
+        m = re.match(r"([ab])_(\d+)\.json(\.gz)?$", os.path.basename(f))
         if m:
             found.setdefault(int(m.group(2)), {})[m.group(1)] = f
     return [found[r] for r in sorted(found) if len(found[r]) == 2]
@@ -36,7 +39,7 @@ def rounds(d):
 def merge(files, path):
     merged = {"benchmarks": []}
     for k, f in enumerate(files):
-        doc = json.load(open(f))
+        doc = cavity_json.load(f)
         merged.setdefault("context", doc.get("context", {}))
         for b in doc.get("benchmarks", []):
             if b.get("run_type", "iteration") != "iteration":
@@ -46,13 +49,17 @@ def merge(files, path):
     json.dump(merged, open(path, "w"))
 
 
+def started(f):
+    """When the process began: Google Benchmark's context date (to the second)."""
+    return datetime.datetime.fromisoformat(cavity_json.load(f)["context"]["date"]).timestamp()
+
+
 def elapsed(rs, n):
-    """Seconds from the first process's start (its log's mtime less its own
-    run, estimated as the mean process time) to the end of round n."""
-    ends = sorted(os.path.getmtime(f) for r in rs for f in r.values())
-    per = (ends[-1] - ends[0]) / max(1, len(ends) - 1)
-    last = max(os.path.getmtime(f) for f in rs[n - 1].values())
-    return last - ends[0] + per
+    """Seconds from the first process's start to the end of round n, a
+    process's run taken as the mean gap between starts."""
+    starts = sorted(started(f) for r in rs for f in r.values())
+    per = (starts[-1] - starts[0]) / max(1, len(starts) - 1)
+    return max(started(f) for f in rs[n - 1].values()) - starts[0] + per
 
 
 def main():
