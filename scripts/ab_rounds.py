@@ -37,16 +37,7 @@ def rounds(d):
 
 
 def merge(files, path):
-    merged = {"benchmarks": []}
-    for k, f in enumerate(files):
-        doc = cavity_json.load(f)
-        merged.setdefault("context", doc.get("context", {}))
-        for b in doc.get("benchmarks", []):
-            if b.get("run_type", "iteration") != "iteration":
-                continue
-            b["repetition_index"], b["repetitions"] = k, len(files)
-            merged["benchmarks"].append(b)
-    json.dump(merged, open(path, "w"))
+    json.dump(cavity_json.merge_rounds(files), open(path, "w"))
 
 
 def started(f):

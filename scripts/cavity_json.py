@@ -58,3 +58,19 @@ def read_text(path):
 def load(path):
     """json.load of a plain or gzip file (OSError, BadGzip, UnicodeDecodeError or JSONDecodeError)."""
     return json.loads(read_text(path))
+
+
+def merge_rounds(files):
+    """One Google Benchmark document from one process per round, as `cavity
+    ab` merges them: every round's iteration entries, repetition k = round k
+    (files in round order), the first round's context."""
+    merged = {"benchmarks": []}
+    for k, f in enumerate(files):
+        doc = load(f)
+        merged.setdefault("context", doc.get("context", {}))
+        for b in doc.get("benchmarks", []):
+            if b.get("run_type", "iteration") != "iteration":
+                continue
+            b["repetition_index"], b["repetitions"] = k, len(files)
+            merged["benchmarks"].append(b)
+    return merged

@@ -35,21 +35,15 @@ smi_stop
 # One file per commit: the rounds' iteration entries, repetition k = round k.
 python3 - "$OUT/runs" "$OUT" <<'PY'
 import glob, json, os, re, sys
+sys.path.insert(0, "scripts")
+import cavity_json   # scripts/cavity_json.py
 runs, out = sys.argv[1], sys.argv[2]
 by = {}
 for f in sorted(glob.glob(os.path.join(runs, "*_*.json"))):
     c, r = re.match(r"(.+)_(\d+)\.json$", os.path.basename(f)).groups()
     by.setdefault(c, []).append((int(r), f))
 for c, files in by.items():
-    merged = {"benchmarks": []}
-    for k, (r, f) in enumerate(sorted(files)):
-        doc = json.load(open(f))
-        merged.setdefault("context", doc.get("context", {}))
-        for b in doc.get("benchmarks", []):
-            if b.get("run_type", "iteration") != "iteration":
-                continue
-            b["repetition_index"], b["repetitions"] = k, len(files)
-            merged["benchmarks"].append(b)
+    merged = cavity_json.merge_rounds([f for _, f in sorted(files)])
     json.dump(merged, open(os.path.join(out, c + ".json"), "w"))
 PY
 cp "$h/commits.tsv" "$OUT/"
