@@ -137,7 +137,7 @@ Status PassChain::createPass(const PassSpec& spec, const RunConfig& c, const Sou
         return internal("pass '" + spec.name + "' wires the wrong number of images for kernel " + k.name);
     const int mipLevels = k.outputs.empty() ? 1 : k.outputs[0].mipLevels;
     // A mip chain and interleaved layers are compute work whatever the stage.
-    const bool interleaved = k.interleaved && c.params.count("interleave") && c.params.at("interleave") > 1;
+    const bool interleaved = k.interleaved && interleaveOf(c) > 1;
     pass->stage = mipLevels > 1 || interleaved ? gpu::Stage::Compute : c.stage;
     pass->width = spec.half ? (c.width + 1) / 2 : c.width;
     pass->height = spec.half ? (c.height + 1) / 2 : c.height;
@@ -179,7 +179,7 @@ Status PassChain::createPass(const PassSpec& spec, const RunConfig& c, const Sou
 // layers (OutputDecl::layered) is the pass's size rounded up to whole layers.
 Status PassChain::createOutputs(Pass& pass, const PassSpec& spec, const RunConfig& c) {
     const auto& k = *pass.kernel;
-    const int layers = c.params.count("interleave") ? int(c.params.at("interleave")) : 1;
+    const int layers = interleaveOf(c);
     for (size_t o = 0; o < spec.outputs.size(); ++o) {
         const uint32_t written = pass.stage == gpu::Stage::Compute ? gpu::ImageStorage : gpu::ImageColorTarget;
         const int round = k.outputs[o].layered ? layers : 1;

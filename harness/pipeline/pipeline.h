@@ -44,6 +44,10 @@ std::vector<PassSpec> buildPasses(const RunConfig& c);
 // radiance would need an upsample of its own).
 bool supportsHalf(const std::string& kernel);
 
+// The interleaved layers per axis a configuration asks for (its `interleave`
+// parameter; KernelDecl::interleaved): 1 for a plain dispatch.
+int interleaveOf(const RunConfig& c);
+
 // Validates the whole configuration against the pipeline it builds: kernel
 // known and of role "ao", every parameter in range for every kernel of the
 // pipeline, sizes; with an imported G-buffer, no pass that evaluates the

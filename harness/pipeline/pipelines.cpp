@@ -13,11 +13,6 @@ namespace {
 
 bool isConstant(const std::string& name) { return kernels::findConstant(name) != nullptr; }
 
-// The layers per axis of an interleaved AO pass (KernelDecl::interleaved): 1 for a plain one.
-int interleaveOf(const RunConfig& c) {
-    return c.params.count("interleave") ? int(c.params.at("interleave")) : 1;
-}
-
 // The linear-depth pyramid of the fast kernels, from `position` into `zmip`:
 // one dispatch, or one per level with pyramid_per_level; with interleaved
 // layers, one dispatch that also writes level 0 split into them.
@@ -53,6 +48,8 @@ std::string screenSpaceAoNames() {
 }
 
 }  // namespace
+
+int interleaveOf(const RunConfig& c) { return c.params.count("interleave") ? int(c.params.at("interleave")) : 1; }
 
 bool supportsHalf(const std::string& kernel) {
     const auto* k = kernels::find(kernel);
