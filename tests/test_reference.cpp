@@ -313,6 +313,45 @@ TEST_P(KernelVsReference, InterleavedLayersShadeAsThePlainReferenceDoes) {
                 }
 }
 
+// The dispatch shape itself: with the AO kernel's body replaced by one that
+// stores its workgroup's id, every pixel shows which workgroup shaded it.
+// Plain, that is pixel / 8; interleaved, the workgroup over the layers laid
+// side by side, (pixel mod k) * layerSize + pixel / k, all over 8: a
+// workgroup's pixels are every k-th pixel of one layer. (The images alone
+// cannot tell: which invocation shades a pixel does not change its value.)
+TEST_P(KernelVsReference, InterleavedPassShadesEachLayerInItsOwnWorkgroups) {
+    const std::map<std::string, std::string> workgroupIds = {
+        {"ssao_alchemy_fast.glsl",
+         "#include \"include/common.glsl\"\n"
+         "void cavity_main(ivec2 pixel) {\n"
+         "    write_ao(pixel, vec4(float(gl_WorkGroupID.x), 0.0, 0.0, 0.0));\n"
+         "    write_ao_key(pixel, vec4(float(gl_WorkGroupID.y), 0.0, 0.0, 0.0));\n"
+         "}\n"}};
+    for (int k : {1, 4}) {
+        RunConfig c;
+        c.api = api();
+        c.width = 160;
+        c.height = 90;
+        c.kernel = "alchemy_fast";
+        ASSERT_TRUE(setParam(c, "interleave", std::to_string(k)).ok());
+        auto chain = PassChain::create(gpu(), c, workgroupIds);
+        ASSERT_TRUE(chain) << chain.error().message;
+        gpu().beginFrame();
+        (*chain)->record();
+        ASSERT_TRUE(gpu().endFrame().ok());
+        auto x = (*chain)->read("ao"), y = (*chain)->read("ao_key");
+        ASSERT_TRUE(x && y);
+        const int lw = (c.width + k - 1) / k, lh = (c.height + k - 1) / k;
+        int wrong = 0;
+        for (int py = 0; py < c.height; ++py)
+            for (int px = 0; px < c.width; ++px) {
+                const int ax = px % k * lw + px / k, ay = py % k * lh + py / k;
+                wrong += x->at(px, py, 0) != float(ax / 8) || y->at(px, py, 0) != float(ay / 8);
+            }
+        EXPECT_EQ(wrong, 0) << "interleave " << k << ": pixels shaded by another workgroup than the layers' own";
+    }
+}
+
 // The precision contract: a fast kernel run with --exact 0 (the GPU's own
 // division, inverse square root and sine, fma contraction allowed) against
 // its exact CPU reference. A rounding difference may move a sample across a
