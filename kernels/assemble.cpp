@@ -79,6 +79,10 @@ std::vector<std::byte> packParams(const KernelDecl& k, const ParamValues& values
     return bytes;
 }
 
+int interleaveValue(const ParamValues& values) {
+    return values.count("interleave") ? intValue(values, "interleave") : 1;
+}
+
 uint32_t storageBindingCount(const KernelDecl& k, gpu::Stage stage) {
     uint32_t n = 0;
     if (stage == gpu::Stage::Compute)
@@ -202,13 +206,12 @@ Result<gpu::ShaderSource> assemble(const KernelDecl& k, gpu::Stage stage,
     // that feed discrete decisions, unless the kernel declares `exact` and
     // is run with it 0.
     bool exact = true;
-    int interleave = 1;
+    const int interleave = values ? interleaveValue(*values) : 1;
     if (values) {
         const ParamValues all = withDefaults(k, *values);
         for (const auto& name : k.compileTime)
             if (all.count(name)) p << "#define CAVITY_CONST_" << name << " " << intValue(all, name) << "\n";
         exact = !all.count("exact") || intValue(all, "exact") != 0;
-        if (all.count("interleave")) interleave = intValue(all, "interleave");
     }
     p << (exact ? "#define EXACT precise\n" : "#define EXACT\n#define CAVITY_INEXACT 1\n");
     p << "layout(std140, binding = " << kFrameBinding << ") uniform Frame {\n"

@@ -60,6 +60,16 @@ struct OutputDecl {
     bool layered = false;
 };
 
+// The `interleave` value of a configuration's parameters: 1 when unset.
+int interleaveValue(const ParamValues& values);
+// One side of an output image of a pass `extent` pixels wide (or high): the
+// extent itself, or for an atlas of layers (OutputDecl::layered) rounded up
+// to whole layers of `interleave`.
+inline int outputExtent(const OutputDecl& o, int extent, int interleave) {
+    const int r = o.layered ? interleave : 1;
+    return (extent + r - 1) / r * r;
+}
+
 struct ArrayDecl {
     std::string name;                   // GLSL P.<name>[i], a vec4 array
     int vec4Count = 1;

@@ -86,7 +86,13 @@ Result<std::vector<HostImage>> referenceOf(PassChain& chain, const PassSpec& pas
     return reference::run(ctx);
 }
 
-void checkChain(gpu::Backend& gpu, gpu::Api api, const Case& cs) {
+// A checked chain and the configuration it ran, for a test that looks further.
+struct CheckedChain {
+    RunConfig config;
+    std::unique_ptr<PassChain> chain;
+};
+
+void checkChain(gpu::Backend& gpu, gpu::Api api, const Case& cs, CheckedChain* keep = nullptr) {
     RunConfig c;
     c.api = api;
     c.width = cs.width;
@@ -137,6 +143,7 @@ void checkChain(gpu::Backend& gpu, gpu::Api api, const Case& cs) {
             }
         }
     }
+    if (keep) *keep = {c, std::move(*chain)};
 }
 
 // Every AO pipeline, full and half resolution; the fragment stage too at 160x90.
@@ -285,27 +292,19 @@ TEST_P(KernelVsReference, InterleavedLayersShadeAsThePlainReferenceDoes) {
                 for (bool half : {false, true}) {
                     const std::string scene = (w + k) % 2 ? "corner" : "slats";
                     const auto stage = half && k == 4 ? gpu::Stage::Fragment : gpu::Stage::Compute;
-                    Case cs{scene, w, h, kernel, half, stage, false, k};
-                    checkChain(gpu(), api(), cs);
-                    RunConfig c;
-                    c.api = api();
-                    c.width = w;
-                    c.height = h;
-                    c.kernel = kernel;
-                    c.half = half;
-                    c.stage = stage;
-                    ASSERT_TRUE(setParam(c, "interleave", std::to_string(k)).ok());
-                    auto chain = recordedChain(gpu(), c);
-                    ASSERT_TRUE(chain) << chain.error().message;
+                    CheckedChain checked;
+                    checkChain(gpu(), api(), {scene, w, h, kernel, half, stage, false, k}, &checked);
+                    if (HasFatalFailure()) return;
+                    const RunConfig& c = checked.config;
                     bool layered = false;
-                    for (const auto& pass : (*chain)->passes()) layered |= pass.kernel == "depth_pyramid_layered";
+                    for (const auto& pass : checked.chain->passes()) layered |= pass.kernel == "depth_pyramid_layered";
                     EXPECT_TRUE(layered) << configId(c) << ": no pass splits the depth into layers";
                     // The layers' phases reached the shader, and the atlas is whole layers.
                     const auto* decl = kernels::find(kernel);
                     auto src = kernels::assemble(*decl, gpu::Stage::Compute, {}, &c.params);
                     ASSERT_TRUE(src) << src.error().message;
                     EXPECT_NE(src->glsl.find("#define CAVITY_INTERLEAVE " + std::to_string(k)), std::string::npos);
-                    auto atlas = (*chain)->read(half ? "zlayers_half" : "zlayers");
+                    auto atlas = checked.chain->read(half ? "zlayers_half" : "zlayers");
                     ASSERT_TRUE(atlas) << atlas.error().message;
                     const int pw = half ? (w + 1) / 2 : w, ph = half ? (h + 1) / 2 : h;
                     EXPECT_EQ(atlas->width, (pw + k - 1) / k * k);

@@ -182,9 +182,8 @@ Status PassChain::createOutputs(Pass& pass, const PassSpec& spec, const RunConfi
     const int layers = interleaveOf(c);
     for (size_t o = 0; o < spec.outputs.size(); ++o) {
         const uint32_t written = pass.stage == gpu::Stage::Compute ? gpu::ImageStorage : gpu::ImageColorTarget;
-        const int round = k.outputs[o].layered ? layers : 1;
-        gpu::ImageDesc d{(pass.width + round - 1) / round * round, (pass.height + round - 1) / round * round,
-                         k.outputs[o].format, k.outputs[o].mipLevels, spec.outputs[o],
+        gpu::ImageDesc d{kernels::outputExtent(k.outputs[o], pass.width, layers),
+                         kernels::outputExtent(k.outputs[o], pass.height, layers), k.outputs[o].format, k.outputs[o].mipLevels, spec.outputs[o],
                          outputUsage(specs_, spec.outputs[o], written)};
         CAVITY_ASSIGN(gpu::Image img, gpu_.createImage(d));
         images_[spec.outputs[o]] = {img, d.width, d.height, d.format};

@@ -49,7 +49,7 @@ std::string screenSpaceAoNames() {
 
 }  // namespace
 
-int interleaveOf(const RunConfig& c) { return c.params.count("interleave") ? int(c.params.at("interleave")) : 1; }
+int interleaveOf(const RunConfig& c) { return kernels::interleaveValue(c.params); }
 
 bool supportsHalf(const std::string& kernel) {
     const auto* k = kernels::find(kernel);

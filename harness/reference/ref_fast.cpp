@@ -238,15 +238,12 @@ Result<std::vector<HostImage>> depthPyramidSingle(const Context& ctx) {
 // (OutputDecl::layered), pixel p at layerTexel(p); the padding past the
 // last pixel holds 0.
 Result<std::vector<HostImage>> depthPyramidLayered(const Context& ctx) {
-    CAVITY_TRY(depthPyramidSingle(ctx));
-    auto out = makeOutputs(ctx);
+    CAVITY_ASSIGN(auto out, depthPyramidSingle(ctx));   // level 0, and the atlas all 0
     const int k = intParam(ctx, "interleave");
     for (int y = 0; y < ctx.frame.size[1]; ++y)
         for (int x = 0; x < ctx.frame.size[0]; ++x) {
-            const float z = ctx.inputs[0]->at(x, y, 3);
-            out[0].at(x, y) = z;
             const auto [tx, ty] = pyramid::layerTexel(ctx.frame, k, x, y);
-            out[1].at(tx, ty) = z;
+            out[1].at(tx, ty) = out[0].at(x, y);
         }
     return out;
 }

@@ -17,12 +17,10 @@ std::vector<RefEntry> firstSliceRefs() {
 std::vector<HostImage> makeOutputs(const Context& ctx) {
     std::vector<HostImage> out;
     // An atlas of interleaved layers is rounded up to whole layers.
-    const int k = ctx.params.count("interleave") ? int(ctx.params.at("interleave")) : 1;
-    for (const auto& o : ctx.kernel.outputs) {
-        const int r = o.layered ? k : 1;
-        out.emplace_back((ctx.frame.size[0] + r - 1) / r * r, (ctx.frame.size[1] + r - 1) / r * r,
+    const int k = kernels::interleaveValue(ctx.params);
+    for (const auto& o : ctx.kernel.outputs)
+        out.emplace_back(kernels::outputExtent(o, ctx.frame.size[0], k), kernels::outputExtent(o, ctx.frame.size[1], k),
                          gpu::channelCount(o.format));
-    }
     return out;
 }
 
