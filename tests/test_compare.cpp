@@ -325,6 +325,38 @@ TEST(CompareVerdict, DetectableChangeIsTheIntervalOrTheTimersStep) {
     EXPECT_DOUBLE_EQ(same.thresholdPct, cavity::compare::kAutoFloorPct);
 }
 
+// --min-change auto never goes under kAutoFloorMs: two processes of one
+// build moved a 13 us pass by 0.256 us (+1.96%, every repetition of each on
+// one value, GL's 128 ns timer) on the H200. That move is "same" on a pass
+// that short, while +1.96% of a 40 us pass (0.78 us) is a change, and
+// 0.256 us of it (+0.64%) is not.
+TEST(CompareVerdict, AutoThresholdIsNeverUnderTheDriftBetweenProcesses) {
+    using cavity::compare::compareSeries;
+    auto run = [](double ms, double jitter) {
+        cavity::compare::SampleSet s;
+        for (int i = 0; i < 10; ++i) s.add(ms + (i % 2) * jitter, "gpu-timestamp");
+        return s;
+    };
+    cavity::compare::CompareThresholds t;
+    t.autoMinChange = true;
+    const auto shortA = run(0.013056, 0.0), shortB = run(0.013312, 0.0);
+    const auto shortPass = compareSeries("x", "depth", &shortA, &shortB, t);
+    EXPECT_NEAR(shortPass.changePct, 1.96, 0.01);
+    EXPECT_DOUBLE_EQ(shortPass.thresholdPct, 2.0);   // 0.3 us is 2.3% of 13 us; --min-change caps it
+    EXPECT_EQ(shortPass.verdict, "same");
+    // With Vulkan's 32 ns of jitter inside each process (constant samples
+    // would make the shift itself the smallest step, the timer's).
+    const auto longA = run(0.040, 0.000032), longB = run(0.040784, 0.000032), longDrift = run(0.040256, 0.000032);
+    const auto longPass = compareSeries("x", "ao", &longA, &longB, t);
+    EXPECT_NEAR(longPass.thresholdPct, 100 * 0.0003 / longPass.oldMedianMs, 1e-9);   // 0.75%
+    EXPECT_EQ(longPass.verdict, "slower");
+    EXPECT_EQ(compareSeries("x", "ao", &longA, &longDrift, t).verdict, "same");
+    // A fixed --min-change is the user's: no floor is added to it.
+    t.autoMinChange = false;
+    t.minChangePct = 1.0;
+    EXPECT_EQ(compareSeries("x", "depth", &shortA, &shortB, t).verdict, "slower");
+}
+
 // Samples so few that the U test cannot reach alpha give no verdict, however
 // far apart: 3 against 3 reach p = 2 / C(6, 3) = 0.1 at best, and would
 // otherwise read "same" for any change. 4 against 4: 2 / 70.

@@ -163,9 +163,12 @@ CompareRow compareSeries(const std::string& id, const std::string& pass, const S
     const double halfWidth = (r.highPct - r.lowPct) / 2;
     r.detectablePct = std::isnan(r.timerStepPct) ? halfWidth : std::max(halfWidth, r.timerStepPct);
     // auto lowers the threshold to what the samples can see, down to the
-    // floor, and never raises it over --min-change: noisier samples than that
-    // are inconclusive, not "same" at a wide threshold.
-    r.thresholdPct = t.autoMinChange ? std::clamp(r.detectablePct, std::min(kAutoFloorPct, t.minChangePct), t.minChangePct)
+    // floors (a share of the pass and a time), and never raises it over
+    // --min-change: noisier samples than that are inconclusive, not "same"
+    // at a wide threshold.
+    const double floorPct = std::max(kAutoFloorPct, pct(kAutoFloorMs));
+    r.thresholdPct = t.autoMinChange ? std::clamp(std::max(r.detectablePct, floorPct),
+                                                  std::min(kAutoFloorPct, t.minChangePct), t.minChangePct)
                                      : t.minChangePct;
 
     const bool slower = r.p < t.alpha && r.changePct >= r.thresholdPct && r.lowPct > 0;

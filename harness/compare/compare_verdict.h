@@ -21,8 +21,8 @@ struct CompareThresholds {
     double alpha = 0.05;       // significance of the U test; the interval is at 1 - alpha
     double minChangePct = 2;   // smallest shift, in percent of the old median, worth a verdict
     // --min-change auto: each pass's threshold is its detectable change
-    // (below), never under kAutoFloorPct nor over minChangePct (2%): noisier
-    // samples are inconclusive.
+    // (below), never under kAutoFloorPct or kAutoFloorMs nor over
+    // minChangePct (2%): noisier samples are inconclusive.
     bool autoMinChange = false;
 };
 
@@ -31,6 +31,15 @@ struct CompareThresholds {
 // (bench/results/2026-12-01_h200_verdict); a change the drift between two
 // processes can make is not called.
 constexpr double kAutoFloorPct = 0.5;
+
+// And never under this much time, in ms: separate processes of one build
+// move a short pass by a fixed amount the repetitions inside either process
+// cannot see. On the H200 two unchanged processes one after the other moved
+// passes of 10-50 us by up to 0.256 us (two 128 ns steps of GL's timer; 0.13
+// us on Vulkan), 0.5-2% of them, with intervals of +-0.4% inside each
+// process (bench/results/2026-12-03_h200_sensitivity). 0.3 us is 0.2% of a
+// 0.14 ms AO pass and 2% of a 15 us blur.
+constexpr double kAutoFloorMs = 0.0003;
 
 // Fewer samples than this on a side gives no verdict: with 2 against 2 the
 // smallest two-sided p the U test can give is 1/3.

@@ -130,7 +130,8 @@ std::string compareTable(const std::vector<CompareRow>& rows, const SampleSets& 
             summary += (summary.empty() ? "" : ", ") + std::to_string(counts.at(v)) + " " + v;
     out += "\n" + summary + "\n";
     out += "slower/faster: U-test p < " + format("%g", t.alpha) + ", change >= " +
-           (t.autoMinChange ? "each pass's detectable change (at least " + format("%g", kAutoFloorPct) + "%)"
+           (t.autoMinChange ? "each pass's detectable change (at least " + format("%g", kAutoFloorPct) + "% and " +
+                                  format("%g", kAutoFloorMs * 1000) + " us, at most " + format("%g", t.minChangePct) + "%)"
                             : format("%g", t.minChangePct) + "%") +
            " of the old median and the " + level + " interval of the change excludes 0; detectable: the smallest "
            "change these samples could call (the interval's half-width, or the timer's step)\n";
