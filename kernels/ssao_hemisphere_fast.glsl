@@ -77,7 +77,11 @@ void cavity_main(ivec2 pixel) {
     // blocked it fully the rest are not fetched. step_jitter moves ray g's
     // points in by a share u of a step, drawn per pixel and ray, as in
     // ssao_hemisphere.glsl.
+#ifdef CAVITY_CONST_samples
+    const int n = clamp(CAVITY_CONST_samples, 1, 256);
+#else
     int n = clamp(P.samples, 1, 256);
+#endif
     float R = P.radius;
     float occlusion = 0.0, directions = 0.0, blocked = 0.0, u = 0.0;
     int inGroup = 0;
