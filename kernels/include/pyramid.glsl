@@ -52,10 +52,12 @@ ivec2 sourcePixel(ivec2 t, int level) {
 // x_px = x / depth * toPixel.x + size.x / 2, and y likewise with the flip
 // (positionAt() inverted); and the pyramid's last level.
 // The depth of texel t of level l. Level 0 comes from the interleaved
-// layers where the kernel has them (an input "zlayers", KernelDecl::interleaved):
-// the same value, at the texel where the warp's neighbours read theirs.
+// layers where the kernel runs in k x k > 1 of them (an input "zlayers",
+// KernelDecl::interleaved): the same value, at the texel where the warp's
+// neighbours read theirs. With k = 1 the layer is level 0 itself, and the
+// branch is compiled out.
 float pyramidDepth(ivec2 t, int level) {
-#ifdef CAVITY_INTERLEAVE
+#if defined(CAVITY_INTERLEAVE) && CAVITY_INTERLEAVE > 1
     if (level == 0) return texelFetch(in_zlayers, cavityLayerTexel(t), 0).r;
 #endif
     return texelFetch(in_zmip, t, level).r;
