@@ -5,6 +5,8 @@
 #include "kernel.h"
 
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <set>
 #include <limits>
@@ -174,7 +176,7 @@ std::string interleavePreamble(int k) {
 // main() around cavity_main: a compute invocation per pixel, or for an
 // interleaved pass, invocation (layer l, texel q) of the layers laid side by
 // side shading pixel q * k + l; a fragment per pixel.
-std::string entryPoint(gpu::Stage stage, bool interleaved, const std::string& plant) {
+std::string entryPoint(gpu::Stage stage, bool interleaved, const std::string& plant, Workgroup wg) {
     if (stage != gpu::Stage::Compute)
         return "void main() {\n    ivec2 pixel = ivec2(gl_FragCoord.xy);\n    cavity_main(pixel);\n" + plant + "}\n";
     const std::string pixel = interleaved
@@ -183,7 +185,7 @@ std::string entryPoint(gpu::Stage stage, bool interleaved, const std::string& pl
                                     "    if (any(greaterThanEqual(layer, ivec2(CAVITY_INTERLEAVE)))) return;\n"
                                     "    ivec2 pixel = (atlas - layer * cavityLayerSize()) * CAVITY_INTERLEAVE + layer;\n"
                                   : "    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);\n";
-    return "layout(local_size_x = 8, local_size_y = 8) in;\n"
+    return "layout(local_size_x = " + std::to_string(wg.x) + ", local_size_y = " + std::to_string(wg.y) + ") in;\n"
            "void main() {\n" + pixel +
            "    if (pixel.x >= frame.size.x || pixel.y >= frame.size.y) return;\n"
            "    cavity_main(pixel);\n" + plant +
@@ -191,6 +193,18 @@ std::string entryPoint(gpu::Stage stage, bool interleaved, const std::string& pl
 }
 
 }  // namespace
+
+Result<Workgroup> workgroupSize() {
+    const char* v = std::getenv("CAVITY_WORKGROUP");
+    if (!v || !*v) return Workgroup{};   // unset or empty: the default
+    const std::string text = v;
+    auto pow2 = [](unsigned long n) { return n > 0 && (n & (n - 1)) == 0; };
+    unsigned long x = 0, y = 0;
+    char extra = 0;
+    if (std::sscanf(text.c_str(), "%lux%lu%c", &x, &y, &extra) != 2 || !pow2(x) || !pow2(y) || x * y < 32 || x * y > 1024)
+        return badInput("CAVITY_WORKGROUP=" + text + ": must be WxH, W and H powers of two, W x H from 32 to 1024 (default 8x8)");
+    return Workgroup{uint32_t(x), uint32_t(y)};
+}
 
 Result<gpu::ShaderSource> assemble(const KernelDecl& k, gpu::Stage stage,
                                    const std::map<std::string, std::string>& overrides, const ParamValues* values,
@@ -261,7 +275,8 @@ Result<gpu::ShaderSource> assemble(const KernelDecl& k, gpu::Stage stage,
                 "    for (int i = 0; i < " + std::to_string(plantedFmas) + "; ++i) plant_ = fma(plant_, 0.9999, frame.invSize.y);\n"
                 "    if (plant_ < 0.0) write_" + k.outputs[0].name + "(pixel, vec4(plant_));\n";
     // The two thin entry points around the one body.
-    src.glsl += "#line 1 0\n" + entryPoint(stage, k.interleaved && interleave > 1, plant);
+    CAVITY_ASSIGN(const Workgroup wg, workgroupSize());
+    src.glsl += "#line 1 0\n" + entryPoint(stage, k.interleaved && interleave > 1, plant, wg);
     return src;
 }
 

@@ -205,6 +205,16 @@ Result<gpu::ShaderSource> assemble(const KernelDecl& k, gpu::Stage stage,
                                    const std::map<std::string, std::string>& overrides = {},
                                    const ParamValues* values = nullptr, int plantedFmas = 0);
 
+// The workgroup shape of every compute pass: 8x8, or what
+// CAVITY_WORKGROUP=WxH in the environment says (W and H powers of two, W x H
+// from 32 to 1024; an experiment on how much of a pass is its dispatch,
+// docs/timing.md). Each invocation shades its own pixel whatever the shape,
+// so the images do not change. An error names the variable and its value.
+struct Workgroup {
+    uint32_t x = 8, y = 8;
+};
+Result<Workgroup> workgroupSize();
+
 // The full-screen-triangle vertex shader used by fragment-stage passes.
 gpu::ShaderSource fullscreenVertex();
 

@@ -504,6 +504,51 @@ TEST_P(KernelVsReference, FullBarriersChangeNoImage) {
     EXPECT_TRUE(messages.empty()) << messages.front();
 }
 
+// CAVITY_WORKGROUP reshapes every compute dispatch and nothing else: each
+// invocation shades its own pixel, so every image of the fast pipelines (the
+// interleaved layers included, whose workgroups then span other pixels of
+// one layer) comes out bit for bit as with 8x8. A shape the variable cannot
+// take is an error naming it.
+TEST_P(KernelVsReference, WorkgroupShapeChangesNoImage) {
+    struct Env {
+        ~Env() { unsetenv("CAVITY_WORKGROUP"); }
+    } restore;
+    for (const std::string kernel : {"alchemy_fast", "hemisphere_fast", "ssdo_fast"}) {
+        for (int variant = 0; variant < 3; ++variant) {
+            RunConfig c;
+            c.api = api();
+            c.width = 160;
+            c.height = 90;
+            c.kernel = kernel;
+            c.half = variant == 1 && supportsHalf(kernel);
+            if (variant == 2 && kernel != "ssdo_fast") {
+                ASSERT_TRUE(setParam(c, "interleave", "4").ok());
+            }
+            std::map<std::string, HostImage> images[2];
+            for (int which = 0; which < 2; ++which) {
+                if (which) setenv("CAVITY_WORKGROUP", "32x4", 1);
+                else unsetenv("CAVITY_WORKGROUP");
+                auto chain = recordedChain(gpu(), c);
+                ASSERT_TRUE(chain) << chain.error().message;
+                for (const std::string name : {"ao", "ao_blur", "color"}) {
+                    auto img = (*chain)->read(name);
+                    ASSERT_TRUE(img) << img.error().message;
+                    images[which][name] = std::move(*img);
+                }
+            }
+            for (const auto& [name, square] : images[0])
+                EXPECT_EQ(square.pixels, images[1][name].pixels) << configId(c) << " " << name;
+        }
+    }
+    for (const char* bad : {"16", "3x16", "64x64", "4x4", "8x8x1", "-8x8"}) {
+        setenv("CAVITY_WORKGROUP", bad, 1);
+        const auto wg = kernels::workgroupSize();
+        ASSERT_FALSE(wg) << bad;
+        EXPECT_NE(wg.error().message.find(std::string("CAVITY_WORKGROUP=") + bad + ": must be WxH"), std::string::npos)
+            << wg.error().message;
+    }
+}
+
 }  // namespace
 }  // namespace cavity::test
 

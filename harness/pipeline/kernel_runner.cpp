@@ -76,9 +76,11 @@ Result<std::vector<HostImage>> runKernel(gpu::Backend& gpu, const KernelRun& run
         if (run.stage == gpu::Stage::Compute) {
             b = kernels::kFirstImageBinding;
             for (auto o : outs) binds.push_back({b++, o, {}, {}});
-            CAVITY_ASSIGN(pipeline, gpu.createComputePipeline({std::move(src), layout, 8, 8, k.name}));
+            CAVITY_ASSIGN(const kernels::Workgroup wg, kernels::workgroupSize());
+            CAVITY_ASSIGN(pipeline, gpu.createComputePipeline({std::move(src), layout, int(wg.x), int(wg.y), k.name}));
             gpu.beginFrame();
-            gpu.dispatch(pipeline, binds, (run.width + 7) / 8, (run.height + 7) / 8);
+            gpu.dispatch(pipeline, binds, (run.width + int(wg.x) - 1) / int(wg.x),
+                         (run.height + int(wg.y) - 1) / int(wg.y));
         } else {
             gpu::GraphicsPipelineDesc d;
             d.vertex = kernels::fullscreenVertex();

@@ -43,7 +43,11 @@ struct PassChain::Pass {
     gpu::Image depth;                    // raster
     int vertexCount = 3;
     int width = 0, height = 0;
+    kernels::Workgroup workgroup;        // compute stage
     std::vector<Level> levels;           // levels 1.. of a mip-chain pass
+
+    int groupsX(int w) const { return (w + int(workgroup.x) - 1) / int(workgroup.x); }
+    int groupsY(int h) const { return (h + int(workgroup.y) - 1) / int(workgroup.y); }
 };
 
 // The rasterised G-buffer: a graphics pass over the scene mesh with a depth
@@ -156,7 +160,8 @@ Status PassChain::createPass(const PassSpec& spec, const RunConfig& c, const Sou
             for (int l = 0; l < (decl.oneDispatch ? decl.mipLevels : 1); ++l)
                 pass->binds.push_back({b++, images_[spec.outputs[o]].image, {}, {}, l});
         }
-        gpu::ComputePipelineDesc d{std::move(body), layout, 8, 8, spec.name};
+        CAVITY_ASSIGN(pass->workgroup, kernels::workgroupSize());
+        gpu::ComputePipelineDesc d{std::move(body), layout, int(pass->workgroup.x), int(pass->workgroup.y), spec.name};
         CAVITY_ASSIGN(pass->pipeline, gpu_.createComputePipeline(d));
         if (k.outputs.empty() || !k.outputs[0].oneDispatch) CAVITY_TRY(createComputeLevels(*pass, spec, c, mipLevels));
     } else {
@@ -272,11 +277,11 @@ void PassChain::recordPass(size_t i) {
     auto& p = *passes_[i];
     gpu_.beginScope(specs_[i].name);
     if (p.stage == gpu::Stage::Compute) {
-        gpu_.dispatch(p.pipeline, p.binds, (p.width + 7) / 8, (p.height + 7) / 8);
+        gpu_.dispatch(p.pipeline, p.binds, p.groupsX(p.width), p.groupsY(p.height));
         // A mip chain's level l reads level l - 1: one scope, a barrier apart.
         for (const auto& l : p.levels) {
             gpu_.barrier();
-            gpu_.dispatch(p.pipeline, l.binds, (l.width + 7) / 8, (l.height + 7) / 8);
+            gpu_.dispatch(p.pipeline, l.binds, p.groupsX(l.width), p.groupsY(l.height));
         }
     } else
         gpu_.draw(p.pipeline, p.binds, p.targets, p.vertexCount);
