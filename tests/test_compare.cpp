@@ -616,6 +616,37 @@ TEST_F(Compare, ClocksAreNeverPooled) {
     EXPECT_NE(r.output.find("mixed clocks"), std::string::npos);
 }
 
+// One repetition in ten on the wall clock (its warm clock check failed)
+// leaves it out and judges the other nine; three in ten (more than a
+// quarter) leave the configuration without a verdict.
+TEST_F(Compare, AFewSamplesOnAnotherClockAreLeftOut) {
+    auto oneOff = fakeConfig(kOtherId, 10, 6, 0.1);
+    oneOff.clocks[3] = "wall";
+    auto threeOff = fakeConfig(kId, 10, 5, 0.1);
+    for (size_t i : {1, 4, 7}) threeOff.clocks[i] = "wall";
+    const std::string o = write("old.json", benchmarkJson({fakeConfig(kId, 10, 1, 0), fakeConfig(kOtherId, 10, 2, 0)}));
+    const std::string n = write("new.json", benchmarkJson({threeOff, oneOff}));
+    const std::string out = (dir / "v.json").string();
+    const Outcome r = cavity("compare " + o + " " + n + " --json " + out);
+    EXPECT_EQ(r.code, 0) << r.output;
+    const json rows = rowsOf(out);
+    for (const char* pass : {"pipeline", "ao", "blur", "composite"}) {
+        const json& one = row(rows, kOtherId, pass);
+        const bool shifted = std::string(pass) == "ao" || std::string(pass) == "pipeline";   // AO +0.1 ms
+        EXPECT_EQ(one["verdict"], shifted ? "slower" : "same") << pass;
+        EXPECT_EQ(one["n_new"], 9) << pass;
+        EXPECT_EQ(one["left_out_new"], 1) << pass;
+        EXPECT_EQ(one["left_out_old"], 0) << pass;
+        EXPECT_EQ(one["new_clock"], "gpu-timestamp") << pass;
+        const json& three = row(rows, kId, pass);
+        EXPECT_EQ(three["verdict"], "inconclusive") << pass;
+        EXPECT_EQ(three["reason"], "mixed clocks") << pass;
+    }
+    EXPECT_NE(r.output.find("4 rows judged on the clock most of their samples share, 4 samples on another clock left out"),
+              std::string::npos)
+        << r.output;
+}
+
 // ---- bad input ----
 
 TEST_F(Compare, BadInputExitsTwoWithOneLineNamingIt) {

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <map>
 #include <vector>
 
 namespace cavity::compare {
@@ -112,11 +113,57 @@ double smallestStep(const std::vector<double>& a, const std::vector<double>& b) 
     return step;
 }
 
-CompareRow compareSeries(const std::string& id, const std::string& pass, const SampleSet* before,
-                         const SampleSet* after, const CompareThresholds& t, bool software) {
+namespace {
+
+// The clock both sides have that most of their samples are on ("" where
+// they share none).
+std::string sharedMajorityClock(const SampleSet& a, const SampleSet& b) {
+    std::map<std::string, size_t> count;
+    for (const auto* s : {&a, &b})
+        for (const auto& c : s->clocks) ++count[c];
+    std::string best;
+    for (const auto& [c, n] : count) {
+        const bool onBoth = std::count(a.clocks.begin(), a.clocks.end(), c) && std::count(b.clocks.begin(), b.clocks.end(), c);
+        if (onBoth && (best.empty() || n > count[best])) best = c;
+    }
+    return best;
+}
+
+// Keeps both sides' samples on one clock where a side mixes two and what is
+// kept is at least kMixedClockKeepShare of each; false where it is not.
+bool keepOneClock(SampleSet& before, SampleSet& after, CompareRow& r) {
+    if (!before.mixedClocks && !after.mixedClocks) return true;
+    const std::string c = sharedMajorityClock(before, after);
+    if (c.empty()) return false;
+    SampleSet b = before.onClock(c), a = after.onClock(c);
+    if (double(b.ms.size()) < kMixedClockKeepShare * double(before.ms.size()) ||
+        double(a.ms.size()) < kMixedClockKeepShare * double(after.ms.size()))
+        return false;
+    r.leftOutOld = before.ms.size() - b.ms.size();
+    r.leftOutNew = after.ms.size() - a.ms.size();
+    before = std::move(b);
+    after = std::move(a);
+    return true;
+}
+
+}  // namespace
+
+CompareRow compareSeries(const std::string& id, const std::string& pass, const SampleSet* beforeIn,
+                         const SampleSet* afterIn, const CompareThresholds& t, bool software) {
     CompareRow r;
     r.id = id;
     r.pass = pass;
+    const SampleSet* before = beforeIn;
+    const SampleSet* after = afterIn;
+    SampleSet kept[2];
+    if (before && after) {
+        kept[0] = *before;
+        kept[1] = *after;
+        if (keepOneClock(kept[0], kept[1], r)) {
+            before = &kept[0];
+            after = &kept[1];
+        }
+    }
     if (before) {
         r.nOld = before->ms.size();
         r.oldClock = before->clock;

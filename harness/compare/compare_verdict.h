@@ -41,6 +41,14 @@ constexpr double kAutoFloorPct = 0.5;
 // 0.14 ms AO pass and 2% of a 15 us blur.
 constexpr double kAutoFloorMs = 0.0003;
 
+// A side whose samples come from two clocks (a repetition whose warm clock
+// check failed and moved to the wall clock) is judged on the clock most of
+// both sides' samples share, leaving the others out, when that keeps at
+// least this share of each side; otherwise it has no verdict. On the H200 1
+// repetition in 928 moved (bench/results/2026-12-03_h200_sensitivity2), and
+// took its configuration's verdict with it in every pass.
+constexpr double kMixedClockKeepShare = 0.75;
+
 // Fewer samples than this on a side gives no verdict: with 2 against 2 the
 // smallest two-sided p the U test can give is 1/3.
 constexpr size_t kMinSamples = 3;
@@ -62,7 +70,8 @@ struct CompareRow {
     // timer's step (the smallest difference between two distinct samples).
     double detectablePct = NAN, timerStepPct = NAN;
     double thresholdPct = NAN;   // the change a verdict needed: --min-change, or auto's
-    size_t nOld = 0, nNew = 0;
+    size_t nOld = 0, nNew = 0;          // the samples judged
+    size_t leftOutOld = 0, leftOutNew = 0;   // samples on another clock, left out (kMixedClockKeepShare)
     std::string oldClock, newClock;   // "" where the side is missing
     // NaN where not computed: medians of a missing or mixed-clock side; the
     // rest only when both sides are on one clock.

@@ -18,6 +18,14 @@ void SampleSet::add(double value, const std::string& sampleClock, double sampleS
     }
     ms.push_back(value);
     smMhz.push_back(sampleSmMhz > 0 && std::isfinite(sampleSmMhz) ? sampleSmMhz : NAN);
+    clocks.push_back(sampleClock);
+}
+
+SampleSet SampleSet::onClock(const std::string& c) const {
+    SampleSet s;
+    for (size_t i = 0; i < ms.size(); ++i)
+        if (clocks[i] == c) s.add(ms[i], c, smMhz[i]);
+    return s;
 }
 
 bool SampleSet::smClockKnown() const {

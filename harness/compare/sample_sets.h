@@ -25,6 +25,7 @@ struct SampleSet {
     // The SM clock each sample was taken at (its run's or repetition's
     // median, from NVML), beside ms; NaN where the file records none.
     std::vector<double> smMhz;
+    std::vector<std::string> clocks;   // each sample's clock, beside ms
     std::string clock;
     // Samples of this series came from different clocks: a wall-clock sample
     // and a timestamp sample measure different things, so they are never pooled.
@@ -33,6 +34,8 @@ struct SampleSet {
     void add(double value, const std::string& sampleClock, double sampleSmMhz = NAN);
     // Every sample's SM clock is known.
     bool smClockKnown() const;
+    // The samples taken on `c` alone.
+    SampleSet onClock(const std::string& c) const;
 };
 
 struct SampleSets {

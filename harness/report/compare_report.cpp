@@ -135,6 +135,15 @@ std::string compareTable(const std::vector<CompareRow>& rows, const SampleSets& 
                             : format("%g", t.minChangePct) + "%") +
            " of the old median and the " + level + " interval of the change excludes 0; detectable: the smallest "
            "change these samples could call (the interval's half-width, or the timer's step)\n";
+    size_t judgedOnOne = 0, leftOut = 0;
+    for (const auto& r : rows)
+        if (r.leftOutOld + r.leftOutNew) {
+            ++judgedOnOne;
+            leftOut += r.leftOutOld + r.leftOutNew;
+        }
+    if (judgedOnOne)
+        out += std::to_string(judgedOnOne) + " rows judged on the clock most of their samples share, " +
+               std::to_string(leftOut) + " samples on another clock left out (left_out_old/new in --json)\n";
     // Each reason for an inconclusive row once, with what to do about it.
     std::map<std::string, std::pair<int, std::string>> reasons;
     for (const auto& r : rows)
@@ -161,6 +170,8 @@ json compareJson(const std::vector<CompareRow>& rows, const SampleSets& before, 
                         {"threshold_pct", number(r.thresholdPct)},
                         {"n_old", r.nOld},
                         {"n_new", r.nNew},
+                        {"left_out_old", r.leftOutOld},
+                        {"left_out_new", r.leftOutNew},
                         {"old_clock", text(r.oldClock)},
                         {"new_clock", text(r.newClock)},
                         {"old_median_ms", number(r.oldMedianMs)},
