@@ -202,7 +202,7 @@ Result<Workgroup> workgroupSize() {
     unsigned long x = 0, y = 0;
     char extra = 0;
     if (std::sscanf(text.c_str(), "%lux%lu%c", &x, &y, &extra) != 2 || !pow2(x) || !pow2(y) || x * y < 32 || x * y > 1024)
-        return badInput("CAVITY_WORKGROUP=" + text + ": must be WxH, W and H powers of two, W x H from 32 to 1024 (default 8x8)");
+        return badInput("CAVITY_WORKGROUP=" + text + ": must be WxH, W and H powers of two, W x H from 32 to 1024 (default 16x16)");
     return Workgroup{uint32_t(x), uint32_t(y)};
 }
 

@@ -205,13 +205,17 @@ Result<gpu::ShaderSource> assemble(const KernelDecl& k, gpu::Stage stage,
                                    const std::map<std::string, std::string>& overrides = {},
                                    const ParamValues* values = nullptr, int plantedFmas = 0);
 
-// The workgroup shape of every compute pass: 8x8, or what
+// The workgroup shape of every compute pass: 16x16, or what
 // CAVITY_WORKGROUP=WxH in the environment says (W and H powers of two, W x H
-// from 32 to 1024; an experiment on how much of a pass is its dispatch,
-// docs/timing.md). Each invocation shades its own pixel whatever the shape,
-// so the images do not change. An error names the variable and its value.
+// from 32 to 1024). Each invocation shades its own pixel whatever the shape,
+// so the images do not change. A full-resolution pass cannot be faster than
+// launching its workgroups: on the H200 an empty 1920x1080 dispatch took
+// 22.6 us in 8x8 workgroups and 7.9 us in 16x16, which took 30% off the
+// pyramid and the composite and moved no other pass (docs/timing.md). 256
+// invocations is over Vulkan's guaranteed minimum of 128: a device with
+// fewer needs CAVITY_WORKGROUP=8x8. An error names the variable and its value.
 struct Workgroup {
-    uint32_t x = 8, y = 8;
+    uint32_t x = 16, y = 16;
 };
 Result<Workgroup> workgroupSize();
 

@@ -191,9 +191,7 @@ KernelDecl alchemyFast() {
     k.inputs = {{"zmip", {gpu::Filter::Nearest, gpu::Address::ClampToEdge, true}}, {"normal", {}}, {"zlayers", {}}};
     k.outputs = {{"ao", Format::R16F}, {"ao_key", Format::RGBA16F}};
     k.interleaved = true;
-    // The sample count compiled in: the sample loop unrolls into batches
-    // whose fetches are issued together (ssao_alchemy_fast.glsl).
-    k.compileTime = {"samples"};
+    k.compileTime = {"samples"};   // the sample loop unrolls
     // Sample i's spiral direction at phase 0, (cos, sin) of (i + 0.5) 7/9
     // turns, one vec4 each for samples up to 256: the kernel turns it by the
     // pixel's phase once computed, where evaluating cos and sin per sample
@@ -246,9 +244,7 @@ KernelDecl hemisphereFast() {
     k.derive = [](const ParamValues& v, std::map<std::string, std::vector<float>>& arrays) {
         arrays["kernel"] = cosineKernel(intValue(v, "samples"), intValue(v, "steps"));
     };
-    // Every point fetched: a blocked ray's later points are skipped, which
-    // the floor does not count on.
-    k.cost = pyramidAoCost;
+    k.cost = pyramidAoCost;   // every point is fetched
     return k;
 }
 

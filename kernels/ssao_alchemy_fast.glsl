@@ -36,11 +36,6 @@ ivec2 spiralSampleTurned(int i, vec2 phase, float discScale, vec2 fragCentre, ou
     return ivec2(floor(samplePos));
 }
 
-// Samples whose fetches are issued together (below). n compiled in
-// (KernelDecl::compileTime) lets the batches unroll; 8 keeps a batch's
-// coordinates and depths in registers at any n.
-const int SAMPLE_BATCH = 8;
-
 void cavity_main(ivec2 pixel) {
     float d = pyramidDepth(pixel, 0);
     if (isBackground(d)) {
@@ -52,6 +47,10 @@ void cavity_main(ivec2 pixel) {
     vec3 N = texelFetch(in_normal, pixel, 0).xyz;
     int maxLevel = textureQueryLevels(in_zmip) - 1;
 
+    // n compiled in (KernelDecl::compileTime): the loop unrolls. Fetching a
+    // batch of samples' depths before using any was 20% slower on the H200
+    // (bench/results/2026-12-03_h200_batched): the registers it takes cost
+    // more occupancy than the latency it hides.
 #ifdef CAVITY_CONST_samples
     const int n = CAVITY_CONST_samples;
 #else
@@ -64,34 +63,21 @@ void cavity_main(ivec2 pixel) {
     vec2 phase = cosSinTurns(samplePhase(pixel));
     vec2 fragCentre = vec2(pixel) + 0.5;
 
-    // The samples go in batches of SAMPLE_BATCH: every fetch of a batch is
-    // issued before any of its depths is used, so the batch waits on memory
-    // once rather than once per sample. A sample off the image reads a
-    // clamped texel and is dropped after the fetch (zs = 0, background),
-    // which keeps the fetches free of branches; the sum runs in sample order,
-    // as the CPU reference's does.
     float S = 0.0;
-    for (int first = 0; first < n; first += SAMPLE_BATCH) {
-        ivec2 texel[SAMPLE_BATCH];
-        int level[SAMPLE_BATCH];
-        float zs[SAMPLE_BATCH];
-        for (int j = 0; j < SAMPLE_BATCH; ++j) {
-            float h;
-            ivec2 s = spiralSampleTurned(min(first + j, n - 1), phase, discScale, fragCentre, h);
-            bool inside = first + j < n && all(greaterThanEqual(s, ivec2(0))) && all(lessThan(s, frame.size));
-            // h < 2^31 where the sample is inside the image; elsewhere the level is not used.
-            level[j] = inside ? pyramidLevel(int(h), maxLevel) : 0;
-            texel[j] = clamp(s >> level[j], ivec2(0), levelSize(level[j]) - 1);
-            float z = pyramidDepth(texel[j], level[j]);
-            zs[j] = inside ? z : 0.0;
-        }
-        for (int j = 0; j < SAMPLE_BATCH; ++j) {
-            if (isBackground(zs[j])) continue;
-            EXACT vec3 omega = positionAt(sourcePixel(texel[j], level[j]), zs[j]) - X;
-            float omega2 = lengthSquared(omega);
-            if (omega2 > R * R) continue;
-            S += weight * max(0.0, dot(N, omega) - P.bias) / max(c * c, omega2);
-        }
+    for (int i = 0; i < n; ++i) {
+        float h;
+        ivec2 s = spiralSampleTurned(i, phase, discScale, fragCentre, h);
+        if (any(lessThan(s, ivec2(0))) || any(greaterThanEqual(s, frame.size))) continue;
+        // h < 2^31 here: the sample is inside the image.
+        int level = pyramidLevel(int(h), maxLevel);
+        ivec2 t = min(s >> level, levelSize(level) - 1);
+        float zs = pyramidDepth(t, level);
+        if (isBackground(zs)) continue;
+
+        EXACT vec3 omega = positionAt(sourcePixel(t, level), zs) - X;
+        float omega2 = lengthSquared(omega);
+        if (omega2 > R * R) continue;
+        S += weight * max(0.0, dot(N, omega) - P.bias) / max(c * c, omega2);
     }
     float A = pow(max(0.0, 1.0 - P.scale * S), P.contrast);
     write_ao(pixel, vec4(A, 0.0, 0.0, 0.0));

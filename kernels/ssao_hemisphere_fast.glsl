@@ -73,8 +73,9 @@ void cavity_main(ivec2 pixel) {
     tangentFrame(cosSinTurns(samplePhase(pixel)), N, tn, b);
 
     // Points come in groups along one ray (P.kernel[i].w = 1 closes one):
-    // a ray is blocked when any of its points is, and once one point has
-    // blocked it fully the rest are not fetched. step_jitter moves ray g's
+    // a ray is blocked when any of its points is. Every point is fetched,
+    // also after one has blocked its ray fully (max() then keeps 1): skipping
+    // those was 2% slower on the H200 (bench/results/2026-12-03_h200_batched). step_jitter moves ray g's
     // points in by a share u of a step, drawn per pixel and ray, as in
     // ssao_hemisphere.glsl.
 #ifdef CAVITY_CONST_samples
@@ -88,11 +89,9 @@ void cavity_main(ivec2 pixel) {
     for (int i = 0; i < n; ++i) {
         vec4 k = P.kernel[i];
         if (inGroup == 0 && P.step_jitter != 0) u = sampleHash(phasePixel(pixel), int(directions));
-        if (blocked < 1.0) {
-            EXACT float lengthScale = R;
-            if (P.step_jitter != 0) lengthScale = R * (1.0 - u * portableReciprocal(float(inGroup + 1)));
-            blocked = max(blocked, occludedBy(view, X, N, level, d, k.xyz, tn, b, lengthScale, pixel));
-        }
+        EXACT float lengthScale = R;
+        if (P.step_jitter != 0) lengthScale = R * (1.0 - u * portableReciprocal(float(inGroup + 1)));
+        blocked = max(blocked, occludedBy(view, X, N, level, d, k.xyz, tn, b, lengthScale, pixel));
         ++inGroup;
         if (k.w > 0.5 || i == n - 1) {
             occlusion += blocked;

@@ -314,9 +314,9 @@ TEST_P(KernelVsReference, InterleavedLayersShadeAsThePlainReferenceDoes) {
 
 // The dispatch shape itself: with the AO kernel's body replaced by one that
 // stores its workgroup's id, every pixel shows which workgroup shaded it.
-// Plain, that is pixel / 8; interleaved, the workgroup over the layers laid
-// side by side, (pixel mod k) * layerSize + pixel / k, all over 8: a
-// workgroup's pixels are every k-th pixel of one layer. (The images alone
+// Plain, that is pixel / the workgroup's size; interleaved, the workgroup
+// over the layers laid side by side, (pixel mod k) * layerSize + pixel / k,
+// over the size: a workgroup's pixels are every k-th pixel of one layer. (The images alone
 // cannot tell: which invocation shades a pixel does not change its value.)
 TEST_P(KernelVsReference, InterleavedPassShadesEachLayerInItsOwnWorkgroups) {
     const std::map<std::string, std::string> workgroupIds = {
@@ -341,11 +341,14 @@ TEST_P(KernelVsReference, InterleavedPassShadesEachLayerInItsOwnWorkgroups) {
         auto x = (*chain)->read("ao"), y = (*chain)->read("ao_key");
         ASSERT_TRUE(x && y);
         const int lw = (c.width + k - 1) / k, lh = (c.height + k - 1) / k;
+        const auto wg = kernels::workgroupSize();
+        ASSERT_TRUE(wg);
+        const int gx = int(wg->x), gy = int(wg->y);
         int wrong = 0;
         for (int py = 0; py < c.height; ++py)
             for (int px = 0; px < c.width; ++px) {
                 const int ax = px % k * lw + px / k, ay = py % k * lh + py / k;
-                wrong += x->at(px, py, 0) != float(ax / 8) || y->at(px, py, 0) != float(ay / 8);
+                wrong += x->at(px, py, 0) != float(ax / gx) || y->at(px, py, 0) != float(ay / gy);
             }
         EXPECT_EQ(wrong, 0) << "interleave " << k << ": pixels shaded by another workgroup than the layers' own";
     }
@@ -507,7 +510,7 @@ TEST_P(KernelVsReference, FullBarriersChangeNoImage) {
 // CAVITY_WORKGROUP reshapes every compute dispatch and nothing else: each
 // invocation shades its own pixel, so every image of the fast pipelines (the
 // interleaved layers included, whose workgroups then span other pixels of
-// one layer) comes out bit for bit as with 8x8. A shape the variable cannot
+// one layer) comes out bit for bit as with the default. A shape the variable cannot
 // take is an error naming it.
 TEST_P(KernelVsReference, WorkgroupShapeChangesNoImage) {
     struct Env {

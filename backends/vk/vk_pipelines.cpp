@@ -88,6 +88,14 @@ Status initCompute(Device& d, PipelineRes& p, const ComputePipelineDesc& desc) {
         return internal("pipeline '" + p.label + "': " + desc.shader.name + " declares local_size " +
                         std::to_string((*size)[0]) + "x" + std::to_string((*size)[1]) + ", the description " +
                         std::to_string(desc.localSizeX) + "x" + std::to_string(desc.localSizeY));
+    const auto& limits = d.props.limits;
+    if (uint32_t(desc.localSizeX) * uint32_t(desc.localSizeY) > limits.maxComputeWorkGroupInvocations ||
+        uint32_t(desc.localSizeX) > limits.maxComputeWorkGroupSize[0] ||
+        uint32_t(desc.localSizeY) > limits.maxComputeWorkGroupSize[1])
+        return unavailable("vk: '" + std::string(d.props.deviceName) + "' runs workgroups of at most " +
+                           std::to_string(limits.maxComputeWorkGroupInvocations) + " invocations, not " +
+                           std::to_string(desc.localSizeX) + "x" + std::to_string(desc.localSizeY) +
+                           ": set CAVITY_WORKGROUP=8x8 (docs/timing.md)");
     Module cs;
     CAVITY_TRY(createModule(d, spirv, "'" + p.label + "' (" + desc.shader.name + ")", cs));
     auto ci = vkStruct<VkComputePipelineCreateInfo>(VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO);

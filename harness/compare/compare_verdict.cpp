@@ -146,6 +146,22 @@ bool keepOneClock(SampleSet& before, SampleSet& after, CompareRow& r) {
     return true;
 }
 
+// The counts, clocks and medians of each side there is.
+void describeSides(CompareRow& r, const SampleSet* before, const SampleSet* after) {
+    if (before) {
+        r.nOld = before->ms.size();
+        r.oldClock = before->clock;
+        r.oldMedianMs = medianOf(*before);
+        r.oldSmMhz = medianClock(*before);
+    }
+    if (after) {
+        r.nNew = after->ms.size();
+        r.newClock = after->clock;
+        r.newMedianMs = medianOf(*after);
+        r.newSmMhz = medianClock(*after);
+    }
+}
+
 }  // namespace
 
 CompareRow compareSeries(const std::string& id, const std::string& pass, const SampleSet* beforeIn,
@@ -164,18 +180,7 @@ CompareRow compareSeries(const std::string& id, const std::string& pass, const S
             after = &kept[1];
         }
     }
-    if (before) {
-        r.nOld = before->ms.size();
-        r.oldClock = before->clock;
-        r.oldMedianMs = medianOf(*before);
-        r.oldSmMhz = medianClock(*before);
-    }
-    if (after) {
-        r.nNew = after->ms.size();
-        r.newClock = after->clock;
-        r.newMedianMs = medianOf(*after);
-        r.newSmMhz = medianClock(*after);
-    }
+    describeSides(r, before, after);
     if (!before || !after) {
         r.verdict = before ? "gone" : "new";
         return r;
