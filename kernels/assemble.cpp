@@ -194,15 +194,15 @@ std::string entryPoint(gpu::Stage stage, bool interleaved, const std::string& pl
 
 }  // namespace
 
-Result<Workgroup> workgroupSize() {
+Result<Workgroup> workgroupSize(const KernelDecl& k) {
     const char* v = std::getenv("CAVITY_WORKGROUP");
-    if (!v || !*v) return Workgroup{};   // unset or empty: the default
+    if (!v || !*v) return k.workgroup;   // unset or empty: the kernel's own
     const std::string text = v;
     auto pow2 = [](unsigned long n) { return n > 0 && (n & (n - 1)) == 0; };
     unsigned long x = 0, y = 0;
     char extra = 0;
     if (std::sscanf(text.c_str(), "%lux%lu%c", &x, &y, &extra) != 2 || !pow2(x) || !pow2(y) || x * y < 32 || x * y > 1024)
-        return badInput("CAVITY_WORKGROUP=" + text + ": must be WxH, W and H powers of two, W x H from 32 to 1024 (default 16x16)");
+        return badInput("CAVITY_WORKGROUP=" + text + ": must be WxH, W and H powers of two, W x H from 32 to 1024 (unset: each kernel's own, mostly 16x16)");
     return Workgroup{uint32_t(x), uint32_t(y)};
 }
 
@@ -275,7 +275,7 @@ Result<gpu::ShaderSource> assemble(const KernelDecl& k, gpu::Stage stage,
                 "    for (int i = 0; i < " + std::to_string(plantedFmas) + "; ++i) plant_ = fma(plant_, 0.9999, frame.invSize.y);\n"
                 "    if (plant_ < 0.0) write_" + k.outputs[0].name + "(pixel, vec4(plant_));\n";
     // The two thin entry points around the one body.
-    CAVITY_ASSIGN(const Workgroup wg, workgroupSize());
+    CAVITY_ASSIGN(const Workgroup wg, workgroupSize(k));
     src.glsl += "#line 1 0\n" + entryPoint(stage, k.interleaved && interleave > 1, plant, wg);
     return src;
 }

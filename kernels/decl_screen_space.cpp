@@ -112,6 +112,7 @@ KernelDecl blurBox() {
 KernelDecl downsampleDepth() {
     KernelDecl k;
     k.name = "downsample_depth";
+    k.workgroup = {8, 8};   // between resolutions: 2-3 us slower in 16x16 (kernel.h)
     k.file = "downsample_depth.glsl";
     k.summary = "half-resolution G-buffer: one real texel of each 2x2 block, nearest and farthest in a checkerboard";
     k.role = Role::Downsample;
@@ -132,6 +133,7 @@ KernelDecl downsampleDepth() {
 KernelDecl upsampleBilateral() {
     KernelDecl k;
     k.name = "upsample_bilateral";
+    k.workgroup = {8, 8};   // between resolutions: 2-3 us slower in 16x16 (kernel.h)
     k.file = "upsample_bilateral.glsl";
     k.summary = "joint bilateral upsample of half-resolution AO: bilinear x tangent-plane distance x normal weights";
     k.role = Role::Upsample;
@@ -153,6 +155,7 @@ KernelDecl upsampleBilateral() {
 KernelDecl upsampleComposite() {
     KernelDecl k;
     k.name = "upsample_composite";
+    k.workgroup = {8, 8};   // between resolutions: 2-3 us slower in 16x16 (kernel.h)
     k.file = "upsample_composite.glsl";
     k.summary = "the half-resolution tail in one pass: joint bilateral upsample, then the composite of its AO";
     k.role = Role::Composite;

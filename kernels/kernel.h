@@ -113,6 +113,19 @@ enum class Role {
     Composite,    // the lit 8-bit image
 };
 
+// A compute pass's workgroup shape. Each invocation shades its own pixel
+// whatever the shape, so the images do not change with it; the time does. A
+// full-resolution pass cannot be faster than launching its workgroups: on
+// the H200 an empty 1920x1080 dispatch took 22.6 us in 8x8 workgroups and
+// 7.9 us in 16x16, which took 30% off the pyramid and the composite and
+// moved neither the AO nor the blur passes; the passes between the two
+// resolutions became 2-3 us slower in 16x16 and declare 8x8
+// (docs/timing.md). 256 invocations is over Vulkan's guaranteed minimum of
+// 128: a device with fewer needs CAVITY_WORKGROUP=8x8.
+struct Workgroup {
+    uint32_t x = 16, y = 16;
+};
+
 struct KernelDecl {
     std::string name;                   // "alchemy"
     std::string file;                   // "ssao_alchemy.glsl", relative to kernels/
@@ -133,6 +146,7 @@ struct KernelDecl {
     // scene): CPU renderers (llvmpipe's GL) otherwise run every path of a
     // branch on a uniform, and the ray march got 2.2x slower with six scenes.
     std::vector<std::string> compileTime;
+    Workgroup workgroup;   // compute stage
     // Runs as k x k interleaved layers when its `interleave` parameter k is
     // over 1: one compute dispatch over the layers side by side, invocation
     // (layer l, texel q) shading pixel q * k + l, so that a workgroup's
@@ -205,19 +219,11 @@ Result<gpu::ShaderSource> assemble(const KernelDecl& k, gpu::Stage stage,
                                    const std::map<std::string, std::string>& overrides = {},
                                    const ParamValues* values = nullptr, int plantedFmas = 0);
 
-// The workgroup shape of every compute pass: 16x16, or what
-// CAVITY_WORKGROUP=WxH in the environment says (W and H powers of two, W x H
-// from 32 to 1024). Each invocation shades its own pixel whatever the shape,
-// so the images do not change. A full-resolution pass cannot be faster than
-// launching its workgroups: on the H200 an empty 1920x1080 dispatch took
-// 22.6 us in 8x8 workgroups and 7.9 us in 16x16, which took 30% off the
-// pyramid and the composite and moved no other pass (docs/timing.md). 256
-// invocations is over Vulkan's guaranteed minimum of 128: a device with
-// fewer needs CAVITY_WORKGROUP=8x8. An error names the variable and its value.
-struct Workgroup {
-    uint32_t x = 16, y = 16;
-};
-Result<Workgroup> workgroupSize();
+
+// The workgroup shape k's compute pass runs in: k.workgroup, or for every
+// kernel what CAVITY_WORKGROUP=WxH in the environment says (W and H powers of
+// two, W x H from 32 to 1024). An error names the variable and its value.
+Result<Workgroup> workgroupSize(const KernelDecl& k);
 
 // The full-screen-triangle vertex shader used by fragment-stage passes.
 gpu::ShaderSource fullscreenVertex();

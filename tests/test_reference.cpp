@@ -341,7 +341,7 @@ TEST_P(KernelVsReference, InterleavedPassShadesEachLayerInItsOwnWorkgroups) {
         auto x = (*chain)->read("ao"), y = (*chain)->read("ao_key");
         ASSERT_TRUE(x && y);
         const int lw = (c.width + k - 1) / k, lh = (c.height + k - 1) / k;
-        const auto wg = kernels::workgroupSize();
+        const auto wg = kernels::workgroupSize(*kernels::find("alchemy_fast"));
         ASSERT_TRUE(wg);
         const int gx = int(wg->x), gy = int(wg->y);
         int wrong = 0;
@@ -545,7 +545,7 @@ TEST_P(KernelVsReference, WorkgroupShapeChangesNoImage) {
     }
     for (const char* bad : {"16", "3x16", "64x64", "4x4", "8x8x1", "-8x8"}) {
         setenv("CAVITY_WORKGROUP", bad, 1);
-        const auto wg = kernels::workgroupSize();
+        const auto wg = kernels::workgroupSize(*kernels::find("alchemy_fast"));
         ASSERT_FALSE(wg) << bad;
         EXPECT_NE(wg.error().message.find(std::string("CAVITY_WORKGROUP=") + bad + ": must be WxH"), std::string::npos)
             << wg.error().message;

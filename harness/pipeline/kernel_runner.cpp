@@ -76,7 +76,7 @@ Result<std::vector<HostImage>> runKernel(gpu::Backend& gpu, const KernelRun& run
         if (run.stage == gpu::Stage::Compute) {
             b = kernels::kFirstImageBinding;
             for (auto o : outs) binds.push_back({b++, o, {}, {}});
-            CAVITY_ASSIGN(const kernels::Workgroup wg, kernels::workgroupSize());
+            CAVITY_ASSIGN(const kernels::Workgroup wg, kernels::workgroupSize(k));
             CAVITY_ASSIGN(pipeline, gpu.createComputePipeline({std::move(src), layout, int(wg.x), int(wg.y), k.name}));
             gpu.beginFrame();
             gpu.dispatch(pipeline, binds, (run.width + int(wg.x) - 1) / int(wg.x),

@@ -160,7 +160,7 @@ Status PassChain::createPass(const PassSpec& spec, const RunConfig& c, const Sou
             for (int l = 0; l < (decl.oneDispatch ? decl.mipLevels : 1); ++l)
                 pass->binds.push_back({b++, images_[spec.outputs[o]].image, {}, {}, l});
         }
-        CAVITY_ASSIGN(pass->workgroup, kernels::workgroupSize());
+        CAVITY_ASSIGN(pass->workgroup, kernels::workgroupSize(k));
         gpu::ComputePipelineDesc d{std::move(body), layout, int(pass->workgroup.x), int(pass->workgroup.y), spec.name};
         CAVITY_ASSIGN(pass->pipeline, gpu_.createComputePipeline(d));
         if (k.outputs.empty() || !k.outputs[0].oneDispatch) CAVITY_TRY(createComputeLevels(*pass, spec, c, mipLevels));
