@@ -57,6 +57,27 @@ Result<std::unique_ptr<PassChain>> recordedChain(gpu::Backend& gpu, const RunCon
     return chain;
 }
 
+// `kernel` on corner at 160x90, every other setting its default.
+RunConfig smallConfig(gpu::Api api, const std::string& kernel, bool half = false) {
+    RunConfig c;
+    c.api = api;
+    c.width = 160;
+    c.height = 90;
+    c.kernel = kernel;
+    c.half = half;
+    return c;
+}
+
+// The AO, blurred AO and composite images of one recorded frame of `c`.
+Result<std::map<std::string, HostImage>> frameImages(gpu::Backend& gpu, const RunConfig& c) {
+    CAVITY_ASSIGN(auto chain, recordedChain(gpu, c));
+    std::map<std::string, HostImage> images;
+    for (const std::string name : {"ao", "ao_blur", "color"}) {
+        CAVITY_ASSIGN(images[name], chain->read(name));
+    }
+    return images;
+}
+
 // The CPU reference of one pass of a recorded chain, fed the very images the
 // GPU pass read (CPU-made constants at level 0); outputs in its order.
 Result<std::vector<HostImage>> referenceOf(PassChain& chain, const PassSpec& pass, const RunConfig& c) {
@@ -481,26 +502,11 @@ TEST_P(KernelVsReference, FullBarriersChangeNoImage) {
     for (const std::string kernel : {"alchemy", "alchemy_fast", "hemisphere_fast", "ssdo_fast"}) {
         for (bool half : {false, true}) {
             if (half && !supportsHalf(kernel)) continue;
-            RunConfig c;
-            c.api = api();
-            c.width = 160;
-            c.height = 90;
-            c.kernel = kernel;
-            c.half = half;
-            std::map<std::string, HostImage> images[2];
-            int which = 0;
-            for (gpu::Backend* g : {&gpu(), full->get()}) {
-                auto chain = recordedChain(*g, c);
-                ASSERT_TRUE(chain) << chain.error().message;
-                for (const std::string name : {"ao", "ao_blur", "color"}) {
-                    auto img = (*chain)->read(name);
-                    ASSERT_TRUE(img) << img.error().message;
-                    images[which][name] = std::move(*img);
-                }
-                ++which;
-            }
-            for (const auto& [name, narrow] : images[0])
-                EXPECT_EQ(narrow.pixels, images[1][name].pixels) << configId(c) << " " << name;
+            const RunConfig c = smallConfig(api(), kernel, half);
+            auto narrow = frameImages(gpu(), c), wide = frameImages(**full, c);
+            ASSERT_TRUE(narrow && wide) << (narrow ? wide.error() : narrow.error()).message;
+            for (const auto& [name, image] : *narrow)
+                EXPECT_EQ(image.pixels, wide->at(name).pixels) << configId(c) << " " << name;
         }
     }
     const auto messages = (*full)->takeDebugMessages();
@@ -518,29 +524,17 @@ TEST_P(KernelVsReference, WorkgroupShapeChangesNoImage) {
     } restore;
     for (const std::string kernel : {"alchemy_fast", "hemisphere_fast", "ssdo_fast"}) {
         for (int variant = 0; variant < 3; ++variant) {
-            RunConfig c;
-            c.api = api();
-            c.width = 160;
-            c.height = 90;
-            c.kernel = kernel;
-            c.half = variant == 1 && supportsHalf(kernel);
+            RunConfig c = smallConfig(api(), kernel, variant == 1 && supportsHalf(kernel));
             if (variant == 2 && kernel != "ssdo_fast") {
                 ASSERT_TRUE(setParam(c, "interleave", "4").ok());
             }
-            std::map<std::string, HostImage> images[2];
-            for (int which = 0; which < 2; ++which) {
-                if (which) setenv("CAVITY_WORKGROUP", "32x4", 1);
-                else unsetenv("CAVITY_WORKGROUP");
-                auto chain = recordedChain(gpu(), c);
-                ASSERT_TRUE(chain) << chain.error().message;
-                for (const std::string name : {"ao", "ao_blur", "color"}) {
-                    auto img = (*chain)->read(name);
-                    ASSERT_TRUE(img) << img.error().message;
-                    images[which][name] = std::move(*img);
-                }
-            }
-            for (const auto& [name, square] : images[0])
-                EXPECT_EQ(square.pixels, images[1][name].pixels) << configId(c) << " " << name;
+            unsetenv("CAVITY_WORKGROUP");
+            auto declared = frameImages(gpu(), c);
+            setenv("CAVITY_WORKGROUP", "32x4", 1);
+            auto reshaped = frameImages(gpu(), c);
+            ASSERT_TRUE(declared && reshaped) << (declared ? reshaped.error() : declared.error()).message;
+            for (const auto& [name, image] : *declared)
+                EXPECT_EQ(image.pixels, reshaped->at(name).pixels) << configId(c) << " " << name;
         }
     }
     for (const char* bad : {"16", "3x16", "64x64", "4x4", "8x8x1", "-8x8"}) {
