@@ -20,6 +20,7 @@ import glob
 import json
 import os
 import re
+import statistics
 import subprocess
 import sys
 import tempfile
@@ -82,6 +83,21 @@ def main():
             unsure = sum(r["verdict"] == "inconclusive" for r in planted)
             moved = sum(r["verdict"] in ("slower", "faster") for r in rest)
             print(f"| {n} | {elapsed(rs, n):.0f} | {len(planted)} | {slower} | {unsure} | {len(rest)} | {moved} |")
+    # What the plant delivered with every round in: a miss where it came in
+    # under its target is the calibration's, not the verdict's.
+    changes = [r["change_pct"] for r in planted if r["change_pct"] is not None]
+    if changes:
+        print(f"\n- measured change of the planted passes, {len(rs)} rounds: "
+              f"{min(changes):+.2f}% to {max(changes):+.2f}% (median {statistics.median(changes):+.2f}%)")
+    # The misses, where the run called any (an A/A run calls none, and has no plant to miss).
+    for r in planted if any(r["verdict"] == "slower" for r in planted) else []:
+        if r["verdict"] != "slower":
+            what = r["reason"] or r["verdict"]
+            if r["change_pct"] is None:
+                print(f"- not called: {r['id']}: {what}")
+            else:
+                print(f"- not called: {r['id']}: {r['change_pct']:+.2f}% [{r['ci_low_pct']:+.2f}, "
+                      f"{r['ci_high_pct']:+.2f}], p = {r['p']:.2g}, {what}")
     return 0
 
 
