@@ -124,6 +124,10 @@ enum class Role {
 // 128: a device with fewer needs CAVITY_WORKGROUP=8x8.
 struct Workgroup {
     uint32_t x = 16, y = 16;
+
+    // Workgroups across and down an image `w` x `h` pixels.
+    int groupsX(int w) const { return (w + int(x) - 1) / int(x); }
+    int groupsY(int h) const { return (h + int(y) - 1) / int(y); }
 };
 
 struct KernelDecl {
@@ -218,7 +222,6 @@ std::vector<std::byte> packParams(const KernelDecl& k, const ParamValues& values
 Result<gpu::ShaderSource> assemble(const KernelDecl& k, gpu::Stage stage,
                                    const std::map<std::string, std::string>& overrides = {},
                                    const ParamValues* values = nullptr, int plantedFmas = 0);
-
 
 // The workgroup shape k's compute pass runs in: k.workgroup, or for every
 // kernel what CAVITY_WORKGROUP=WxH in the environment says (W and H powers of

@@ -191,7 +191,6 @@ KernelDecl alchemyFast() {
     k.inputs = {{"zmip", {gpu::Filter::Nearest, gpu::Address::ClampToEdge, true}}, {"normal", {}}, {"zlayers", {}}};
     k.outputs = {{"ao", Format::R16F}, {"ao_key", Format::RGBA16F}};
     k.interleaved = true;
-    k.compileTime = {"samples"};   // the sample loop unrolls
     // Sample i's spiral direction at phase 0, (cos, sin) of (i + 0.5) 7/9
     // turns, one vec4 each for samples up to 256: the kernel turns it by the
     // pixel's phase once computed, where evaluating cos and sin per sample
@@ -239,7 +238,6 @@ KernelDecl hemisphereFast() {
     k.inputs = {{"zmip", {gpu::Filter::Nearest, gpu::Address::ClampToEdge, true}}, {"normal", {}}, {"zlayers", {}}};
     k.outputs = {{"ao", Format::R16F}, {"ao_key", Format::RGBA16F}};
     k.interleaved = true;
-    k.compileTime = {"samples"};   // the point loop unrolls
     k.arrays = {{"kernel", maxKernelPoints()}};
     k.derive = [](const ParamValues& v, std::map<std::string, std::vector<float>>& arrays) {
         arrays["kernel"] = cosineKernel(intValue(v, "samples"), intValue(v, "steps"));

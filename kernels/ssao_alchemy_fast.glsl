@@ -47,15 +47,10 @@ void cavity_main(ivec2 pixel) {
     vec3 N = texelFetch(in_normal, pixel, 0).xyz;
     int maxLevel = textureQueryLevels(in_zmip) - 1;
 
-    // n compiled in (KernelDecl::compileTime): the loop unrolls. Fetching a
-    // batch of samples' depths before using any was 20% slower on the H200
-    // (bench/results/2026-12-03_h200_batched): the registers it takes cost
-    // more occupancy than the latency it hides.
-#ifdef CAVITY_CONST_samples
-    const int n = CAVITY_CONST_samples;
-#else
+    // One sample at a time: fetching a batch of samples' depths before using
+    // any was 20% slower on the H200 (bench/results/2026-12-03_h200_batched),
+    // the registers it takes costing more occupancy than the latency it hides.
     int n = P.samples;
-#endif
     float R = P.radius;
     float c = 0.1 * R;
     float weight = 2.0 * PI * c / float(n);

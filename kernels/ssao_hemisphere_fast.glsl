@@ -74,15 +74,12 @@ void cavity_main(ivec2 pixel) {
 
     // Points come in groups along one ray (P.kernel[i].w = 1 closes one):
     // a ray is blocked when any of its points is. Every point is fetched,
-    // also after one has blocked its ray fully (max() then keeps 1): skipping
-    // those was 2% slower on the H200 (bench/results/2026-12-03_h200_batched). step_jitter moves ray g's
+    // also after one has blocked its ray fully (max() then keeps 1):
+    // skipping those was 2% slower on the H200
+    // (bench/results/2026-12-03_h200_batched). step_jitter moves ray g's
     // points in by a share u of a step, drawn per pixel and ray, as in
     // ssao_hemisphere.glsl.
-#ifdef CAVITY_CONST_samples
-    const int n = clamp(CAVITY_CONST_samples, 1, 256);
-#else
     int n = clamp(P.samples, 1, 256);
-#endif
     float R = P.radius;
     float occlusion = 0.0, directions = 0.0, blocked = 0.0, u = 0.0;
     int inGroup = 0;

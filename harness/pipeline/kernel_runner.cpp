@@ -79,8 +79,7 @@ Result<std::vector<HostImage>> runKernel(gpu::Backend& gpu, const KernelRun& run
             CAVITY_ASSIGN(const kernels::Workgroup wg, kernels::workgroupSize(k));
             CAVITY_ASSIGN(pipeline, gpu.createComputePipeline({std::move(src), layout, int(wg.x), int(wg.y), k.name}));
             gpu.beginFrame();
-            gpu.dispatch(pipeline, binds, (run.width + int(wg.x) - 1) / int(wg.x),
-                         (run.height + int(wg.y) - 1) / int(wg.y));
+            gpu.dispatch(pipeline, binds, wg.groupsX(run.width), wg.groupsY(run.height));
         } else {
             gpu::GraphicsPipelineDesc d;
             d.vertex = kernels::fullscreenVertex();

@@ -45,9 +45,6 @@ struct PassChain::Pass {
     int width = 0, height = 0;
     kernels::Workgroup workgroup;        // compute stage
     std::vector<Level> levels;           // levels 1.. of a mip-chain pass
-
-    int groupsX(int w) const { return (w + int(workgroup.x) - 1) / int(workgroup.x); }
-    int groupsY(int h) const { return (h + int(workgroup.y) - 1) / int(workgroup.y); }
 };
 
 // The rasterised G-buffer: a graphics pass over the scene mesh with a depth
@@ -277,11 +274,11 @@ void PassChain::recordPass(size_t i) {
     auto& p = *passes_[i];
     gpu_.beginScope(specs_[i].name);
     if (p.stage == gpu::Stage::Compute) {
-        gpu_.dispatch(p.pipeline, p.binds, p.groupsX(p.width), p.groupsY(p.height));
+        gpu_.dispatch(p.pipeline, p.binds, p.workgroup.groupsX(p.width), p.workgroup.groupsY(p.height));
         // A mip chain's level l reads level l - 1: one scope, a barrier apart.
         for (const auto& l : p.levels) {
             gpu_.barrier();
-            gpu_.dispatch(p.pipeline, l.binds, p.groupsX(l.width), p.groupsY(l.height));
+            gpu_.dispatch(p.pipeline, l.binds, p.workgroup.groupsX(l.width), p.workgroup.groupsY(l.height));
         }
     } else
         gpu_.draw(p.pipeline, p.binds, p.targets, p.vertexCount);
