@@ -57,8 +57,17 @@ const char* formatName(Format f) {
 
 Result<std::unique_ptr<Backend>> createBackend(Api api, const BackendOptions& options) {
     BackendOptions o = options;
-    const char* full = std::getenv("CAVITY_FULL_BARRIERS");
-    if (full && std::string(full) == "1") o.fullBarriers = true;
+    // Each variable is 0 or 1 (unset: 0); a value that is neither is an
+    // error, so that a typo never runs the ordinary barriers unnoticed.
+    for (const auto& [name, flag] : {std::pair{"CAVITY_FULL_BARRIERS", &o.fullBarriers},
+                                     std::pair{"CAVITY_NO_BARRIERS", &o.noBarriers}}) {
+        const char* v = std::getenv(name);
+        if (!v || std::string(v) == "0" || std::string(v).empty()) continue;
+        if (std::string(v) != "1") return badInput(std::string(name) + "=" + v + ": must be 0 or 1");
+        *flag = true;
+    }
+    if (o.fullBarriers && o.noBarriers)
+        return badInput("CAVITY_FULL_BARRIERS and CAVITY_NO_BARRIERS: set one of them (every barrier the widest, or none)");
     return api == Api::OpenGL ? createGlBackend(o) : createVkBackend(o);
 }
 

@@ -196,6 +196,12 @@ struct BackendOptions {
     // with and without it measures what the narrowing buys. Also set by the
     // environment variable CAVITY_FULL_BARRIERS=1 (createBackend).
     bool fullBarriers = false;
+    // No barrier() at all: nothing orders one pass's stores before the next
+    // pass's reads. A timing diagnostic only, for what the barriers cost on
+    // a chain whose passes do not read each other (docs/timing.md); on a
+    // real pipeline the images are then undefined. Also set by
+    // CAVITY_NO_BARRIERS=1. Not with fullBarriers.
+    bool noBarriers = false;
 };
 
 class Backend {

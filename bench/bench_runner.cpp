@@ -1,4 +1,5 @@
 #include "bench_runner.h"
+#include "overhead_probes.h"
 
 #include "pipeline/config_id.h"
 #include "kernel.h"
@@ -166,25 +167,6 @@ void run(benchmark::State& state, const Bench& b) {
     setTimingCounters(state, t);
 }
 
-// What an empty timestamp pair reads: the floor under every pass time.
-void emptyScope(benchmark::State& state, gpu::Api api) {
-    gpu::Backend& gpu = *backends().at(api);
-    std::vector<double> ms;
-    for (auto _ : state) {
-        gpu.beginFrame();
-        gpu.beginScope("empty");
-        gpu.endScope();
-        if (auto s = gpu.endFrame(); !s) {
-            state.SkipWithError(s.error().message.c_str());
-            return;
-        }
-        const double t = gpu.scopeTimes().at(0).gpuMs;
-        ms.push_back(t);
-        state.SetIterationTime(t / 1000.0);
-    }
-    state.counters["median_us"] = 1000.0 * summarize(ms).median;
-}
-
 }  // namespace
 
 // A plant that would plant nothing is an error, never a run that reports "no
@@ -232,6 +214,7 @@ Result<int> registerSweep(const Options& o) {
         gpu::BackendOptions bo;
         bo.deviceIndex = o.device;
         auto b = gpu::createBackend(api, bo);
+        if (!b && b.error().code == ErrorCode::BadInput) return b.error();   // CAVITY_*_BARRIERS
         if (!b) {
             std::cerr << "cavity_bench: " << b.error().message << " (skipping " << gpu::apiName(api) << ")\n";
             continue;
@@ -255,6 +238,10 @@ Result<int> registerSweep(const Options& o) {
     benchmark::AddCustomContext("cavity_software_renderer", allSoftware ? "true" : "false");
     benchmark::AddCustomContext("cavity_floor_device", floors);
     benchmark::AddCustomContext("cavity_sweep", cpu ? "cpu" : "gpu");
+    // A timing diagnostic changes every number: say so beside them.
+    for (const char* name : {"CAVITY_FULL_BARRIERS", "CAVITY_NO_BARRIERS", "CAVITY_WORKGROUP"})
+        if (const char* v = std::getenv(name); v && *v && std::string(v) != "0")
+            benchmark::AddCustomContext(std::string("cavity_env_") + name, v);
     if (const char* clocks = std::getenv("CAVITY_GPU_CLOCKS")) benchmark::AddCustomContext("cavity_gpu_clocks", clocks);
     // The timing options of the first backend's device (both APIs run on one device).
     TimingOptions timing = defaultTimingOptions(backends().at(started[0])->info());
@@ -288,13 +275,10 @@ Result<int> registerSweep(const Options& o) {
             ->Iterations(1)
             ->Unit(benchmark::kMillisecond);
     }
-    for (auto api : started)
-        benchmark::RegisterBenchmark((std::string("timer/empty_scope/") + gpu::apiName(api)).c_str(),
-                                     [api](benchmark::State& s) { emptyScope(s, api); })
-            ->UseManualTime()
-            ->Iterations(50)
-            ->Unit(benchmark::kMicrosecond);
-    return int(configs.size() + started.size());
+    // The probes at the sweep's largest size: 1920x1080 on a GPU.
+    int probes = 0;
+    for (auto api : started) probes += registerOverheadProbes(*backends().at(api), api, cpu ? 320 : 1920, cpu ? 180 : 1080);
+    return int(configs.size()) + probes;
 }
 
 void releaseBackends() { backends().clear(); }

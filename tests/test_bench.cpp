@@ -41,9 +41,13 @@ TEST(Bench, RegistersExactlyTheDeclaredSweep) {
             if (line.find("/iterations:") != std::string::npos) listed.insert(line.substr(0, line.find("/iterations:")));
         const auto configs = cavity::plan::benchmarkSweep(sweep == "cpu" ? cavity::plan::cpuSweep() : cavity::plan::gpuSweep(),
                                                     {cavity::gpu::Api::OpenGL, cavity::gpu::Api::Vulkan});
-        std::set<std::string> declared{"timer/empty_scope/gl", "timer/empty_scope/vk"};
+        std::set<std::string> declared;
+        const std::string size = sweep == "cpu" ? "320x180" : "1920x1080";
+        for (const std::string api : {"gl", "vk"})
+            for (const auto& probe : {std::string("empty_scope/"), "empty_chain/" + size + "/", "store_chain/" + size + "/"})
+                declared.insert("timer/" + probe + api);
         for (const auto& c : configs) declared.insert(cavity::pipeline::configId(c));
-        if (!ci() && listed.size() + 2 < declared.size()) GTEST_SKIP() << "a backend is missing here";
+        if (!ci() && listed.size() + 6 < declared.size()) GTEST_SKIP() << "a backend is missing here";
         EXPECT_EQ(listed, declared) << sweep;
         EXPECT_GT(configs.size(), sweep == "gpu" ? 300u : 20u);
     }
@@ -190,6 +194,41 @@ TEST(Bench, ConsoleIsATableWithoutNan) {
             EXPECT_LT(line.size(), 220u) << line;
         }
     EXPECT_EQ(rows, 3);
+}
+
+// The overhead probes (bench/overhead_probes.h) on both APIs, with the
+// barriers off: the run says so in its context, and a pass that stores
+// 320x180 texels reads longer than a timestamp pair with nothing between.
+TEST(Bench, OverheadProbesRunAndRecordTheBarrierSwitch) {
+    const fs::path out = fs::temp_directory_path() / ("cavity-probes-" + std::to_string(::getpid()) + ".json");
+    const Outcome o = cavity::test::runBinary(CAVITY_BENCH_EXE, "--benchmark_filter='^timer/' --benchmark_out=" +
+                                                                    out.string() + " --benchmark_out_format=json",
+                                              "CAVITY_NO_BARRIERS=1");
+    ASSERT_EQ(o.code, 0) << o.output;
+    std::ifstream f(out);
+    const auto doc = nlohmann::json::parse(f);
+    fs::remove(out);
+    EXPECT_EQ(doc["context"]["cavity_env_CAVITY_NO_BARRIERS"], "1");
+    std::map<std::string, double> us;
+    for (const auto& b : doc["benchmarks"]) us[b["name"].get<std::string>().substr(0, b["name"].get<std::string>().find("/iterations"))] = b["median_us"];
+    for (const std::string api : {"gl", "vk"}) {
+        if (!ci() && !us.count("timer/empty_scope/" + api)) continue;   // a backend missing here
+        ASSERT_TRUE(us.count("timer/store_chain/320x180/" + api)) << o.output;
+        EXPECT_GT(us["timer/store_chain/320x180/" + api], us["timer/empty_scope/" + api]) << api;
+        EXPECT_GT(us["timer/empty_chain/320x180/" + api], 0.0) << api;
+    }
+    EXPECT_NE(o.output.find("us a pass"), std::string::npos) << o.output;
+}
+
+// The barrier switches are 0 or 1, and not both: anything else stops the
+// run with one line that names the variable.
+TEST(Bench, BarrierSwitchesAreCheckedBeforeAnything) {
+    for (const std::string env : {"CAVITY_NO_BARRIERS=yes", "CAVITY_FULL_BARRIERS=2", "CAVITY_NO_BARRIERS=1 CAVITY_FULL_BARRIERS=1"}) {
+        const Outcome o = cavity::test::runBinary(CAVITY_BENCH_EXE, "--benchmark_filter='^timer/empty_scope'", env);
+        EXPECT_EQ(o.code, 2) << env << ": " << o.output;
+        EXPECT_NE(o.output.find(env.substr(0, env.find('=') + 1).substr(0, 14)), std::string::npos) << o.output;
+        EXPECT_EQ(std::count(o.output.begin(), o.output.end(), '\n'), 1) << o.output;
+    }
 }
 
 TEST(Bench, BadFlagIsAnError) {

@@ -33,6 +33,7 @@ Status GlBackend::init(const BackendOptions& options) {
     if (epoxy_gl_version() < 45)
         return unavailable("gl: OpenGL 4.5 needed, " + glString(GL_RENDERER) + " gives " + glString(GL_VERSION));
     fullBarriers_ = options.fullBarriers;
+    noBarriers_ = options.noBarriers;
     if (options.validation) CAVITY_TRY(debug_.install());
     // backend.h conventions: NDC y = -1 is row 0 (GL's own), depth in [0, 1] as in Vulkan.
     glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);

@@ -130,6 +130,7 @@ private:
     bool storedSinceBarrier_ = false;   // a pass with a storage binding ran since the last barrier()
     bool barrierOwed_ = false;          // the last barrier() followed such a pass
     bool fullBarriers_ = false;         // BackendOptions::fullBarriers
+    bool noBarriers_ = false;           // BackendOptions::noBarriers
     GLbitfield barrierIssued_ = 0;      // the glMemoryBarrier bits already issued for it
     Status sticky_;
     std::vector<ScopeTime> scopes_;

@@ -154,6 +154,7 @@ Status GlBackend::drawNow(Pipeline p, std::span<const Bind> binds, const RenderT
 
 Status GlBackend::barrierNow() {
     CAVITY_TRY(startRecording("barrier"));
+    if (noBarriers_) return {};
     if (fullBarriers_) {
         glMemoryBarrier(GL_ALL_BARRIER_BITS);
         return checkGl("glMemoryBarrier(GL_ALL_BARRIER_BITS)");

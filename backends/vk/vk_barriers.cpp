@@ -13,7 +13,7 @@ void BarrierTracker::barrier() {
 }
 
 void BarrierTracker::before(Device& d, VkCommandBuffer cmd, const SyncScope& dst) {
-    if (!source_.stages || covered_.covers(dst)) return;
+    if (d.noBarriers || !source_.stages || covered_.covers(dst)) return;
     pipelineBarrier(d, cmd, source_, dst);
     covered_ |= dst;
 }

@@ -32,6 +32,7 @@ struct Device {
     // null: barriers go through vkCmdPipelineBarrier.
     PFN_vkCmdPipelineBarrier2 cmdPipelineBarrier2 = nullptr;
     bool fullBarriers = false;   // BackendOptions::fullBarriers
+    bool noBarriers = false;     // BackendOptions::noBarriers
     DeviceInfo info;
 
     // For submitOnce.

@@ -34,6 +34,7 @@ Status renderEntries(const plan::Matrix& m, const std::vector<plan::MatrixEntry>
             bo.deviceIndex = o.device;
             bo.validation = o.validation;
             auto backend = gpu::createBackend(api, bo);
+            if (!backend && backend.error().code == ErrorCode::BadInput) return backend.error();   // the environment's
             if (!backend) {
                 if (failures) failures->push_back({api, rep, backend.error().message});
                 for (const auto* e : mine) {

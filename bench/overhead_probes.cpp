@@ -1,0 +1,130 @@
+#include "overhead_probes.h"
+
+#include "measure/timing.h"
+
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <string>
+#include <vector>
+
+namespace cavity::bench {
+
+namespace {
+
+using stats::summarize;
+
+constexpr int kChainPasses = 8;
+constexpr int kGroup = 16;   // the compute passes' own workgroup (kernels/kernel.h)
+
+// A pass that launches its workgroups and does nothing, or stores one RGBA8
+// texel per invocation into its own image: no pass reads another's image, so
+// the chain needs no barrier, and any time a barrier adds is its own cost.
+gpu::ComputePipelineDesc probeKernel(bool store) {
+    gpu::ComputePipelineDesc d;
+    const std::string size = "layout(local_size_x = " + std::to_string(kGroup) + ", local_size_y = " +
+                             std::to_string(kGroup) + ") in;\n";
+    d.shader = {store ? "probe_store" : "probe_empty", gpu::Stage::Compute,
+                "#version 450\n" + size +
+                    (store ? "layout(binding = 0, rgba8) uniform writeonly image2D o;\n"
+                             "void main() { ivec2 p = ivec2(gl_GlobalInvocationID.xy);\n"
+                             "  if (all(lessThan(p, imageSize(o)))) imageStore(o, p, vec4(0.25, 0.5, 0.75, 1.0)); }\n"
+                           : "void main() {}\n"),
+                {"<overhead probe>"}};
+    if (store) d.layout = {{0, gpu::BindingKind::StorageImage, gpu::Format::RGBA8}};
+    d.localSizeX = d.localSizeY = kGroup;
+    d.label = d.shader.name;
+    return d;
+}
+
+// What an empty timestamp pair reads: the floor under every pass time.
+void emptyScope(benchmark::State& state, gpu::Backend& gpu) {
+    std::vector<double> ms;
+    for (auto _ : state) {
+        gpu.beginFrame();
+        gpu.beginScope("empty");
+        gpu.endScope();
+        if (auto s = gpu.endFrame(); !s) {
+            state.SkipWithError(s.error().message.c_str());
+            return;
+        }
+        const double t = gpu.scopeTimes().at(0).gpuMs;
+        ms.push_back(t);
+        state.SetIterationTime(t / 1000.0);
+    }
+    state.counters["median_us"] = 1000.0 * summarize(ms).median;
+}
+
+// kChainPasses dispatches of width x height, each in its own scope with a
+// barrier() between them. The iteration's time is one pass's, the median
+// over the chain's passes after the first; the first is reported apart,
+// since it also waits for whatever the frame's start leaves.
+void chain(benchmark::State& state, gpu::Backend& gpu, bool store, int width, int height) {
+    auto pipe = gpu.createComputePipeline(probeKernel(store));
+    if (!pipe) {
+        state.SkipWithError(pipe.error().message.c_str());
+        return;
+    }
+    std::vector<gpu::Image> images;
+    for (int i = 0; store && i < kChainPasses; ++i) {
+        auto img = gpu.createImage({width, height, gpu::Format::RGBA8, 1, "probe_" + std::to_string(i)});
+        if (!img) {
+            state.SkipWithError(img.error().message.c_str());
+            return;
+        }
+        images.push_back(*img);
+    }
+    const int gx = (width + kGroup - 1) / kGroup, gy = (height + kGroup - 1) / kGroup;
+    std::vector<double> later, first;
+    for (auto _ : state) {
+        gpu.beginFrame();
+        for (int i = 0; i < kChainPasses; ++i) {
+            if (i) gpu.barrier();
+            gpu.beginScope("pass");
+            std::vector<gpu::Bind> binds;
+            if (store) binds.push_back({0, images[size_t(i)], {}, {}, 0});
+            gpu.dispatch(*pipe, binds, gx, gy);
+            gpu.endScope();
+        }
+        if (auto s = gpu.endFrame(); !s) {
+            state.SkipWithError(s.error().message.c_str());
+            break;
+        }
+        const auto scopes = gpu.scopeTimes();
+        std::vector<double> passes;
+        for (size_t i = 1; i < scopes.size(); ++i) passes.push_back(scopes[i].gpuMs);
+        const double t = summarize(passes).median;
+        later.push_back(t);
+        first.push_back(scopes.at(0).gpuMs);
+        state.SetIterationTime(t / 1000.0);
+    }
+    if (!later.empty()) {
+        state.counters["median_us"] = 1000.0 * summarize(later).median;
+        state.counters["first_pass_us"] = 1000.0 * summarize(first).median;
+        state.counters["width"] = width;
+        state.counters["height"] = height;
+    }
+    for (auto img : images) gpu.destroy(img);
+    gpu.destroy(*pipe);
+}
+
+}  // namespace
+
+int registerOverheadProbes(gpu::Backend& gpu, gpu::Api api, int width, int height) {
+    const std::string tag = gpu::apiName(api);
+    const std::string size = std::to_string(width) + "x" + std::to_string(height);
+    gpu::Backend* g = &gpu;
+    benchmark::RegisterBenchmark(("timer/empty_scope/" + tag).c_str(), [g](benchmark::State& s) { emptyScope(s, *g); })
+        ->UseManualTime()
+        ->Iterations(50)
+        ->Unit(benchmark::kMicrosecond);
+    for (bool store : {false, true})
+        benchmark::RegisterBenchmark(("timer/" + std::string(store ? "store_chain/" : "empty_chain/") + size + "/" + tag).c_str(),
+                                     [g, store, width, height](benchmark::State& s) { chain(s, *g, store, width, height); })
+            ->UseManualTime()
+            ->Iterations(50)
+            ->Unit(benchmark::kMicrosecond);
+    return 3;
+}
+
+}  // namespace cavity::bench
