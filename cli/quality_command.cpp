@@ -46,6 +46,8 @@ CommandSpec qualitySpec(const std::string& program) {
         {"--interleave", "K", "the fast kernels' AO pass as K x K interleaved layers, " +
                                   kernels::allowedValues(*kernels::findParam("interleave")) +
                                   "; set on the kernels that declare it (default 1)"},
+        {"--kernel-source", "NAME=FILE", "measure with kernels/NAME replaced by FILE's text (an edited kernel's "
+                                          "accuracy); repeatable", "Options", true},
         {"--device", "K", "device index (0..64)"},
         {"--out", "DIR", "also write DIR/quality.json"},
         {"--filter", "REGEX", "only the configurations whose id matches (searched; ids as --list prints them)"},
@@ -70,6 +72,7 @@ struct QualityRequest {
     bool reachGiven = false, radiusGiven = false;
     std::string cost;                  // --cost
     std::optional<double> budgetMs;    // --budget-ms
+    std::vector<pipeline::ReplacedSource> replaced;   // --kernel-source
 };
 
 // A kernel parameter's value from its flag, checked by its declaration.
@@ -129,6 +132,8 @@ Status qualityFlag(QualityRequest& q, const std::string& flag, const std::string
         o.half = v == "half";
     } else if (flag == "--exact" || flag == "--interleave") {
         CAVITY_ASSIGN(o.switches[flag.substr(2)], paramFlag(flag.substr(2), v));
+    } else if (flag == "--kernel-source") {
+        CAVITY_TRY(addKernelSource(v, o.overrides, q.replaced));
     } else if (flag == "--device") {
         CAVITY_ASSIGN(q.backend.deviceIndex, parseInt("--device", v, 0, 64));
     } else if (flag == "--out") {
@@ -173,11 +178,13 @@ Result<std::vector<QualityStep>> planQuality(const QualityRequest& q) {
     base.params["blur"] = o.blur;
     base.stage = o.stage;
     std::vector<QualityStep> steps;
+    std::vector<RunConfig> measured;
     CAVITY_TRY(plan::forEachConfig(axes, base, [&](RunConfig c) -> Status {
         c.half = o.half && supportsHalf(c.kernel);
         applySwitches(c, o.switches);
         const std::string id = configId(c);
         if (q.filter && !std::regex_search(id, *q.filter)) return {};
+        measured.push_back(c);
         const bool sameStep = !steps.empty() && steps.back().options.scenes[0] == c.scene() &&
                               (!q.filter || steps.back().options.kernels[0] == c.kernel);
         if (!sameStep) {
@@ -192,6 +199,7 @@ Result<std::vector<QualityStep>> planQuality(const QualityRequest& q) {
         step.ids.push_back(id);
         return {};
     }));
+    CAVITY_TRY(pipeline::checkSourcesUsed(q.replaced, measured));
     return steps;
 }
 
@@ -223,7 +231,9 @@ nlohmann::json qualityJson(const QualityRequest& q, const std::string& device, c
                           {"reach", o.sharedReach ? "shared" : "seed"},
                           {"radius", o.sharedReach ? nlohmann::json(o.radius) : nlohmann::json(nullptr)},
                           {"switches", o.switches},
+                          {"kernel_sources", nlohmann::json::array()},
                           {"rows", nlohmann::json::array()}};
+    for (const auto& r : q.replaced) doc["kernel_sources"].push_back({{"name", r.name}, {"file", r.file}, {"digest", r.digest}});
     for (const auto& r : rows)
         doc["rows"].push_back({{"scene", r.scene},
                                {"kernel", r.kernel},

@@ -118,6 +118,31 @@ TEST_F(Cli, QualitySwitchesSetOnlyTheKernelsThatDeclareThem) {
         EXPECT_NE(o.output.find("corner/" + k + "/n16/b0/exact=0/interleave=4/full/"), std::string::npos) << o.output;
 }
 
+// --kernel-source measures an edited kernel: one that finds no occlusion
+// anywhere reads AO 1 over every surface pixel, its error the truth's own
+// darkening, and quality.json names the file it measured.
+TEST_F(Cli, QualityMeasuresAnEditedKernel) {
+    fs::create_directories(dir);
+    const fs::path open = dir / "open.glsl";
+    std::ofstream(open) << "#include \"include/common.glsl\"\n"
+                           "void cavity_main(ivec2 pixel) {\n"
+                           "    write_ao(pixel, vec4(1.0));\n"
+                           "    write_ao_key(pixel, vec4(1.0, texelFetch(in_zmip, pixel, 0).r, 0.0, 0.0));\n}\n";
+    const std::string args = "quality --kernel alchemy_fast --samples 16 --res 64x36 --scene corner --blur 4 --quiet --out ";
+    const Outcome edited = cavity(args + (dir / "edited").string() + " --kernel-source ssao_alchemy_fast.glsl=" + open.string());
+    ASSERT_EQ(edited.code, 0) << edited.output;
+    const Outcome plain = cavity(args + (dir / "plain").string());
+    ASSERT_EQ(plain.code, 0) << plain.output;
+    std::ifstream fe(dir / "edited" / "quality.json"), fp(dir / "plain" / "quality.json");
+    const auto e = nlohmann::json::parse(fe), p = nlohmann::json::parse(fp);
+    EXPECT_EQ(e["rows"][0]["mean_ao"].get<double>(), 1.0);
+    EXPECT_NEAR(e["rows"][0]["mae"].get<double>(), 1.0 - e["rows"][0]["mean_truth"].get<double>(), 1e-9);
+    EXPECT_LT(p["rows"][0]["mean_ao"].get<double>(), 0.99);
+    ASSERT_EQ(e["kernel_sources"].size(), 1u);
+    EXPECT_EQ(e["kernel_sources"][0]["name"], "ssao_alchemy_fast.glsl");
+    EXPECT_TRUE(p["kernel_sources"].empty());
+}
+
 TEST_F(Cli, UnwritableOutputFolderExitsTwo) {
     fs::create_directories(dir);
     std::ofstream(dir / "file") << "x";

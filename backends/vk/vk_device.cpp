@@ -202,15 +202,20 @@ Status createLogicalDevice(Device& d, uint32_t instanceVersion) {
     using DynamicRendering = VkPhysicalDeviceDynamicRenderingFeatures;
     auto dynamicRendering = vkStruct<DynamicRendering>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DYNAMIC_RENDERING_FEATURES,
                                                        core13 ? &sync2 : nullptr);
-    auto have = vkStruct<VkPhysicalDeviceFeatures2>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &dynamicRendering);
+    // Half-float arithmetic (float16_t in a kernel), core in 1.2 as both the
+    // device and the instance are; queried and so enabled where the device has it.
+    auto float16 = vkStruct<VkPhysicalDeviceShaderFloat16Int8Features>(
+        VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_FLOAT16_INT8_FEATURES, &dynamicRendering);
+    auto have = vkStruct<VkPhysicalDeviceFeatures2>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &float16);
     vkGetPhysicalDeviceFeatures2(d.physical, &have);
+    float16.shaderInt8 = VK_FALSE;   // only what kernels may use
     if (!dynamicRendering.dynamicRendering)
         return unavailable("vk: '" + name + "' does not support dynamic rendering");
 
     // Only what kernels may use: r8/r16f/rg16f storage formats, image and
     // buffer stores from vertex and fragment kernels, and storage images
     // declared without a format. Each is enabled where the device has it.
-    auto enable = vkStruct<VkPhysicalDeviceFeatures2>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &dynamicRendering);
+    auto enable = vkStruct<VkPhysicalDeviceFeatures2>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &float16);
     enable.features.shaderStorageImageExtendedFormats = have.features.shaderStorageImageExtendedFormats;
     enable.features.fragmentStoresAndAtomics = have.features.fragmentStoresAndAtomics;
     enable.features.vertexPipelineStoresAndAtomics = have.features.vertexPipelineStoresAndAtomics;
@@ -280,6 +285,7 @@ Result<std::unique_ptr<Device>> createDevice(const BackendOptions& o) {
     const uint32_t instanceVersion = std::min(loader, VK_API_VERSION_1_3);
 
     d->fullBarriers = o.fullBarriers;
+    d->noBarriers = o.noBarriers;
     CAVITY_TRY(createInstance(*d, o, instanceVersion));
     CAVITY_ASSIGN(d->physical, pickPhysicalDevice(d->instance, o));
     vkGetPhysicalDeviceProperties(d->physical, &d->props);

@@ -84,7 +84,7 @@ Result<std::vector<QualityRow>> measureQuality(gpu::Backend& gpu, const QualityO
                 c.half = o.half && supportsHalf(kernel);
                 c.stage = o.stage;
                 applySwitches(c, o.switches);
-                CAVITY_ASSIGN(auto images, renderImages(gpu, c, {"ao_blur"}));
+                CAVITY_ASSIGN(auto images, renderImages(gpu, c, {"ao_blur"}, o.overrides));
                 QualityRow r = compareToTruth(images["ao_blur"], truth);
                 r.scene = scene;
                 r.kernel = kernel;

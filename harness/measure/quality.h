@@ -15,6 +15,7 @@
 #include "core/image.h"
 #include "result.h"
 
+#include <map>
 #include <string>
 #include <vector>
 
@@ -43,6 +44,9 @@ struct QualityOptions {
     // Switches of the fast kernels (--exact 0, --interleave 4): each set on
     // every kernel that declares it, the others left as they are.
     kernels::ParamValues switches;
+    // --kernel-source: kernels/NAME replaced by a file's text in every
+    // kernel's pipeline (the ground truth keeps its own).
+    std::map<std::string, std::string> overrides;   // pipeline::SourceOverrides
 };
 
 // `c` with the switches its kernel declares.

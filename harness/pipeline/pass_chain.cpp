@@ -351,9 +351,10 @@ long long PassChain::passPixels(size_t i) const {
 }
 
 Result<std::map<std::string, HostImage>> renderImages(gpu::Backend& gpu, const RunConfig& c,
-                                                      const std::vector<std::string>& images) {
+                                                      const std::vector<std::string>& images,
+                                                      const SourceOverrides& overrides) {
     CAVITY_TRY(validate(c));
-    CAVITY_ASSIGN(auto chain, PassChain::create(gpu, c));
+    CAVITY_ASSIGN(auto chain, PassChain::create(gpu, c, overrides));
     gpu.beginFrame();
     chain->record();
     CAVITY_TRY(gpu.endFrame());

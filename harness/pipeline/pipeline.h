@@ -58,13 +58,14 @@ Status validate(const RunConfig& c);
 struct OutputSpec { std::string image; std::string description; };
 std::vector<OutputSpec> userOutputs(const RunConfig& c);
 
+// Replacement kernel sources by file name (planted-bug tests, --kernel-source).
+using SourceOverrides = std::map<std::string, std::string>;
+
 // Validates c, renders one frame of its pipeline and reads back the named
 // images (tests, cavity quality: where the images matter, not the timing).
 Result<std::map<std::string, HostImage>> renderImages(gpu::Backend& gpu, const RunConfig& c,
-                                                      const std::vector<std::string>& images);
-
-// Replacement kernel sources by file name (planted-bug tests).
-using SourceOverrides = std::map<std::string, std::string>;
+                                                      const std::vector<std::string>& images,
+                                                      const SourceOverrides& overrides = {});
 // A kernel source replaced from a file (--kernel-source NAME=FILE), as every
 // report records it: which code a verdict judged.
 struct ReplacedSource {
