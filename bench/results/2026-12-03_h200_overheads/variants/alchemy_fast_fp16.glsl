@@ -1,0 +1,90 @@
+// Experiment, not a shipped kernel: alchemy_fast with the per-sample
+// arithmetic after the rebuilt position in half floats (f16vec3 offset,
+// its squared length, the dot with the normal, the division), the sum in
+// float. It is --exact 0 by itself (the three lines below the extension).
+#extension GL_EXT_shader_explicit_arithmetic_types_float16 : require
+#undef EXACT
+#define EXACT
+#define CAVITY_INEXACT 1
+// Alchemy ambient obscurance on the linear-depth pyramid: the estimator of
+// ssao_alchemy.glsl (McGuire et al., HPG 2011) sample for sample, the same
+// spiral, falloff, bias and contrast, but each sample's position is rebuilt
+// from one 32-bit depth (depth_pyramid.glsl) instead of read as an RGBA32F
+// texel: a quarter of the bytes, and for samples far from the pixel a
+// coarser level, whose texels neighbouring pixels share in cache.
+//
+// The level grows with the sample's distance h from the pixel in pixels, as
+// in Scalable Ambient Obscurance: level floor(log2 h) - 3, so samples within
+// 16 px read level 0 and each doubling of h moves one level down. A texel of
+// level l holds the depth of one real pixel up to 2^l pixels from the
+// sample's, and the position is rebuilt on that pixel's ray, found by
+// undoing the pyramid's picks: the sample is a true surface point, moved by
+// under 2^l px in a disc of h >= 2^(l+3) px. Rebuilt on the sample's own ray
+// instead, the borrowed depth puts a point off the surface by the depth
+// change across 2^l px, which on a wall seen at a grazing angle is far over
+// the bias: streaks of missing and false occlusion showed there.
+//
+// A second output packs AO with the pixel's linear depth and its normal
+// (octahedral) in one RGBA16F texel, all the separable blur reads per tap.
+#include "include/common.glsl"
+#include "include/noise.glsl"
+#include "include/octahedral.glsl"
+#include "include/alchemy_spiral.glsl"
+#include "include/pyramid.glsl"
+
+// Sample i of the seed's spiral (include/alchemy_spiral.glsl), its
+// direction read from P.spiral and turned by the pixel's phase: (cos, sin)
+// of the phase once per pixel instead of once per sample.
+ivec2 spiralSampleTurned(int i, vec2 phase, float discScale, vec2 fragCentre, out float h) {
+    vec2 d = P.spiral[i].xy;
+    EXACT vec2 dirCS = vec2(d.x * phase.x - d.y * phase.y, d.x * phase.y + d.y * phase.x);
+    EXACT float radius = (float(i) + 0.5) * discScale;
+    EXACT vec2 samplePos = fragCentre + dirCS * radius;
+    h = radius;
+    return ivec2(floor(samplePos));
+}
+
+void cavity_main(ivec2 pixel) {
+    float d = pyramidDepth(pixel, 0);
+    if (isBackground(d)) {
+        write_ao(pixel, vec4(1.0));
+        write_ao_key(pixel, vec4(1.0, 0.0, 0.0, 0.0));
+        return;
+    }
+    vec3 X = positionAt(pixel, d);
+    vec3 N = texelFetch(in_normal, pixel, 0).xyz;
+    int maxLevel = textureQueryLevels(in_zmip) - 1;
+
+    // One sample at a time: fetching a batch of samples' depths before using
+    // any was 20% slower on the H200 (bench/results/2026-12-03_h200_batched),
+    // the registers it takes costing more occupancy than the latency it hides.
+    int n = P.samples;
+    float R = P.radius;
+    float c = 0.1 * R;
+    float weight = 2.0 * PI * c / float(n);
+    float discScale = spiralDiscScale(R, n, d);
+    vec2 phase = cosSinTurns(samplePhase(pixel));
+    vec2 fragCentre = vec2(pixel) + 0.5;
+
+    f16vec3 N16 = f16vec3(N);
+    float16_t R2 = float16_t(R * R), c2 = float16_t(c * c), bias16 = float16_t(P.bias);
+    float S = 0.0;
+    for (int i = 0; i < n; ++i) {
+        float h;
+        ivec2 s = spiralSampleTurned(i, phase, discScale, fragCentre, h);
+        if (any(lessThan(s, ivec2(0))) || any(greaterThanEqual(s, frame.size))) continue;
+        // h < 2^31 here: the sample is inside the image.
+        int level = pyramidLevel(int(h), maxLevel);
+        ivec2 t = min(s >> level, levelSize(level) - 1);
+        float zs = pyramidDepth(t, level);
+        if (isBackground(zs)) continue;
+
+        f16vec3 omega = f16vec3(positionAt(sourcePixel(t, level), zs) - X);
+        float16_t omega2 = dot(omega, omega);
+        if (omega2 > R2) continue;
+        S += weight * float(max(float16_t(0.0), dot(N16, omega) - bias16) / max(c2, omega2));
+    }
+    float A = pow(max(0.0, 1.0 - P.scale * S), P.contrast);
+    write_ao(pixel, vec4(A, 0.0, 0.0, 0.0));
+    write_ao_key(pixel, vec4(A, d, octEncode(N)));
+}
