@@ -186,6 +186,16 @@ TEST_P(KernelVsReference, Corner320x180) { checkAll(gpu(), api(), "corner", 320,
 TEST_P(KernelVsReference, Slats160x90) { checkAll(gpu(), api(), "slats", 160, 90); }
 TEST_P(KernelVsReference, Slats320x180) { checkAll(gpu(), api(), "slats", 320, 180); }
 
+// Images so thin that samples reach the pyramid's "tiny" levels, those
+// whose level above is 1 texel across (include/pyramid.glsl,
+// pyramidTexel), where a pick is undone a level at a time with its clamp:
+// 3x256 reads levels past the 1-texel ones along its short side (a planted
+// fault there, a texel off the image, fails it); 256x3 reads none of them.
+TEST_P(KernelVsReference, ThinImagesReadTheTinyLevels) {
+    for (const std::string kernel : {"alchemy_fast", "hemisphere_fast"})
+        for (const auto& [w, h] : {std::pair{256, 3}, std::pair{3, 256}}) checkChain(gpu(), api(), {"corner", w, h, kernel});
+}
+
 // The other four scenes: the G-buffer march, one screen-space and one
 // distance-field AO kernel, blur and composite, on both stages.
 TEST_P(KernelVsReference, OtherScenes160x90) {

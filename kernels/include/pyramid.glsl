@@ -27,25 +27,58 @@ int pyramidLevel(int h, int maxLevel) {
     return clamp(findMSB(h) - LOG_MAX_OFFSET, 0, maxLevel);
 }
 
-// The level-0 pixel whose depth texel t of `level` holds: undoes
-// depth_pyramid.glsl's pick (2x + (y & 1), 2y + (x & 1)) once per level. The
-// pick appends one bit to each coordinate per level, and the bits it appends
-// alternate: to x the parity of y, then of x, then of y...; to y the other
-// way round. So the whole chain is a shift and two masks, where a loop over
-// the levels cost a sixth of the pass on the H200 (bench/ROOFLINE.md). The
-// clamp into a level above never acts while that level is at least 2 texels
-// across (t < floor(s / 2) gives 2t + 1 < s); the loop stays for the 1-texel
-// levels of tiny images, the only ones where it does.
-ivec2 sourcePixel(ivec2 t, int level) {
+// The first "tiny" level: the first whose level above is at most 1 texel
+// across (frame.size >> (l - 1) <= 1 in x or y), which only small images
+// reach within their samples' levels. Below it every level is at least 1
+// texel across and the level above at least 2. A function of the frame
+// alone, so a kernel asks once per pixel (PyramidView::tiny).
+int pyramidTinyLevel() {
+    return min(findMSB(frame.size.x), findMSB(frame.size.y)) + 1;
+}
+
+// The level-0 pixel whose depth texel t of `level` holds, for a level below
+// the tiny ones: undoes depth_pyramid.glsl's pick (2x + (y & 1), 2y + (x & 1))
+// once per level. The pick appends one bit to each coordinate per level, and
+// the bits it appends alternate: to x the parity of y, then of x, then of
+// y...; to y the other way round. So the whole chain is a shift and two
+// masks, where a loop over the levels cost a sixth of the pass on the H200
+// (bench/ROOFLINE.md). The clamp into a level above never acts while that
+// level is at least 2 texels across (t < floor(s / 2) gives 2t + 1 < s).
+ivec2 sourcePixelBelowTiny(ivec2 t, int level) {
     if (level == 0) return t;
-    if (any(lessThanEqual(frame.size >> (level - 1), ivec2(1)))) {
-        for (int k = level; k > 0; --k) t = min(t * 2 + ivec2(t.y & 1, t.x & 1), levelSize(k - 1) - 1);
-        return t;
-    }
     int high = int(0xAAAAAAAAu >> uint(32 - level));   // bits level-1, level-3, ...
     int low = ((1 << level) - 1) ^ high;                // bits level-2, level-4, ...
     ivec2 parity = t & 1;
     return (t << level) | ivec2(parity.y * high | parity.x * low, parity.x * high | parity.y * low);
+}
+
+// The level-0 pixel whose depth texel t of `level` holds, at any level:
+// past the tiny levels each pick is undone a level at a time with its
+// clamp, as the build made it.
+ivec2 sourcePixel(ivec2 t, int level) {
+    if (level < pyramidTinyLevel()) return sourcePixelBelowTiny(t, level);
+    for (int k = level; k > 0; --k) t = min(t * 2 + ivec2(t.y & 1, t.x & 1), levelSize(k - 1) - 1);
+    return t;
+}
+
+// The texel of `level` that covers the in-image pixel s, and (`source`) the
+// level-0 pixel whose depth that texel holds. `tiny`: pyramidTinyLevel().
+// Below the tiny levels a level's size is frame.size >> level (levelSize's
+// max() never acts) and the picks undo by masks; at and past them, each
+// pick is undone a level at a time with its clamp, as the build made it.
+// Deciding that once, per sample, rather than inside each step, took 10% off
+// alchemy_fast's AO pass on the H200 with the same bits
+// (bench/results/2026-12-03_h200_overheads).
+ivec2 pyramidTexel(ivec2 s, int level, int tiny, out ivec2 source) {
+    ivec2 t;
+    if (level < tiny) {
+        t = min(s >> level, (frame.size >> level) - 1);
+        source = sourcePixelBelowTiny(t, level);
+    } else {
+        t = min(s >> level, levelSize(level) - 1);
+        source = sourcePixel(t, level);
+    }
+    return t;
 }
 
 // What projecting a view-space point onto this pass's pixels takes:
@@ -67,12 +100,13 @@ struct PyramidView {
     vec2 toPixel;
     vec2 centre;
     int maxLevel;
+    int tiny;   // pyramidTinyLevel()
 };
 
 PyramidView pyramidView() {
     EXACT vec2 toPixel = vec2(0.5, -0.5) * vec2(frame.size) *
                            vec2(portableReciprocal(frame.camera.x), portableReciprocal(frame.camera.y));
-    return PyramidView(toPixel, 0.5 * vec2(frame.size), textureQueryLevels(in_zmip) - 1);
+    return PyramidView(toPixel, 0.5 * vec2(frame.size), textureQueryLevels(in_zmip) - 1, pyramidTinyLevel());
 }
 
 // The stored surface under the view-space point s, seen from the receiver
@@ -86,13 +120,13 @@ bool pyramidLookup(PyramidView v, vec3 s, ivec2 pixel, out ivec2 source, out flo
     if (s.z >= 0.0) return false;
     EXACT vec2 sp = s.xy * portableReciprocal(-s.z) * v.toPixel + v.centre;
     ivec2 texel = ivec2(floor(clamp(sp, vec2(-1.0), vec2(frame.size))));
-    if (any(lessThan(texel, ivec2(0))) || any(greaterThanEqual(texel, frame.size))) return false;
+    // One unsigned test for both sides: a negative texel wraps past any size.
+    if (any(greaterThanEqual(uvec2(texel), uvec2(frame.size)))) return false;
     ivec2 away = abs(texel - pixel);
     int level = pyramidLevel(max(away.x, away.y), v.maxLevel);
-    ivec2 tl = min(texel >> level, levelSize(level) - 1);
+    ivec2 tl = pyramidTexel(texel, level, v.tiny, source);
     zq = pyramidDepth(tl, level);
     if (isBackground(zq)) return false;
-    source = sourcePixel(tl, level);
     return true;
 }
 
