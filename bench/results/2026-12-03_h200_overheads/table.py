@@ -89,18 +89,27 @@ def main():
         for p in ("ao", "blur_x", "blur_y", "composite"):
             a, b = st.median(r[(api, p, "render_inexact")]), st.median(r[(api, p, "render_fp16")])
             print(f"{api} {p:10s} float {a:.4f} half {b:.4f} {100 * (b / a - 1):+5.1f}%")
-    if os.path.exists(os.path.join(HERE, "lean.tgz")):
-        print("\nleaner integer work (same bits), cavity_render, ms:")
-        ln = list(members("lean.tgz"))
-        names = ("committed", "lean", "inexact", "lean_inexact")
-        r = renders([(n.replace(v + ".r", "render_" + v + ".r"), d) for n, d in ln for v in names if n.startswith(v + ".r")],
-                    tuple("render_" + v for v in names))
-        for api in ("gl", "vk"):
-            base = st.median(r[(api, "ao", "render_committed")])
-            cells = [f"{v} {st.median(r[(api, 'ao', 'render_' + v)]):.4f} ({100 * (st.median(r[(api, 'ao', 'render_' + v)]) / base - 1):+.1f}%)"
-                     for v in names]
-            print(api, "ao", "  ".join(cells))
-            print(api, "digests", {v: sorted(r[(api, "digests", "render_" + v)]) for v in names})
-
+    print("\nleaner integer work (the same bits), cavity_render, AO pass, ms:")
+    names = ("a_committed", "a_lean", "a_pyr", "a_nosource", "h_committed", "h_pyr")
+    r = renders(list(members("lean.tgz")), names)
+    for api in ("gl", "vk"):
+        for v in names:
+            base = st.median(r[(api, "ao", v[0] + "_committed")])
+            m = st.median(r[(api, "ao", v)])
+            print(f"{api} {v:12s} {m:.4f} ({100 * (m / base - 1):+5.1f}%)  digests {sorted(r[(api, 'digests', v)])}")
+    print("\nthe pyramidTexel form (new) against c096d07 (old), cavity_render, AO pass, ms:")
+    files = [(n.replace(".alchemy_fast.", "_a.").replace(".hemisphere_fast.", "_h."), d) for n, d in members("ab_call.tgz")]
+    names = ("new_a", "old_a", "new_h", "old_h")
+    r = {}
+    for name, data in files:
+        if name.endswith("manifest.json") and name.split(".r")[0] in names:
+            for c in json.loads(data)["configurations"]:
+                for rr in c["renders"]:
+                    for t in rr["timings"]:
+                        r.setdefault((c["id"], t["pass"], name.split(".r")[0]), []).append(t["median_ms"])
+    for (cid, p, v) in sorted(r):
+        if p == "ao" and v.startswith("new"):
+            a, b = st.median(r[(cid, p, "old" + v[3:])]), st.median(r[(cid, p, v)])
+            print(f"{cid:56s} old {a:.4f} new {b:.4f} {100 * (b / a - 1):+5.1f}%")
 
 main()
