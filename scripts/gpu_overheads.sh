@@ -10,7 +10,7 @@
 #     they are and none (the pipeline's images are then undefined; only the
 #     time is read);
 #  3. tiles (CAVITY_TILE, an experiment since reverted: apply
-#     bench/results/2026-12-03_h200_overheads/variants/tile.diff before
+#     bench/results/2026-12-03_h200_overheads/variants/tile.patch before
 #     building the bundle, else the three settings are one): alchemy_fast n16 b4 full, half
 #     and half with the fused tail, both APIs, with each kernel's own tile
 #     (2x2 in the upsamples), one pixel an invocation everywhere (1x1, as
@@ -24,6 +24,9 @@
 #     blur, corner and slats, n16 and n32.
 # Each step's variants run as separate processes in a shuffled order,
 # ROUNDS rounds, the clocks sampled beside them. Leaves overheads.tgz in $OUT.
+# As run. The variants it reads as NAME.glsl are kept as diffs against
+# c096d07 (bench/results/2026-12-03_h200_overheads/README.md says how to
+# rebuild them there first).
 #   scripts/gpu_overheads.sh [ROUNDS (3)] [MAX_TIME_S (0.3)] [STEPS ("probes chain tile fp16 quality")]
 set -uo pipefail
 cd "$(dirname "$0")/.."
