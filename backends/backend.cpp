@@ -55,7 +55,7 @@ const char* formatName(Format f) {
     return "?";
 }
 
-Result<std::unique_ptr<Backend>> createBackend(Api api, const BackendOptions& options) {
+Result<BackendOptions> withEnvironment(const BackendOptions& options) {
     BackendOptions o = options;
     // Each variable is 0 or 1 (unset: 0); a value that is neither is an
     // error, so that a typo never runs the ordinary barriers unnoticed.
@@ -68,6 +68,11 @@ Result<std::unique_ptr<Backend>> createBackend(Api api, const BackendOptions& op
     }
     if (o.fullBarriers && o.noBarriers)
         return badInput("CAVITY_FULL_BARRIERS and CAVITY_NO_BARRIERS: set one of them (every barrier the widest, or none)");
+    return o;
+}
+
+Result<std::unique_ptr<Backend>> createBackend(Api api, const BackendOptions& options) {
+    CAVITY_ASSIGN(const BackendOptions o, withEnvironment(options));
     return api == Api::OpenGL ? createGlBackend(o) : createVkBackend(o);
 }
 

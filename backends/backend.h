@@ -252,8 +252,14 @@ public:
     virtual std::vector<std::string> takeDebugMessages() = 0;
 };
 
+// `options` with what the environment adds: CAVITY_FULL_BARRIERS=1 and
+// CAVITY_NO_BARRIERS=1, each 0 or 1 (unset: 0) and not both; anything else
+// fails with ErrorCode::BadInput naming the variable. A command checks it
+// before it writes anything; createBackend applies it.
+Result<BackendOptions> withEnvironment(const BackendOptions& options);
+
 // Backends, by name ("gl", "vk"). Fails with ErrorCode::BackendUnavailable
-// naming the backend and what was tried.
+// naming the backend and what was tried, or as withEnvironment.
 Result<std::unique_ptr<Backend>> createBackend(Api api, const BackendOptions& options);
 
 }  // namespace cavity::gpu

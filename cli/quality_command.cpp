@@ -316,6 +316,7 @@ int qualityCommand(const std::vector<std::string>& argv, const std::string& prog
             for (const auto& id : step.ids) std::cout << id << "\n";
         return 0;
     }
+    if (auto o = gpu::withEnvironment(q->backend); !o) return failed(o.error());
     if (!q->out.empty())
         if (auto st = checkWritableDir("--out", q->out); !st) return failed(st.error());
     auto gpu = gpu::createBackend(q->api, q->backend);

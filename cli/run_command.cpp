@@ -220,6 +220,7 @@ int runCommand(const std::vector<std::string>& argv) {
         for (const auto& c : *plan) std::cout << configId(c) << "\n";
         return 0;
     }
+    if (auto o = gpu::withEnvironment(s.backend); !o) return fail(o.error());
     if (auto st = checkWritableDir("--out", s.out); !st) return fail(st.error());
     const RunOutcome out = runPlan(s, apis, *plan);
     if (!out.runs.empty()) printTable(out.runs);

@@ -185,6 +185,14 @@ CASES = [
                                                 "https://u:secret@example.invalid/x"], ["--store", "credentials in the URL"]),
     Case("store-check-no-match", "cavity", ["store", "check", "--baselines", "baselines", "--class", "no-such-gpu"],
          ["no-such-gpu", "approvals.json"]),
+    # The barrier switches (docs/synchronisation.md): checked before anything is written.
+    Case("no-barriers-yes", "cavity", RUN, ["CAVITY_NO_BARRIERS=yes", "must be 0 or 1"], env={"CAVITY_NO_BARRIERS": "yes"}),
+    Case("both-barrier-switches", "cavity", RUN, ["CAVITY_FULL_BARRIERS and CAVITY_NO_BARRIERS"],
+         env={"CAVITY_NO_BARRIERS": "1", "CAVITY_FULL_BARRIERS": "1"}),
+    Case("quality-full-barriers-2", "cavity", ["quality", "--res", "32x18", "--out", "out"], ["CAVITY_FULL_BARRIERS=2"],
+         env={"CAVITY_FULL_BARRIERS": "2"}),
+    Case("bench-no-barriers-nan", "cavity_bench", ["--benchmark_filter=timer/empty_scope"], ["CAVITY_NO_BARRIERS=nan"],
+         env={"CAVITY_NO_BARRIERS": "nan"}),
     Case("store-missing-object", "cavity", ["store", "check", "--baselines", "baselines", "--store", "prev"],
          ["store prev", "no object"], code=5, setup=replace_with_folder("prev")),
 ]
