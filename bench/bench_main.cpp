@@ -218,6 +218,11 @@ int main(int argc, char** argv) {
     int n = int(rest.size());
     benchmark::Initialize(&n, rest.data());
     if (benchmark::ReportUnrecognizedArguments(n, rest.data())) return 2;
+    // A bad CAVITY_*_BARRIERS is the user's input, not a backend that failed.
+    if (auto env = cavity::gpu::withEnvironment({}); !env) {
+        std::cerr << "cavity_bench: " << env.error().message << "\n";
+        return 2;
+    }
     auto registered = cavity::bench::registerSweep(*options);
     if (!registered) {
         std::cerr << "cavity_bench: " << registered.error().message << "\n";

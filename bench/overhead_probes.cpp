@@ -1,10 +1,10 @@
 #include "overhead_probes.h"
 
+#include "kernel.h"
 #include "measure/timing.h"
 
 #include <benchmark/benchmark.h>
 
-#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -15,15 +15,15 @@ namespace {
 using stats::summarize;
 
 constexpr int kChainPasses = 8;
-constexpr int kGroup = 16;   // the compute passes' own workgroup (kernels/kernel.h)
+const kernels::Workgroup kGroup;   // the compute passes' own shape (kernels/kernel.h)
 
 // A pass that launches its workgroups and does nothing, or stores one RGBA8
 // texel per invocation into its own image: no pass reads another's image, so
 // the chain needs no barrier, and any time a barrier adds is its own cost.
 gpu::ComputePipelineDesc probeKernel(bool store) {
     gpu::ComputePipelineDesc d;
-    const std::string size = "layout(local_size_x = " + std::to_string(kGroup) + ", local_size_y = " +
-                             std::to_string(kGroup) + ") in;\n";
+    const std::string size = "layout(local_size_x = " + std::to_string(kGroup.x) + ", local_size_y = " +
+                             std::to_string(kGroup.y) + ") in;\n";
     d.shader = {store ? "probe_store" : "probe_empty", gpu::Stage::Compute,
                 "#version 450\n" + size +
                     (store ? "layout(binding = 0, rgba8) uniform writeonly image2D o;\n"
@@ -32,7 +32,8 @@ gpu::ComputePipelineDesc probeKernel(bool store) {
                            : "void main() {}\n"),
                 {"<overhead probe>"}};
     if (store) d.layout = {{0, gpu::BindingKind::StorageImage, gpu::Format::RGBA8}};
-    d.localSizeX = d.localSizeY = kGroup;
+    d.localSizeX = int(kGroup.x);
+    d.localSizeY = int(kGroup.y);
     d.label = d.shader.name;
     return d;
 }
@@ -66,24 +67,28 @@ void chain(benchmark::State& state, gpu::Backend& gpu, bool store, int width, in
         return;
     }
     std::vector<gpu::Image> images;
+    std::vector<std::vector<gpu::Bind>> binds(kChainPasses);   // each pass's own image, or nothing
+    auto release = [&] {
+        for (auto img : images) gpu.destroy(img);
+        gpu.destroy(*pipe);
+    };
     for (int i = 0; store && i < kChainPasses; ++i) {
         auto img = gpu.createImage({width, height, gpu::Format::RGBA8, 1, "probe_" + std::to_string(i)});
         if (!img) {
             state.SkipWithError(img.error().message.c_str());
+            release();
             return;
         }
         images.push_back(*img);
+        binds[size_t(i)] = {{0, *img, {}, {}, 0}};
     }
-    const int gx = (width + kGroup - 1) / kGroup, gy = (height + kGroup - 1) / kGroup;
     std::vector<double> later, first;
     for (auto _ : state) {
         gpu.beginFrame();
         for (int i = 0; i < kChainPasses; ++i) {
             if (i) gpu.barrier();
             gpu.beginScope("pass");
-            std::vector<gpu::Bind> binds;
-            if (store) binds.push_back({0, images[size_t(i)], {}, {}, 0});
-            gpu.dispatch(*pipe, binds, gx, gy);
+            gpu.dispatch(*pipe, binds[size_t(i)], kGroup.groupsX(width), kGroup.groupsY(height));
             gpu.endScope();
         }
         if (auto s = gpu.endFrame(); !s) {
@@ -104,8 +109,7 @@ void chain(benchmark::State& state, gpu::Backend& gpu, bool store, int width, in
         state.counters["width"] = width;
         state.counters["height"] = height;
     }
-    for (auto img : images) gpu.destroy(img);
-    gpu.destroy(*pipe);
+    release();
 }
 
 }  // namespace

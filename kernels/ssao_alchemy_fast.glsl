@@ -67,8 +67,10 @@ void cavity_main(ivec2 pixel) {
         if (any(greaterThanEqual(uvec2(s), uvec2(frame.size)))) continue;
         // h < 2^31 here: the sample is inside the image.
         int level = pyramidLevel(int(h), maxLevel);
-        // pyramidTexel, written out: as a call it measured 2% slower on the
-        // H200 (bench/results/2026-12-03_h200_overheads).
+        // pyramidTexel, written out as in the variant measured fastest on the
+        // H200; through a pyramidTexel whose tiny path was also different it
+        // measured 2% slower, and which of the two cost that was not
+        // separated (bench/results/2026-12-03_h200_overheads).
         ivec2 source;
         ivec2 t;
         if (level < tiny) {

@@ -248,6 +248,7 @@ int renderCommand(const std::vector<std::string>& argv) {
     std::vector<RunConfig> selected;
     for (const auto& e : *entries) selected.push_back(e.config);
     if (auto st = checkSourcesUsed(o->replaced, selected); !st) return fail(st.error());
+    if (auto env = gpu::withEnvironment({}); !env) return fail(env.error());
     if (auto st = checkWritableDir("--out", o->out); !st) return fail(st.error());
 
     RenderManifest header;

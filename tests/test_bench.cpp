@@ -223,10 +223,14 @@ TEST(Bench, OverheadProbesRunAndRecordTheBarrierSwitch) {
 // The barrier switches are 0 or 1, and not both: anything else stops the
 // run with one line that names the variable.
 TEST(Bench, BarrierSwitchesAreCheckedBeforeAnything) {
-    for (const std::string env : {"CAVITY_NO_BARRIERS=yes", "CAVITY_FULL_BARRIERS=2", "CAVITY_NO_BARRIERS=1 CAVITY_FULL_BARRIERS=1"}) {
+    const std::vector<std::pair<std::string, std::string>> cases = {
+        {"CAVITY_NO_BARRIERS=yes", "cavity_bench: CAVITY_NO_BARRIERS=yes: must be 0 or 1"},
+        {"CAVITY_FULL_BARRIERS=2", "cavity_bench: CAVITY_FULL_BARRIERS=2: must be 0 or 1"},
+        {"CAVITY_NO_BARRIERS=1 CAVITY_FULL_BARRIERS=1", "cavity_bench: CAVITY_FULL_BARRIERS and CAVITY_NO_BARRIERS: set one"}};
+    for (const auto& [env, message] : cases) {
         const Outcome o = cavity::test::runBinary(CAVITY_BENCH_EXE, "--benchmark_filter='^timer/empty_scope'", env);
         EXPECT_EQ(o.code, 2) << env << ": " << o.output;
-        EXPECT_NE(o.output.find(env.substr(0, env.find('=') + 1).substr(0, 14)), std::string::npos) << o.output;
+        EXPECT_EQ(o.output.rfind(message, 0), 0u) << env << ": " << o.output;
         EXPECT_EQ(std::count(o.output.begin(), o.output.end(), '\n'), 1) << o.output;
     }
 }

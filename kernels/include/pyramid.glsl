@@ -54,7 +54,9 @@ ivec2 sourcePixelBelowTiny(ivec2 t, int level) {
 
 // The level-0 pixel whose depth texel t of `level` holds, at any level:
 // past the tiny levels each pick is undone a level at a time with its
-// clamp, as the build made it.
+// clamp, as the build made it. (pyramidTexel calls it only past them; with
+// a bare loop there instead, hemisphere_fast measured 1-5% slower on the
+// H200, bench/results/2026-12-03_h200_overheads.)
 ivec2 sourcePixel(ivec2 t, int level) {
     if (level < pyramidTinyLevel()) return sourcePixelBelowTiny(t, level);
     for (int k = level; k > 0; --k) t = min(t * 2 + ivec2(t.y & 1, t.x & 1), levelSize(k - 1) - 1);
@@ -66,8 +68,9 @@ ivec2 sourcePixel(ivec2 t, int level) {
 // Below the tiny levels a level's size is frame.size >> level (levelSize's
 // max() never acts) and the picks undo by masks; at and past them, each
 // pick is undone a level at a time with its clamp, as the build made it.
-// Deciding that once, per sample, rather than inside each step, took 10% off
-// alchemy_fast's AO pass on the H200 with the same bits
+// Choosing the path once per sample, with `tiny` computed once per pixel,
+// rather than testing inside the undoing, took 7-10% off the fast kernels'
+// AO passes on the H200 with the same bits
 // (bench/results/2026-12-03_h200_overheads).
 ivec2 pyramidTexel(ivec2 s, int level, int tiny, out ivec2 source) {
     ivec2 t;
