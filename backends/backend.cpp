@@ -1,9 +1,21 @@
 #include "backend.h"
 
+#include <algorithm>
+#include <cctype>
 #include <cstdlib>
 #include <string>
 
 namespace cavity::gpu {
+
+double registerCount(const std::vector<ShaderStat>& stats) {
+    double most = -1;
+    for (const auto& s : stats) {
+        std::string name = s.name;
+        std::transform(name.begin(), name.end(), name.begin(), [](unsigned char ch) { return std::tolower(ch); });
+        if (name.find("register") != std::string::npos || name == "vgprs") most = std::max(most, s.value);
+    }
+    return most;
+}
 
 // Each implementation file defines its factory; nothing else of theirs leaks.
 Result<std::unique_ptr<Backend>> createGlBackend(const BackendOptions&);

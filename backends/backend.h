@@ -146,10 +146,27 @@ struct GraphicsPipelineDesc {
 // How a pipeline's shader reached the driver: the shared SPIR-V, or (GL only)
 // the GLSL text because the driver's SPIR-V path failed for this kernel.
 enum class ShaderPath { Spirv, GlslFallback };
+// One statistic the driver reports of a compiled pipeline
+// (VK_KHR_pipeline_executable_properties), as the driver words it: NVIDIA's
+// "Register Count", Mesa's instruction counts. A bool reads 0 or 1.
+struct ShaderStat {
+    std::string executable;   // the compiled stage it belongs to, e.g. "Compute Shader"
+    std::string name;
+    double value = 0;
+};
+
 struct PipelineInfo {
     ShaderPath path = ShaderPath::Spirv;
     std::string fallbackReason;   // the driver's message when path is GlslFallback
+    std::vector<ShaderStat> stats;
+    std::string statsReason;      // why `stats` is empty, where it is
 };
+
+// The registers a thread of the pipeline takes, where the driver reports
+// them (a statistic named "...register..." or AMD's "VGPRs"), the most over
+// its compiled stages; -1 where it does not. How many warps an SM holds, and
+// so how much memory latency it can hide, follows from it.
+double registerCount(const std::vector<ShaderStat>& stats);
 
 struct RenderTargets {
     std::vector<Image> colors;

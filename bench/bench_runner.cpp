@@ -68,6 +68,12 @@ void setFloorCounters(benchmark::State& state, const gpu::Backend& gpu, const Pa
     }
 }
 
+// Each pass's register count where the driver reports one (gpu::registerCount).
+void setRegisterCounters(benchmark::State& state, const PassChain& chain) {
+    for (const auto& [pass, info] : chain.pipelineInfos())
+        if (const double n = gpu::registerCount(info.stats); n >= 0) state.counters["registers_" + pass] = n;
+}
+
 // Each pass's median, the AO pipeline's throughput, and the configuration.
 void setWorkCounters(benchmark::State& state, const PassChain& chain, const RunConfig& c, const Timing& t) {
     const auto& passes = chain.passes();
@@ -164,6 +170,7 @@ void run(benchmark::State& state, const Bench& b) {
     const RunConfig& c = b.config;
     setFloorCounters(state, gpu, *chains[0], c, t);
     setWorkCounters(state, *chains[0], c, t);
+    setRegisterCounters(state, *chains[0]);
     setTimingCounters(state, t);
 }
 

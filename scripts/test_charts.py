@@ -743,7 +743,7 @@ class Floor(unittest.TestCase):
     @staticmethod
     def write_results(d, floors):
         def pass_(name, ms, floor, reason):
-            return {"name": name, "kernel": name, "width": 1920, "height": 1080, "shader_path": "spirv",
+            return {"name": name, "kernel": name, "width": 1920, "height": 1080, "shader_path": "spirv", "shader_stats": [], "shader_stats_reason": "",
                     "stats": {"count": 1, "median_ms": ms, "min_ms": ms, "max_ms": ms, "mean_ms": ms, "p90_ms": ms,
                               "stddev_ms": 0, "cv": 0}, "samples_ms": [ms],
                     "floor": None if floor is None else {"floor_ms": floor, "bound": "fetch"}, "floor_reason": reason}

@@ -12,6 +12,11 @@ bool inCI() {
     return ci && std::string(ci) == "true";
 }
 
+bool validationOn() {
+    const char* v = std::getenv("CAVITY_TEST_VALIDATION");
+    return !(v && std::string(v) == "0");
+}
+
 namespace {
 
 struct Slot {
@@ -39,7 +44,7 @@ gpu::Backend* sharedBackend(gpu::Api api, std::string* whyNot) {
     if (!s.tried) {
         s.tried = true;
         gpu::BackendOptions o;
-        o.validation = true;
+        o.validation = validationOn();
         auto r = gpu::createBackend(api, o);
         if (r) s.backend = std::move(*r);
         else s.error = r.error().message;

@@ -5,6 +5,8 @@
 // narrow barrier is a message), and GL with KHR_debug; any message fails
 // the test.
 // With CI=true a backend that cannot start fails the test instead of skipping.
+// CAVITY_TEST_VALIDATION=0 runs without them (a GPU machine without the
+// Vulkan validation layer); the tests that need them then skip.
 #pragma once
 
 #include "harness.h"
@@ -29,6 +31,7 @@ using namespace cavity::harness;
 // Created once per API per process (backend start-up dominates small tests).
 gpu::Backend* sharedBackend(gpu::Api api, std::string* whyNot);
 bool inCI();
+bool validationOn();   // not CAVITY_TEST_VALIDATION=0
 
 class GpuTest : public ::testing::TestWithParam<gpu::Api> {
 protected:

@@ -211,6 +211,7 @@ bool anyContains(const std::vector<std::string>& messages, const std::string& wh
 // the barrier() gives no false report.
 TEST_P(Backend, MissingBarrierIsReportedBySynchronisationValidation) {
     if (api() == gpu::Api::OpenGL) GTEST_SKIP() << "GL's debug output has no synchronisation validation";
+    if (!validationOn()) GTEST_SKIP() << "CAVITY_TEST_VALIDATION=0";
     auto a = gpu().createImage({8, 8, gpu::Format::R32F, 1, "written"});
     auto b = gpu().createImage({8, 8, gpu::Format::R32F, 1, "read back"});
     ASSERT_TRUE(a && b);
@@ -413,6 +414,64 @@ TEST_P(Backend, CompileErrorNamesFileAndLine) {
     ASSERT_FALSE(pipe);
     EXPECT_NE(pipe.error().message.find("kernels/broken.glsl:2"), std::string::npos) << pipe.error().message;
     gpu().takeDebugMessages();   // a failed compile may legitimately log
+}
+
+// What the driver says it compiled (VK_KHR_pipeline_executable_properties):
+// where it reports statistics, each is named, and a kernel that keeps 32
+// fetched vec4s alive at once takes more registers than one that keeps one.
+// Where it reports none, the reason says why (the API or the missing
+// extension): the CPU renderers CI runs report none.
+TEST_P(Backend, PipelineStatisticsSayWhatTheDriverCompiled) {
+    const std::string head =
+        "layout(binding = 0, r32f) uniform writeonly image2D o;\n"
+        "layout(std430, binding = 1) readonly buffer In { vec4 v[]; };\n";
+    const std::string light = head + "void main() { ivec2 p = ivec2(gl_GlobalInvocationID.xy);\n"
+                                     "  imageStore(o, p, vec4(v[p.x].x)); }\n";
+    const std::string heavy = head + "void main() { ivec2 p = ivec2(gl_GlobalInvocationID.xy);\n"
+                                     "  vec4 a[32]; for (int i = 0; i < 32; ++i) a[i] = v[p.x * 32 + i];\n"
+                                     "  vec4 s = vec4(0); for (int i = 0; i < 32; ++i) s += a[i] * a[31 - i] * a[(i * 7) & 31];\n"
+                                     "  imageStore(o, p, s); }\n";
+    std::vector<gpu::PipelineInfo> infos;
+    for (const auto& body : {light, heavy}) {
+        gpu::ComputePipelineDesc d;
+        d.shader = compute(body);
+        d.layout = {{0, gpu::BindingKind::StorageImage, gpu::Format::R32F}, {1, gpu::BindingKind::StorageBuffer, {}}};
+        auto pipe = gpu().createComputePipeline(d);
+        ASSERT_TRUE(pipe) << pipe.error().message;
+        infos.push_back(gpu().pipelineInfo(*pipe));
+        gpu().destroy(*pipe);
+    }
+    for (const auto& info : infos) {
+        EXPECT_EQ(info.stats.empty(), !info.statsReason.empty()) << info.statsReason;
+        for (const auto& st : info.stats) {
+            EXPECT_FALSE(st.executable.empty());
+            EXPECT_FALSE(st.name.empty());
+            std::printf("[ stats    ] %s %s: %s / %s = %g\n", apiName(api()), &info == &infos[0] ? "light" : "heavy",
+                        st.executable.c_str(), st.name.c_str(), st.value);
+        }
+    }
+    if (infos[0].stats.empty()) {
+        const std::string expected = api() == gpu::Api::OpenGL ? "OpenGL" : "VK_KHR_pipeline_executable_properties";
+        EXPECT_NE(infos[0].statsReason.find(expected), std::string::npos) << infos[0].statsReason;
+        return;
+    }
+    if (gpu::registerCount(infos[0].stats) >= 0) {
+        EXPECT_GT(gpu::registerCount(infos[1].stats), gpu::registerCount(infos[0].stats));
+    }
+}
+
+// The register count under the names drivers give it: the most over the
+// pipeline's stages; AMD's scalar registers are not a thread's.
+TEST(PipelineStatistics, RegisterCountReadsTheDriversNames) {
+    gpu::PipelineInfo info;
+    EXPECT_EQ(gpu::registerCount(info.stats), -1);
+    info.stats = {{"Vertex Shader", "Register Count", 12}, {"Fragment Shader", "Register Count", 40},
+                  {"Fragment Shader", "Binary Size", 4096}};
+    EXPECT_EQ(gpu::registerCount(info.stats), 40);
+    info.stats = {{"Compute Shader", "SGPRs", 96}, {"Compute Shader", "VGPRs", 24}};
+    EXPECT_EQ(gpu::registerCount(info.stats), 24);
+    info.stats = {{"Compute Shader", "Instruction Count", 300}};
+    EXPECT_EQ(gpu::registerCount(info.stats), -1);
 }
 
 CAVITY_ALL_BACKENDS(Backend);

@@ -139,12 +139,12 @@ Result<BuiltProgram> buildProgram(std::span<const ShaderSource* const> stages, c
     if (reason.empty()) {
         auto modules = toSpirv(stages);
         auto spirv = modules ? fromSpirv(stages, *modules) : Result<GLuint>(modules.error());
-        if (spirv) return BuiltProgram{*spirv, {ShaderPath::Spirv, {}}};
+        if (spirv) return BuiltProgram{*spirv, {ShaderPath::Spirv, {}, {}, {}}};
         if (!modules) rejected = modules.error();
         reason = oneLine(spirv.error().message);
     }
     auto glsl = fromGlsl(stages);
-    if (glsl) return BuiltProgram{*glsl, {ShaderPath::GlslFallback, reason}};
+    if (glsl) return BuiltProgram{*glsl, {ShaderPath::GlslFallback, reason, {}, {}}};
     // Mesa reports most parser errors against source string 0 (its location
     // merge drops the #line source number), so its log can name the wrong
     // kernel file. When glslang rejects the source too, its diagnostics win.

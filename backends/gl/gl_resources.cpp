@@ -183,7 +183,9 @@ Result<Pipeline> GlBackend::createGraphicsPipeline(const GraphicsPipelineDesc& d
 
 PipelineInfo GlBackend::pipelineInfo(Pipeline handle) const {
     auto it = pipelines_.find(handle.id);
-    return it == pipelines_.end() ? PipelineInfo{} : it->second.info;
+    PipelineInfo info = it == pipelines_.end() ? PipelineInfo{} : it->second.info;
+    info.statsReason = "OpenGL has no query for a program's compiled statistics";
+    return info;
 }
 
 }  // namespace cavity::gpu::gl

@@ -76,6 +76,15 @@ Result<Pipeline> VulkanBackend::createGraphicsPipeline(const GraphicsPipelineDes
     return Pipeline{nextId_++};
 }
 
+PipelineInfo VulkanBackend::pipelineInfo(Pipeline p) const {
+    PipelineInfo info;
+    if (auto it = pipelines_.find(p.id); it != pipelines_.end()) {
+        info.stats = it->second.stats;
+        info.statsReason = it->second.statsReason;
+    }
+    return info;
+}
+
 // Unknown or null handles are ignored, so that cleanup paths need no checks.
 void VulkanBackend::destroy(Image i) {
     if (recording_) return deadImages_.push_back(i);

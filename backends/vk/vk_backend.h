@@ -38,7 +38,7 @@ public:
 
     Result<Pipeline> createComputePipeline(const ComputePipelineDesc&) override;
     Result<Pipeline> createGraphicsPipeline(const GraphicsPipelineDesc&) override;
-    PipelineInfo pipelineInfo(Pipeline) const override { return {ShaderPath::Spirv, {}}; }
+    PipelineInfo pipelineInfo(Pipeline) const override;
 
     void beginFrame() override;
     void dispatch(Pipeline, std::span<const Bind>, int groupsX, int groupsY) override;

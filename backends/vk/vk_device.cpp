@@ -168,14 +168,15 @@ Status createInstance(Device& d, const BackendOptions& o, uint32_t apiVersion) {
     return {};
 }
 
-Status createLogicalDevice(Device& d, uint32_t instanceVersion) {
-    const std::string name = d.props.deviceName;
-    if (d.props.apiVersion < VK_API_VERSION_1_2)
-        return unavailable("vk: '" + name + "' supports Vulkan " + versionString(d.props.apiVersion) + ", need 1.2");
-    // The version we may use is the lower of what we asked the instance for
-    // and what the device offers.
-    const bool core13 = std::min(instanceVersion, d.props.apiVersion) >= VK_API_VERSION_1_3;
+void loadExecutableProperties(Device& d) {
+    d.getExecutableProperties = reinterpret_cast<PFN_vkGetPipelineExecutablePropertiesKHR>(
+        vkGetDeviceProcAddr(d.device, "vkGetPipelineExecutablePropertiesKHR"));
+    d.getExecutableStatistics = reinterpret_cast<PFN_vkGetPipelineExecutableStatisticsKHR>(
+        vkGetDeviceProcAddr(d.device, "vkGetPipelineExecutableStatisticsKHR"));
+}
 
+// The first queue family with graphics, compute and timestamps.
+Status pickQueueFamily(Device& d, const std::string& name) {
     uint32_t n = 0;
     vkGetPhysicalDeviceQueueFamilyProperties(d.physical, &n, nullptr);
     std::vector<VkQueueFamilyProperties> families(n);
@@ -188,7 +189,18 @@ Status createLogicalDevice(Device& d, uint32_t instanceVersion) {
         return unavailable("vk: '" + name + "' has no queue family with graphics, compute and timestamps");
     d.queueFamily = uint32_t(family - families.begin());
     d.timestampValidBits = family->timestampValidBits;
+    return {};
+}
 
+Status createLogicalDevice(Device& d, uint32_t instanceVersion) {
+    const std::string name = d.props.deviceName;
+    if (d.props.apiVersion < VK_API_VERSION_1_2)
+        return unavailable("vk: '" + name + "' supports Vulkan " + versionString(d.props.apiVersion) + ", need 1.2");
+    // The version we may use is the lower of what we asked the instance for
+    // and what the device offers.
+    const bool core13 = std::min(instanceVersion, d.props.apiVersion) >= VK_API_VERSION_1_3;
+
+    CAVITY_TRY(pickQueueFamily(d, name));
     std::vector<const char*> extensions;
     if (!core13) {
         if (!hasDeviceExtension(d.physical, VK_KHR_DYNAMIC_RENDERING_EXTENSION_NAME))
@@ -206,6 +218,15 @@ Status createLogicalDevice(Device& d, uint32_t instanceVersion) {
     // device and the instance are; queried and so enabled where the device has it.
     auto float16 = vkStruct<VkPhysicalDeviceShaderFloat16Int8Features>(
         VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_FLOAT16_INT8_FEATURES, &dynamicRendering);
+    // The compiled pipelines' statistics (registers on NVIDIA), for results.json.
+    const bool executables = hasDeviceExtension(d.physical, VK_KHR_PIPELINE_EXECUTABLE_PROPERTIES_EXTENSION_NAME);
+    auto executableInfo = vkStruct<VkPhysicalDevicePipelineExecutablePropertiesFeaturesKHR>(
+        VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PIPELINE_EXECUTABLE_PROPERTIES_FEATURES_KHR);
+    if (executables) {
+        extensions.push_back(VK_KHR_PIPELINE_EXECUTABLE_PROPERTIES_EXTENSION_NAME);
+        executableInfo.pNext = float16.pNext;
+        float16.pNext = &executableInfo;
+    }
     auto have = vkStruct<VkPhysicalDeviceFeatures2>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &float16);
     vkGetPhysicalDeviceFeatures2(d.physical, &have);
     float16.shaderInt8 = VK_FALSE;   // only what kernels may use
@@ -243,6 +264,7 @@ Status createLogicalDevice(Device& d, uint32_t instanceVersion) {
         vkGetDeviceProcAddr(d.device, core13 ? "vkCmdEndRendering" : "vkCmdEndRenderingKHR"));
     if (!d.cmdBeginRendering || !d.cmdEndRendering)
         return unavailable("vk: '" + name + "' exposes no vkCmdBeginRendering entry point");
+    if (executableInfo.pipelineExecutableInfo) loadExecutableProperties(d);
     if (sync2.synchronization2)
         d.cmdPipelineBarrier2 =
             reinterpret_cast<PFN_vkCmdPipelineBarrier2>(vkGetDeviceProcAddr(d.device, "vkCmdPipelineBarrier2"));

@@ -31,6 +31,10 @@ struct Device {
     // synchronization2 (core 1.3, where the device enables the feature);
     // null: barriers go through vkCmdPipelineBarrier.
     PFN_vkCmdPipelineBarrier2 cmdPipelineBarrier2 = nullptr;
+    // VK_KHR_pipeline_executable_properties, enabled where the device has
+    // it (null otherwise): each pipeline's compiled statistics.
+    PFN_vkGetPipelineExecutablePropertiesKHR getExecutableProperties = nullptr;
+    PFN_vkGetPipelineExecutableStatisticsKHR getExecutableStatistics = nullptr;
     bool fullBarriers = false;   // BackendOptions::fullBarriers
     bool noBarriers = false;     // BackendOptions::noBarriers
     DeviceInfo info;

@@ -80,6 +80,12 @@ VkPipelineShaderStageCreateInfo stageInfo(VkShaderStageFlagBits stage, VkShaderM
     return s;
 }
 
+// Asks the driver to keep the statistics readStatistics() reads; a flag
+// the specification gives no effect on the compiled code.
+VkPipelineCreateFlags captureFlags(const Device& d) {
+    return d.getExecutableStatistics ? VK_PIPELINE_CREATE_CAPTURE_STATISTICS_BIT_KHR : 0;
+}
+
 Status initCompute(Device& d, PipelineRes& p, const ComputePipelineDesc& desc) {
     CAVITY_TRY(initLayout(d, p));
     CAVITY_ASSIGN(const std::vector<uint32_t> spirv, kernels::compileToSpirv(desc.shader, Api::Vulkan));
@@ -101,6 +107,7 @@ Status initCompute(Device& d, PipelineRes& p, const ComputePipelineDesc& desc) {
     auto ci = vkStruct<VkComputePipelineCreateInfo>(VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO);
     ci.stage = stageInfo(VK_SHADER_STAGE_COMPUTE_BIT, cs.module);
     ci.layout = p.layout;
+    ci.flags = captureFlags(d);
     CAVITY_VK(vkCreateComputePipelines(d.device, VK_NULL_HANDLE, 1, &ci, nullptr, &p.pipeline),
               "vkCreateComputePipelines '" + p.label + "' (" + desc.shader.name + ")");
     return {};
@@ -174,14 +181,56 @@ Status initGraphics(Device& d, PipelineRes& p, const GraphicsPipelineDesc& desc)
     ci.pColorBlendState = &blend;
     ci.pDynamicState = &dynamic;
     ci.layout = p.layout;
+    ci.flags = captureFlags(d);
     CAVITY_VK(vkCreateGraphicsPipelines(d.device, VK_NULL_HANDLE, 1, &ci, nullptr, &p.pipeline),
               "vkCreateGraphicsPipelines '" + p.label + "' (" + desc.vertex.name + ", " + desc.fragment.name + ")");
     return {};
 }
 
+// Every statistic of every executable (compiled stage) of the pipeline.
+Status readStatistics(Device& d, PipelineRes& p) {
+    if (!d.getExecutableStatistics) {
+        p.statsReason = "the device lacks " VK_KHR_PIPELINE_EXECUTABLE_PROPERTIES_EXTENSION_NAME;
+        return {};
+    }
+    auto info = vkStruct<VkPipelineInfoKHR>(VK_STRUCTURE_TYPE_PIPELINE_INFO_KHR);
+    info.pipeline = p.pipeline;
+    uint32_t n = 0;
+    CAVITY_VK(d.getExecutableProperties(d.device, &info, &n, nullptr), "vkGetPipelineExecutablePropertiesKHR");
+    std::vector<VkPipelineExecutablePropertiesKHR> executables(
+        n, vkStruct<VkPipelineExecutablePropertiesKHR>(VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_PROPERTIES_KHR));
+    CAVITY_VK(d.getExecutableProperties(d.device, &info, &n, executables.data()), "vkGetPipelineExecutablePropertiesKHR");
+    for (uint32_t e = 0; e < n; ++e) {
+        auto which = vkStruct<VkPipelineExecutableInfoKHR>(VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_INFO_KHR);
+        which.pipeline = p.pipeline;
+        which.executableIndex = e;
+        uint32_t m = 0;
+        CAVITY_VK(d.getExecutableStatistics(d.device, &which, &m, nullptr), "vkGetPipelineExecutableStatisticsKHR");
+        std::vector<VkPipelineExecutableStatisticKHR> stats(
+            m, vkStruct<VkPipelineExecutableStatisticKHR>(VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_STATISTIC_KHR));
+        CAVITY_VK(d.getExecutableStatistics(d.device, &which, &m, stats.data()), "vkGetPipelineExecutableStatisticsKHR");
+        for (uint32_t i = 0; i < m; ++i) {
+            const auto& s = stats[i];
+            double v = 0;
+            switch (s.format) {
+            case VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_BOOL32_KHR: v = s.value.b32 ? 1 : 0; break;
+            case VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_INT64_KHR: v = double(s.value.i64); break;
+            case VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_UINT64_KHR: v = double(s.value.u64); break;
+            case VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_FLOAT64_KHR: v = s.value.f64; break;
+            default: continue;
+            }
+            p.stats.push_back({executables[e].name, s.name, v});
+        }
+    }
+    if (p.stats.empty()) p.statsReason = "the driver reports no statistics for this pipeline";
+    return {};
+}
+
 template <class Desc, class Init>
 Result<PipelineRes> build(Device& d, PipelineRes p, const Desc& desc, Init init) {
-    if (Status s = init(d, p, desc); !s) {
+    Status s = init(d, p, desc);
+    if (s) s = readStatistics(d, p);
+    if (!s) {
         destroyPipeline(d, p);
         return s.error();
     }

@@ -19,6 +19,8 @@ struct PipelineRes {
     VkDescriptorSetLayout setLayout = VK_NULL_HANDLE;
     VkPipelineLayout layout = VK_NULL_HANDLE;
     VkPipeline pipeline = VK_NULL_HANDLE;
+    std::vector<ShaderStat> stats;   // the driver's, where Device::getExecutableStatistics
+    std::string statsReason;         // why stats is empty, where it is
 };
 
 Result<PipelineRes> createComputePipeline(Device& d, const ComputePipelineDesc& desc);

@@ -103,6 +103,12 @@ json floorJson(const PassFloorResult& r, double medianMs) {
 
 namespace {
 
+json shaderStatsJson(const std::vector<gpu::ShaderStat>& stats) {
+    json out = json::array();
+    for (const auto& s : stats) out.push_back({{"executable", s.executable}, {"name", s.name}, {"value", s.value}});
+    return out;
+}
+
 json nonFiniteJson(const std::vector<NonFinite>& found) {
     json out = json::array();
     for (const auto& n : found)
@@ -126,11 +132,15 @@ json toJson(const RunRecord& r) {
     for (size_t i = 0; i < r.passes.size() && i < r.timing.passes.size(); ++i) {
         const auto [w, h] = r.passSizes[i];
         const PassFloorResult floor = passFloor(r.floorDevice, r.passes[i].kernel, r.config.params, double(w) * h);
+        const auto pipeline = r.pipelines.find(r.passes[i].name);
+        const gpu::PipelineInfo info = pipeline == r.pipelines.end() ? gpu::PipelineInfo{} : pipeline->second;
         passes.push_back({{"name", r.passes[i].name},
                           {"kernel", r.passes[i].kernel},
                           {"width", r.passSizes[i].first},
                           {"height", r.passSizes[i].second},
-                          {"shader_path", r.shaderPaths.count(r.passes[i].name) ? r.shaderPaths.at(r.passes[i].name) : ""},
+                          {"shader_path", info.path == gpu::ShaderPath::Spirv ? "spirv" : "glsl-fallback"},
+                          {"shader_stats", shaderStatsJson(info.stats)},
+                          {"shader_stats_reason", info.statsReason},
                           {"stats", toJson(r.timing.passes[i].stats)},
                           {"samples_ms", r.timing.passes[i].ms},
                           {"floor", floorJson(floor, r.timing.passes[i].stats.median)},

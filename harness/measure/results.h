@@ -28,7 +28,7 @@ struct RunRecord {
     std::vector<PassSpec> passes;
     std::vector<std::pair<int, int>> passSizes;
     DeviceFloor floorDevice;          // the figures each pass's floor is computed from
-    std::map<std::string, std::string> shaderPaths;
+    std::map<std::string, gpu::PipelineInfo> pipelines;   // by pass name
     std::map<std::string, std::map<std::string, std::string>> images;   // image -> {"exr": path, "png": path}
     std::vector<std::string> debugMessages;
     // Kept only when RunOptions::keepImages: the user outputs, read back.

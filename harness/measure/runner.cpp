@@ -74,7 +74,7 @@ Result<RunRecord> runConfig(gpu::Backend& gpu, const RunConfig& given, const Run
         const bool half = r.passes[i].half;
         r.passSizes.push_back({half ? (c.width + 1) / 2 : c.width, half ? (c.height + 1) / 2 : c.height});
     }
-    r.shaderPaths = chain->shaderPaths();
+    r.pipelines = chain->pipelineInfos();
     r.timingOptions = timingOptions(gpu.info(), o);
     GpuClocks* clocks = GpuClocks::forDevice(gpu.info());
     r.floorDevice = deviceFloor(gpu.info(), clocks ? clocks->maxSmMhz() : std::nullopt);

@@ -337,12 +337,9 @@ Result<std::vector<NonFinite>> PassChain::findNonFinite() const {
     return found;
 }
 
-std::map<std::string, std::string> PassChain::shaderPaths() const {
-    std::map<std::string, std::string> m;
-    for (size_t i = 0; i < passes_.size(); ++i) {
-        const auto info = gpu_.pipelineInfo(passes_[i]->pipeline);
-        m[specs_[i].name] = info.path == gpu::ShaderPath::Spirv ? "spirv" : "glsl-fallback";
-    }
+std::map<std::string, gpu::PipelineInfo> PassChain::pipelineInfos() const {
+    std::map<std::string, gpu::PipelineInfo> m;
+    for (size_t i = 0; i < passes_.size(); ++i) m[specs_[i].name] = gpu_.pipelineInfo(passes_[i]->pipeline);
     return m;
 }
 

@@ -113,8 +113,9 @@ public:
     // scanned: one finding per image that holds a NaN or an infinity. An
     // 8-bit image cannot hold one; its inputs are all scanned here.
     Result<std::vector<NonFinite>> findNonFinite() const;
-    // How each pass's shader reached the driver ("spirv" or "glsl-fallback").
-    std::map<std::string, std::string> shaderPaths() const;
+    // How each pass's shader reached the driver (SPIR-V or GL's GLSL
+    // fallback), and what the driver says it compiled (its statistics).
+    std::map<std::string, gpu::PipelineInfo> pipelineInfos() const;
     // Pixels each pass writes (for throughput counters).
     long long passPixels(size_t i) const;
 

@@ -16,9 +16,14 @@ json toJson(const gpu::DeviceInfo& d) {
 json toJson(const RenderEntry& r) {
     json timings = json::array(), images = json::array();
     auto orNull = [](double x) { return std::isfinite(x) ? json(x) : json(); };
-    for (const auto& t : r.timings)
+    for (const auto& t : r.timings) {
+        json stats = json::array();
+        for (const auto& s : t.shaderStats) stats.push_back({{"executable", s.executable}, {"name", s.name}, {"value", s.value}});
+        const double registers = gpu::registerCount(t.shaderStats);
         timings.push_back({{"pass", t.pass}, {"median_ms", t.medianMs}, {"clock", t.clock}, {"ci_low_ms", orNull(t.lowMs)},
-                           {"ci_high_ms", orNull(t.highMs)}});
+                           {"ci_high_ms", orNull(t.highMs)}, {"registers", registers >= 0 ? json(registers) : json()},
+                           {"shader_stats", stats}});
+    }
     for (const auto& i : r.images) {
         images.push_back({{"name", i.name}, {"file", i.file.empty() ? json(nullptr) : json(i.file)},
                           {"width", i.stored.width}, {"height", i.stored.height}, {"channels", i.stored.channels},
@@ -30,6 +35,16 @@ json toJson(const RenderEntry& r) {
     }
     return {{"repetition", r.repetition}, {"error", r.error}, {"error_code", r.errorCode},
             {"deterministic", r.deterministic}, {"timings", timings}, {"images", images}};
+}
+
+// One timing of a manifest; the interval and the statistics are absent from
+// older ones.
+PassTime readPassTime(const json& t) {
+    auto num = [&](const char* k) { return t.contains(k) && t.at(k).is_number() ? t.at(k).get<double>() : NAN; };
+    std::vector<gpu::ShaderStat> stats;
+    if (t.contains("shader_stats") && t.at("shader_stats").is_array())
+        for (const auto& s : t.at("shader_stats")) stats.push_back({s.at("executable"), s.at("name"), s.at("value")});
+    return {t.at("pass"), t.at("median_ms"), t.at("clock"), num("ci_low_ms"), num("ci_high_ms"), std::move(stats)};
 }
 
 }  // namespace
@@ -120,11 +135,7 @@ Result<RenderManifest> parseManifest(const json& j, const std::string& path) {
                 r.error = rj.at("error");
                 r.errorCode = rj.at("error_code");
                 r.deterministic = rj.at("deterministic");
-                for (const auto& t : rj.at("timings")) {
-                    // The interval is absent from older manifests.
-                    auto num = [&](const char* k) { return t.contains(k) && t.at(k).is_number() ? t.at(k).get<double>() : NAN; };
-                    r.timings.push_back({t.at("pass"), t.at("median_ms"), t.at("clock"), num("ci_low_ms"), num("ci_high_ms")});
-                }
+                for (const auto& t : rj.at("timings")) r.timings.push_back(readPassTime(t));
                 for (const auto& ij : rj.at("images")) {
                     ImageEntry i;
                     i.name = ij.at("name");

@@ -73,9 +73,11 @@ Status renderEntries(const plan::Matrix& m, const std::vector<plan::MatrixEntry>
                     r.deterministic = rec->deterministic;
                     for (const auto& p : rec->timing.passes) {
                         const double half = measure::medianNoise(p.ms) * p.stats.median;
+                        const auto info = rec->pipelines.find(p.name);
                         r.timings.push_back({p.name, p.stats.median, rec->timing.clock,
                                              std::isfinite(half) ? p.stats.median - half : NAN,
-                                             std::isfinite(half) ? p.stats.median + half : NAN});
+                                             std::isfinite(half) ? p.stats.median + half : NAN,
+                                             info == rec->pipelines.end() ? std::vector<gpu::ShaderStat>{} : info->second.stats});
                     }
                     for (const auto& ci : plan::checkedImages()) {
                         HostImage& img = rec->pixels.at(ci.name);

@@ -30,6 +30,7 @@ struct PassTime {
     // The median's distribution-free 95% interval over the frames
     // (measure::medianNoise); NaN where the frames are too few for one.
     double lowMs = NAN, highMs = NAN;
+    std::vector<gpu::ShaderStat> shaderStats;   // the driver's, of the pass's pipeline (PipelineInfo::stats)
 };
 
 // An image judged where it was rendered (cavity_render --store): against
