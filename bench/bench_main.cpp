@@ -96,6 +96,7 @@ const cavity::cli::CommandSpec& benchSpec() {
             {"--max-time", "S", "stop measuring after S seconds (0.001..3600)"},
             {"--plant", "PASS:FMAS[,..]", "plant FMAS dependent FMAs per pixel in PASS (1..1000000; the timing-verdict check)"},
             {"--plant-file", "FILE.json", "planted FMAs per configuration id and pass ({\"<id>\": {\"<pass>\": FMAS}})"},
+            {"--kernel-source", "NAME=FILE", "measure with kernels/NAME replaced by FILE's text (an edited kernel); repeatable"},
             {"--device", "K", "device index (0..64; default 0)"},
         };
         c.footer = "\n" + cavity::cli::kernelHelp("Kernels (the sweep's AO pipelines; select by id with --benchmark_filter)") +
@@ -153,6 +154,8 @@ Result<cavity::bench::Options> parse(int argc, char** argv, std::vector<char*>& 
             CAVITY_TRY(parsePlant(value, o.plant));
         } else if (flag == "--plant-file") {
             CAVITY_TRY(readPlantFile(value, o.plantById));
+        } else if (flag == "--kernel-source") {
+            CAVITY_TRY(addKernelSource(value, o.overrides, o.replaced));
         } else if (flag == "--device") {
             CAVITY_ASSIGN(o.device, parseInt(flag, value, 0, 64));
         }
@@ -223,6 +226,7 @@ int main(int argc, char** argv) {
         std::cerr << "cavity_bench: " << env.error().message << "\n";
         return 2;
     }
+    options->filter = filter;
     auto registered = cavity::bench::registerSweep(*options);
     if (!registered) {
         std::cerr << "cavity_bench: " << registered.error().message << "\n";

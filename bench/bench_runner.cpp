@@ -16,6 +16,7 @@
 #include <cmath>
 #include <iostream>
 #include <map>
+#include <regex>
 #include <set>
 #include <memory>
 
@@ -43,6 +44,7 @@ struct Bench {
     RunConfig config;
     TimingOptions timing;
     PlantedSlowdown plant;
+    SourceOverrides overrides;
 };
 
 // The clock of each configuration, decided by its first repetition and kept
@@ -139,7 +141,7 @@ void run(benchmark::State& state, const Bench& b) {
     for (int view = 0; view < 4; ++view) {
         RunConfig c = b.config;
         c.params["view"] = view;
-        auto chain = PassChain::create(gpu, c, {}, b.plant);
+        auto chain = PassChain::create(gpu, c, b.overrides, b.plant);
         if (!chain) {
             state.SkipWithError(chain.error().message.c_str());
             return;
@@ -207,6 +209,34 @@ Status checkPlants(const Options& o, const std::vector<RunConfig>& configs) {
     return {};
 }
 
+// The configurations Google Benchmark's filter runs: a std::regex search of
+// the name (extended; '-' first negates it), as it applies it.
+std::vector<RunConfig> selected(const std::vector<RunConfig>& configs, const std::string& filter) {
+    if (filter.empty() || filter == "all" || filter == ".") return configs;
+    const bool negate = filter[0] == '-';
+    const std::regex re(negate ? filter.substr(1) : filter, std::regex_constants::extended);
+    std::vector<RunConfig> out;
+    for (const auto& c : configs)
+        if (std::regex_search(configId(c), re) != negate) out.push_back(c);
+    return out;
+}
+
+// What the run changed on purpose, beside its numbers: a planted slowdown,
+// edited kernels.
+void addEditContext(const Options& o) {
+    if (!o.plant.empty() || !o.plantById.empty()) {
+        std::string text;
+        for (const auto& [pass, fmas] : o.plant) text += (text.empty() ? "" : ",") + pass + ":" + std::to_string(fmas);
+        if (!o.plantById.empty()) text += (text.empty() ? "" : "; ") + std::to_string(o.plantById.size()) + " configurations from --plant-file";
+        benchmark::AddCustomContext("cavity_planted_slowdown", text);
+    }
+    if (!o.replaced.empty()) {
+        std::string text;
+        for (const auto& r : o.replaced) text += (text.empty() ? "" : "; ") + r.name + "=" + r.file + " (" + r.digest + ")";
+        benchmark::AddCustomContext("cavity_kernel_sources", text);
+    }
+}
+
 Result<int> registerSweep(const Options& o) {
     std::vector<gpu::Api> apis;
     if (o.backend == "gl" || o.backend == "all") apis.push_back(gpu::Api::OpenGL);
@@ -265,17 +295,13 @@ Result<int> registerSweep(const Options& o) {
                                 "min_frames=" + std::to_string(timing.frames) + " warmup=" + std::to_string(timing.warmup) +
                                     (timing.steadyWarmup ? "+steady" : "") + " max_noise=" +
                                     std::to_string(timing.maxNoise) + " max_seconds=" + std::to_string(timing.maxSeconds));
-    if (!o.plant.empty() || !o.plantById.empty()) {
-        std::string text;
-        for (const auto& [pass, fmas] : o.plant) text += (text.empty() ? "" : ",") + pass + ":" + std::to_string(fmas);
-        if (!o.plantById.empty()) text += (text.empty() ? "" : "; ") + std::to_string(o.plantById.size()) + " configurations from --plant-file";
-        benchmark::AddCustomContext("cavity_planted_slowdown", text);
-    }
     const auto configs = benchmarkSweep(cpu ? cpuSweep() : gpuSweep(), started);
     CAVITY_TRY(checkPlants(o, configs));
+    CAVITY_TRY(checkSourcesUsed(o.replaced, selected(configs, o.filter)));
+    addEditContext(o);
     for (const auto& c : configs) {
         const auto planted = o.plantById.find(configId(c));
-        Bench b{c, timing, planted == o.plantById.end() ? o.plant : planted->second};
+        Bench b{c, timing, planted == o.plantById.end() ? o.plant : planted->second, o.overrides};
         benchmark::RegisterBenchmark(configId(c).c_str(), [b](benchmark::State& s) { run(s, b); })
             ->UseManualTime()
             ->Iterations(1)

@@ -25,6 +25,9 @@ struct Options {
     std::optional<double> maxNoise, maxSeconds;
     PlantedSlowdown plant;         // --plant ao:120,blur:40, every configuration (scripts/gpu_verdict.sh)
     std::map<std::string, PlantedSlowdown> plantById;   // --plant-file: {"<id>": {"ao": 120}}; wins over plant
+    SourceOverrides overrides;     // --kernel-source NAME=FILE: kernels/NAME replaced, every configuration
+    std::vector<ReplacedSource> replaced;   // the same, as the JSON context records them
+    std::string filter;            // --benchmark_filter as given (a valid regex): which configurations replaced sources must reach
     int device = 0;
 };
 

@@ -38,6 +38,9 @@ const CommandSpec& abSpec() {
             {"--rounds", "N", "processes of each build (2..1000; default 10)"},
             {"--filter", "REGEX", "the configurations to measure (--benchmark_filter of cavity_bench; default all)"},
             {"--bench-args", "ARGS", "more flags for every cavity_bench process, space-separated (--frames 20 --max-time 0.5)"},
+            {"--a-args", "ARGS", "more flags for A's processes only, after --bench-args"},
+            {"--b-args", "ARGS", "more flags for B's processes only: one build against itself with an edited kernel is "
+                                 "--a X --b X --b-args '--kernel-source NAME=FILE'"},
             {"--out", "DIR", "where the runs, a.json, b.json and compare.json go (default out/ab)"},
             {"--min-change", "P|auto", "as cavity compare (default auto)"},
             {"--fail-on-slower", "", "exit 1 when any pass of B is slower than A's"},
@@ -48,6 +51,7 @@ const CommandSpec& abSpec() {
         {
             "cavity ab --a main/build --b pr/build --filter 'corner/alchemy_fast/' --rounds 10",
             "cavity ab --a main/.bundle --b pr/.bundle --rounds 6 --bench-args='--max-time 0.5' --fail-on-slower",
+            "cavity ab --a build --b build --b-args '--kernel-source ssao_alchemy_fast.glsl=edit.glsl' --filter /alchemy_fast/",
         },
     };
     return spec;
@@ -103,6 +107,7 @@ Result<json> mergeRounds(const std::vector<std::string>& files) {
 struct AbFlags {
     std::string a, b, filter, out = "out/ab";
     std::vector<std::string> benchArgs;
+    std::vector<std::string> sideArgs[2];   // --a-args, --b-args
     int rounds = 10;
     CompareThresholds thresholds;
     bool failOnSlower = false;
@@ -125,9 +130,10 @@ Result<AbFlags> parseAb(const ParsedFlags& p) {
             f.filter = v;
         } else if (flag == "--out") {
             f.out = v;
-        } else if (flag == "--bench-args") {
+        } else if (flag == "--bench-args" || flag == "--a-args" || flag == "--b-args") {
+            auto& to = flag == "--bench-args" ? f.benchArgs : f.sideArgs[flag == "--a-args" ? 0 : 1];
             std::istringstream words(v);
-            for (std::string w; words >> w;) f.benchArgs.push_back(w);
+            for (std::string w; words >> w;) to.push_back(w);
         } else if (flag == "--min-change" && v != "auto") {
             f.thresholds.autoMinChange = false;
             CAVITY_ASSIGN(f.thresholds.minChangePct,
@@ -165,6 +171,7 @@ int abCommand(const std::vector<std::string>& argv) {
                                              "--benchmark_out=" + out, "--benchmark_out_format=json"};
             if (!f->filter.empty()) args.push_back("--benchmark_filter=" + f->filter);
             args.insert(args.end(), f->benchArgs.begin(), f->benchArgs.end());
+            args.insert(args.end(), f->sideArgs[side].begin(), f->sideArgs[side].end());
             std::cerr << "cavity ab: round " << r + 1 << "/" << f->rounds << ": " << (side == 0 ? "A" : "B") << "\n";
             if (auto st = runBench(side == 0 ? f->a : f->b, args, (fs::path(f->out) / (name + ".log")).string()); !st)
                 return fail(program, st.error());

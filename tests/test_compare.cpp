@@ -545,6 +545,46 @@ TEST_F(Compare, InterleavedRunsAlternateAndKeepTheSidesApart) {
     }
 }
 
+// One build against itself with an edited kernel on B's side only
+// (--b-args '--kernel-source ...'): B's processes measure the edit and record
+// it, A's do not, and the edit's cost shows in the pass that runs it. (On a
+// software renderer compare calls no pass slower or faster, so the medians
+// are read here.)
+TEST_F(Compare, AnEditedKernelOnOneSideIsMeasuredInItsPass) {
+    fs::create_directories(dir);
+    const fs::path slow = dir / "slow.glsl";
+    std::ofstream(slow) << "#include \"include/common.glsl\"\n"
+                           "void cavity_main(ivec2 pixel) {\n"
+                           "    float x = texelFetch(in_zmip, pixel, 0).r;\n"
+                           "    for (int i = 0; i < 4000; ++i) x = fma(x, 0.9999, 1e-4);\n"
+                           "    write_ao(pixel, vec4(min(x, 1.0)));\n"
+                           "    write_ao_key(pixel, vec4(1.0, texelFetch(in_zmip, pixel, 0).r, 0.0, 0.0));\n}\n";
+    const std::string out = (dir / "ab").string();
+    const Outcome r = cavity(std::string("ab --a ") + CAVITY_BENCH_EXE + " --b " + CAVITY_BENCH_EXE +
+                             " --rounds 4 --filter 'corner/alchemy_fast/n16/b4/full/320x180/vk/compute' "
+                             "--bench-args='--frames 2 --warmup 0' --b-args='--kernel-source ssao_alchemy_fast.glsl=" +
+                             slow.string() + "' --out " + out);
+    ASSERT_EQ(r.code, 0) << r.output;
+    const json a = cavity::core::readJsonFile(out + "/a_0.json").value(), b = cavity::core::readJsonFile(out + "/b_0.json").value();
+    EXPECT_FALSE(a["context"].contains("cavity_kernel_sources"));
+    EXPECT_NE(b["context"].value("cavity_kernel_sources", "").find("ssao_alchemy_fast.glsl=" + slow.string()), std::string::npos);
+    auto passTimes = [&](const char* side, const std::string& pass) {
+        std::vector<double> t;
+        const json merged = cavity::core::readJsonFile(out + "/" + side + ".json").value();
+        for (const auto& e : merged["benchmarks"])
+            if (e["run_name"].get<std::string>().find('@') == std::string::npos) t.push_back(e["pass_" + pass + "_ms"]);
+        std::sort(t.begin(), t.end());
+        return t;
+    };
+    const auto aoA = passTimes("a", "ao"), aoB = passTimes("b", "ao");
+    ASSERT_EQ(aoA.size(), 4u);
+    ASSERT_EQ(aoB.size(), 4u);
+    EXPECT_GT(aoB.front(), 3 * aoA.back());   // 4000 FMAs a pixel against 16 samples
+    const auto blurA = passTimes("a", "blur_x"), blurB = passTimes("b", "blur_x");
+    EXPECT_LT(blurB[1], 2 * blurA[2]);          // the passes it does not touch
+    EXPECT_LT(blurA[1], 2 * blurB[2]);
+}
+
 TEST_F(Compare, ResultsJsonAgainstResultsJsonAndAgainstBenchmarkJson) {
     const auto before = fakeConfig(kId, 40, 3, 0);
     const auto after = fakeConfig(kId, 40, 4, 0.03);

@@ -187,6 +187,27 @@ Status initGraphics(Device& d, PipelineRes& p, const GraphicsPipelineDesc& desc)
     return {};
 }
 
+// Vulkan's two-call enumeration: the count, then the items.
+template <class T, class Query>
+Result<std::vector<T>> enumerate(VkStructureType type, const char* what, Query query) {
+    uint32_t n = 0;
+    CAVITY_VK(query(&n, nullptr), what);
+    std::vector<T> items(n, vkStruct<T>(type));
+    CAVITY_VK(query(&n, items.data()), what);
+    items.resize(n);
+    return items;
+}
+
+std::optional<double> statisticValue(const VkPipelineExecutableStatisticKHR& s) {
+    switch (s.format) {
+    case VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_BOOL32_KHR: return s.value.b32 ? 1 : 0;
+    case VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_INT64_KHR: return double(s.value.i64);
+    case VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_UINT64_KHR: return double(s.value.u64);
+    case VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_FLOAT64_KHR: return s.value.f64;
+    default: return std::nullopt;
+    }
+}
+
 // Every statistic of every executable (compiled stage) of the pipeline.
 Status readStatistics(Device& d, PipelineRes& p) {
     if (!d.getExecutableStatistics) {
@@ -195,32 +216,24 @@ Status readStatistics(Device& d, PipelineRes& p) {
     }
     auto info = vkStruct<VkPipelineInfoKHR>(VK_STRUCTURE_TYPE_PIPELINE_INFO_KHR);
     info.pipeline = p.pipeline;
-    uint32_t n = 0;
-    CAVITY_VK(d.getExecutableProperties(d.device, &info, &n, nullptr), "vkGetPipelineExecutablePropertiesKHR");
-    std::vector<VkPipelineExecutablePropertiesKHR> executables(
-        n, vkStruct<VkPipelineExecutablePropertiesKHR>(VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_PROPERTIES_KHR));
-    CAVITY_VK(d.getExecutableProperties(d.device, &info, &n, executables.data()), "vkGetPipelineExecutablePropertiesKHR");
-    for (uint32_t e = 0; e < n; ++e) {
+    CAVITY_ASSIGN(const auto executables,
+                  enumerate<VkPipelineExecutablePropertiesKHR>(
+                      VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_PROPERTIES_KHR, "vkGetPipelineExecutablePropertiesKHR",
+                      [&](uint32_t* n, VkPipelineExecutablePropertiesKHR* out) {
+                          return d.getExecutableProperties(d.device, &info, n, out);
+                      }));
+    for (uint32_t e = 0; e < executables.size(); ++e) {
         auto which = vkStruct<VkPipelineExecutableInfoKHR>(VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_INFO_KHR);
         which.pipeline = p.pipeline;
         which.executableIndex = e;
-        uint32_t m = 0;
-        CAVITY_VK(d.getExecutableStatistics(d.device, &which, &m, nullptr), "vkGetPipelineExecutableStatisticsKHR");
-        std::vector<VkPipelineExecutableStatisticKHR> stats(
-            m, vkStruct<VkPipelineExecutableStatisticKHR>(VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_STATISTIC_KHR));
-        CAVITY_VK(d.getExecutableStatistics(d.device, &which, &m, stats.data()), "vkGetPipelineExecutableStatisticsKHR");
-        for (uint32_t i = 0; i < m; ++i) {
-            const auto& s = stats[i];
-            double v = 0;
-            switch (s.format) {
-            case VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_BOOL32_KHR: v = s.value.b32 ? 1 : 0; break;
-            case VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_INT64_KHR: v = double(s.value.i64); break;
-            case VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_UINT64_KHR: v = double(s.value.u64); break;
-            case VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_FLOAT64_KHR: v = s.value.f64; break;
-            default: continue;
-            }
-            p.stats.push_back({executables[e].name, s.name, v});
-        }
+        CAVITY_ASSIGN(const auto stats,
+                      enumerate<VkPipelineExecutableStatisticKHR>(
+                          VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_STATISTIC_KHR, "vkGetPipelineExecutableStatisticsKHR",
+                          [&](uint32_t* n, VkPipelineExecutableStatisticKHR* out) {
+                              return d.getExecutableStatistics(d.device, &which, n, out);
+                          }));
+        for (const auto& s : stats)
+            if (const auto v = statisticValue(s)) p.stats.push_back({executables[e].name, s.name, *v});
     }
     if (p.stats.empty()) p.statsReason = "the driver reports no statistics for this pipeline";
     return {};
