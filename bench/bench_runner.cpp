@@ -210,14 +210,15 @@ Status checkPlants(const Options& o, const std::vector<RunConfig>& configs) {
 }
 
 // The configurations Google Benchmark's filter runs: a std::regex search of
-// the name (extended; '-' first negates it), as it applies it.
+// the name it registers (the id, then /iterations:1/manual_time), extended,
+// '-' first negating it, as it applies it.
 std::vector<RunConfig> selected(const std::vector<RunConfig>& configs, const std::string& filter) {
     if (filter.empty() || filter == "all" || filter == ".") return configs;
     const bool negate = filter[0] == '-';
     const std::regex re(negate ? filter.substr(1) : filter, std::regex_constants::extended);
     std::vector<RunConfig> out;
     for (const auto& c : configs)
-        if (std::regex_search(configId(c), re) != negate) out.push_back(c);
+        if (std::regex_search(configId(c) + "/iterations:1/manual_time", re) != negate) out.push_back(c);
     return out;
 }
 
