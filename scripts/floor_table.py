@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
-"""Medians per configuration and pass, with each pass's floor and
-measured/floor, from cavity_bench JSON files with repetitions (what
-scripts/gpu_floor.sh leaves). Markdown on stdout.
+"""Medians per configuration and pass, with each pass's floor,
+measured/floor and register count (where the driver reports one), from
+cavity_bench JSON files with repetitions (what scripts/gpu_floor.sh
+leaves). Markdown on stdout.
   scripts/floor_table.py BENCH.json[.gz] [BENCH.json[.gz] ...]"""
 import collections
 import statistics
@@ -26,10 +27,12 @@ def main(paths):
                     rows[name]["ms:" + k[5:-3]].append(v)
                 elif k.startswith("floor_") and k.endswith("_ms"):
                     rows[name]["floor:" + k[6:-3]].append(v)
+                elif k.startswith("registers_"):
+                    rows[name]["registers:" + k[10:]].append(v)
             rows[name]["frame"].append(b["real_time"])
             rows[name]["sm_mhz"].append(b.get("sm_mhz_median", 0))
-    print("| configuration | pass | median ms | floor ms | measured / floor |")
-    print("| --- | --- | ---: | ---: | ---: |")
+    print("| configuration | pass | median ms | floor ms | measured / floor | registers |")
+    print("| --- | --- | ---: | ---: | ---: | ---: |")
     for name, r in sorted(rows.items()):
         for key in r:
             if not key.startswith("ms:"):
@@ -38,9 +41,11 @@ def main(paths):
             ms = statistics.median(r[key])
             fl = r.get("floor:" + p)
             f = statistics.median(fl) if fl else None
-            print(f"| {name} | {p} | {ms:.4f} | {f'{f:.4f}' if f else '-'} | {f'{ms / f:.2f}x' if f else '-'} |")
+            regs = r.get("registers:" + p)
+            print(f"| {name} | {p} | {ms:.4f} | {f'{f:.4f}' if f else '-'} | {f'{ms / f:.2f}x' if f else '-'} | "
+                  f"{f'{max(regs):.0f}' if regs else '-'} |")
         print(f"| {name} | frame (n={len(r['frame'])}, SM {statistics.median(r['sm_mhz']):.0f} MHz) | "
-              f"{statistics.median(r['frame']):.4f} | | |")
+              f"{statistics.median(r['frame']):.4f} | | | |")
 
 
 if __name__ == "__main__":

@@ -334,8 +334,17 @@ class Package(unittest.TestCase):
         r = subprocess.run([sys.executable, os.path.join(HERE, "floor_table.py"), os.path.join(floor3, "fragment.json.gz")],
                            capture_output=True, text=True, timeout=120)
         self.assertEqual(r.returncode, 0, r.stderr)
-        self.assertIn("| measured / floor |", r.stdout)
+        self.assertIn("| measured / floor | registers |", r.stdout)
         self.assertGreater(len(r.stdout.splitlines()), 10)
+        # The H200's register counts (bench/results/2026-12-03_h200_shader_stats):
+        # alchemy_fast's AO pass takes 31, as the driver reported there.
+        stats = os.path.join(RESULTS, "2026-12-03_h200_shader_stats", "regs.json.gz")
+        r = subprocess.run([sys.executable, os.path.join(HERE, "floor_table.py"), stats],
+                           capture_output=True, text=True, timeout=120)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        ao = [l for l in r.stdout.splitlines() if l.startswith("| corner/alchemy_fast/n16/b4/full/1920x1080/vk/compute | ao |")]
+        self.assertEqual(len(ao), 1, r.stdout)
+        self.assertTrue(ao[0].endswith("| 31 |"), ao[0])
         r = subprocess.run([sys.executable, os.path.join(HERE, "sync_table.py"), os.path.join(RESULTS, "2026-12-02_h200_sync")],
                            capture_output=True, text=True, timeout=120)
         self.assertEqual(r.returncode, 0, r.stderr)
