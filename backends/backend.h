@@ -150,7 +150,7 @@ enum class ShaderPath { Spirv, GlslFallback };
 // (VK_KHR_pipeline_executable_properties), as the driver words it: NVIDIA's
 // "Register Count", Mesa's instruction counts. A bool reads 0 or 1.
 struct ShaderStat {
-    std::string executable;   // the compiled stage it belongs to, e.g. "Compute Shader"
+    std::string executable;   // the compiled stage it belongs to, as the driver names it (NVIDIA: "CS")
     std::string name;
     double value = 0;
 };

@@ -80,8 +80,9 @@ VkPipelineShaderStageCreateInfo stageInfo(VkShaderStageFlagBits stage, VkShaderM
     return s;
 }
 
-// Asks the driver to keep the statistics readStatistics() reads; a flag
-// the specification gives no effect on the compiled code.
+// Asks the driver to keep the statistics readStatistics() reads. The
+// specification says the flag must not change the compiled pipeline (only,
+// perhaps, how long creating it takes).
 VkPipelineCreateFlags captureFlags(const Device& d) {
     return d.getExecutableStatistics ? VK_PIPELINE_CREATE_CAPTURE_STATISTICS_BIT_KHR : 0;
 }
