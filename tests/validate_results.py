@@ -46,6 +46,7 @@ def main():
                 if t["stop"] != "frames" or t["rejected_frames"] < 0:
                     sys.exit(f"{run['id']}: stop {t['stop']}, rejected {t['rejected_frames']}")
                 check_floors(run)
+                check_shader_stats(run)
             print(f"--timing {timing}: {len(doc['runs'])} runs valid")
         r = subprocess.run([cavity, "run", "--backend", "vk", "--gbuffer", "raster", "--res", "64x36", "--frames", "2",
                             "--warmup", "0", "--max-noise", "0", "--out", out], capture_output=True, text=True)
@@ -58,6 +59,7 @@ def main():
             sys.exit(f"raster G-buffer: expected floor null, 'no cost declared'; got {[(p['floor'], p['floor_reason']) for p in gbuffer]}")
         print("--gbuffer raster: the G-buffer pass has no cost declared")
         check_floor_branch(schema, doc["runs"][0])
+        check_shader_stats_branch(schema, doc["runs"][0])
 
 
 def check_floors(run):
@@ -73,6 +75,42 @@ def check_floors(run):
             sys.exit(f"{run['id']} {p['name']}: floor {p['floor']!r} with reason {p['floor_reason']!r}")
         if software and p["floor_reason"] != run["floor_device_reason"]:
             sys.exit(f"{run['id']} {p['name']}: reason {p['floor_reason']!r}, expected the device's")
+
+
+def check_shader_stats(run):
+    """Each pass has the driver's statistics or says why not: GL never has
+    them, and neither do the CPU renderers CI runs (lavapipe in Debian 12
+    lacks VK_KHR_pipeline_executable_properties)."""
+    for p in run["passes"]:
+        if (not p["shader_stats"]) == (p["shader_stats_reason"] == ""):
+            sys.exit(f"{run['id']} {p['name']}: shader_stats {p['shader_stats']!r} with reason {p['shader_stats_reason']!r}")
+        if run["backend"] == "gl" and "OpenGL" not in p["shader_stats_reason"]:
+            sys.exit(f"{run['id']} {p['name']}: GL pass with reason {p['shader_stats_reason']!r}")
+
+
+def check_shader_stats_branch(schema, run):
+    """The statistics NVIDIA's driver reported on the H200
+    (bench/results/2026-12-03_h200_shader_stats) validate; spoiled copies do not."""
+    run = copy.deepcopy(run)
+    for p in run["passes"]:
+        p["shader_stats"] = [{"executable": "CS", "name": "Register Count", "value": 31},
+                             {"executable": "CS", "name": "Binary Size", "value": 6528}]
+        p["shader_stats_reason"] = ""
+    doc = {"schema": "cavity.results/1", "git_commit": "x", "created_utc": "2026-12-01T00:00:00Z", "command": "",
+           "errors": [], "runs": [run]}
+    validator = jsonschema.Draft202012Validator(schema)
+    validator.validate(doc)
+    wrong = {
+        "a statistic whose value is text": lambda d: d["runs"][0]["passes"][0]["shader_stats"][0].update(value="31"),
+        "a statistic without its executable": lambda d: d["runs"][0]["passes"][0]["shader_stats"][0].pop("executable"),
+        "a pass without shader_stats_reason": lambda d: d["runs"][0]["passes"][0].pop("shader_stats_reason"),
+    }
+    for what, spoil in wrong.items():
+        bad = copy.deepcopy(doc)
+        spoil(bad)
+        if validator.is_valid(bad):
+            sys.exit(f"the schema accepts {what}")
+    print(f"shader statistics: valid with an H200's, {len(wrong)} spoiled copies rejected")
 
 
 def check_floor_branch(schema, run):
