@@ -96,21 +96,26 @@ def check_shader_stats_branch(schema, run):
         p["shader_stats"] = [{"executable": "CS", "name": "Register Count", "value": 31},
                              {"executable": "CS", "name": "Binary Size", "value": 6528}]
         p["shader_stats_reason"] = ""
+    check_spoiled(schema, run, "shader statistics: valid with an H200's", {
+        "a statistic whose value is text": lambda d: d["runs"][0]["passes"][0]["shader_stats"][0].update(value="31"),
+        "a statistic without its executable": lambda d: d["runs"][0]["passes"][0]["shader_stats"][0].pop("executable"),
+        "a pass without shader_stats_reason": lambda d: d["runs"][0]["passes"][0].pop("shader_stats_reason"),
+    })
+
+
+def check_spoiled(schema, run, what_valid, wrong):
+    """`run` as a results.json of one run validates; each spoiled copy
+    (wrong: what it is -> the spoiling) does not."""
     doc = {"schema": "cavity.results/1", "git_commit": "x", "created_utc": "2026-12-01T00:00:00Z", "command": "",
            "errors": [], "runs": [run]}
     validator = jsonschema.Draft202012Validator(schema)
     validator.validate(doc)
-    wrong = {
-        "a statistic whose value is text": lambda d: d["runs"][0]["passes"][0]["shader_stats"][0].update(value="31"),
-        "a statistic without its executable": lambda d: d["runs"][0]["passes"][0]["shader_stats"][0].pop("executable"),
-        "a pass without shader_stats_reason": lambda d: d["runs"][0]["passes"][0].pop("shader_stats_reason"),
-    }
     for what, spoil in wrong.items():
         bad = copy.deepcopy(doc)
         spoil(bad)
         if validator.is_valid(bad):
             sys.exit(f"the schema accepts {what}")
-    print(f"shader statistics: valid with an H200's, {len(wrong)} spoiled copies rejected")
+    print(f"{what_valid}, {len(wrong)} spoiled copies rejected")
 
 
 def check_floor_branch(schema, run):
@@ -128,24 +133,14 @@ def check_floor_branch(schema, run):
                       "measured_over_floor": 1.43, "pixels": 2073600, "fetches_per_pixel": 18,
                       "fetch_slots_per_pixel": 70, "bytes_per_pixel": 282, "dram_bytes_per_pixel": 26}
         p["floor_reason"] = ""
-    doc = {"schema": "cavity.results/1", "git_commit": "x", "created_utc": "2026-12-01T00:00:00Z", "command": "",
-           "errors": [], "runs": [run]}
-    validator = jsonschema.Draft202012Validator(schema)
-    validator.validate(doc)
-    wrong = {
+    check_spoiled(schema, run, "floor branch: valid with an H200's figures", {
         "a bound that is neither fetch nor dram": lambda d: d["runs"][0]["passes"][0]["floor"].update(bound="alu"),
         "a floor without floor_ms": lambda d: d["runs"][0]["passes"][0]["floor"].pop("floor_ms"),
         "a zero DRAM floor": lambda d: d["runs"][0]["passes"][0]["floor"].update(dram_floor_ms=0),
         "a figure of unknown source": lambda d: d["runs"][0]["floor_device"]["sm_count"].update(source="guess"),
         "a figure without its source": lambda d: d["runs"][0]["floor_device"]["dram_gb_per_s"].pop("source"),
         "a pass without floor_reason": lambda d: d["runs"][0]["passes"][0].pop("floor_reason"),
-    }
-    for what, spoil in wrong.items():
-        bad = copy.deepcopy(doc)
-        spoil(bad)
-        if validator.is_valid(bad):
-            sys.exit(f"the schema accepts {what}")
-    print(f"floor branch: valid with an H200's figures, {len(wrong)} spoiled copies rejected")
+    })
 
 
 if __name__ == "__main__":
