@@ -101,13 +101,24 @@ json floorJson(const PassFloorResult& r, double medianMs) {
 
 }  // namespace
 
-namespace {
-
 json shaderStatsJson(const std::vector<gpu::ShaderStat>& stats) {
     json out = json::array();
     for (const auto& s : stats) out.push_back({{"executable", s.executable}, {"name", s.name}, {"value", s.value}});
     return out;
 }
+
+std::vector<gpu::ShaderStat> shaderStatsFromJson(const json& list) {
+    std::vector<gpu::ShaderStat> stats;
+    if (!list.is_array()) return stats;
+    for (const auto& s : list) {
+        if (!s.is_object() || !s.contains("executable") || !s.contains("name") || !s.contains("value")) continue;
+        if (!s["executable"].is_string() || !s["name"].is_string() || !s["value"].is_number()) continue;
+        stats.push_back({s["executable"].get<std::string>(), s["name"].get<std::string>(), s["value"].get<double>()});
+    }
+    return stats;
+}
+
+namespace {
 
 json nonFiniteJson(const std::vector<NonFinite>& found) {
     json out = json::array();

@@ -49,6 +49,11 @@ struct RunError {
 
 nlohmann::json toJson(const Stats& s);
 nlohmann::json toJson(const RunRecord& r);
+// A pipeline's driver statistics as results.json and a render manifest
+// write them ([{executable, name, value}]), and back; a missing or
+// malformed list reads as none.
+nlohmann::json shaderStatsJson(const std::vector<gpu::ShaderStat>& stats);
+std::vector<gpu::ShaderStat> shaderStatsFromJson(const nlohmann::json& list);
 nlohmann::json resultsDocument(const std::vector<RunRecord>& runs, const std::vector<RunError>& errors,
                                const std::string& command);
 

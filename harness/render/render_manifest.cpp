@@ -1,5 +1,7 @@
 #include "render/render_manifest.h"
 
+#include "measure/results.h"
+
 #include <cmath>
 
 namespace cavity::render {
@@ -17,12 +19,10 @@ json toJson(const RenderEntry& r) {
     json timings = json::array(), images = json::array();
     auto orNull = [](double x) { return std::isfinite(x) ? json(x) : json(); };
     for (const auto& t : r.timings) {
-        json stats = json::array();
-        for (const auto& s : t.shaderStats) stats.push_back({{"executable", s.executable}, {"name", s.name}, {"value", s.value}});
         const double registers = gpu::registerCount(t.shaderStats);
         timings.push_back({{"pass", t.pass}, {"median_ms", t.medianMs}, {"clock", t.clock}, {"ci_low_ms", orNull(t.lowMs)},
                            {"ci_high_ms", orNull(t.highMs)}, {"registers", registers >= 0 ? json(registers) : json()},
-                           {"shader_stats", stats}});
+                           {"shader_stats", measure::shaderStatsJson(t.shaderStats)}});
     }
     for (const auto& i : r.images) {
         images.push_back({{"name", i.name}, {"file", i.file.empty() ? json(nullptr) : json(i.file)},
@@ -41,9 +41,7 @@ json toJson(const RenderEntry& r) {
 // older ones.
 PassTime readPassTime(const json& t) {
     auto num = [&](const char* k) { return t.contains(k) && t.at(k).is_number() ? t.at(k).get<double>() : NAN; };
-    std::vector<gpu::ShaderStat> stats;
-    if (t.contains("shader_stats") && t.at("shader_stats").is_array())
-        for (const auto& s : t.at("shader_stats")) stats.push_back({s.at("executable"), s.at("name"), s.at("value")});
+    auto stats = measure::shaderStatsFromJson(t.contains("shader_stats") ? t.at("shader_stats") : json());
     return {t.at("pass"), t.at("median_ms"), t.at("clock"), num("ci_low_ms"), num("ci_high_ms"), std::move(stats)};
 }
 
