@@ -96,7 +96,8 @@ const cavity::cli::CommandSpec& benchSpec() {
             {"--max-time", "S", "stop measuring after S seconds (0.001..3600)"},
             {"--plant", "PASS:FMAS[,..]", "plant FMAS dependent FMAs per pixel in PASS (1..1000000; the timing-verdict check)"},
             {"--plant-file", "FILE.json", "planted FMAs per configuration id and pass ({\"<id>\": {\"<pass>\": FMAS}})"},
-            {"--kernel-source", "NAME=FILE", "measure with kernels/NAME replaced by FILE's text (an edited kernel); repeatable"},
+            {"--kernel-source", "NAME=FILE", "measure with kernels/NAME replaced by FILE's text (an edited kernel); repeatable",
+             "Options", true},
             {"--device", "K", "device index (0..64; default 0)"},
         };
         c.footer = "\n" + cavity::cli::kernelHelp("Kernels (the sweep's AO pipelines; select by id with --benchmark_filter)") +

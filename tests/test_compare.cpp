@@ -14,6 +14,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <iterator>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -545,9 +546,10 @@ TEST_F(Compare, InterleavedRunsAlternateAndKeepTheSidesApart) {
     }
 }
 
-// One build against itself with an edited kernel on B's side only
-// (--b-args '--kernel-source ...'): B's processes measure the edit and record
-// it, A's do not, and the edit's cost shows in the pass that runs it. (On a
+// One build against itself with two edited kernels on B's side only
+// (--b-args '--kernel-source ... --kernel-source ...'): B's processes measure
+// both edits and record them, A's do not, and each edit's cost shows in the
+// pass that runs it. (On a
 // software renderer compare calls no pass slower or faster, so the medians
 // are read here.)
 TEST_F(Compare, AnEditedKernelOnOneSideIsMeasuredInItsPass) {
@@ -559,15 +561,29 @@ TEST_F(Compare, AnEditedKernelOnOneSideIsMeasuredInItsPass) {
                            "    for (int i = 0; i < 4000; ++i) x = fma(x, 0.9999, 1e-4);\n"
                            "    write_ao(pixel, vec4(min(x, 1.0)));\n"
                            "    write_ao_key(pixel, vec4(1.0, texelFetch(in_zmip, pixel, 0).r, 0.0, 0.0));\n}\n";
+    // A second edit, given with the flag once more: the composite with the
+    // same loop before its own body.
+    std::ifstream stock(std::string(CAVITY_SOURCE_DIR) + "/kernels/composite.glsl");
+    std::string composite((std::istreambuf_iterator<char>(stock)), std::istreambuf_iterator<char>());
+    const std::string entry = "void cavity_main(ivec2 pixel) {\n";
+    const size_t at = composite.find(entry);
+    ASSERT_NE(at, std::string::npos);
+    composite.insert(at + entry.size(), "    float y = float(pixel.x);\n"
+                                        "    for (int i = 0; i < 4000; ++i) y = fma(y, 0.9999, 1e-4);\n"
+                                        "    if (y < -1.0) return;\n");
+    const fs::path slowComposite = dir / "slow_composite.glsl";
+    std::ofstream(slowComposite) << composite;
     const std::string out = (dir / "ab").string();
     const Outcome r = cavity(std::string("ab --a ") + CAVITY_BENCH_EXE + " --b " + CAVITY_BENCH_EXE +
                              " --rounds 4 --filter 'corner/alchemy_fast/n16/b4/full/320x180/vk/compute' "
                              "--bench-args='--frames 2 --warmup 0' --b-args='--kernel-source ssao_alchemy_fast.glsl=" +
-                             slow.string() + "' --out " + out);
+                             slow.string() + " --kernel-source composite.glsl=" + slowComposite.string() + "' --out " + out);
     ASSERT_EQ(r.code, 0) << r.output;
     const json a = cavity::core::readJsonFile(out + "/a_0.json").value(), b = cavity::core::readJsonFile(out + "/b_0.json").value();
     EXPECT_FALSE(a["context"].contains("cavity_kernel_sources"));
     EXPECT_NE(b["context"].value("cavity_kernel_sources", "").find("ssao_alchemy_fast.glsl=" + slow.string()), std::string::npos);
+    EXPECT_NE(b["context"].value("cavity_kernel_sources", "").find("composite.glsl=" + slowComposite.string()),
+              std::string::npos);
     auto passTimes = [&](const char* side, const std::string& pass) {
         std::vector<double> t;
         const json merged = cavity::core::readJsonFile(out + "/" + side + ".json").value();
@@ -580,6 +596,8 @@ TEST_F(Compare, AnEditedKernelOnOneSideIsMeasuredInItsPass) {
     ASSERT_EQ(aoA.size(), 4u);
     ASSERT_EQ(aoB.size(), 4u);
     EXPECT_GT(aoB.front(), 3 * aoA.back());   // 4000 FMAs a pixel against 16 samples
+    const auto compositeA = passTimes("a", "composite"), compositeB = passTimes("b", "composite");
+    EXPECT_GT(compositeB.front(), 3 * compositeA.back());
     const auto blurA = passTimes("a", "blur_x"), blurB = passTimes("b", "blur_x");
     EXPECT_LT(blurB[1], 2 * blurA[2]);          // the passes it does not touch
     EXPECT_LT(blurA[1], 2 * blurB[2]);
