@@ -215,6 +215,11 @@ Result<gpu::ShaderSource> assemble(const KernelDecl& k, gpu::Stage stage,
     src.files.push_back("<preamble of " + k.name + ">");
     std::ostringstream p;
     p << "#version 450\n";
+    // CAVITY_UNROLL: SPIR-V's Unroll hint on a loop, where the compiler
+    // takes the attribute. NVIDIA's Vulkan driver honours it; its GL driver
+    // keeps loops rolled whatever the hint (docs/kernels.md).
+    p << "#extension GL_EXT_control_flow_attributes : enable\n"
+         "#ifdef GL_EXT_control_flow_attributes\n#define CAVITY_UNROLL [[unroll]]\n#else\n#define CAVITY_UNROLL\n#endif\n";
     p << (stage == gpu::Stage::Compute ? "#define CAVITY_STAGE_COMPUTE 1\n" : "#define CAVITY_STAGE_FRAGMENT 1\n");
     // The precision contract (include/common.glsl): `precise` on the values
     // that feed discrete decisions, unless the kernel declares `exact` and

@@ -38,21 +38,49 @@ void writeLayers(ivec2 pixel, vec4 depth) {
 }
 #endif
 
+#if CAVITY_LEVELS_zmip > 16
+#error depth_pyramid_single writes at most 16 levels: add links to cavity_main
+#endif
+
+// Link k of this pixel's chain: whether texel pixel >> k of level k picked
+// it, and if so that texel written. A pixel no texel of level k picked is
+// picked by no smaller level either (the chain passes through level k), and
+// neither is one past an odd level's last texel: the first false ends the
+// work. Three pixels in four stop at level 1.
+bool pyramidLink(int k, ivec2 pixel, vec4 depth) {
+    if (k >= CAVITY_LEVELS_zmip) return false;
+    ivec2 t = pixel >> k;
+    if (any(greaterThanEqual(t, levelSizeOf(k)))) return false;
+    ivec2 pick = min(t * 2 + ivec2(t.y & 1, t.x & 1), levelSizeOf(k - 1) - 1);
+    if (pick != pixel >> (k - 1)) return false;
+    write_zmip_level(k, t, depth);
+    return true;
+}
+
 void cavity_main(ivec2 pixel) {
     vec4 depth = vec4(texelFetch(in_position, pixel, 0).w, 0.0, 0.0, 0.0);
     write_zmip(pixel, depth);
 #ifdef CAVITY_INTERLEAVE
     writeLayers(pixel, depth);
 #endif
-    // A pixel no texel of level k picked is picked by no smaller level
-    // either (the chain passes through level k), and neither is one past an
-    // odd level's last texel: the first such level ends the work. Three
-    // pixels in four stop at level 1.
-    for (int k = 1; k < CAVITY_LEVELS_zmip; ++k) {
-        ivec2 t = pixel >> k;
-        if (any(greaterThanEqual(t, levelSizeOf(k)))) break;
-        ivec2 pick = min(t * 2 + ivec2(t.y & 1, t.x & 1), levelSizeOf(k - 1) - 1);
-        if (pick != pixel >> (k - 1)) break;
-        write_zmip_level(k, t, depth);
-    }
+    // The links written out, each with its level a constant, where a loop
+    // over k was one: NVIDIA's GL driver kept that loop rolled, picking the
+    // level's image through a chain of tests every iteration, and this form
+    // took 7.5% off the pass there (Vulkan unrolled it already;
+    // bench/results/2026-12-03_h200_unroll).
+    if (!pyramidLink(1, pixel, depth)) return;
+    if (!pyramidLink(2, pixel, depth)) return;
+    if (!pyramidLink(3, pixel, depth)) return;
+    if (!pyramidLink(4, pixel, depth)) return;
+    if (!pyramidLink(5, pixel, depth)) return;
+    if (!pyramidLink(6, pixel, depth)) return;
+    if (!pyramidLink(7, pixel, depth)) return;
+    if (!pyramidLink(8, pixel, depth)) return;
+    if (!pyramidLink(9, pixel, depth)) return;
+    if (!pyramidLink(10, pixel, depth)) return;
+    if (!pyramidLink(11, pixel, depth)) return;
+    if (!pyramidLink(12, pixel, depth)) return;
+    if (!pyramidLink(13, pixel, depth)) return;
+    if (!pyramidLink(14, pixel, depth)) return;
+    pyramidLink(15, pixel, depth);
 }

@@ -198,6 +198,7 @@ KernelDecl alchemyFast() {
     // table's last bits, the shader and the CPU reference read the same ones.
     k.params.push_back(use("exact"));
     k.params.push_back(use("interleave"));
+    k.compileTime = {"samples"};   // the sample loop unrolls (ssao_alchemy_fast.glsl)
     k.arrays = {{"spiral", 256}};
     k.derive = [](const ParamValues&, std::map<std::string, std::vector<float>>& arrays) {
         std::vector<float> table(256 * 4, 0.0f);
@@ -238,6 +239,7 @@ KernelDecl hemisphereFast() {
     k.inputs = {{"zmip", {gpu::Filter::Nearest, gpu::Address::ClampToEdge, true}}, {"normal", {}}, {"zlayers", {}}};
     k.outputs = {{"ao", Format::R16F}, {"ao_key", Format::RGBA16F}};
     k.interleaved = true;
+    k.compileTime = {"samples"};   // the point loop unrolls (ssao_hemisphere_fast.glsl)
     k.arrays = {{"kernel", maxKernelPoints()}};
     k.derive = [](const ParamValues& v, std::map<std::string, std::vector<float>>& arrays) {
         arrays["kernel"] = cosineKernel(intValue(v, "samples"), intValue(v, "steps"));

@@ -36,31 +36,36 @@ ivec2 spiralSampleTurned(int i, vec2 phase, float discScale, vec2 fragCentre, ou
     return ivec2(floor(samplePos));
 }
 
-void cavity_main(ivec2 pixel) {
-    float d = pyramidDepth(pixel, 0);
-    if (isBackground(d)) {
-        write_ao(pixel, vec4(1.0));
-        write_ao_key(pixel, vec4(1.0, 0.0, 0.0, 0.0));
-        return;
-    }
-    vec3 X = positionAt(pixel, d);
-    vec3 N = texelFetch(in_normal, pixel, 0).xyz;
-    int maxLevel = textureQueryLevels(in_zmip) - 1;
+// The sample count compiled in (KernelDecl::compileTime), up to 64, and the
+// loop over the samples unrolled where the compiler takes the hint: the
+// spiral's directions then come from fixed offsets of the uniform block.
+// On the H200 that took 9% off the AO pass on Vulkan and nothing on GL,
+// which keeps the loop rolled (bench/results/2026-12-03_h200_unroll).
+#if defined(CAVITY_CONST_samples) && CAVITY_CONST_samples <= 64
+#define SAMPLE_COUNT CAVITY_CONST_samples
+#define CAVITY_SAMPLE_LOOP CAVITY_UNROLL
+#else
+#define SAMPLE_COUNT P.samples
+#define CAVITY_SAMPLE_LOOP
+#endif
 
-    // One sample at a time: fetching a batch of samples' depths before using
-    // any was 20% slower on the H200 (bench/results/2026-12-03_h200_batched),
-    // the registers it takes costing more occupancy than the latency it hides.
-    int n = P.samples;
+// The seed's sum S over the n samples around the pixel at X (normal N,
+// depth d). `belowTiny`: every level a sample may read is below the tiny
+// ones (pyramidTinyLevel), so no sample needs the other path; the caller
+// passes a constant, and the compiler makes one copy of the loop for each.
+float obscurance(const bool belowTiny, int n, ivec2 pixel, vec3 X, vec3 N, float d, int maxLevel, int tiny) {
     float R = P.radius;
     float c = 0.1 * R;
     float weight = 2.0 * PI * c / float(n);
     float discScale = spiralDiscScale(R, n, d);
     vec2 phase = cosSinTurns(samplePhase(pixel));
     vec2 fragCentre = vec2(pixel) + 0.5;
-    int tiny = pyramidTinyLevel();
 
+    // One sample at a time: fetching a batch of samples' depths before using
+    // any was 20% slower on the H200 (bench/results/2026-12-03_h200_batched),
+    // the registers it takes costing more occupancy than the latency it hides.
     float S = 0.0;
-    for (int i = 0; i < n; ++i) {
+    CAVITY_SAMPLE_LOOP for (int i = 0; i < n; ++i) {
         float h;
         ivec2 s = spiralSampleTurned(i, phase, discScale, fragCentre, h);
         // One unsigned test for both sides: a negative coordinate wraps past any size.
@@ -73,7 +78,7 @@ void cavity_main(ivec2 pixel) {
         // separated (bench/results/2026-12-03_h200_overheads).
         ivec2 source;
         ivec2 t;
-        if (level < tiny) {
+        if (belowTiny || level < tiny) {
             t = min(s >> level, (frame.size >> level) - 1);
             source = sourcePixelBelowTiny(t, level);
         } else {
@@ -88,6 +93,24 @@ void cavity_main(ivec2 pixel) {
         if (omega2 > R * R) continue;
         S += weight * max(0.0, dot(N, omega) - P.bias) / max(c * c, omega2);
     }
+    return S;
+}
+
+void cavity_main(ivec2 pixel) {
+    float d = pyramidDepth(pixel, 0);
+    if (isBackground(d)) {
+        write_ao(pixel, vec4(1.0));
+        write_ao_key(pixel, vec4(1.0, 0.0, 0.0, 0.0));
+        return;
+    }
+    vec3 X = positionAt(pixel, d);
+    vec3 N = texelFetch(in_normal, pixel, 0).xyz;
+    int maxLevel = textureQueryLevels(in_zmip) - 1;
+    int tiny = pyramidTinyLevel();
+    // Any image of at least 2^maxLevel px a side reads only levels below
+    // the tiny ones; that copy of the loop tests nothing more per sample.
+    float S = maxLevel < tiny ? obscurance(true, SAMPLE_COUNT, pixel, X, N, d, maxLevel, tiny)
+                              : obscurance(false, SAMPLE_COUNT, pixel, X, N, d, maxLevel, tiny);
     float A = pow(max(0.0, 1.0 - P.scale * S), P.contrast);
     write_ao(pixel, vec4(A, 0.0, 0.0, 0.0));
     write_ao_key(pixel, vec4(A, d, octEncode(N)));
