@@ -33,6 +33,7 @@ struct Case {
     gpu::Stage stage = gpu::Stage::Compute;
     bool fusedTail = false;
     int interleave = 1;   // the AO pass's interleaved layers per axis
+    int samples = 0;      // 0: the kernel's default
 };
 
 class KernelVsReference : public GpuTest {};
@@ -128,6 +129,9 @@ void checkChain(gpu::Backend& gpu, gpu::Api api, const Case& cs, CheckedChain* k
     if (cs.interleave > 1) {
         ASSERT_TRUE(setParam(c, "interleave", std::to_string(cs.interleave)).ok());
     }
+    if (cs.samples > 0) {
+        ASSERT_TRUE(setParam(c, "samples", std::to_string(cs.samples)).ok());
+    }
     auto chain = recordedChain(gpu, c);
     ASSERT_TRUE(chain) << chain.error().message;
 
@@ -194,6 +198,18 @@ TEST_P(KernelVsReference, Slats320x180) { checkAll(gpu(), api(), "slats", 320, 1
 TEST_P(KernelVsReference, ThinImagesReadTheTinyLevels) {
     for (const std::string kernel : {"alchemy_fast", "hemisphere_fast"})
         for (const auto& [w, h] : {std::pair{256, 3}, std::pair{3, 256}}) checkChain(gpu(), api(), {"corner", w, h, kernel});
+}
+
+// The fast kernels compile their sample count in and unroll the loop up to
+// 64 samples (ssao_alchemy_fast.glsl); past that the count is the uniform's.
+// Both sides of that limit, and an odd count, against the CPU reference.
+TEST_P(KernelVsReference, SampleCountsUnrolledAndNot) {
+    for (const std::string kernel : {"alchemy_fast", "hemisphere_fast"})
+        for (int n : {7, 64, 72}) {
+            Case cs{"slats", 96, 54, kernel};
+            cs.samples = n;
+            checkChain(gpu(), api(), cs);
+        }
 }
 
 // The other four scenes: the G-buffer march, one screen-space and one
