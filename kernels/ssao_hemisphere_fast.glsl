@@ -55,23 +55,9 @@ float occludedBy(PyramidView v, vec3 X, vec3 N, float level, float d, vec3 k, ve
     return (P.range_check != 0 && dz > P.radius) ? smoothstep(0.0, 1.0, P.radius / dz) : 1.0;
 }
 
-void cavity_main(ivec2 pixel) {
-    float d = pyramidDepth(pixel, 0);
-    vec3 N = texelFetch(in_normal, pixel, 0).xyz;
-    if (isBackground(d) || lengthSquared(N) == 0.0) {
-        write_ao(pixel, vec4(1.0));
-        write_ao_key(pixel, vec4(1.0, 0.0, 0.0, 0.0));
-        return;
-    }
-    N = portableNormalize(N);
-    vec3 X = positionAt(pixel, d);
-    PyramidView view = pyramidView();
-    float level = orderedDot(N, X);
-
-    // The kernel's tangent frame, turned about N by the pixel's phase.
-    vec3 tn, b;
-    tangentFrame(cosSinTurns(samplePhase(pixel)), N, tn, b);
-
+// The share of the pixel's rays that are blocked. With v.tiny a constant
+// 32 (belowTiny) the compiler drops the tiny levels' path.
+float blockedShare(PyramidView view, ivec2 pixel, vec3 X, vec3 N, float level, float d, vec3 tn, vec3 b) {
     // Points come in groups along one ray (P.kernel[i].w = 1 closes one):
     // a ray is blocked when any of its points is. Every point is fetched,
     // also after one has blocked its ray fully (max() then keeps 1):
@@ -106,7 +92,31 @@ void cavity_main(ivec2 pixel) {
             inGroup = 0;
         }
     }
-    float ao = pow(max(1.0 - occlusion / directions, 0.0), P.contrast);
+    return occlusion / directions;
+}
+
+void cavity_main(ivec2 pixel) {
+    float d = pyramidDepth(pixel, 0);
+    vec3 N = texelFetch(in_normal, pixel, 0).xyz;
+    if (isBackground(d) || lengthSquared(N) == 0.0) {
+        write_ao(pixel, vec4(1.0));
+        write_ao_key(pixel, vec4(1.0, 0.0, 0.0, 0.0));
+        return;
+    }
+    N = portableNormalize(N);
+    vec3 X = positionAt(pixel, d);
+    PyramidView view = pyramidView();
+    float level = orderedDot(N, X);
+
+    // The kernel's tangent frame, turned about N by the pixel's phase.
+    vec3 tn, b;
+    tangentFrame(cosSinTurns(samplePhase(pixel)), N, tn, b);
+
+    // Any image of at least 2^maxLevel px a side reads only levels below
+    // the tiny ones: that copy of the loop is compiled without their path.
+    float share = view.maxLevel < view.tiny ? blockedShare(belowTiny(view), pixel, X, N, level, d, tn, b)
+                                            : blockedShare(view, pixel, X, N, level, d, tn, b);
+    float ao = pow(max(1.0 - share, 0.0), P.contrast);
     write_ao(pixel, vec4(ao, 0.0, 0.0, 0.0));
     write_ao_key(pixel, vec4(ao, d, octEncode(N)));
 }

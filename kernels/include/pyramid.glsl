@@ -74,7 +74,9 @@ ivec2 sourcePixel(ivec2 t, int level) {
 // (bench/results/2026-12-03_h200_overheads).
 ivec2 pyramidTexel(ivec2 s, int level, int tiny, out ivec2 source) {
     ivec2 t;
-    if (level < tiny) {
+    // tiny >= 32: no level can be a tiny one (level <= 28), and a constant
+    // there (belowTiny) drops the other path at compile time.
+    if (tiny >= 32 || level < tiny) {
         t = min(s >> level, (frame.size >> level) - 1);
         source = sourcePixelBelowTiny(t, level);
     } else {
@@ -110,6 +112,12 @@ PyramidView pyramidView() {
     EXACT vec2 toPixel = vec2(0.5, -0.5) * vec2(frame.size) *
                            vec2(portableReciprocal(frame.camera.x), portableReciprocal(frame.camera.y));
     return PyramidView(toPixel, 0.5 * vec2(frame.size), textureQueryLevels(in_zmip) - 1, pyramidTinyLevel());
+}
+
+// The same view, saying that every level is below the tiny ones: for a
+// copy of a loop that a kernel takes when v.maxLevel < v.tiny.
+PyramidView belowTiny(PyramidView v) {
+    return PyramidView(v.toPixel, v.centre, v.maxLevel, 32);
 }
 
 // The stored surface under the view-space point s, seen from the receiver
