@@ -38,21 +38,25 @@ ivec2 spiralSampleTurned(int i, vec2 phase, float discScale, vec2 fragCentre, ou
 
 // The sample count compiled in (KernelDecl::compileTime), up to 64, and the
 // samples unrolled: the spiral's directions then come from fixed offsets of
-// the uniform block. Vulkan: a loop with the Unroll hint, which NVIDIA's
-// driver takes (the AO pass 9% faster on the H200; written out by hand it
-// was 2% slower than that). GL: the samples written out, one term each
-// (CAVITY_REPEAT_samples), because NVIDIA's GL driver keeps a loop rolled
-// whatever the hint; written out took 12% off its AO pass
-// (bench/results/2026-12-03_h200_unroll).
+// the uniform block. Vulkan: the loop with the Unroll hint, which NVIDIA's
+// driver takes (the AO pass 13% faster on the H200). GL: the samples
+// written out by the preprocessor (CAVITY_REPEAT_samples), because NVIDIA's
+// GL driver keeps a loop rolled whatever the hint; that took 10% off its AO
+// pass. Each API keeps the form measured faster on it: the GL form, with
+// its per-sample function, made Vulkan's pass 9% slower, and samples written
+// out in the loop's own form 2% slower (bench/results/2026-12-03_h200_unroll).
 #if defined(CAVITY_CONST_samples) && CAVITY_CONST_samples <= 64
 #define SAMPLE_COUNT CAVITY_CONST_samples
+#define CAVITY_SAMPLE_LOOP CAVITY_UNROLL
 #if !defined(VULKAN)
 #define WRITE_SAMPLES_OUT 1
 #endif
 #else
 #define SAMPLE_COUNT P.samples
+#define CAVITY_SAMPLE_LOOP
 #endif
 
+#ifdef WRITE_SAMPLES_OUT
 // What the pixel's inputs and the pass's constants are, for sampleTerm.
 struct Receiver {
     vec3 X, N;           // its view position and normal
@@ -99,22 +103,79 @@ bool sampleTerm(const bool belowTiny, int i, Receiver r, out float term) {
     return true;
 }
 
-// The seed's sum S over the n samples of the receiver.
+// The seed's sum S over the receiver's samples, written out.
 // One sample at a time: fetching a batch of samples' depths before using
 // any was 20% slower on the H200 (bench/results/2026-12-03_h200_batched),
 // the registers it takes costing more occupancy than the latency it hides.
-float obscurance(const bool belowTiny, int n, Receiver r) {
+float obscuranceWrittenOut(const bool belowTiny, Receiver r) {
     float S = 0.0, term;
-#ifdef WRITE_SAMPLES_OUT
 #define SAMPLE_TERM(i) if (sampleTerm(belowTiny, i, r, term)) S += term;
     CAVITY_REPEAT_samples(SAMPLE_TERM)
-#else
-#ifdef CAVITY_CONST_samples
-    CAVITY_UNROLL
+    return S;
+}
+
+// The receiver of the pixel at X (normal N, depth d) with n samples: the
+// values obscurance() computes first, in the same operations.
+Receiver receiverOf(ivec2 pixel, vec3 X, vec3 N, float d, int n, int maxLevel, int tiny) {
+    Receiver r;
+    r.X = X;
+    r.N = N;
+    r.R = P.radius;
+    r.c = 0.1 * r.R;
+    r.weight = 2.0 * PI * r.c / float(n);
+    r.discScale = spiralDiscScale(r.R, n, d);
+    r.phase = cosSinTurns(samplePhase(pixel));
+    r.fragCentre = vec2(pixel) + 0.5;
+    r.maxLevel = maxLevel;
+    r.tiny = tiny;
+    return r;
+}
 #endif
-    for (int i = 0; i < n; ++i)
-        if (sampleTerm(belowTiny, i, r, term)) S += term;
-#endif
+
+// The seed's sum S over the n samples around the pixel at X (normal N,
+// depth d). `belowTiny`: every level a sample may read is below the tiny
+// ones (pyramidTinyLevel), so no sample needs the other path; the caller
+// passes a constant, and the compiler makes one copy of the loop for each.
+float obscurance(const bool belowTiny, int n, ivec2 pixel, vec3 X, vec3 N, float d, int maxLevel, int tiny) {
+    float R = P.radius;
+    float c = 0.1 * R;
+    float weight = 2.0 * PI * c / float(n);
+    float discScale = spiralDiscScale(R, n, d);
+    vec2 phase = cosSinTurns(samplePhase(pixel));
+    vec2 fragCentre = vec2(pixel) + 0.5;
+
+    // One sample at a time: fetching a batch of samples' depths before using
+    // any was 20% slower on the H200 (bench/results/2026-12-03_h200_batched),
+    // the registers it takes costing more occupancy than the latency it hides.
+    float S = 0.0;
+    CAVITY_SAMPLE_LOOP for (int i = 0; i < n; ++i) {
+        float h;
+        ivec2 s = spiralSampleTurned(i, phase, discScale, fragCentre, h);
+        // One unsigned test for both sides: a negative coordinate wraps past any size.
+        if (any(greaterThanEqual(uvec2(s), uvec2(frame.size)))) continue;
+        // h < 2^31 here: the sample is inside the image.
+        int level = pyramidLevel(int(h), maxLevel);
+        // pyramidTexel, written out as in the variant measured fastest on the
+        // H200; through a pyramidTexel whose tiny path was also different it
+        // measured 2% slower, and which of the two cost that was not
+        // separated (bench/results/2026-12-03_h200_overheads).
+        ivec2 source;
+        ivec2 t;
+        if (belowTiny || level < tiny) {
+            t = min(s >> level, (frame.size >> level) - 1);
+            source = sourcePixelBelowTiny(t, level);
+        } else {
+            t = min(s >> level, levelSize(level) - 1);
+            source = sourcePixel(t, level);
+        }
+        float zs = pyramidDepth(t, level);
+        if (isBackground(zs)) continue;
+
+        EXACT vec3 omega = positionAt(source, zs) - X;
+        float omega2 = lengthSquared(omega);
+        if (omega2 > R * R) continue;
+        S += weight * max(0.0, dot(N, omega) - P.bias) / max(c * c, omega2);
+    }
     return S;
 }
 
@@ -127,21 +188,17 @@ void cavity_main(ivec2 pixel) {
     }
     vec3 X = positionAt(pixel, d);
     vec3 N = texelFetch(in_normal, pixel, 0).xyz;
-    int n = SAMPLE_COUNT;
-    Receiver r;
-    r.X = X;
-    r.N = N;
-    r.R = P.radius;
-    r.c = 0.1 * r.R;
-    r.weight = 2.0 * PI * r.c / float(n);
-    r.discScale = spiralDiscScale(r.R, n, d);
-    r.phase = cosSinTurns(samplePhase(pixel));
-    r.fragCentre = vec2(pixel) + 0.5;
-    r.maxLevel = textureQueryLevels(in_zmip) - 1;
-    r.tiny = pyramidTinyLevel();
+    int maxLevel = textureQueryLevels(in_zmip) - 1;
+    int tiny = pyramidTinyLevel();
     // Any image of at least 2^maxLevel px a side reads only levels below
-    // the tiny ones; that copy of the samples tests nothing more per sample.
-    float S = r.maxLevel < r.tiny ? obscurance(true, SAMPLE_COUNT, r) : obscurance(false, SAMPLE_COUNT, r);
+    // the tiny ones; that copy of the loop tests nothing more per sample.
+#ifdef WRITE_SAMPLES_OUT
+    Receiver r = receiverOf(pixel, X, N, d, SAMPLE_COUNT, maxLevel, tiny);
+    float S = maxLevel < tiny ? obscuranceWrittenOut(true, r) : obscuranceWrittenOut(false, r);
+#else
+    float S = maxLevel < tiny ? obscurance(true, SAMPLE_COUNT, pixel, X, N, d, maxLevel, tiny)
+                              : obscurance(false, SAMPLE_COUNT, pixel, X, N, d, maxLevel, tiny);
+#endif
     float A = pow(max(0.0, 1.0 - P.scale * S), P.contrast);
     write_ao(pixel, vec4(A, 0.0, 0.0, 0.0));
     write_ao_key(pixel, vec4(A, d, octEncode(N)));
