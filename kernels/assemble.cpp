@@ -206,6 +206,25 @@ Result<Workgroup> workgroupSize(const KernelDecl& k) {
     return Workgroup{uint32_t(x), uint32_t(y)};
 }
 
+namespace {
+
+// CAVITY_CONST_<name> for each compileTime parameter, and for a count from 1
+// to 64 CAVITY_REPEAT_<name>(F), F(0) F(1) ... F(count - 1): a loop written
+// out by the preprocessor (ssao_alchemy_fast.glsl says where, and why).
+void defineCompileTime(std::ostream& p, const KernelDecl& k, const ParamValues& all) {
+    for (const auto& name : k.compileTime) {
+        if (!all.count(name)) continue;
+        const int v = intValue(all, name);
+        p << "#define CAVITY_CONST_" << name << " " << v << "\n";
+        if (v < 1 || v > 64) continue;
+        p << "#define CAVITY_REPEAT_" << name << "(F)";
+        for (int i = 0; i < v; ++i) p << " F(" << i << ")";
+        p << "\n";
+    }
+}
+
+}  // namespace
+
 Result<gpu::ShaderSource> assemble(const KernelDecl& k, gpu::Stage stage,
                                    const std::map<std::string, std::string>& overrides, const ParamValues* values,
                                    int plantedFmas) {
@@ -228,17 +247,7 @@ Result<gpu::ShaderSource> assemble(const KernelDecl& k, gpu::Stage stage,
     const int interleave = values ? interleaveValue(*values) : 1;
     if (values) {
         const ParamValues all = withDefaults(k, *values);
-        for (const auto& name : k.compileTime) {
-            if (!all.count(name)) continue;
-            const int v = intValue(all, name);
-            p << "#define CAVITY_CONST_" << name << " " << v << "\n";
-            // F(0) F(1) ... F(v - 1): a loop written out by the preprocessor
-            // (ssao_alchemy_fast.glsl says where, and why).
-            if (v < 1 || v > 64) continue;
-            p << "#define CAVITY_REPEAT_" << name << "(F)";
-            for (int i = 0; i < v; ++i) p << " F(" << i << ")";
-            p << "\n";
-        }
+        defineCompileTime(p, k, all);
         exact = !all.count("exact") || intValue(all, "exact") != 0;
     }
     p << (exact ? "#define EXACT precise\n" : "#define EXACT\n#define CAVITY_INEXACT 1\n");
