@@ -45,7 +45,7 @@ ivec2 spiralSampleTurned(int i, vec2 phase, float discScale, vec2 fragCentre, ou
 // pass. Each API keeps the form measured faster on it: the GL form, with
 // its per-sample function, made Vulkan's pass 9% slower, and samples written
 // out in the loop's own form 2% slower (bench/results/2026-12-03_h200_unroll).
-#if defined(CAVITY_CONST_samples) && CAVITY_CONST_samples <= 64
+#ifdef CAVITY_REPEAT_samples   // a count from 1 to 64 compiled in (assemble())
 #define SAMPLE_COUNT CAVITY_CONST_samples
 #define CAVITY_SAMPLE_LOOP CAVITY_UNROLL
 #if !defined(VULKAN)

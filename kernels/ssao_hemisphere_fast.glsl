@@ -67,18 +67,17 @@ float blockedShare(PyramidView view, ivec2 pixel, vec3 X, vec3 N, float level, f
     // ssao_hemisphere.glsl.
     // The point count compiled in and the loop unrolled, as in
     // ssao_alchemy_fast.glsl: 8% off this pass on the H200's Vulkan.
-#if defined(CAVITY_CONST_samples) && CAVITY_CONST_samples <= 64
-    const int n = clamp(CAVITY_CONST_samples, 1, 256);
+#ifdef CAVITY_REPEAT_samples   // a count from 1 to 64 compiled in (assemble())
+    const int n = CAVITY_CONST_samples;
+#define POINT_LOOP CAVITY_UNROLL
 #else
+#define POINT_LOOP
     int n = clamp(P.samples, 1, 256);
 #endif
     float R = P.radius;
     float occlusion = 0.0, directions = 0.0, blocked = 0.0, u = 0.0;
     int inGroup = 0;
-#if defined(CAVITY_CONST_samples) && CAVITY_CONST_samples <= 64
-    CAVITY_UNROLL
-#endif
-    for (int i = 0; i < n; ++i) {
+    POINT_LOOP for (int i = 0; i < n; ++i) {
         vec4 k = P.kernel[i];
         if (inGroup == 0 && P.step_jitter != 0) u = sampleHash(phasePixel(pixel), int(directions));
         EXACT float lengthScale = R;
