@@ -175,8 +175,9 @@ std::string interleavePreamble(int k) {
 
 // main() around cavity_main: a compute invocation per pixel, or for an
 // interleaved pass, invocation (layer l, texel q) of the layers laid side by
-// side shading pixel q * k + l; a fragment per pixel.
-std::string entryPoint(gpu::Stage stage, bool interleaved, const std::string& plant, Workgroup wg) {
+// side shading pixel q * k + l; a fragment per pixel. A kernel that declares
+// wholeWorkgroups also gets the invocations past the image's edge.
+std::string entryPoint(gpu::Stage stage, const KernelDecl& k, bool interleaved, const std::string& plant, Workgroup wg) {
     if (stage != gpu::Stage::Compute)
         return "void main() {\n    ivec2 pixel = ivec2(gl_FragCoord.xy);\n    cavity_main(pixel);\n" + plant + "}\n";
     const std::string pixel = interleaved
@@ -185,9 +186,10 @@ std::string entryPoint(gpu::Stage stage, bool interleaved, const std::string& pl
                                     "    if (any(greaterThanEqual(layer, ivec2(CAVITY_INTERLEAVE)))) return;\n"
                                     "    ivec2 pixel = (atlas - layer * cavityLayerSize()) * CAVITY_INTERLEAVE + layer;\n"
                                   : "    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);\n";
+    const std::string outside =
+        k.wholeWorkgroups ? "" : "    if (pixel.x >= frame.size.x || pixel.y >= frame.size.y) return;\n";
     return "layout(local_size_x = " + std::to_string(wg.x) + ", local_size_y = " + std::to_string(wg.y) + ") in;\n"
-           "void main() {\n" + pixel +
-           "    if (pixel.x >= frame.size.x || pixel.y >= frame.size.y) return;\n"
+           "void main() {\n" + pixel + outside +
            "    cavity_main(pixel);\n" + plant +
            "}\n";
 }
@@ -223,6 +225,17 @@ void defineCompileTime(std::ostream& p, const KernelDecl& k, const ParamValues& 
     }
 }
 
+// The stage, and for compute the workgroup's shape (a tile in workgroup
+// memory is sized by it: include/blur_separable.glsl).
+void defineStage(std::ostream& p, gpu::Stage stage, Workgroup wg) {
+    if (stage != gpu::Stage::Compute) {
+        p << "#define CAVITY_STAGE_FRAGMENT 1\n";
+        return;
+    }
+    p << "#define CAVITY_STAGE_COMPUTE 1\n#define CAVITY_WORKGROUP_X " << wg.x << "\n#define CAVITY_WORKGROUP_Y " << wg.y
+      << "\n";
+}
+
 }  // namespace
 
 Result<gpu::ShaderSource> assemble(const KernelDecl& k, gpu::Stage stage,
@@ -239,7 +252,8 @@ Result<gpu::ShaderSource> assemble(const KernelDecl& k, gpu::Stage stage,
     // keeps loops rolled whatever the hint (docs/kernels.md).
     p << "#extension GL_EXT_control_flow_attributes : enable\n"
          "#ifdef GL_EXT_control_flow_attributes\n#define CAVITY_UNROLL [[unroll]]\n#else\n#define CAVITY_UNROLL\n#endif\n";
-    p << (stage == gpu::Stage::Compute ? "#define CAVITY_STAGE_COMPUTE 1\n" : "#define CAVITY_STAGE_FRAGMENT 1\n");
+    CAVITY_ASSIGN(const Workgroup wg, workgroupSize(k));
+    defineStage(p, stage, wg);
     // The precision contract (include/common.glsl): `precise` on the values
     // that feed discrete decisions, unless the kernel declares `exact` and
     // is run with it 0.
@@ -298,8 +312,7 @@ Result<gpu::ShaderSource> assemble(const KernelDecl& k, gpu::Stage stage,
                 "    for (int i = 0; i < " + std::to_string(plantedFmas) + "; ++i) plant_ = fma(plant_, 0.9999, frame.invSize.y);\n"
                 "    if (plant_ < 0.0) write_" + k.outputs[0].name + "(pixel, vec4(plant_));\n";
     // The two thin entry points around the one body.
-    CAVITY_ASSIGN(const Workgroup wg, workgroupSize(k));
-    src.glsl += "#line 1 0\n" + entryPoint(stage, k.interleaved && interleave > 1, plant, wg);
+    src.glsl += "#line 1 0\n" + entryPoint(stage, k, k.interleaved && interleave > 1, plant, wg);
     return src;
 }
 

@@ -4,6 +4,7 @@
 // blur_bilateral_ssdo.glsl keeps them. Also blurs the bounce (radiance is
 // then the indirect light; the key's visibility is blurred again and not
 // used).
+#define BLUR_ALONG_X 1
 #include "include/blur_separable.glsl"
 
 vec3 blurredWith(ivec2 q) {
@@ -11,7 +12,9 @@ vec3 blurredWith(ivec2 q) {
 }
 
 void cavity_main(ivec2 pixel) {
+    blurShareTile();
+    if (!inImage(pixel)) return;
     vec3 radiance;
-    write_ao_key(pixel, blurAlong(pixel, ivec2(1, 0), radiance));
+    write_ao_key(pixel, blurAlong(pixel, radiance));
     write_radiance(pixel, vec4(radiance, 1.0));
 }

@@ -8,7 +8,9 @@ vec3 blurredWith(ivec2 q) {
 }
 
 void cavity_main(ivec2 pixel) {
+    blurShareTile();
+    if (!inImage(pixel)) return;
     vec3 radiance;
-    write_visibility(pixel, vec4(blurAlong(pixel, ivec2(0, 1), radiance).r, 0.0, 0.0, 0.0));
+    write_visibility(pixel, vec4(blurAlong(pixel, radiance).r, 0.0, 0.0, 0.0));
     write_radiance(pixel, vec4(radiance, 1.0));
 }

@@ -1,5 +1,6 @@
 // The horizontal pass of the separable depth-aware blur
 // (include/blur_separable.glsl); keeps the depth key for the vertical pass.
+#define BLUR_ALONG_X 1
 #include "include/blur_separable.glsl"
 
 vec3 blurredWith(ivec2 q) {
@@ -7,6 +8,8 @@ vec3 blurredWith(ivec2 q) {
 }
 
 void cavity_main(ivec2 pixel) {
+    blurShareTile();
+    if (!inImage(pixel)) return;
     vec3 unused;
-    write_ao_key(pixel, blurAlong(pixel, ivec2(1, 0), unused));
+    write_ao_key(pixel, blurAlong(pixel, unused));
 }

@@ -7,6 +7,8 @@ vec3 blurredWith(ivec2 q) {
 }
 
 void cavity_main(ivec2 pixel) {
+    blurShareTile();
+    if (!inImage(pixel)) return;
     vec3 unused;
-    write_ao(pixel, vec4(blurAlong(pixel, ivec2(0, 1), unused).r, 0.0, 0.0, 0.0));
+    write_ao(pixel, vec4(blurAlong(pixel, unused).r, 0.0, 0.0, 0.0));
 }

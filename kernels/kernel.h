@@ -161,6 +161,11 @@ struct KernelDecl {
     // linear depth split into those layers (the pyramid's atlas); with k = 1
     // it is the pyramid itself, and the pass one plain dispatch.
     bool interleaved = false;
+    // cavity_main runs for every invocation of each workgroup, those past
+    // the image's edge included, so that a workgroup can share memory and
+    // meet at barrier() (the separable blur's tile); the kernel must then
+    // write nothing for a pixel outside frame.size. Compute stage only.
+    bool wholeWorkgroups = false;
 };
 
 // The fixed uniform block every kernel sees at binding 0 (std140).

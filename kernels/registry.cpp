@@ -257,6 +257,10 @@ KernelDecl blurSeparable(const std::string& axis) {
     k.params[0].note = "2r+1 taps along each axis";
     k.inputs = {{"ao_key", {}}};
     k.outputs = {{axis == "x" ? "ao_key" : "ao", axis == "x" ? Format::RGBA16F : Format::R16F}};
+    // Compute: the workgroup decodes its tile once into shared memory, and
+    // the tap loop, of a compiled-in count, unrolls (include/blur_separable.glsl).
+    k.compileTime = {"blur"};
+    k.wholeWorkgroups = true;
     const double out = axis == "x" ? kRgba16f : kR16f;
     k.cost = [out](const ParamValues& v) {
         const double taps = 2 * v.at("blur") + 1;

@@ -34,6 +34,7 @@ struct Case {
     bool fusedTail = false;
     int interleave = 1;   // the AO pass's interleaved layers per axis
     int samples = 0;      // 0: the kernel's default
+    int blur = -1;        // the blur radius; -1: the kernel's default
 };
 
 class KernelVsReference : public GpuTest {};
@@ -129,6 +130,9 @@ void checkChain(gpu::Backend& gpu, gpu::Api api, const Case& cs, CheckedChain* k
     if (cs.interleave > 1) {
         ASSERT_TRUE(setParam(c, "interleave", std::to_string(cs.interleave)).ok());
     }
+    if (cs.blur >= 0) {
+        ASSERT_TRUE(setParam(c, "blur", std::to_string(cs.blur)).ok());
+    }
     if (cs.samples > 0) {
         ASSERT_TRUE(setParam(c, "samples", std::to_string(cs.samples)).ok());
     }
@@ -208,6 +212,20 @@ TEST_P(KernelVsReference, SampleCountsUnrolledAndNot) {
         for (int n : {7, 64, 72}) {
             Case cs{"slats", 96, 54, kernel};
             cs.samples = n;
+            checkChain(gpu(), api(), cs);
+        }
+}
+
+// The separable blur's compute passes decode a workgroup's tile into shared
+// memory for radii 1 to 16 in 16x16 workgroups, and read the texture past
+// that (include/blur_separable.glsl). Both sides of the limit, at a size
+// whose last workgroups hang over both edges, for the AO key alone and for
+// SSDO's radiance beside it.
+TEST_P(KernelVsReference, BlurRadiiTiledAndNot) {
+    for (const std::string kernel : {"alchemy_fast", "ssdo_fast"})
+        for (int r : {1, 16, 17}) {
+            Case cs{"slats", 100, 60, kernel};
+            cs.blur = r;
             checkChain(gpu(), api(), cs);
         }
 }

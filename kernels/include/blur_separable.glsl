@@ -26,29 +26,112 @@ float gaussianWeight(int i) {
 // where there is nothing (the compiler drops it). Each kernel defines it.
 vec3 blurredWith(ivec2 q);
 
-// The centre's key with its AO blurred along `axis`, and in `value` what
-// blurredWith() reads, blurred alike.
-vec4 blurAlong(ivec2 pixel, ivec2 axis, out vec3 value) {
+// The axis: each kernel defines BLUR_ALONG_X, or not, before including this.
+#ifdef BLUR_ALONG_X
+const ivec2 kBlurAxis = ivec2(1, 0);
+#else
+const ivec2 kBlurAxis = ivec2(0, 1);
+#endif
+
+float tapWeight(int t, vec3 N, vec3 tapNormal, float dd, float twoSigma2) {
+    return gaussianWeight(abs(t)) * max(0.0, dot(N, tapNormal)) * exp(-dd * dd / twoSigma2);
+}
+
+// The compute pass's tile: the workgroup's pixels and the r texels either
+// side along the axis, each decoded once (normal, linear depth, AO) where
+// each tap decoded its own, 2r + 1 times a texel; a texel past the image's
+// edge has depth 0, so it is skipped as background, as the texture path
+// skips it. The kernel declares wholeWorkgroups (every invocation loads and
+// meets at the barrier) and compiles its radius in, which sizes the tile
+// and writes the taps out. The tile keeps to 768 texels, 15 KiB, under the
+// 16 KiB of shared memory every Vulkan device has: radii 1 to 16 in 16x16
+// workgroups. Other radii, and the fragment stage, take the texture path.
+#if defined(CAVITY_STAGE_COMPUTE) && defined(CAVITY_CONST_blur)
+#if CAVITY_CONST_blur >= 1 && (CAVITY_WORKGROUP_X + 2 * CAVITY_CONST_blur) * CAVITY_WORKGROUP_Y <= 768
+#if (CAVITY_WORKGROUP_Y + 2 * CAVITY_CONST_blur) * CAVITY_WORKGROUP_X <= 768
+#define BLUR_TILED 1
+const int kTileW = CAVITY_WORKGROUP_X + 2 * CAVITY_CONST_blur * kBlurAxis.x;
+const int kTileH = CAVITY_WORKGROUP_Y + 2 * CAVITY_CONST_blur * kBlurAxis.y;
+shared vec4 tileNormalDepth[kTileW * kTileH];
+shared float tileAo[kTileW * kTileH];
+#endif
+#endif
+#endif
+
+// Every invocation of the workgroup calls this first, also those past the
+// image's edge; it does nothing where there is no tile.
+void blurShareTile() {
+#ifdef BLUR_TILED
+    ivec2 origin = ivec2(gl_WorkGroupID.xy) * ivec2(CAVITY_WORKGROUP_X, CAVITY_WORKGROUP_Y) - kBlurAxis * CAVITY_CONST_blur;
+    for (int i = int(gl_LocalInvocationIndex); i < kTileW * kTileH; i += CAVITY_WORKGROUP_X * CAVITY_WORKGROUP_Y) {
+        ivec2 q = origin + ivec2(i % kTileW, i / kTileW);
+        bool inside = all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, frame.size));
+        vec4 key = inside ? texelFetch(in_ao_key, q, 0) : vec4(0.0);
+        tileNormalDepth[i] = vec4(octDecode(key.ba), key.g);
+        tileAo[i] = key.r;
+    }
+    barrier();
+#endif
+}
+
+bool inImage(ivec2 pixel) {
+    return all(lessThan(pixel, frame.size));
+}
+
+// The running sums of blurAlong().
+struct BlurSums {
+    float ao;
+    vec3 value;
+    float weight;
+};
+
+#ifdef BLUR_TILED
+// Tap t, tile texel i, of the centre `pixel` (normal N, linear depth z).
+void addTileTap(int t, int i, ivec2 pixel, vec3 N, float z, float twoSigma2, inout BlurSums s) {
+    vec4 tap = tileNormalDepth[i];
+    if (isBackground(tap.w)) return;
+    float W = tapWeight(t, N, tap.xyz, z - tap.w, twoSigma2);
+    s.ao += tileAo[i] * W;
+    s.value += blurredWith(pixel + kBlurAxis * t) * W;
+    s.weight += W;
+}
+#endif
+
+// The centre's key with its AO blurred along the axis, and in `value` what
+// blurredWith() reads, blurred alike. Call blurShareTile() before.
+vec4 blurAlong(ivec2 pixel, out vec3 value) {
     vec4 centre = texelFetch(in_ao_key, pixel, 0);
     value = blurredWith(pixel);
     int r = P.blur;
     if (r == 0 || isBackground(centre.g)) return centre;
-    vec3 N = octDecode(centre.ba);
     float twoSigma2 = 2.0 * P.depth_sigma * P.depth_sigma;
-    float sum = 0.0;
-    vec3 valueSum = vec3(0.0);
-    float totalWeight = 0.0;
+    BlurSums s = BlurSums(0.0, vec3(0.0), 0.0);
+#ifdef BLUR_TILED
+    // The taps written out, -r to r in the loop's order (the same sums):
+    // NVIDIA's GL driver keeps a loop of constant count rolled, and written
+    // out the pass took 25-31% less time there and as much or 2% less on
+    // Vulkan (bench/results/2026-12-03_h200_blur_tile).
+    ivec2 local = ivec2(gl_LocalInvocationID.xy) + kBlurAxis * CAVITY_CONST_blur;
+    int c = local.y * kTileW + local.x;
+    int stride = kBlurAxis.x + kBlurAxis.y * kTileW;
+    vec3 N = tileNormalDepth[c].xyz;
+#define BLUR_TAP(t) addTileTap(t, c + (t) * stride, pixel, N, centre.g, twoSigma2, s);
+#define BLUR_TAP_BELOW(i) BLUR_TAP(i - CAVITY_CONST_blur)
+#define BLUR_TAP_ABOVE(i) BLUR_TAP(i + 1)
+    CAVITY_REPEAT_blur(BLUR_TAP_BELOW) BLUR_TAP(0) CAVITY_REPEAT_blur(BLUR_TAP_ABOVE)
+#else
+    vec3 N = octDecode(centre.ba);
     for (int t = -r; t <= r; ++t) {
-        ivec2 q = pixel + axis * t;
+        ivec2 q = pixel + kBlurAxis * t;
         if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, frame.size))) continue;
         vec4 tap = texelFetch(in_ao_key, q, 0);
         if (isBackground(tap.g)) continue;
-        float dd = centre.g - tap.g;
-        float W = gaussianWeight(abs(t)) * max(0.0, dot(N, octDecode(tap.ba))) * exp(-dd * dd / twoSigma2);
-        sum += tap.r * W;
-        valueSum += blurredWith(q) * W;
-        totalWeight += W;
+        float W = tapWeight(t, N, octDecode(tap.ba), centre.g - tap.g, twoSigma2);
+        s.ao += tap.r * W;
+        s.value += blurredWith(q) * W;
+        s.weight += W;
     }
-    value = valueSum + (1.0 - totalWeight) * value;
-    return vec4(sum + (1.0 - totalWeight) * centre.r, centre.gba);
+#endif
+    value = s.value + (1.0 - s.weight) * value;
+    return vec4(s.ao + (1.0 - s.weight) * centre.r, centre.gba);
 }
