@@ -135,6 +135,7 @@ KernelDecl upsampleBilateral() {
     k.name = "upsample_bilateral";
     k.workgroup = {8, 8};   // between resolutions: 2-3 us slower in 16x16 (kernel.h)
     k.file = "upsample_bilateral.glsl";
+    k.wholeWorkgroups = true;   // the half texels' tile (include/upsample.glsl)
     k.summary = "joint bilateral upsample of half-resolution AO: bilinear x tangent-plane distance x normal weights";
     k.role = Role::Upsample;
     k.params = {use("upsample_depth_tolerance"), use("fused_tail")};
@@ -157,6 +158,7 @@ KernelDecl upsampleComposite() {
     k.name = "upsample_composite";
     k.workgroup = {8, 8};   // between resolutions: 2-3 us slower in 16x16 (kernel.h)
     k.file = "upsample_composite.glsl";
+    k.wholeWorkgroups = true;   // the half texels' tile (include/upsample.glsl)
     k.summary = "the half-resolution tail in one pass: joint bilateral upsample, then the composite of its AO";
     k.role = Role::Composite;
     k.params = {use("upsample_depth_tolerance"), use("dither"), use("fused_tail")};

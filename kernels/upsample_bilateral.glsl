@@ -4,6 +4,8 @@
 #include "include/upsample.glsl"
 
 void cavity_main(ivec2 pixel) {
+    upsampleShareTile();
+    if (!inImage(pixel)) return;
     vec4 p = texelFetch(in_position, pixel, 0);
     vec3 nrm = texelFetch(in_normal, pixel, 0).xyz;
     if (isBackground(p.w) || lengthSquared(nrm) == 0.0) {

@@ -16,6 +16,8 @@
 #include "include/composite.glsl"
 
 void cavity_main(ivec2 pixel) {
+    upsampleShareTile();
+    if (!inImage(pixel)) return;
     vec4 albedo = texelFetch(in_albedo, pixel, 0);
     vec4 p = texelFetch(in_position, pixel, 0);
     vec3 nrm = texelFetch(in_normal, pixel, 0).xyz;

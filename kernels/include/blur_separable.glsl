@@ -74,10 +74,6 @@ void blurShareTile() {
 #endif
 }
 
-bool inImage(ivec2 pixel) {
-    return all(lessThan(pixel, frame.size));
-}
-
 // The running sums of blurAlong().
 struct BlurSums {
     float ao;

@@ -21,6 +21,13 @@ bool isBackground(float linearDepth) {
     return linearDepth <= 0.0;
 }
 
+// Whether `pixel` is in this pass's image: a kernel that declares
+// wholeWorkgroups (kernels/kernel.h) also runs past the edge, and writes
+// nothing there.
+bool inImage(ivec2 pixel) {
+    return all(lessThan(pixel, frame.size));
+}
+
 // View-space direction through the centre of `pixel`, at z = -1. Row 0 is
 // the top of the image and +Y is up, hence the minus on y.
 vec3 viewRayAt(ivec2 pixel) {

@@ -19,8 +19,47 @@
 // texel kept), the half texel nearest in depth is taken as it is.
 #include "include/screen_space.glsl"
 
+// The compute pass's tile: the half texels the workgroup's pixels blend,
+// each fetched once (AO, position, normal: three fetches) where each of the
+// 4 pixels over it fetched it again. A workgroup of W x H pixels (both even)
+// blends W/2 + 2 x H/2 + 2 half texels, starting one texel up and left of
+// its own; each is clamped to the image as upsampleAo() clamps it. The
+// kernel declares wholeWorkgroups: every invocation loads and meets at the
+// barrier. An odd workgroup side, and the fragment stage, take the texture
+// path.
+#ifdef CAVITY_STAGE_COMPUTE
+#if CAVITY_WORKGROUP_X % 2 == 0 && CAVITY_WORKGROUP_Y % 2 == 0
+#define UPSAMPLE_TILED 1
+const int kHalfTileW = CAVITY_WORKGROUP_X / 2 + 2;
+const int kHalfTileH = CAVITY_WORKGROUP_Y / 2 + 2;
+shared float tileHalfAo[kHalfTileW * kHalfTileH];
+shared vec4 tileHalfPosition[kHalfTileW * kHalfTileH];
+shared vec3 tileHalfNormal[kHalfTileW * kHalfTileH];
+
+ivec2 halfTileOrigin() {
+    return ivec2(gl_WorkGroupID.xy) * ivec2(CAVITY_WORKGROUP_X / 2, CAVITY_WORKGROUP_Y / 2) - 1;
+}
+#endif
+#endif
+
+// Every invocation of the workgroup calls this first, also those past the
+// image's edge; it does nothing where there is no tile.
+void upsampleShareTile() {
+#ifdef UPSAMPLE_TILED
+    ivec2 halfSize = textureSize(in_ao_half, 0);
+    for (int i = int(gl_LocalInvocationIndex); i < kHalfTileW * kHalfTileH; i += CAVITY_WORKGROUP_X * CAVITY_WORKGROUP_Y) {
+        ivec2 texel = clamp(halfTileOrigin() + ivec2(i % kHalfTileW, i / kHalfTileW), ivec2(0), halfSize - 1);
+        tileHalfAo[i] = texelFetch(in_ao_half, texel, 0).r;
+        tileHalfPosition[i] = texelFetch(in_position_half, texel, 0);
+        tileHalfNormal[i] = texelFetch(in_normal_half, texel, 0).xyz;
+    }
+    barrier();
+#endif
+}
+
 // p: the pixel's view position (w: linear depth), nrm its normal; the pixel
-// is a surface (not background, a non-zero normal).
+// is a surface (not background, a non-zero normal). Call upsampleShareTile()
+// before.
 float upsampleAo(ivec2 pixel, vec4 p, vec3 nrm) {
     ivec2 halfSize = textureSize(in_ao_half, 0);
     // The full pixel centre (pixel + 0.5) in half-texel units, minus the half
@@ -34,10 +73,18 @@ float upsampleAo(ivec2 pixel, vec4 p, vec3 nrm) {
     float fallback = 1.0, fallbackDist = 3.0e38;
     for (int k = 0; k < 4; ++k) {
         ivec2 o = ivec2(k & 1, k >> 1);
+#ifdef UPSAMPLE_TILED
+        ivec2 t = base + o - halfTileOrigin();
+        int i = t.y * kHalfTileW + t.x;
+        float ao = tileHalfAo[i];
+        vec4 q = tileHalfPosition[i];
+        vec3 m = tileHalfNormal[i];
+#else
         ivec2 texel = clamp(base + o, ivec2(0), halfSize - 1);
         float ao = texelFetch(in_ao_half, texel, 0).r;
         vec4 q = texelFetch(in_position_half, texel, 0);
         vec3 m = texelFetch(in_normal_half, texel, 0).xyz;
+#endif
         if (isBackground(q.w)) continue;   // background holds no AO for a surface
         float bilinear = (o.x == 1 ? f.x : 1.0 - f.x) * (o.y == 1 ? f.y : 1.0 - f.y);
         float planeDist = abs(orderedDot(nrm, q.xyz - p.xyz)) / tol;
