@@ -261,6 +261,10 @@ KernelDecl blurSeparable(const std::string& axis) {
     // the tap loop, of a compiled-in count, unrolls (include/blur_separable.glsl).
     k.compileTime = {"blur"};
     k.wholeWorkgroups = true;
+    // Long along the axis: a 16x16 tile loads 1.5 texels a pixel at r = 4,
+    // 32x8 1.25, and blur_x took 11% less in it on the H200 (16x16 and
+    // 32x8 for every pass, bench/results/2026-12-03_h200_blur_tile).
+    k.workgroup = axis == "x" ? Workgroup{32, 8} : Workgroup{8, 32};
     const double out = axis == "x" ? kRgba16f : kR16f;
     k.cost = [out](const ParamValues& v) {
         const double taps = 2 * v.at("blur") + 1;

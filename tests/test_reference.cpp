@@ -217,17 +217,25 @@ TEST_P(KernelVsReference, SampleCountsUnrolledAndNot) {
 }
 
 // The separable blur's compute passes decode a workgroup's tile into shared
-// memory for radii 1 to 16 in 16x16 workgroups, and read the texture past
-// that (include/blur_separable.glsl). Both sides of the limit, at a size
+// memory when it fits in 768 texels, which every radius (1 to 32) does in
+// the declared shapes, and read the texture otherwise
+// (include/blur_separable.glsl): in 32x32 workgroups every radius
+// overflows it. Both paths, the smallest and largest radius, at a size
 // whose last workgroups hang over both edges, for the AO key alone and for
 // SSDO's radiance beside it.
 TEST_P(KernelVsReference, BlurRadiiTiledAndNot) {
-    for (const std::string kernel : {"alchemy_fast", "ssdo_fast"})
-        for (int r : {1, 16, 17}) {
-            Case cs{"slats", 100, 60, kernel};
-            cs.blur = r;
-            checkChain(gpu(), api(), cs);
-        }
+    struct Env {
+        ~Env() { unsetenv("CAVITY_WORKGROUP"); }
+    } restore;
+    for (const char* shape : {"", "32x32"}) {
+        setenv("CAVITY_WORKGROUP", shape, 1);   // empty: each kernel's own
+        for (const std::string kernel : {"alchemy_fast", "ssdo_fast"})
+            for (int r : {1, 4, 32}) {
+                Case cs{"slats", 100, 60, kernel};
+                cs.blur = r;
+                checkChain(gpu(), api(), cs);
+            }
+    }
 }
 
 // The other four scenes: the G-buffer march, one screen-space and one

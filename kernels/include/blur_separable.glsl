@@ -44,17 +44,22 @@ float tapWeight(int t, vec3 N, vec3 tapNormal, float dd, float twoSigma2) {
 // skips it. The kernel declares wholeWorkgroups (every invocation loads and
 // meets at the barrier) and compiles its radius in, which sizes the tile
 // and writes the taps out. The tile keeps to 768 texels, 15 KiB, under the
-// 16 KiB of shared memory every Vulkan device has: radii 1 to 16 in 16x16
-// workgroups. Other radii, and the fragment stage, take the texture path.
+// 16 KiB of shared memory every Vulkan device has: every radius (1 to 32)
+// in the declared workgroups, 32x8 along x and 8x32 along y, which run the
+// tile long along the axis. A shape that overflows it (CAVITY_WORKGROUP),
+// and the fragment stage, take the texture path.
 #if defined(CAVITY_STAGE_COMPUTE) && defined(CAVITY_CONST_blur)
-#if CAVITY_CONST_blur >= 1 && (CAVITY_WORKGROUP_X + 2 * CAVITY_CONST_blur) * CAVITY_WORKGROUP_Y <= 768
-#if (CAVITY_WORKGROUP_Y + 2 * CAVITY_CONST_blur) * CAVITY_WORKGROUP_X <= 768
+#ifdef BLUR_ALONG_X
+#define BLUR_TILE_TEXELS ((CAVITY_WORKGROUP_X + 2 * CAVITY_CONST_blur) * CAVITY_WORKGROUP_Y)
+#else
+#define BLUR_TILE_TEXELS ((CAVITY_WORKGROUP_Y + 2 * CAVITY_CONST_blur) * CAVITY_WORKGROUP_X)
+#endif
+#if CAVITY_CONST_blur >= 1 && BLUR_TILE_TEXELS <= 768
 #define BLUR_TILED 1
 const int kTileW = CAVITY_WORKGROUP_X + 2 * CAVITY_CONST_blur * kBlurAxis.x;
 const int kTileH = CAVITY_WORKGROUP_Y + 2 * CAVITY_CONST_blur * kBlurAxis.y;
 shared vec4 tileNormalDepth[kTileW * kTileH];
 shared float tileAo[kTileW * kTileH];
-#endif
 #endif
 #endif
 
