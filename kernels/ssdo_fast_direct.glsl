@@ -12,6 +12,18 @@
 #include "include/ssdo_fast.glsl"
 #include "include/octahedral.glsl"
 
+// The sky over the receiver's directions. Called with r.view, or with
+// belowTiny(r.view) where every level is below the tiny ones: that copy,
+// with a constant there, tests nothing more per point (include/pyramid.glsl).
+SkyGather gatherDirections(FastReceiver r, ivec2 pixel) {
+    SkyGather g = SkyGather(0.0, 0.0, vec3(0.0));
+    for (int i = 0; i < r.count; ++i) {
+        FastSample s = fastSample(r, pixel, i);
+        gatherSky(g, r.n, s.dir, textureLod(in_sky, skyUv(s.dir), P.sky_lod).rgb, s.visible);
+    }
+    return g;
+}
+
 void cavity_main(ivec2 pixel) {
     FastReceiver r;
     if (!fastReceiver(pixel, r)) {
@@ -23,10 +35,12 @@ void cavity_main(ivec2 pixel) {
         write_ao_key(pixel, vec4(1.0, 0.0, 0.0, 0.0));
         return;
     }
-    SkyGather g = SkyGather(0.0, 0.0, vec3(0.0));
-    for (int i = 0; i < r.count; ++i) {
-        FastSample s = fastSample(r, pixel, i);
-        gatherSky(g, r.n, s.dir, textureLod(in_sky, skyUv(s.dir), P.sky_lod).rgb, s.visible);
+    SkyGather g;
+    if (r.view.maxLevel < r.view.tiny) {
+        r.view = belowTiny(r.view);
+        g = gatherDirections(r, pixel);
+    } else {
+        g = gatherDirections(r, pixel);
     }
     float visibility = skyVisibility(g, P.contrast);
     write_visibility(pixel, vec4(visibility, 0.0, 0.0, 0.0));

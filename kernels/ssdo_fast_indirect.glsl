@@ -5,12 +5,10 @@
 // albedo are read at that pixel, once per blocked direction.
 #include "include/ssdo_fast.glsl"
 
-void cavity_main(ivec2 pixel) {
-    FastReceiver r;
-    if (!fastReceiver(pixel, r)) {
-        write_indirect(pixel, vec4(0.0, 0.0, 0.0, 1.0));
-        return;
-    }
+// The bounce over the receiver's blocked directions. Called with r.view,
+// or with belowTiny(r.view) where every level is below the tiny ones (as
+// ssdo_fast_direct.glsl does).
+vec3 gatherBounce(FastReceiver r, ivec2 pixel) {
     vec3 gathered = vec3(0.0);
     for (int i = 0; i < r.count; ++i) {
         FastSample s = fastSample(r, pixel, i);
@@ -20,6 +18,22 @@ void cavity_main(ivec2 pixel) {
         vec3 emitted = texelFetch(in_radiance, s.sender, 0).rgb * texelFetch(in_albedo, s.sender, 0).rgb;
         gathered += bounceFrom(r.X, r.n, positionAt(s.sender, s.senderDepth), normalize(m), emitted, P.radius,
                                P.distance_clamp);
+    }
+    return gathered;
+}
+
+void cavity_main(ivec2 pixel) {
+    FastReceiver r;
+    if (!fastReceiver(pixel, r)) {
+        write_indirect(pixel, vec4(0.0, 0.0, 0.0, 1.0));
+        return;
+    }
+    vec3 gathered;
+    if (r.view.maxLevel < r.view.tiny) {
+        r.view = belowTiny(r.view);
+        gathered = gatherBounce(r, pixel);
+    } else {
+        gathered = gatherBounce(r, pixel);
     }
     float area = PI * P.radius * P.radius / float(r.count);
     write_indirect(pixel, vec4(gathered * (area * P.bounce_strength / PI), 1.0));
