@@ -66,11 +66,46 @@ fi
 exec "$here/cavity_render" "$@"
 RENDER
 cat > "$out/cavity.sh" <<'CAVITY'
+#!/usr/bin/env bash
+# Runs cavity (cavity ab, cavity gate judge) with the bundle's libraries.
 here="$(cd "$(dirname "$0")" && pwd)"
 export LD_LIBRARY_PATH="$here/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
 exec "$here/cavity" "$@"
 CAVITY
-chmod +x "$out/run.sh" "$out/render.sh" "$out/cavity.sh"
+# The binaries and the larger libraries travel xz-compressed (about a third
+# of their size: with all three programs the bundle and the repository no
+# longer fit the 64 MiB the device tool carries otherwise). unpack.sh
+# restores them in place on first use; each wrapper and scripts/gpu_env.sh
+# call it, and it does nothing once they are unpacked. BUNDLE_XZ=0 leaves
+# them as they are.
+cat > "$out/unpack.sh" <<'UNPACK'
+#!/usr/bin/env bash
+# Unpacks this bundle's xz-compressed files in place, each through a
+# temporary name and a rename, so that two wrappers started at once cannot
+# see half a file.
+here="$(cd "$(dirname "$0")" && pwd)"
+for f in "$here"/*.xz "$here"/lib/*.xz; do
+  [ -e "$f" ] || continue
+  target="${f%.xz}"
+  tmp="$target.unpack.$$"
+  if ! xz -dc "$f" > "$tmp" 2>/dev/null; then
+    rm -f "$tmp"
+    [ -e "$f" ] || continue   # another wrapper unpacked it meanwhile
+    echo "unpack.sh: $f: xz cannot decompress it" >&2
+    exit 1
+  fi
+  [ "$(dirname "$f")" = "$here" ] && chmod +x "$tmp"
+  mv -f "$tmp" "$target" && rm -f "$f"
+done
+UNPACK
+for w in run.sh render.sh cavity.sh; do
+  sed -i 's|^here="$(cd "$(dirname "$0")" \&\& pwd)"$|&\n"$here/unpack.sh" \|\| exit 1|' "$out/$w"
+done
+chmod +x "$out/run.sh" "$out/render.sh" "$out/cavity.sh" "$out/unpack.sh"
+if [ "${BUNDLE_XZ:-1}" != 0 ]; then
+  xz -T0 -6 "${binaries[@]/#/$out/}"
+  find "$out/lib" -type f -size +1M -exec xz -6 {} +
+fi
 size=$(du -sm "$out" | cut -f1)
 echo "bundle: $out ($size MiB): ${binaries[*]} baselines/ lib/: $(ls "$out/lib" | tr '\n' ' ')"
 if [ "$size" -gt 56 ]; then echo "bundle: over the 56 MiB limit" >&2; exit 1; fi

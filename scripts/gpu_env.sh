@@ -14,6 +14,8 @@ if command -v nvidia-smi >/dev/null 2>&1; then
     export __EGL_VENDOR_LIBRARY_FILENAMES=/usr/local/nvidia/share/glvnd/egl_vendor.d/10_nvidia.json
   fi
 fi
+# The bundle's binaries travel xz-compressed (scripts/bundle.sh).
+[ -x .bundle/unpack.sh ] && .bundle/unpack.sh
 OUT="${OUT:-/tmp/out}"
 mkdir -p "$OUT"
 export OUT
