@@ -19,6 +19,7 @@ packages=(
   libimath-dev                                                  # half floats (backends/texels; also OpenEXR's)
   libfmt-dev                                                    # text tables (harness/core/text_table.cpp)
   zlib1g-dev                                                    # render folders (cavity_render)
+  xz-utils                                                      # scripts/bundle.sh: the GPU bundle, compressed (tests/test_bundle.py)
   libcurl4-openssl-dev                                          # the HTTP image store (harness/store)
   nginx-light openssl                                           # tests/test_store_http.py: a real WebDAV store, with TLS
   python3 python3-matplotlib python3-jsonschema                 # scripts/charts.py; tests/validate_results.py
