@@ -70,8 +70,7 @@ void blurShareTile() {
     ivec2 origin = ivec2(gl_WorkGroupID.xy) * ivec2(CAVITY_WORKGROUP_X, CAVITY_WORKGROUP_Y) - kBlurAxis * CAVITY_CONST_blur;
     for (int i = int(gl_LocalInvocationIndex); i < kTileW * kTileH; i += CAVITY_WORKGROUP_X * CAVITY_WORKGROUP_Y) {
         ivec2 q = origin + ivec2(i % kTileW, i / kTileW);
-        bool inside = all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, frame.size));
-        vec4 key = inside ? texelFetch(in_ao_key, q, 0) : vec4(0.0);
+        vec4 key = inImage(q) ? texelFetch(in_ao_key, q, 0) : vec4(0.0);
         tileNormalDepth[i] = vec4(octDecode(key.ba), key.g);
         tileAo[i] = key.r;
     }
@@ -124,7 +123,7 @@ vec4 blurAlong(ivec2 pixel, out vec3 value) {
     vec3 N = octDecode(centre.ba);
     for (int t = -r; t <= r; ++t) {
         ivec2 q = pixel + kBlurAxis * t;
-        if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, frame.size))) continue;
+        if (!inImage(q)) continue;
         vec4 tap = texelFetch(in_ao_key, q, 0);
         if (isBackground(tap.g)) continue;
         float W = tapWeight(t, N, octDecode(tap.ba), centre.g - tap.g, twoSigma2);

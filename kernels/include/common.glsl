@@ -21,11 +21,12 @@ bool isBackground(float linearDepth) {
     return linearDepth <= 0.0;
 }
 
-// Whether `pixel` is in this pass's image: a kernel that declares
+// Whether `pixel` is in this pass's image, on either side: one unsigned
+// test, a negative coordinate wraps past any size. A kernel that declares
 // wholeWorkgroups (kernels/kernel.h) also runs past the edge, and writes
 // nothing there.
 bool inImage(ivec2 pixel) {
-    return all(lessThan(pixel, frame.size));
+    return all(lessThan(uvec2(pixel), uvec2(frame.size)));
 }
 
 // View-space direction through the centre of `pixel`, at z = -1. Row 0 is

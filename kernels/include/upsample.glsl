@@ -61,7 +61,9 @@ void upsampleShareTile() {
 // is a surface (not background, a non-zero normal). Call upsampleShareTile()
 // before.
 float upsampleAo(ivec2 pixel, vec4 p, vec3 nrm) {
+#ifndef UPSAMPLE_TILED
     ivec2 halfSize = textureSize(in_ao_half, 0);
+#endif
     // The full pixel centre (pixel + 0.5) in half-texel units, minus the half
     // texel centre offset: pixel / 2 - 0.25, exact in float.
     vec2 c = vec2(pixel) * 0.5 - 0.25;
