@@ -41,8 +41,9 @@ CommandSpec qualitySpec(const std::string& program) {
                            "kernel's AO pipeline time, the screen-space Pareto front and --budget-ms"},
         {"--budget-ms", "MS", "with --cost: the most accurate screen-space kernel whose pipeline fits in MS"},
         {"--blur", "R", "compare the AO after the pipeline's blur of radius R, " + kernels::allowedValues(*kernels::findParam("blur")) + " (default 0, the raw AO)"},
-        {"--exact", "0|1", "the fast kernels' arithmetic: 0 the GPU's own (docs/kernels.md, \"The precision contract\"); "
-                           "set on the kernels that declare it (default 1)"},
+        {"--exact", "0|1", "the fast kernels' arithmetic: 0 the GPU's own, 1 the CPU reference's bit for bit "
+                           "(docs/kernels.md, \"The precision contract\"); set on the kernels that declare it "
+                           "(default 0)"},
         {"--interleave", "K", "the fast kernels' AO pass as K x K interleaved layers, " +
                                   kernels::allowedValues(*kernels::findParam("interleave")) +
                                   "; set on the kernels that declare it (default 1)"},

@@ -256,14 +256,11 @@ Result<gpu::ShaderSource> assemble(const KernelDecl& k, gpu::Stage stage,
     defineStage(p, stage, wg);
     // The precision contract (include/common.glsl): `precise` on the values
     // that feed discrete decisions, unless the kernel declares `exact` and
-    // is run with it 0.
-    bool exact = true;
+    // runs with it 0, its default.
     const int interleave = values ? interleaveValue(*values) : 1;
-    if (values) {
-        const ParamValues all = withDefaults(k, *values);
-        defineCompileTime(p, k, all);
-        exact = !all.count("exact") || intValue(all, "exact") != 0;
-    }
+    const ParamValues all = withDefaults(k, values ? *values : ParamValues{});
+    if (values) defineCompileTime(p, k, all);
+    const bool exact = !all.count("exact") || intValue(all, "exact") != 0;
     p << (exact ? "#define EXACT precise\n" : "#define EXACT\n#define CAVITY_INEXACT 1\n");
     p << "layout(std140, binding = " << kFrameBinding << ") uniform Frame {\n"
          "    mat4 proj;\n    mat4 invProj;\n    vec4 camera;\n"

@@ -52,9 +52,10 @@ std::vector<ParamDecl> declareSwitches() {
         // The precision contract (include/common.glsl, docs/kernels.md): the
         // CPU reference bit for bit, or the hardware's own arithmetic and a
         // stated tolerance.
-        flag("exact", true,
-             "the fast kernels' CPU-exact arithmetic (precise, portable division and sine); 0: the GPU's own, "
-             "faster, held to a stated tolerance of the CPU reference"),
+        flag("exact", false,
+             "the fast kernels' arithmetic: 0, the GPU's own (fma, its division and sine), held to a stated "
+             "tolerance of the CPU reference; 1, the CPU reference's bit for bit (precise, portable division and "
+             "sine), slower"),
         // The depth pyramid of the fast kernels: one dispatch (depth_pyramid_single)
         // or one per level, a barrier apart (depth_pyramid): the same levels.
         flag("pyramid_per_level", false,

@@ -3,10 +3,10 @@
 # machine, in one call (docs/kernels.md): the one-dispatch depth pyramid
 # against a dispatch per level (pyramid_per_level=1), the fused
 # half-resolution tail (fused_tail=1) against upsample then composite, and
-# the precision contract's --exact 0 and the interleaved layers
+# the precision contract's --exact 1 (the CPU-exact arithmetic) and the interleaved layers
 # (interleave=4, n16 and n32) against the defaults; 1920x1080,
 # compute, both APIs, REPS repetitions interleaved in one process, the clocks
-# sampled beside it; then the AO of each variant that changes it (--exact 0,
+# sampled beside it; then the AO of each variant that changes it (--exact 1,
 # --interleave 4) against the ground truth after the blur, corner and slats,
 # n16 and n32. Leaves kernels2.tgz in $OUT; compare pairs here with
 # `cavity compare --filter`, quality with the quality.json files.
@@ -16,7 +16,7 @@ cd "$(dirname "$0")/.."
 . scripts/gpu_env.sh
 reps="${1:-10}"
 maxt="${2:-0.35}"
-filter='^corner/(alchemy_fast|hemisphere_fast)/n(16|32)/b4/((exact=0|pyramid_per_level=1|interleave=4)/)?full/1920x1080/(gl|vk)/compute/'
+filter='^corner/(alchemy_fast|hemisphere_fast)/n(16|32)/b4/((exact=1|pyramid_per_level=1|interleave=4)/)?full/1920x1080/(gl|vk)/compute/'
 filter+='|^corner/(alchemy|alchemy_fast|hemisphere_fast)/n16/b4/((fused_tail=1|interleave=4)/)?half/1920x1080/(gl|vk)/compute/'
 smi_start "$OUT/clocks.csv"
 .bundle/run.sh --sweep gpu --benchmark_filter="$filter" --benchmark_repetitions="$reps" \
@@ -26,7 +26,7 @@ echo "cavity_bench: exit $?"
 smi_stop
 # Quality held: each variant that changes the AO against the ground truth,
 # after the blur, at the same samples, scenes and size.
-for variant in "" "--exact 0" "--interleave 4"; do
+for variant in "" "--exact 1" "--interleave 4"; do
   name=${variant:+$(echo "$variant" | tr -d '-' | tr ' ' '=')}
   name=${name:-default}
   for s in corner slats; do

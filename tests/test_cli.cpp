@@ -110,12 +110,12 @@ TEST_F(Cli, QualityBadInputExitsTwoWithOneLine) {
 // A switch reaches exactly the kernels that declare it: the ids say so.
 TEST_F(Cli, QualitySwitchesSetOnlyTheKernelsThatDeclareThem) {
     const Outcome o = cavity("quality --list --scene corner --samples 16 --kernel alchemy,alchemy_fast,hemisphere_fast "
-                             "--interleave 4 --exact 0");
+                             "--interleave 4 --exact 1");
     ASSERT_EQ(o.code, 0) << o.output;
     EXPECT_NE(o.output.find("corner/alchemy/n16/"), std::string::npos) << o.output;
     EXPECT_EQ(o.output.find("alchemy/n16/exact"), std::string::npos) << o.output;
     for (const std::string k : {"alchemy_fast", "hemisphere_fast"})
-        EXPECT_NE(o.output.find("corner/" + k + "/n16/b0/exact=0/interleave=4/full/"), std::string::npos) << o.output;
+        EXPECT_NE(o.output.find("corner/" + k + "/n16/b0/exact=1/interleave=4/full/"), std::string::npos) << o.output;
 }
 
 // --kernel-source measures an edited kernel: one that finds no occlusion

@@ -95,7 +95,7 @@ std::vector<RunConfig> benchmarkSweep(const SweepAxes& axes, const std::vector<g
                 if (pipeline::supportsHalf(kernel) && !sdfFamily(kernel))
                     add(around({{"fused_tail", {1}}}, {true}), base);
                 // The precision contract's other side, where a kernel offers it.
-                if (declares(kernel, "exact")) add(around({{"exact", {0}}}), base);
+                if (declares(kernel, "exact")) add(around({{"exact", {1}}}), base);
                 // The depth pyramid a dispatch per level, against the one dispatch.
                 if (readsPyramid(kernel)) add(around({{"pyramid_per_level", {1}}}), base);
                 // Interleaved layers against the plain dispatch, full and
