@@ -4,7 +4,8 @@
 // level that stays in cache instead of a texel of a 1080p RGBA32F position
 // image that does not.
 //
-// Level 0 is the G-buffer's linear depth (position.w; 0 stays background).
+// Level 0 is the G-buffer's linear depth (its R32F image, the position's w
+// bit for bit; 0 stays background): a quarter of the bytes of the position.
 // Level l > 0 keeps one real depth of each 2x2 block of level l - 1 rather
 // than a mean or a min: a mean across a silhouette is a surface that is not
 // there, which the AO would read as an occluder floating in the gap. Which
@@ -16,7 +17,7 @@
 
 void cavity_main(ivec2 pixel) {
     if (frame.level == 0) {
-        write_zmip(pixel, vec4(texelFetch(in_position, pixel, 0).w, 0.0, 0.0, 0.0));
+        write_zmip(pixel, vec4(texelFetch(in_linear_depth, pixel, 0).r, 0.0, 0.0, 0.0));
         return;
     }
     ivec2 above = textureSize(in_zmip, frame.level - 1);

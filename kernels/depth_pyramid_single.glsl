@@ -58,7 +58,7 @@ bool pyramidLink(int k, ivec2 pixel, vec4 depth) {
 }
 
 void cavity_main(ivec2 pixel) {
-    vec4 depth = vec4(texelFetch(in_position, pixel, 0).w, 0.0, 0.0, 0.0);
+    vec4 depth = vec4(texelFetch(in_linear_depth, pixel, 0).r, 0.0, 0.0, 0.0);
     write_zmip(pixel, depth);
 #ifdef CAVITY_INTERLEAVE
     writeLayers(pixel, depth);

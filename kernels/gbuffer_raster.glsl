@@ -1,5 +1,5 @@
 // The rasterised G-buffer: the scene's triangles (harness/meshes.cpp, already
-// in view space) drawn with hardware depth into the same three targets the
+// in view space) drawn with hardware depth into the same four targets the
 // ray-marched gbuffer_sdf writes, so every AO kernel runs on either.
 // Vertices are pulled from a storage buffer by index: no vertex input state,
 // identical on both APIs. Compiled twice, with CAVITY_STAGE_VERTEX or
@@ -48,6 +48,7 @@ layout(location = 2) in vec3 albedo;
 layout(location = 0) out vec4 outPosition;
 layout(location = 1) out vec4 outNormal;
 layout(location = 2) out vec4 outAlbedo;
+layout(location = 3) out vec4 outLinearDepth;
 
 void main() {
     // w = linear depth, as gbuffer_sdf writes it; background stays the clear value 0.
@@ -55,5 +56,6 @@ void main() {
     // Interpolated smooth normals shrink between vertices.
     outNormal = vec4(normalize(viewNormal), 0.0);
     outAlbedo = vec4(albedo, 1.0);
+    outLinearDepth = vec4(outPosition.w, 0.0, 0.0, 0.0);
 }
 #endif

@@ -52,6 +52,7 @@ void cavity_main(ivec2 pixel) {
         write_position(pixel, vec4(0.0));
         write_normal(pixel, vec4(0.0));
         write_albedo(pixel, vec4(0.0));
+        write_linear_depth(pixel, vec4(0.0));
         return;
     }
 
@@ -60,6 +61,7 @@ void cavity_main(ivec2 pixel) {
     vec3 q = p - eye;
     float depth = dot(q, forward);
     write_position(pixel, vec4(dot(q, right), dot(q, up), -depth, depth));
+    write_linear_depth(pixel, vec4(depth, 0.0, 0.0, 0.0));
     write_normal(pixel, vec4(dot(n, right), dot(n, up), -dot(n, forward), 0.0));
     int material = int(sceneDistance(P.scene, p).y);
     write_albedo(pixel, vec4(materialAlbedo(material), 1.0));

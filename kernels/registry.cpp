@@ -20,13 +20,19 @@ KernelDecl gbufferSdf() {
     KernelDecl k;
     k.name = "gbuffer_sdf";
     k.file = "gbuffer_sdf.glsl";
-    k.summary = "G-buffer (view position and depth, normal, albedo) by sphere tracing a signed-distance scene";
+    k.summary = "G-buffer (view position and depth, normal, albedo, linear depth) by sphere tracing a signed-distance scene";
     k.role = Role::GBuffer;
     k.params = {use("scene"), use("view")};
-    k.outputs = {{"position", Format::RGBA32F}, {"normal", Format::RGBA16F}, {"albedo", Format::RGBA8}};
+    // linear_depth: the position's w again, on its own, as an engine's
+    // depth buffer is: what the depth pyramid and the downsample read, at a
+    // quarter of the position's bytes.
+    k.outputs = {{"position", Format::RGBA32F},
+                 {"normal", Format::RGBA16F},
+                 {"albedo", Format::RGBA8},
+                 {"linear_depth", Format::R32F}};
     k.compileTime = {"scene"};
     k.cost = [](const ParamValues&) {
-        return Cost{0, kRgba32f + kRgba16f + kRgba8, 0, kRgba32f + kRgba16f + kRgba8};
+        return Cost{0, kRgba32f + kRgba16f + kRgba8 + kR32f, 0, kRgba32f + kRgba16f + kRgba8 + kR32f};
     };
     return k;
 }
@@ -118,15 +124,15 @@ KernelDecl depthPyramid() {
     k.summary = "linear-depth mip pyramid (R32F, 5 levels, one real depth of each 2x2 block) for the fast AO kernels";
     k.role = Role::Pyramid;
     // Level l reads level l - 1 of its own output: "zmip" is both.
-    k.inputs = {{"position", {}}, {"zmip", {gpu::Filter::Nearest, gpu::Address::ClampToEdge, true}}};
+    k.inputs = {{"linear_depth", {}}, {"zmip", {gpu::Filter::Nearest, gpu::Address::ClampToEdge, true}}};
     k.outputs = {{"zmip", Format::R32F, kPyramidLevels}};
     k.params = {use("pyramid_per_level")};
-    // Per level-0 pixel: one RGBA32F fetch and a 4-byte store at level 0,
+    // Per level-0 pixel: one R32F fetch and a 4-byte store at level 0,
     // and a third more of both (1/4 + 1/16 + ...) for the smaller levels.
     k.cost = [](const ParamValues&) {
         const double rest = (1 - std::pow(0.25, kPyramidLevels - 1)) / 3;
-        return Cost{1 + rest, kRgba32f + kR32f + rest * 2 * kR32f, fetchSlots(kRgba32f) + rest * fetchSlots(kR32f),
-                    kRgba32f + kR32f + rest * 2 * kR32f};
+        return Cost{1 + rest, kR32f + kR32f + rest * 2 * kR32f, fetchSlots(kR32f) + rest * fetchSlots(kR32f),
+                    kR32f + kR32f + rest * 2 * kR32f};
     };
     return k;
 }
@@ -139,16 +145,16 @@ KernelDecl depthPyramidSingle() {
     k.file = "depth_pyramid_single.glsl";
     k.summary = "depth_pyramid's levels in one dispatch: each texel written by the thread of the pixel it picks";
     k.role = Role::Pyramid;
-    k.inputs = {{"position", {}}};
+    k.inputs = {{"linear_depth", {}}};
     OutputDecl zmip{"zmip", Format::R32F, kPyramidLevels};
     zmip.oneDispatch = true;
     k.outputs = {zmip};
     k.params = {use("pyramid_per_level")};
-    // Per level-0 pixel: one RGBA32F fetch, a 4-byte store at level 0 and a
+    // Per level-0 pixel: one R32F fetch, a 4-byte store at level 0 and a
     // third of one (1/4 + 1/16 + ...) for the smaller levels; nothing is read twice.
     k.cost = [](const ParamValues&) {
         const double rest = (1 - std::pow(0.25, kPyramidLevels - 1)) / 3;
-        return Cost{1, kRgba32f + kR32f + rest * kR32f, fetchSlots(kRgba32f), kRgba32f + kR32f + rest * kR32f};
+        return Cost{1, kR32f + kR32f + rest * kR32f, fetchSlots(kR32f), kR32f + kR32f + rest * kR32f};
     };
     return k;
 }
@@ -166,8 +172,8 @@ KernelDecl depthPyramidLayered() {
     k.params = {use("interleave")};
     k.cost = [](const ParamValues&) {
         const double rest = (1 - std::pow(0.25, kPyramidLevels - 1)) / 3;
-        const double bytes = kRgba32f + 2 * kR32f + rest * kR32f;
-        return Cost{1, bytes, fetchSlots(kRgba32f), bytes};
+        const double bytes = 3 * kR32f + rest * kR32f;
+        return Cost{1, bytes, fetchSlots(kR32f), bytes};
     };
     return k;
 }

@@ -19,6 +19,8 @@ namespace cavity::core {
 // formats and conventions gbuffer_sdf writes (kernels/gbuffer_sdf.glsl):
 // position RGBA (view x, y, z, linear depth -z), normal RGBA (view-space unit
 // normal, 0), albedo RGBA (linear RGB, 1); all zero at background pixels.
+// The chain adds the linear depth image gbuffer_sdf writes beside them (the
+// position's w) when it uploads them.
 struct GBufferImages {
     HostImage position, normal, albedo;
 };

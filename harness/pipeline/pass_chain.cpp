@@ -63,7 +63,7 @@ Status PassChain::createRaster(const PassSpec& spec, const RunConfig& c) {
     const auto frame = frameUniforms(c.width, c.height, c.width, c.height);
     CAVITY_ASSIGN(pass->frameUbo, gpu_.createBuffer({sizeof(frame), gpu::BufferUsage::Uniform, "gbuffer.frame"}));
     CAVITY_TRY(gpu_.updateBuffer(pass->frameUbo, std::as_bytes(std::span(&frame, 1))));
-    const gpu::Format formats[3] = {gpu::Format::RGBA32F, gpu::Format::RGBA16F, gpu::Format::RGBA8};
+    const gpu::Format formats[4] = {gpu::Format::RGBA32F, gpu::Format::RGBA16F, gpu::Format::RGBA8, gpu::Format::R32F};
     gpu::GraphicsPipelineDesc d;
     const std::string* text = kernels::sourceFile("gbuffer_raster.glsl");
     if (!text) return internal("kernels/gbuffer_raster.glsl is not embedded");
@@ -73,14 +73,14 @@ Status PassChain::createRaster(const PassSpec& spec, const RunConfig& c) {
                   "#version 450\n#define CAVITY_STAGE_FRAGMENT 1\n#line 1 1\n" + *text,
                   {"<raster preamble>", "kernels/gbuffer_raster.glsl"}};
     d.layout = {{0, gpu::BindingKind::UniformBuffer, {}}, {1, gpu::BindingKind::StorageBuffer, {}}};
-    d.colorFormats = {formats[0], formats[1], formats[2]};
+    d.colorFormats = {formats[0], formats[1], formats[2], formats[3]};
     d.depthFormat = gpu::Format::D32;
     d.depthTest = true;
     d.label = spec.name;
     CAVITY_ASSIGN(pass->pipeline, gpu_.createGraphicsPipeline(d));
     CAVITY_ASSIGN(pass->depth,
                   gpu_.createImage({c.width, c.height, gpu::Format::D32, 1, "hardware depth", gpu::ImageDepthTarget}));
-    for (size_t o = 0; o < 3; ++o) {
+    for (size_t o = 0; o < 4; ++o) {
         const uint32_t usage = outputUsage(specs_, spec.outputs[o], gpu::ImageColorTarget);
         CAVITY_ASSIGN(gpu::Image img, gpu_.createImage({c.width, c.height, formats[o], 1, spec.outputs[o], usage}));
         images_[spec.outputs[o]] = {img, c.width, c.height, formats[o]};
@@ -93,14 +93,19 @@ Status PassChain::createRaster(const PassSpec& spec, const RunConfig& c) {
 }
 
 // The imported G-buffer (harness/images/gbuffer_import.h): the three images
-// uploaded in the formats gbuffer_sdf writes, so every later pass reads them
-// as it reads a rendered G-buffer.
+// uploaded in the formats gbuffer_sdf writes, and the linear depth it writes
+// beside them (the position's w), so every later pass reads them as it
+// reads a rendered G-buffer.
 Status PassChain::uploadGBuffer(const RunConfig& c) {
     if (!c.gbufferImages) return internal("imported G-buffer " + c.gbufferFile + " was not loaded");
     const auto* decl = kernels::find("gbuffer_sdf");
-    if (!decl || decl->outputs.size() != 3) return internal("no gbuffer_sdf declaration to take the G-buffer formats from");
-    const HostImage* src[3] = {&c.gbufferImages->position, &c.gbufferImages->normal, &c.gbufferImages->albedo};
-    for (size_t o = 0; o < 3; ++o) {
+    if (!decl || decl->outputs.size() != 4) return internal("no gbuffer_sdf declaration to take the G-buffer formats from");
+    const HostImage& position = c.gbufferImages->position;
+    HostImage linearDepth(position.width, position.height, 1);
+    for (size_t i = 0; i < linearDepth.pixels.size() && i * 4 + 3 < position.pixels.size(); ++i)
+        linearDepth.pixels[i] = position.pixels[i * 4 + 3];
+    const HostImage* src[4] = {&position, &c.gbufferImages->normal, &c.gbufferImages->albedo, &linearDepth};
+    for (size_t o = 0; o < 4; ++o) {
         const auto& out = decl->outputs[o];
         const HostImage& img = *src[o];
         if (img.width != c.width || img.height != c.height || img.channels != gpu::channelCount(out.format) ||

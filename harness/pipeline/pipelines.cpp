@@ -1,6 +1,6 @@
 // Which passes each configuration runs, wired by image name. Any kernel of
 // role "ao" slots in: its inputs are matched by name to the G-buffer images
-// ("position", "normal", "depth" — which adds a depth pass — and CPU-made
+// ("position", "normal", "linear_depth", "depth" — which adds a depth pass — and CPU-made
 // constants such as "noise4x4" or "sky"); a kernel with "visibility" and
 // "radiance" outputs runs the SSDO chain (Ritschel et al., I3D 2009;
 // docs/kernels.md, "Sources").
@@ -13,15 +13,16 @@ namespace {
 
 bool isConstant(const std::string& name) { return kernels::findConstant(name) != nullptr; }
 
-// The linear-depth pyramid of the fast kernels, from `position` into `zmip`:
-// one dispatch, or one per level with pyramid_per_level; with interleaved
+// The linear-depth pyramid of the fast kernels, from `linearDepth` (the
+// G-buffer's, or the downsample's at half resolution) into `zmip`: one
+// dispatch, or one per level with pyramid_per_level; with interleaved
 // layers, one dispatch that also writes level 0 split into them.
-PassSpec pyramidPass(const RunConfig& c, const std::string& position, const std::string& zmip, bool half) {
+PassSpec pyramidPass(const RunConfig& c, const std::string& linearDepth, const std::string& zmip, bool half) {
     if (interleaveOf(c) > 1)
-        return {"pyramid", "depth_pyramid_layered", {position}, {zmip, "zlayers" + std::string(half ? "_half" : "")}, half};
+        return {"pyramid", "depth_pyramid_layered", {linearDepth}, {zmip, "zlayers" + std::string(half ? "_half" : "")}, half};
     if (c.params.count("pyramid_per_level") && c.params.at("pyramid_per_level") != 0)
-        return {"pyramid", "depth_pyramid", {position, zmip}, {zmip}, half};
-    return {"pyramid", "depth_pyramid_single", {position}, {zmip}, half};
+        return {"pyramid", "depth_pyramid", {linearDepth, zmip}, {zmip}, half};
+    return {"pyramid", "depth_pyramid_single", {linearDepth}, {zmip}, half};
 }
 
 bool isSsdo(const kernels::KernelDecl& k) {
@@ -65,7 +66,7 @@ void ssdoPasses(const kernels::KernelDecl& k, const RunConfig& c, std::vector<Pa
     std::vector<ImageRef> in;
     for (const auto& i : k.inputs) {
         in.push_back({i.name, isConstant(i.name) ? ImageSource::Constant : ImageSource::Pass});
-        if (i.name == "zmip") p.push_back(pyramidPass(c, "position", "zmip", false));
+        if (i.name == "zmip") p.push_back(pyramidPass(c, "linear_depth", "zmip", false));
     }
     // A variant's bounce pass is "<kernel>_indirect" (ssdo_marched_indirect): it
     // must walk the very points the direct pass did, so it carries the
@@ -108,6 +109,7 @@ std::vector<ImageRef> aoInputs(const kernels::KernelDecl& k, const RunConfig& c,
     for (const auto& i : k.inputs) {
         if (i.name == "position") in.push_back(position);
         else if (i.name == "normal") in.push_back(normal);
+        else if (i.name == "linear_depth") in.push_back("linear_depth" + suffix);
         else if (i.name == "depth") in.push_back("depth" + suffix);
         else if (i.name == "zmip") in.push_back("zmip" + suffix);
         // The depth split into interleaved layers, or with none the pyramid,
@@ -124,7 +126,7 @@ std::vector<ImageRef> aoInputs(const kernels::KernelDecl& k, const RunConfig& c,
                 p.push_back({"depth", "depth_from_position", {position}, {"depth"}, false});
         }
         if (i.name == "zmip")
-            p.push_back(pyramidPass(c, position, "zmip" + suffix, half));
+            p.push_back(pyramidPass(c, "linear_depth" + suffix, "zmip" + suffix, half));
     }
     return in;
 }
@@ -180,7 +182,7 @@ std::vector<PassSpec> buildPasses(const RunConfig& c) {
     // An imported G-buffer is uploaded once by PassChain::create: no pass, so
     // nothing is timed for it.
     if (!c.imported())
-        p.push_back({"gbuffer", c.raster ? "gbuffer_raster" : "gbuffer_sdf", {}, {"position", "normal", "albedo"}, false});
+        p.push_back({"gbuffer", c.raster ? "gbuffer_raster" : "gbuffer_sdf", {}, {"position", "normal", "albedo", "linear_depth"}, false});
     if (!k) return p;
     if (isSsdo(*k)) {
         ssdoPasses(*k, c, p);
@@ -190,7 +192,9 @@ std::vector<PassSpec> buildPasses(const RunConfig& c) {
     // blur at half size, then the bilateral upsample (Alchemy's reason: a
     // plain upsample leaves halos at silhouettes).
     const bool half = c.half && supportsHalf(c.kernel);
-    if (half) p.push_back({"downsample", "downsample_depth", {"position", "normal"}, {"position_half", "normal_half"}, true});
+    if (half)
+        p.push_back({"downsample", "downsample_depth", {"linear_depth", "position", "normal"},
+                     {"position_half", "normal_half", "linear_depth_half"}, true});
     const auto in = aoInputs(*k, c, half, p);
     if (packsKey(*k)) separableTail(*k, in, half, p);
     else bilateralTail(*k, c, in, half, p);

@@ -217,20 +217,20 @@ std::vector<HostImage> pyramidLevels(const HostImage& level0, int levels) {
 }
 
 Result<std::vector<HostImage>> depthPyramid(const Context& ctx) {
-    CAVITY_TRY(requireInputs(ctx, {4, 1}));
+    CAVITY_TRY(requireInputs(ctx, {1, 1}));
     auto out = makeOutputs(ctx);
     for (int y = 0; y < ctx.frame.size[1]; ++y)
-        for (int x = 0; x < ctx.frame.size[0]; ++x) out[0].at(x, y) = ctx.inputs[0]->at(x, y, 3);
+        for (int x = 0; x < ctx.frame.size[0]; ++x) out[0].at(x, y) = ctx.inputs[0]->at(x, y);
     return out;
 }
 
 // depth_pyramid_single: the same level 0 (its other levels are checked
 // against pyramidLevels by the tests, as depth_pyramid's are).
 Result<std::vector<HostImage>> depthPyramidSingle(const Context& ctx) {
-    CAVITY_TRY(requireInputs(ctx, {4}));
+    CAVITY_TRY(requireInputs(ctx, {1}));
     auto out = makeOutputs(ctx);
     for (int y = 0; y < ctx.frame.size[1]; ++y)
-        for (int x = 0; x < ctx.frame.size[0]; ++x) out[0].at(x, y) = ctx.inputs[0]->at(x, y, 3);
+        for (int x = 0; x < ctx.frame.size[0]; ++x) out[0].at(x, y) = ctx.inputs[0]->at(x, y);
     return out;
 }
 

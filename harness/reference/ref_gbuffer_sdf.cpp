@@ -37,6 +37,7 @@ Result<std::vector<HostImage>> gbufferSdf(const Context& ctx) {
     HostImage& position = out[0];
     HostImage& normal = out[1];
     HostImage& albedo = out[2];
+    HostImage& linearDepth = out[3];
     for (int y = 0; y < f.size[1]; ++y) {
         for (int x = 0; x < f.size[0]; ++x) {
             // viewRayAt (common.glsl): row 0 is the top, +Y up.
@@ -68,6 +69,7 @@ Result<std::vector<HostImage>> gbufferSdf(const Context& ctx) {
                 normal.at(x, y, c) = nrm[c];
                 albedo.at(x, y, c) = alb[c];
             }
+            linearDepth.at(x, y) = depth;
         }
     }
     return out;
