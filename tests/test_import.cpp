@@ -158,6 +158,7 @@ TEST_P(ImportRoundTrip, EveryScreenSpacePipelineMatchesTheGeneratedGBuffer) {
             ASSERT_TRUE(validate(imported).ok()) << validate(imported).error().message;
             std::vector<std::string> names{"ao", "ao_blur", "color"};
             for (const auto& n : gbufferNames) names.push_back(n);
+            names.push_back("linear_depth");   // made from the imported position's w
             const Images a = render(gpu(), generated, names), b = render(gpu(), imported, names);
             for (const auto& n : names) {
                 ASSERT_TRUE(a.count(n) && b.count(n)) << kernel << " " << n;
