@@ -116,16 +116,16 @@ KernelDecl downsampleDepth() {
     k.file = "downsample_depth.glsl";
     k.summary = "half-resolution G-buffer: one real texel of each 2x2 block, nearest and farthest in a checkerboard";
     k.role = Role::Downsample;
-    k.inputs = {{"linear_depth", {}}, {"position", {}}, {"normal", {}}};
+    k.inputs = {{"position", {}}, {"normal", {}}};
     k.outputs = {{"position_half", Format::RGBA32F}, {"normal_half", Format::RGBA16F}, {"linear_depth_half", Format::R32F}};
-    // Per half texel: 4 depths read, the chosen position and normal
-    // fetched, all three written. DRAM: the 2x2 block of the depth, and of
-    // the positions and normals the row of the block that holds the pick
-    // (a 32-byte sector holds 2 positions, 4 normals).
+    // Per half texel: 4 positions read, the chosen position and normal
+    // fetched again (a cache hit), the three written. DRAM: the 2x2 block of
+    // both full-resolution images (every cache line of the normals is
+    // touched even though one texel in four is used).
     k.cost = [](const ParamValues&) {
-        return Cost{6, 4 * kR32f + kRgba32f + kRgba16f + kRgba32f + kRgba16f + kR32f,
-                    4 * fetchSlots(kR32f) + fetchSlots(kRgba32f) + fetchSlots(kRgba16f),
-                    4 * kR32f + 2 * kRgba32f + 2 * kRgba16f + kRgba32f + kRgba16f + kR32f};
+        return Cost{6, 4 * kRgba32f + kRgba16f + kRgba32f + kRgba16f + kR32f,
+                    4 * fetchSlots(kRgba32f) + fetchSlots(kRgba32f) + fetchSlots(kRgba16f),
+                    4 * kRgba32f + 4 * kRgba16f + kRgba32f + kRgba16f + kR32f};
     };
     return k;
 }

@@ -13,38 +13,39 @@
 // side: thin gaps and background pixels next to silhouettes would have only
 // foreground half texels to choose from.
 //
-// The picks compare the G-buffer's linear depth (R32F, the position's w bit
-// for bit): 4 bytes a texel, where the positions are 16. Only the chosen
-// texel's position and normal are fetched. Besides the half position and
+// The picks compare the positions' w, whose texels the copy then reads
+// again from cache. Comparing the G-buffer's linear depth instead (R32F, a
+// quarter of the bytes) and fetching the chosen position and normal after
+// made this pass 8% slower on the H200, both APIs: the chosen texel's
+// position was then a second trip to memory
+// (bench/results/2026-12-04_h200_linear_depth). Beside the half position and
 // normal it writes the chosen depth, the half-resolution pyramid's level 0.
 //
 // frame.size is the half size; the full size is the inputs' own size.
 #include "include/common.glsl"
 
-// Background (0) counts as infinitely far, so it wins the max.
-float blockDepth(float w) {
-    return isBackground(w) ? 3.0e38 : w;
+// Background (w = 0) counts as infinitely far, so it wins the max.
+float blockDepth(vec4 p) {
+    return isBackground(p.w) ? 3.0e38 : p.w;
 }
 
 void cavity_main(ivec2 pixel) {
-    ivec2 full = textureSize(in_linear_depth, 0);
+    ivec2 full = textureSize(in_position, 0);
     bool nearest = ((pixel.x + pixel.y) & 1) == 0;
     ivec2 best = min(pixel * 2, full - 1);
-    float bestW = texelFetch(in_linear_depth, best, 0).r;
-    float bestDepth = blockDepth(bestW);
+    float bestDepth = blockDepth(texelFetch(in_position, best, 0));
     // Fixed order and strict comparisons: ties keep the first texel, on the
     // GPU and in the reference alike. Odd full sizes clamp the last block.
     for (int k = 1; k < 4; ++k) {
         ivec2 texel = min(pixel * 2 + ivec2(k & 1, k >> 1), full - 1);
-        float w = texelFetch(in_linear_depth, texel, 0).r;
-        float d = blockDepth(w);
+        float d = blockDepth(texelFetch(in_position, texel, 0));
         if (nearest ? d < bestDepth : d > bestDepth) {
             best = texel;
             bestDepth = d;
-            bestW = w;
         }
     }
-    write_position_half(pixel, texelFetch(in_position, best, 0));
+    vec4 p = texelFetch(in_position, best, 0);
+    write_position_half(pixel, p);
     write_normal_half(pixel, texelFetch(in_normal, best, 0));
-    write_linear_depth_half(pixel, vec4(bestW, 0.0, 0.0, 0.0));
+    write_linear_depth_half(pixel, vec4(p.w, 0.0, 0.0, 0.0));
 }

@@ -207,7 +207,7 @@ TEST_P(ScreenSpaceProperties, HalfResolutionUpsampleDoesNotBleedAcrossASilhouett
     down.height = H / 2;
     down.srcWidth = W;
     down.srcHeight = H;
-    down.inputs = {&full.linearDepth, &full.position, &full.normal};
+    down.inputs = {&full.position, &full.normal};
     auto half = runKernel(gpu(), down);
     ASSERT_TRUE(half) << half.error().message;
     HostImage aoHalf(W / 2, H / 2, 1);

@@ -193,7 +193,7 @@ std::vector<PassSpec> buildPasses(const RunConfig& c) {
     // plain upsample leaves halos at silhouettes).
     const bool half = c.half && supportsHalf(c.kernel);
     if (half)
-        p.push_back({"downsample", "downsample_depth", {"linear_depth", "position", "normal"},
+        p.push_back({"downsample", "downsample_depth", {"position", "normal"},
                      {"position_half", "normal_half", "linear_depth_half"}, true});
     const auto in = aoInputs(*k, c, half, p);
     if (packsKey(*k)) separableTail(*k, in, half, p);

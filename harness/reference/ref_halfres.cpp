@@ -29,16 +29,14 @@ float blockDepth(float w) { return isBackground(w) ? 3.0e38f : w; }
 
 Result<std::vector<HostImage>> downsampleDepth(const Context& ctx) {
     const auto& f = ctx.frame;
-    const HostImage& linearDepth = *ctx.inputs[0];
-    const HostImage& position = *ctx.inputs[1];
-    const HostImage& normal = *ctx.inputs[2];
+    const HostImage& position = *ctx.inputs[0];
+    const HostImage& normal = *ctx.inputs[1];
     if ((position.width + 1) / 2 != f.size[0] || (position.height + 1) / 2 != f.size[1])
         return internal("reference downsample_depth: a " + std::to_string(position.width) + "x" +
                         std::to_string(position.height) + " G-buffer does not halve to the frame's " +
                         std::to_string(f.size[0]) + "x" + std::to_string(f.size[1]) + " (give it the half-size frame)");
-    CAVITY_TRY(screen::requireInput(ctx, 0, position.width, position.height, 1));
-    CAVITY_TRY(screen::requireInput(ctx, 1, position.width, position.height, 4));
-    CAVITY_TRY(screen::requireInput(ctx, 2, position.width, position.height, 3));
+    CAVITY_TRY(screen::requireInput(ctx, 0, position.width, position.height, 4));
+    CAVITY_TRY(screen::requireInput(ctx, 1, position.width, position.height, 3));
     const int fw = position.width, fh = position.height;
 
     auto out = makeOutputs(ctx);
@@ -46,10 +44,10 @@ Result<std::vector<HostImage>> downsampleDepth(const Context& ctx) {
         for (int x = 0; x < f.size[0]; ++x) {
             const bool nearest = ((x + y) & 1) == 0;
             int bx = std::min(2 * x, fw - 1), by = std::min(2 * y, fh - 1);
-            float best = blockDepth(linearDepth.at(bx, by));
+            float best = blockDepth(position.at(bx, by, 3));
             for (int k = 1; k < 4; ++k) {
                 const int tx = std::min(2 * x + (k & 1), fw - 1), ty = std::min(2 * y + (k >> 1), fh - 1);
-                const float d = blockDepth(linearDepth.at(tx, ty));
+                const float d = blockDepth(position.at(tx, ty, 3));
                 if (nearest ? d < best : d > best) {
                     bx = tx, by = ty;
                     best = d;
@@ -59,7 +57,7 @@ Result<std::vector<HostImage>> downsampleDepth(const Context& ctx) {
                 out[0].at(x, y, c) = position.at(bx, by, c);
                 out[1].at(x, y, c) = c < normal.channels ? normal.at(bx, by, c) : 0.0f;
             }
-            out[2].at(x, y) = linearDepth.at(bx, by);
+            out[2].at(x, y) = position.at(bx, by, 3);
         }
     return out;
 }
