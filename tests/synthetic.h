@@ -15,14 +15,13 @@ using namespace cavity::harness;
 struct GBuffer {
     HostImage position;   // view xyz, w = linear depth
     HostImage normal;     // view normal, w = 0
-    HostImage linearDepth;   // the position's w alone, as gbuffer_sdf writes it
 };
 
 // depthAt(x, y) gives the linear depth of a camera-facing plane piece at
 // each pixel (normal +Z, towards the camera); 0 means background.
 inline GBuffer facingPlanes(int w, int h, const std::function<float(int, int)>& depthAt) {
     const auto f = frameUniforms(w, h, w, h);
-    GBuffer g{HostImage(w, h, 4), HostImage(w, h, 4), HostImage(w, h, 1)};
+    GBuffer g{HostImage(w, h, 4), HostImage(w, h, 4)};
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) {
             const float d = depthAt(x, y);
@@ -33,7 +32,6 @@ inline GBuffer facingPlanes(int w, int h, const std::function<float(int, int)>& 
             g.position.at(x, y, 1) = -ny * f.camera[1] * d;
             g.position.at(x, y, 2) = -d;
             g.position.at(x, y, 3) = d;
-            g.linearDepth.at(x, y) = d;
             g.normal.at(x, y, 2) = 1.0f;
         }
     return g;

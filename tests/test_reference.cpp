@@ -125,7 +125,9 @@ struct CheckedChain {
     std::unique_ptr<PassChain> chain;
 };
 
-void checkChain(gpu::Backend& gpu, gpu::Api api, const Case& cs, CheckedChain* keep = nullptr) {
+// A case's size, kernel, resolution and stage; its scene and switches are
+// the caller's to set (setParam).
+RunConfig configOf(gpu::Api api, const Case& cs) {
     RunConfig c;
     c.api = api;
     c.width = cs.width;
@@ -133,6 +135,11 @@ void checkChain(gpu::Backend& gpu, gpu::Api api, const Case& cs, CheckedChain* k
     c.kernel = cs.kernel;
     c.half = cs.half;
     c.stage = cs.stage;
+    return c;
+}
+
+void checkChain(gpu::Backend& gpu, gpu::Api api, const Case& cs, CheckedChain* keep = nullptr) {
+    RunConfig c = configOf(api, cs);
     ASSERT_TRUE(setParam(c, "scene", cs.scene).ok());
     if (cs.fusedTail) {
         ASSERT_TRUE(setParam(c, "fused_tail", "1").ok());
@@ -333,13 +340,7 @@ TEST_P(KernelVsReference, FusedTailMakesTheImagesOfUpsampleThenComposite) {
                 checkChain(gpu(), api(), {scene, 160, 90, kernel, true, stage, true});
                 std::map<std::string, HostImage> images[2];
                 for (int fused = 0; fused < 2; ++fused) {
-                    RunConfig c;
-                    c.api = api();
-                    c.width = 160;
-                    c.height = 90;
-                    c.kernel = kernel;
-                    c.half = true;
-                    c.stage = stage;
+                    RunConfig c = configOf(api(), {scene, 160, 90, kernel, true, stage});
                     ASSERT_TRUE(setParam(c, "scene", scene).ok());
                     ASSERT_TRUE(setParam(c, "fused_tail", fused ? "1" : "0").ok());
                     auto chain = recordedChain(gpu(), c);
@@ -506,13 +507,7 @@ TEST_P(KernelVsReference, DefaultFastKernelsHoldTheStatedTolerance) {
         for (const std::string kernel : {"alchemy_fast", "hemisphere_fast"})
             for (bool half : {false, true})
                 for (auto stage : {gpu::Stage::Compute, gpu::Stage::Fragment}) {
-                    RunConfig c;
-                    c.api = api();
-                    c.width = 320;
-                    c.height = 180;
-                    c.kernel = kernel;
-                    c.half = half;
-                    c.stage = stage;
+                    RunConfig c = configOf(api(), {scene, 320, 180, kernel, half, stage});
                     ASSERT_TRUE(setParam(c, "scene", scene).ok());
                     checkInexactAo(gpu(), c);
                 }
