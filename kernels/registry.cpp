@@ -24,8 +24,8 @@ KernelDecl gbufferSdf() {
     k.role = Role::GBuffer;
     k.params = {use("scene"), use("view")};
     // linear_depth: the position's w again, on its own, as an engine's
-    // depth buffer is: what the depth pyramid and the downsample read, at a
-    // quarter of the position's bytes.
+    // depth buffer is: what the depth pyramid reads, at a quarter of the
+    // position's bytes.
     k.outputs = {{"position", Format::RGBA32F},
                  {"normal", Format::RGBA16F},
                  {"albedo", Format::RGBA8},
