@@ -253,6 +253,10 @@ Result<gpu::ShaderSource> assemble(const KernelDecl& k, gpu::Stage stage,
     p << "#extension GL_EXT_control_flow_attributes : enable\n"
          "#ifdef GL_EXT_control_flow_attributes\n#define CAVITY_UNROLL [[unroll]]\n#else\n#define CAVITY_UNROLL\n#endif\n";
     CAVITY_ASSIGN(const Workgroup wg, workgroupSize(k));
+    if (firstInputBinding(k, stage) + k.inputs.size() > kFrameBinding)
+        return internal("kernel " + k.name + ": " + std::to_string(storageBindingCount(k, stage)) + " storage images and " +
+                        std::to_string(k.inputs.size()) + " inputs need more than the " + std::to_string(kFrameBinding) +
+                        " bindings below its uniform blocks (kernel.h, kFrameBinding)");
     defineStage(p, stage, wg);
     // The precision contract (include/common.glsl): `precise` on the values
     // that feed discrete decisions, unless the kernel declares `exact` and

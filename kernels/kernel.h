@@ -9,12 +9,13 @@
 //     void cavity_main(ivec2 pixel)
 //
 // and is wrapped by a generated preamble (assemble.cpp) that declares, for a
-// kernel with inputs {position, normal} and outputs {ao}:
+// kernel with inputs {position, normal} and outputs {ao} on the fragment
+// stage (compute binds its output images from 0 and the inputs after them):
 //
-//     layout(std140, binding = 0) uniform Frame { ... } frame;   // FrameUniforms
-//     layout(std140, binding = 1) uniform Params { <params>; <arrays> } P;
-//     layout(binding = 2) uniform sampler2D in_position;
-//     layout(binding = 3) uniform sampler2D in_normal;
+//     layout(std140, binding = 30) uniform Frame { ... } frame;   // FrameUniforms
+//     layout(std140, binding = 31) uniform Params { <params>; <arrays> } P;
+//     layout(binding = 0) uniform sampler2D in_position;
+//     layout(binding = 1) uniform sampler2D in_normal;
 //     void write_ao(ivec2 pixel, vec4 value);   // imageStore or a render target
 //
 // Int and enum parameters become GLSL int, Float become float, Bool become
@@ -241,13 +242,18 @@ gpu::ShaderSource fullscreenVertex();
 // Binding layout of a kernel's pipeline for a stage: Frame UBO, Params UBO,
 // inputs as sampled images, and (compute only) outputs as storage images.
 std::vector<gpu::BindingSlot> bindingLayout(const KernelDecl& k, gpu::Stage stage);
-constexpr uint32_t kFrameBinding = 0;
-constexpr uint32_t kParamsBinding = 1;
-constexpr uint32_t kFirstImageBinding = 2;
-// A compute pass binds its storage images first, from kFirstImageBinding,
-// and its sampled inputs after them: GL numbers image units apart from
-// texture units, and the NVIDIA driver has 8 image units (GL_MAX_IMAGE_UNITS),
-// which a pass with many inputs before its outputs overran.
+// A compute pass binds its storage images first, from 0, and its sampled
+// inputs after them; the two uniform blocks take the last two bindings a
+// kernel may use. GL numbers image units apart from texture units and
+// uniform-buffer bindings, and the NVIDIA driver has 8 image units
+// (GL_MAX_IMAGE_UNITS): a binding number is a unit there, so images from 0
+// can use all 8 (the half-resolution downsample that builds the pyramid
+// writes 7), where after the uniform blocks they had 6, and a pass with many
+// inputs before its outputs overran them. Vulkan needs each number once per
+// set; assemble() refuses a kernel whose images and inputs reach the blocks.
+constexpr uint32_t kFirstImageBinding = 0;
+constexpr uint32_t kFrameBinding = 30;
+constexpr uint32_t kParamsBinding = 31;
 uint32_t storageBindingCount(const KernelDecl& k, gpu::Stage stage);
 inline uint32_t firstInputBinding(const KernelDecl& k, gpu::Stage stage) {
     return kFirstImageBinding + storageBindingCount(k, stage);
