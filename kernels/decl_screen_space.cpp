@@ -130,6 +130,33 @@ KernelDecl downsampleDepth() {
     return k;
 }
 
+// downsample_depth and depth_pyramid_single in one pass
+// (downsample_pyramid.glsl): the half-resolution G-buffer, and the pyramid
+// built from the depth it picks. What a half-resolution fast pipeline runs
+// unless it asks for the pyramid a level at a time or in layers
+// (harness/pipeline/pipelines.cpp).
+KernelDecl downsamplePyramid() {
+    KernelDecl k;
+    k.name = "downsample_pyramid";
+    k.file = "downsample_pyramid.glsl";
+    k.summary = "downsample_depth and depth_pyramid_single in one pass: the half-resolution G-buffer and its depth pyramid";
+    k.role = Role::Downsample;
+    k.workgroup = {8, 8};   // as downsample_depth
+    k.inputs = {{"position", {}}, {"normal", {}}};
+    OutputDecl zmip{"zmip", Format::R32F, kPyramidLevels};
+    zmip.oneDispatch = true;
+    k.outputs = {{"position_half", Format::RGBA32F}, {"normal_half", Format::RGBA16F}, zmip};
+    // downsample_depth's reads; its writes with the depth as level 0, and a
+    // third of a depth more (1/4 + 1/16 + ...) for the smaller levels.
+    k.cost = [](const ParamValues&) {
+        const double rest = (1 - std::pow(0.25, kPyramidLevels - 1)) / 3;
+        const double writes = kRgba32f + kRgba16f + kR32f + rest * kR32f;
+        return Cost{6, 4 * kRgba32f + kRgba16f + writes, 4 * fetchSlots(kRgba32f) + fetchSlots(kRgba32f) + fetchSlots(kRgba16f),
+                    4 * kRgba32f + 4 * kRgba16f + writes};
+    };
+    return k;
+}
+
 KernelDecl upsampleBilateral() {
     KernelDecl k;
     k.name = "upsample_bilateral";
@@ -297,7 +324,7 @@ double skyTexels(const ParamValues& v) {
 }
 
 std::vector<KernelDecl> screenSpaceKernels() {
-    return {depthFromPosition(), hemisphere(),        hemisphereCosine(), blurBox(),      downsampleDepth(), upsampleBilateral(),
+    return {depthFromPosition(), hemisphere(),        hemisphereCosine(), blurBox(),      downsampleDepth(), downsamplePyramid(), upsampleBilateral(),
             upsampleComposite(), ssdo(),              blurBilateralSsdo(), ssdoIndirect(), compositeSsdo()};
 }
 

@@ -16,10 +16,7 @@
 // which the readers use to undo the picks: the build and the undoing stay
 // two statements of one rule, so a mistake in one shows against the other.
 #include "include/common.glsl"
-
-ivec2 levelSizeOf(int l) {
-    return max(frame.size >> l, ivec2(1));
-}
+#include "include/pyramid_build.glsl"
 
 #ifdef CAVITY_INTERLEAVE
 // depth_pyramid_layered: level 0 again, split into the AO pass's k x k
@@ -38,49 +35,11 @@ void writeLayers(ivec2 pixel, vec4 depth) {
 }
 #endif
 
-#if CAVITY_LEVELS_zmip > 16
-#error depth_pyramid_single writes at most 16 levels: add links to cavity_main
-#endif
-
-// Link k of this pixel's chain: whether texel pixel >> k of level k picked
-// it, and if so that texel written. A pixel no texel of level k picked is
-// picked by no smaller level either (the chain passes through level k), and
-// neither is one past an odd level's last texel: the first false ends the
-// work. Three pixels in four stop at level 1.
-bool pyramidLink(int k, ivec2 pixel, vec4 depth) {
-    if (k >= CAVITY_LEVELS_zmip) return false;
-    ivec2 t = pixel >> k;
-    if (any(greaterThanEqual(t, levelSizeOf(k)))) return false;
-    ivec2 pick = min(t * 2 + ivec2(t.y & 1, t.x & 1), levelSizeOf(k - 1) - 1);
-    if (pick != pixel >> (k - 1)) return false;
-    write_zmip_level(k, t, depth);
-    return true;
-}
-
 void cavity_main(ivec2 pixel) {
     vec4 depth = vec4(texelFetch(in_linear_depth, pixel, 0).r, 0.0, 0.0, 0.0);
     write_zmip(pixel, depth);
 #ifdef CAVITY_INTERLEAVE
     writeLayers(pixel, depth);
 #endif
-    // The links written out, each with its level a constant, where a loop
-    // over k was one: NVIDIA's GL driver kept that loop rolled, picking the
-    // level's image through a chain of tests every iteration, and this form
-    // took 7.5% off the pass there (Vulkan unrolled it already;
-    // bench/results/2026-12-03_h200_unroll).
-    if (!pyramidLink(1, pixel, depth)) return;
-    if (!pyramidLink(2, pixel, depth)) return;
-    if (!pyramidLink(3, pixel, depth)) return;
-    if (!pyramidLink(4, pixel, depth)) return;
-    if (!pyramidLink(5, pixel, depth)) return;
-    if (!pyramidLink(6, pixel, depth)) return;
-    if (!pyramidLink(7, pixel, depth)) return;
-    if (!pyramidLink(8, pixel, depth)) return;
-    if (!pyramidLink(9, pixel, depth)) return;
-    if (!pyramidLink(10, pixel, depth)) return;
-    if (!pyramidLink(11, pixel, depth)) return;
-    if (!pyramidLink(12, pixel, depth)) return;
-    if (!pyramidLink(13, pixel, depth)) return;
-    if (!pyramidLink(14, pixel, depth)) return;
-    pyramidLink(15, pixel, depth);
+    writePyramidChain(pixel, depth);
 }

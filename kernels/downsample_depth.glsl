@@ -19,31 +19,15 @@
 // made this pass 8% slower on the H200, both APIs: the chosen texel's
 // position was then a second trip to memory
 // (bench/results/2026-12-04_h200_linear_depth). Beside the half position and
-// normal it writes the chosen depth, the half-resolution pyramid's level 0.
+// normal it writes the chosen depth, the half-resolution pyramid's level 0,
+// for a pipeline that builds that pyramid in a pass of its own
+// (downsample_pyramid.glsl builds it here).
 //
 // frame.size is the half size; the full size is the inputs' own size.
-#include "include/common.glsl"
-
-// Background (w = 0) counts as infinitely far, so it wins the max.
-float blockDepth(vec4 p) {
-    return isBackground(p.w) ? 3.0e38 : p.w;
-}
+#include "include/downsample.glsl"
 
 void cavity_main(ivec2 pixel) {
-    ivec2 full = textureSize(in_position, 0);
-    bool nearest = ((pixel.x + pixel.y) & 1) == 0;
-    ivec2 best = min(pixel * 2, full - 1);
-    float bestDepth = blockDepth(texelFetch(in_position, best, 0));
-    // Fixed order and strict comparisons: ties keep the first texel, on the
-    // GPU and in the reference alike. Odd full sizes clamp the last block.
-    for (int k = 1; k < 4; ++k) {
-        ivec2 texel = min(pixel * 2 + ivec2(k & 1, k >> 1), full - 1);
-        float d = blockDepth(texelFetch(in_position, texel, 0));
-        if (nearest ? d < bestDepth : d > bestDepth) {
-            best = texel;
-            bestDepth = d;
-        }
-    }
+    ivec2 best = downsamplePick(pixel);
     vec4 p = texelFetch(in_position, best, 0);
     write_position_half(pixel, p);
     write_normal_half(pixel, texelFetch(in_normal, best, 0));

@@ -24,4 +24,9 @@ constexpr double kRgba8 = gpu::bytesPerPixel(gpu::Format::RGBA8);
 constexpr double kR32f = gpu::bytesPerPixel(gpu::Format::R32F);
 constexpr double kR16f = gpu::bytesPerPixel(gpu::Format::R16F);
 
+// Levels of the linear-depth pyramid: 1920x1080 down to 120x67. Alchemy's
+// largest sample offsets at R = 0.5 on our cameras are about 250 px, which
+// ssao_alchemy_fast.glsl's level rule puts on level 4.
+constexpr int kPyramidLevels = 5;
+
 }  // namespace cavity::kernels

@@ -112,10 +112,6 @@ KernelDecl composite() {
 
 // --- the fast variants: the same estimators on a depth pyramid --
 
-// Levels of the linear-depth pyramid: 1920x1080 down to 120x67. Alchemy's
-// largest sample offsets at R = 0.5 on our cameras are about 250 px, which
-// ssao_alchemy_fast.glsl's level rule puts on level 4.
-constexpr int kPyramidLevels = 5;
 
 KernelDecl depthPyramid() {
     KernelDecl k;

@@ -266,10 +266,12 @@ TEST_P(KernelVsReference, OtherScenes160x90) {
 // see (a readback holds level 0): each must be the rotated-grid pick of the
 // level above, bit for bit, at sizes that go odd (45, 11, 5 rows). A level
 // that averaged, took the wrong texel of its block, or was never written
-// (all zero) fails here. Both builds, one dispatch (the default,
-// depth_pyramid_single) and one per level (depth_pyramid), and each level
-// of the one bit for bit the other's; and at 37x21, where levels run down to
-// 2x1 and the pick's clamp acts.
+// (all zero) fails here. Both builds, one dispatch (the default:
+// depth_pyramid_single, and at half resolution downsample_pyramid, which
+// builds it from the depths it picks) and one per level (depth_pyramid
+// after downsample_depth), and each level of the one bit for bit the
+// other's; and at 37x21, where levels run down to 2x1 and the pick's clamp
+// acts.
 TEST_P(KernelVsReference, DepthPyramidLevels) {
     for (auto [w, h] : {std::pair{160, 90}, std::pair{37, 21}})
         for (bool half : {false, true}) {
@@ -285,7 +287,10 @@ TEST_P(KernelVsReference, DepthPyramidLevels) {
                 ASSERT_TRUE(setParam(c, "pyramid_per_level", perLevel ? "1" : "0").ok());
                 auto chain = recordedChain(gpu(), c);
                 ASSERT_TRUE(chain) << chain.error().message;
-                const std::string builder = perLevel ? "depth_pyramid" : "depth_pyramid_single";
+                // At half resolution the downsample builds the one-dispatch
+                // pyramid from the depths it picks.
+                const std::string builder =
+                    perLevel ? "depth_pyramid" : (half ? "downsample_pyramid" : "depth_pyramid_single");
                 EXPECT_TRUE(std::any_of((*chain)->passes().begin(), (*chain)->passes().end(),
                                         [&](const auto& pass) { return pass.kernel == builder; }))
                     << configId(c) << " builds no " << builder;
@@ -294,7 +299,10 @@ TEST_P(KernelVsReference, DepthPyramidLevels) {
                 ASSERT_TRUE(level0) << level0.error().message;
                 const auto* decl = kernels::find(builder);
                 ASSERT_NE(decl, nullptr);
-                const int levels = decl->outputs[0].mipLevels;
+                const auto zmip = std::find_if(decl->outputs.begin(), decl->outputs.end(),
+                                               [](const kernels::OutputDecl& o) { return o.name == "zmip"; });
+                ASSERT_NE(zmip, decl->outputs.end()) << builder;
+                const int levels = zmip->mipLevels;
                 ASSERT_GT(levels, 2);
                 const auto want = reference::pyramidLevels(*level0, levels);
                 built[perLevel].push_back(*level0);

@@ -141,7 +141,14 @@ Status PassChain::createPass(const PassSpec& spec, const RunConfig& c, const Sou
     const auto& k = *pass->kernel;
     if (k.inputs.size() != spec.inputs.size() || k.outputs.size() != spec.outputs.size())
         return internal("pass '" + spec.name + "' wires the wrong number of images for kernel " + k.name);
-    const int mipLevels = k.outputs.empty() ? 1 : k.outputs[0].mipLevels;
+    // A pass writes at most one mip chain (the pyramid), in one dispatch or a
+    // dispatch a level.
+    int mipLevels = 1;
+    bool oneDispatch = false;
+    for (const auto& o : k.outputs) {
+        mipLevels = std::max(mipLevels, o.mipLevels);
+        oneDispatch |= o.oneDispatch;
+    }
     // A mip chain and interleaved layers are compute work whatever the stage.
     const bool interleaved = k.interleaved && interleaveOf(c) > 1;
     pass->stage = mipLevels > 1 || interleaved ? gpu::Stage::Compute : c.stage;
@@ -165,7 +172,7 @@ Status PassChain::createPass(const PassSpec& spec, const RunConfig& c, const Sou
         CAVITY_ASSIGN(pass->workgroup, kernels::workgroupSize(k));
         gpu::ComputePipelineDesc d{std::move(body), layout, int(pass->workgroup.x), int(pass->workgroup.y), spec.name};
         CAVITY_ASSIGN(pass->pipeline, gpu_.createComputePipeline(d));
-        if (k.outputs.empty() || !k.outputs[0].oneDispatch) CAVITY_TRY(createComputeLevels(*pass, spec, c, mipLevels));
+        if (!oneDispatch) CAVITY_TRY(createComputeLevels(*pass, spec, c, mipLevels));
     } else {
         gpu::GraphicsPipelineDesc d;
         d.vertex = kernels::fullscreenVertex();

@@ -7,6 +7,8 @@
 #include "pipeline/namespace.h"
 #include "pipeline/pipeline.h"
 
+#include <algorithm>
+
 namespace cavity::pipeline {
 
 namespace {
@@ -98,10 +100,22 @@ void ssdoPasses(const kernels::KernelDecl& k, const RunConfig& c, std::vector<Pa
     p.push_back({"composite", "composite_ssdo", {"ao_blur", "radiance_blur", "indirect_blur", "normal", "albedo"}, {"color"}, false});
 }
 
+// Whether the half-resolution downsample also builds the pyramid
+// (downsample_pyramid): for a kernel that reads it, unless the pyramid is
+// asked for a level at a time or in interleaved layers, which its own pass
+// builds.
+bool downsampleBuildsPyramid(const kernels::KernelDecl& k, const RunConfig& c) {
+    const bool readsPyramid =
+        std::any_of(k.inputs.begin(), k.inputs.end(), [](const kernels::InputDecl& i) { return i.name == "zmip"; });
+    const bool perLevel = c.params.count("pyramid_per_level") && c.params.at("pyramid_per_level") != 0;
+    return readsPyramid && !perLevel && interleaveOf(c) == 1;
+}
+
 // A screen-space AO kernel's inputs at its resolution, and the passes that
 // make them: the depth (put back on each half texel's own ray at half
 // resolution: depth_from_position_half.glsl says why) and the linear-depth
-// pyramid of the fast kernels, all its levels in one pass.
+// pyramid of the fast kernels, all its levels in one pass (at half
+// resolution mostly the downsample's).
 std::vector<ImageRef> aoInputs(const kernels::KernelDecl& k, const RunConfig& c, bool half, std::vector<PassSpec>& p) {
     const std::string suffix = half ? "_half" : "";
     const std::string position = "position" + suffix, normal = "normal" + suffix;
@@ -125,7 +139,7 @@ std::vector<ImageRef> aoInputs(const kernels::KernelDecl& k, const RunConfig& c,
             else
                 p.push_back({"depth", "depth_from_position", {position}, {"depth"}, false});
         }
-        if (i.name == "zmip")
+        if (i.name == "zmip" && !(half && downsampleBuildsPyramid(k, c)))
             p.push_back(pyramidPass(c, "linear_depth" + suffix, "zmip" + suffix, half));
     }
     return in;
@@ -192,7 +206,9 @@ std::vector<PassSpec> buildPasses(const RunConfig& c) {
     // blur at half size, then the bilateral upsample (Alchemy's reason: a
     // plain upsample leaves halos at silhouettes).
     const bool half = c.half && supportsHalf(c.kernel);
-    if (half)
+    if (half && downsampleBuildsPyramid(*k, c))
+        p.push_back({"downsample", "downsample_pyramid", {"position", "normal"}, {"position_half", "normal_half", "zmip_half"}, true});
+    else if (half)
         p.push_back({"downsample", "downsample_depth", {"position", "normal"},
                      {"position_half", "normal_half", "linear_depth_half"}, true});
     const auto in = aoInputs(*k, c, half, p);

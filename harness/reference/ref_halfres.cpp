@@ -32,7 +32,7 @@ Result<std::vector<HostImage>> downsampleDepth(const Context& ctx) {
     const HostImage& position = *ctx.inputs[0];
     const HostImage& normal = *ctx.inputs[1];
     if ((position.width + 1) / 2 != f.size[0] || (position.height + 1) / 2 != f.size[1])
-        return internal("reference downsample_depth: a " + std::to_string(position.width) + "x" +
+        return internal("reference " + ctx.kernel.name + ": a " + std::to_string(position.width) + "x" +
                         std::to_string(position.height) + " G-buffer does not halve to the frame's " +
                         std::to_string(f.size[0]) + "x" + std::to_string(f.size[1]) + " (give it the half-size frame)");
     CAVITY_TRY(screen::requireInput(ctx, 0, position.width, position.height, 4));

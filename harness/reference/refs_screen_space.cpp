@@ -42,6 +42,9 @@ std::vector<RefEntry> screenSpaceRefs() {
         {"hemisphere_cosine", hemisphere},   // the same shader, another kernel array
         {"blur_box", blurBox},
         {"downsample_depth", downsampleDepth},
+        // The same texels, and the depth as the pyramid's level 0 (its other
+        // levels are checked against pyramidLevels by the tests).
+        {"downsample_pyramid", downsampleDepth},
         {"upsample_bilateral", upsampleBilateral},
         {"upsample_composite", upsampleComposite},
         {"ssdo", ssdoDirect},
