@@ -15,6 +15,9 @@ namespace {
 
 bool isConstant(const std::string& name) { return kernels::findConstant(name) != nullptr; }
 
+// Whether the configuration asks for the pyramid a dispatch per level.
+bool pyramidPerLevel(const RunConfig& c) { return c.params.count("pyramid_per_level") && c.params.at("pyramid_per_level") != 0; }
+
 // The linear-depth pyramid of the fast kernels, from `linearDepth` (the
 // G-buffer's, or the downsample's at half resolution) into `zmip`: one
 // dispatch, or one per level with pyramid_per_level; with interleaved
@@ -22,7 +25,7 @@ bool isConstant(const std::string& name) { return kernels::findConstant(name) !=
 PassSpec pyramidPass(const RunConfig& c, const std::string& linearDepth, const std::string& zmip, bool half) {
     if (interleaveOf(c) > 1)
         return {"pyramid", "depth_pyramid_layered", {linearDepth}, {zmip, "zlayers" + std::string(half ? "_half" : "")}, half};
-    if (c.params.count("pyramid_per_level") && c.params.at("pyramid_per_level") != 0)
+    if (pyramidPerLevel(c))
         return {"pyramid", "depth_pyramid", {linearDepth, zmip}, {zmip}, half};
     return {"pyramid", "depth_pyramid_single", {linearDepth}, {zmip}, half};
 }
@@ -107,8 +110,7 @@ void ssdoPasses(const kernels::KernelDecl& k, const RunConfig& c, std::vector<Pa
 bool downsampleBuildsPyramid(const kernels::KernelDecl& k, const RunConfig& c) {
     const bool readsPyramid =
         std::any_of(k.inputs.begin(), k.inputs.end(), [](const kernels::InputDecl& i) { return i.name == "zmip"; });
-    const bool perLevel = c.params.count("pyramid_per_level") && c.params.at("pyramid_per_level") != 0;
-    return readsPyramid && !perLevel && interleaveOf(c) == 1;
+    return readsPyramid && !pyramidPerLevel(c) && interleaveOf(c) == 1;
 }
 
 // A screen-space AO kernel's inputs at its resolution, and the passes that
@@ -254,7 +256,7 @@ Status validate(const RunConfig& c) {
                                         "(--gbuffer import); use a screen-space kernel (have: " + screenSpaceAoNames() + ")");
     if (c.half && !supportsHalf(c.kernel))
         return badInput("--resolution half: kernel " + c.kernel + " has no half-resolution pipeline (use full)");
-    if (interleaveOf(c) > 1 && c.params.count("pyramid_per_level") && c.params.at("pyramid_per_level") != 0)
+    if (interleaveOf(c) > 1 && pyramidPerLevel(c))
         return badInput("--pyramid_per_level 1: the interleaved layers (--interleave " + std::to_string(interleaveOf(c)) +
                         ") are written by the one-dispatch pyramid; use one or the other");
     // Values set in code (sweeps, matrices, tests) rather than parsed.
