@@ -45,7 +45,8 @@ std::string hexUuid(const unsigned char (&bytes)[16]) {
 
 int channelCount(Format f) {
     switch (f) {
-    case Format::RG16F: return 2;
+    case Format::RG16F:
+    case Format::RG32F: return 2;
     case Format::RGBA8:
     case Format::RGBA16F:
     case Format::RGBA32F: return 4;
@@ -59,6 +60,7 @@ const char* formatName(Format f) {
     case Format::R16F: return "R16F";
     case Format::R32F: return "R32F";
     case Format::RG16F: return "RG16F";
+    case Format::RG32F: return "RG32F";
     case Format::RGBA8: return "RGBA8";
     case Format::RGBA16F: return "RGBA16F";
     case Format::RGBA32F: return "RGBA32F";

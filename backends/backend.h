@@ -32,14 +32,15 @@ namespace cavity::gpu {
 enum class Api { OpenGL, Vulkan };
 const char* apiName(Api api);   // "gl", "vk"
 
-enum class Format { R8, R16F, R32F, RG16F, RGBA8, RGBA16F, RGBA32F, D32 };
-int channelCount(Format f);     // 1, 1, 1, 2, 4, 4, 4, 1
+enum class Format { R8, R16F, R32F, RG16F, RG32F, RGBA8, RGBA16F, RGBA32F, D32 };
+int channelCount(Format f);     // 1, 1, 1, 2, 2, 4, 4, 4, 1
 constexpr int bytesPerPixel(Format f) {
     switch (f) {
     case Format::R8: return 1;
     case Format::R16F: return 2;
     case Format::R32F: return 4;
     case Format::RG16F: return 4;
+    case Format::RG32F: return 8;
     case Format::RGBA8: return 4;
     case Format::RGBA16F: return 8;
     case Format::RGBA32F: return 16;

@@ -114,6 +114,7 @@ const char* imageQualifier(gpu::Format f) {
     case gpu::Format::R16F: return "r16f";
     case gpu::Format::R32F: return "r32f";
     case gpu::Format::RG16F: return "rg16f";
+    case gpu::Format::RG32F: return "rg32f";
     case gpu::Format::RGBA8: return "rgba8";
     case gpu::Format::RGBA16F: return "rgba16f";
     case gpu::Format::RGBA32F: return "rgba32f";

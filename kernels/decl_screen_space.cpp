@@ -143,14 +143,14 @@ KernelDecl downsamplePyramid() {
     k.role = Role::Downsample;
     k.workgroup = {8, 8};   // as downsample_depth
     k.inputs = {{"position", {}}, {"normal", {}}};
-    OutputDecl zmip{"zmip", Format::R32F, kPyramidLevels};
+    OutputDecl zmip{"zmip", Format::RG32F, kPyramidLevels};
     zmip.oneDispatch = true;
     k.outputs = {{"position_half", Format::RGBA32F}, {"normal_half", Format::RGBA16F}, zmip};
     // downsample_depth's reads; its writes with the depth as level 0, and a
     // third of a depth more (1/4 + 1/16 + ...) for the smaller levels.
     k.cost = [](const ParamValues&) {
         const double rest = (1 - std::pow(0.25, kPyramidLevels - 1)) / 3;
-        const double writes = kRgba32f + kRgba16f + kR32f + rest * kR32f;
+        const double writes = kRgba32f + kRgba16f + kRg32f + rest * kRg32f;
         return Cost{6, 4 * kRgba32f + kRgba16f + writes, 4 * fetchSlots(kRgba32f) + fetchSlots(kRgba32f) + fetchSlots(kRgba16f),
                     4 * kRgba32f + 4 * kRgba16f + writes};
     };

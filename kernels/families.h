@@ -22,6 +22,8 @@ constexpr double kRgba32f = gpu::bytesPerPixel(gpu::Format::RGBA32F);
 constexpr double kRgba16f = gpu::bytesPerPixel(gpu::Format::RGBA16F);
 constexpr double kRgba8 = gpu::bytesPerPixel(gpu::Format::RGBA8);
 constexpr double kR32f = gpu::bytesPerPixel(gpu::Format::R32F);
+// A texel of the depth pyramid: its depth and its source pixel.
+constexpr double kRg32f = gpu::bytesPerPixel(gpu::Format::RG32F);
 constexpr double kR16f = gpu::bytesPerPixel(gpu::Format::R16F);
 
 // Levels of the linear-depth pyramid: 1920x1080 down to 120x67. Alchemy's

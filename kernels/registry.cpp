@@ -117,18 +117,18 @@ KernelDecl depthPyramid() {
     KernelDecl k;
     k.name = "depth_pyramid";
     k.file = "depth_pyramid.glsl";
-    k.summary = "linear-depth mip pyramid (R32F, 5 levels, one real depth of each 2x2 block) for the fast AO kernels";
+    k.summary = "linear-depth mip pyramid (RG32F, 5 levels, one real depth of each 2x2 block beside its pixel) for the fast AO kernels";
     k.role = Role::Pyramid;
     // Level l reads level l - 1 of its own output: "zmip" is both.
     k.inputs = {{"linear_depth", {}}, {"zmip", {gpu::Filter::Nearest, gpu::Address::ClampToEdge, true}}};
-    k.outputs = {{"zmip", Format::R32F, kPyramidLevels}};
+    k.outputs = {{"zmip", Format::RG32F, kPyramidLevels}};
     k.params = {use("pyramid_per_level")};
-    // Per level-0 pixel: one R32F fetch and a 4-byte store at level 0,
+    // Per level-0 pixel: one R32F fetch and an 8-byte store at level 0,
     // and a third more of both (1/4 + 1/16 + ...) for the smaller levels.
     k.cost = [](const ParamValues&) {
         const double rest = (1 - std::pow(0.25, kPyramidLevels - 1)) / 3;
-        return Cost{1 + rest, kR32f + kR32f + rest * 2 * kR32f, fetchSlots(kR32f) + rest * fetchSlots(kR32f),
-                    kR32f + kR32f + rest * 2 * kR32f};
+        return Cost{1 + rest, kR32f + kRg32f + rest * 2 * kRg32f, fetchSlots(kR32f) + rest * fetchSlots(kRg32f),
+                    kR32f + kRg32f + rest * 2 * kRg32f};
     };
     return k;
 }
@@ -142,15 +142,15 @@ KernelDecl depthPyramidSingle() {
     k.summary = "depth_pyramid's levels in one dispatch: each texel written by the thread of the pixel it picks";
     k.role = Role::Pyramid;
     k.inputs = {{"linear_depth", {}}};
-    OutputDecl zmip{"zmip", Format::R32F, kPyramidLevels};
+    OutputDecl zmip{"zmip", Format::RG32F, kPyramidLevels};
     zmip.oneDispatch = true;
     k.outputs = {zmip};
     k.params = {use("pyramid_per_level")};
-    // Per level-0 pixel: one R32F fetch, a 4-byte store at level 0 and a
+    // Per level-0 pixel: one R32F fetch, an 8-byte store at level 0 and a
     // third of one (1/4 + 1/16 + ...) for the smaller levels; nothing is read twice.
     k.cost = [](const ParamValues&) {
         const double rest = (1 - std::pow(0.25, kPyramidLevels - 1)) / 3;
-        return Cost{1, kR32f + kR32f + rest * kR32f, fetchSlots(kR32f), kR32f + kR32f + rest * kR32f};
+        return Cost{1, kR32f + kRg32f + rest * kRg32f, fetchSlots(kR32f), kR32f + kRg32f + rest * kRg32f};
     };
     return k;
 }
@@ -168,20 +168,20 @@ KernelDecl depthPyramidLayered() {
     k.params = {use("interleave")};
     k.cost = [](const ParamValues&) {
         const double rest = (1 - std::pow(0.25, kPyramidLevels - 1)) / 3;
-        const double bytes = 3 * kR32f + rest * kR32f;
+        const double bytes = kR32f + kRg32f + kR32f + rest * kRg32f;
         return Cost{1, bytes, fetchSlots(kR32f), bytes};
     };
     return k;
 }
 
-// A fast AO kernel's cost: the pixel's depth and normal, n R32F samples
-// of the pyramid, the AO and its packed key written; the pyramid's smaller
-// levels are a third of level 0 in DRAM.
+// A fast AO kernel's cost: the pixel's depth and normal, n RG32F samples
+// of the pyramid (a depth and its source pixel), the AO and its packed key
+// written; the pyramid's smaller levels are a third of level 0 in DRAM.
 Cost pyramidAoCost(const ParamValues& v) {
     const double n = v.at("samples");
-    return Cost{2 + n, kR32f + kRgba16f + n * kR32f + kR16f + kRgba16f,
-                fetchSlots(kR32f) + fetchSlots(kRgba16f) + n * fetchSlots(kR32f),
-                kR32f * 4 / 3 + kRgba16f + kR16f + kRgba16f};
+    return Cost{2 + n, kRg32f + kRgba16f + n * kRg32f + kR16f + kRgba16f,
+                fetchSlots(kRg32f) + fetchSlots(kRgba16f) + n * fetchSlots(kRg32f),
+                kRg32f * 4 / 3 + kRgba16f + kR16f + kRgba16f};
 }
 
 KernelDecl alchemyFast() {
@@ -216,7 +216,7 @@ KernelDecl alchemyFast() {
 }
 
 // hemisphere_cosine (seed 004 with its sampling fixed) on the pyramid: one
-// R32F fetch per point where it reads a depth and a normal
+// RG32F fetch per point where it reads a depth and a normal
 // (ssao_hemisphere_fast.glsl says what else differs, and why).
 KernelDecl hemisphereFast() {
     KernelDecl k;
@@ -298,7 +298,7 @@ KernelDecl blurSeparableSsdo(const std::string& axis) {
 }
 
 // ssdo_marched (seed 003 with each direction marched in `steps` points) on
-// the pyramid: one R32F fetch per point where it reads an RGBA32F position
+// the pyramid: one RG32F fetch per point where it reads an RGBA32F position
 // and an RGBA16F normal (include/ssdo_fast.glsl), and the separable pair
 // for both blurs. Its bounce pass is ssdo_fast_indirect.
 const KernelDecl& qualityVariant(const std::string& name) {
@@ -318,9 +318,9 @@ KernelDecl ssdoFast() {
     // Every direction marched to its last point (an open one is).
     k.cost = [](const ParamValues& v) {
         const double points = v.at("samples") * v.at("steps"), sky = v.at("samples") * skyTexels(v);
-        return Cost{2 + points + v.at("samples"), kR32f + kRgba16f + points * kR32f + sky * kRgba32f + kR16f + 2 * kRgba16f,
-                    fetchSlots(kR32f) + fetchSlots(kRgba16f) + points * fetchSlots(kR32f) + sky / 4 * fetchSlots(kRgba32f),
-                    kR32f * 4 / 3 + kRgba16f + kR16f + 2 * kRgba16f};
+        return Cost{2 + points + v.at("samples"), kRg32f + kRgba16f + points * kRg32f + sky * kRgba32f + kR16f + 2 * kRgba16f,
+                    fetchSlots(kRg32f) + fetchSlots(kRgba16f) + points * fetchSlots(kRg32f) + sky / 4 * fetchSlots(kRgba32f),
+                    kRg32f * 4 / 3 + kRgba16f + kR16f + 2 * kRgba16f};
     };
     return k;
 }
@@ -336,10 +336,10 @@ KernelDecl ssdoFastIndirect() {
     // every one reads its sender's normal, radiance and albedo.
     k.cost = [](const ParamValues& v) {
         const double n = v.at("samples"), points = n * v.at("steps");
-        return Cost{2 + points + 3 * n, kR32f + kRgba16f + points * kR32f + n * (2 * kRgba16f + kRgba8) + kRgba16f,
-                    fetchSlots(kR32f) + fetchSlots(kRgba16f) + points * fetchSlots(kR32f) +
+        return Cost{2 + points + 3 * n, kRg32f + kRgba16f + points * kRg32f + n * (2 * kRgba16f + kRgba8) + kRgba16f,
+                    fetchSlots(kRg32f) + fetchSlots(kRgba16f) + points * fetchSlots(kRg32f) +
                         n * (2 * fetchSlots(kRgba16f) + fetchSlots(kRgba8)),
-                    kR32f * 4 / 3 + 2 * kRgba16f + kRgba8 + kRgba16f};
+                    kRg32f * 4 / 3 + 2 * kRgba16f + kRgba8 + kRgba16f};
     };
     return k;
 }

@@ -1,16 +1,17 @@
 // Alchemy ambient obscurance on the linear-depth pyramid: the estimator of
 // ssao_alchemy.glsl (McGuire et al., HPG 2011) sample for sample, the same
 // spiral, falloff, bias and contrast, but each sample's position is rebuilt
-// from one 32-bit depth (depth_pyramid.glsl) instead of read as an RGBA32F
-// texel: a quarter of the bytes, and for samples far from the pixel a
-// coarser level, whose texels neighbouring pixels share in cache.
+// from one pyramid texel (depth_pyramid.glsl: a depth and the pixel it came
+// from) instead of read as an RGBA32F texel: half the bytes, and for
+// samples far from the pixel a coarser level, whose texels neighbouring
+// pixels share in cache.
 //
 // The level grows with the sample's distance h from the pixel in pixels, as
 // in Scalable Ambient Obscurance: level floor(log2 h) - 3, so samples within
 // 16 px read level 0 and each doubling of h moves one level down. A texel of
 // level l holds the depth of one real pixel up to 2^l pixels from the
-// sample's, and the position is rebuilt on that pixel's ray, found by
-// undoing the pyramid's picks: the sample is a true surface point, moved by
+// sample's, and the position is rebuilt on that pixel's ray, which the
+// texel stores beside the depth: the sample is a true surface point, moved by
 // under 2^l px in a disc of h >= 2^(l+3) px. Rebuilt on the sample's own ray
 // instead, the borrowed depth puts a point off the surface by the depth
 // change across 2^l px, which on a wall seen at a grazing angle is far over
@@ -80,20 +81,8 @@ bool sampleTerm(const bool belowTiny, int i, Receiver r, out float term) {
     if (any(greaterThanEqual(uvec2(s), uvec2(frame.size)))) return false;
     // h < 2^31 here: the sample is inside the image.
     int level = pyramidLevel(int(h), r.maxLevel);
-    // pyramidTexel, written out as in the variant measured fastest on the
-    // H200; through a pyramidTexel whose tiny path was also different it
-    // measured 2% slower, and which of the two cost that was not
-    // separated (bench/results/2026-12-03_h200_overheads).
     ivec2 source;
-    ivec2 t;
-    if (belowTiny || level < r.tiny) {
-        t = min(s >> level, (frame.size >> level) - 1);
-        source = sourcePixelBelowTiny(t, level);
-    } else {
-        t = min(s >> level, levelSize(level) - 1);
-        source = sourcePixel(t, level);
-    }
-    float zs = pyramidDepth(t, level);
+    float zs = pyramidFetch(pyramidTexel(s, level, belowTiny ? 32 : r.tiny), level, source);
     if (isBackground(zs)) return false;
 
     EXACT vec3 omega = positionAt(source, zs) - r.X;
@@ -155,20 +144,8 @@ float obscurance(const bool belowTiny, int n, ivec2 pixel, vec3 X, vec3 N, float
         if (any(greaterThanEqual(uvec2(s), uvec2(frame.size)))) continue;
         // h < 2^31 here: the sample is inside the image.
         int level = pyramidLevel(int(h), maxLevel);
-        // pyramidTexel, written out as in the variant measured fastest on the
-        // H200; through a pyramidTexel whose tiny path was also different it
-        // measured 2% slower, and which of the two cost that was not
-        // separated (bench/results/2026-12-03_h200_overheads).
         ivec2 source;
-        ivec2 t;
-        if (belowTiny || level < tiny) {
-            t = min(s >> level, (frame.size >> level) - 1);
-            source = sourcePixelBelowTiny(t, level);
-        } else {
-            t = min(s >> level, levelSize(level) - 1);
-            source = sourcePixel(t, level);
-        }
-        float zs = pyramidDepth(t, level);
+        float zs = pyramidFetch(pyramidTexel(s, level, belowTiny ? 32 : tiny), level, source);
         if (isBackground(zs)) continue;
 
         EXACT vec3 omega = positionAt(source, zs) - X;

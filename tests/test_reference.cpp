@@ -264,9 +264,10 @@ TEST_P(KernelVsReference, OtherScenes160x90) {
 
 // The depth pyramid's smaller levels, which the per-pass check above cannot
 // see (a readback holds level 0): each must be the rotated-grid pick of the
-// level above, bit for bit, at sizes that go odd (45, 11, 5 rows). A level
-// that averaged, took the wrong texel of its block, or was never written
-// (all zero) fails here. Both builds, one dispatch (the default:
+// level above, bit for bit, at sizes that go odd (45, 11, 5 rows), and each
+// texel's stored source pixel the one the reference finds by undoing the
+// picks. A level that averaged, took the wrong texel of its block, stored
+// the wrong source, or was never written (all zero) fails here. Both builds, one dispatch (the default:
 // depth_pyramid_single, and at half resolution downsample_pyramid, which
 // builds it from the depths it picks) and one per level (depth_pyramid
 // after downsample_depth), and each level of the one bit for bit the
@@ -305,6 +306,8 @@ TEST_P(KernelVsReference, DepthPyramidLevels) {
                 const int levels = zmip->mipLevels;
                 ASSERT_GT(levels, 2);
                 const auto want = reference::pyramidLevels(*level0, levels);
+                // Level 0 holds each pixel's depth beside the pixel itself.
+                EXPECT_EQ(level0->pixels, want[0].pixels) << builder << " level 0";
                 built[perLevel].push_back(*level0);
                 for (int l = 1; l < levels; ++l) {
                     SCOPED_TRACE(builder + " " + std::to_string(w) + "x" + std::to_string(h) + " " + image + " level " +
@@ -316,7 +319,8 @@ TEST_P(KernelVsReference, DepthPyramidLevels) {
                     EXPECT_EQ(got->pixels, want[size_t(l)].pixels);
                     // (A 1x1 level of the tiny image may pick the sky.)
                     long long surface = 0;
-                    for (float v : got->pixels) surface += v > 0;
+                    for (int y = 0; y < got->height; ++y)
+                        for (int x = 0; x < got->width; ++x) surface += got->at(x, y) > 0;
                     if (got->pixels.size() >= 16) {
                         EXPECT_GT(surface, 0) << "no surface depth at all";
                     }

@@ -13,6 +13,7 @@ GlFormat glFormat(Format format) {
     case Format::R16F: return {GL_R16F, GL_RED, GL_HALF_FLOAT};
     case Format::R32F: return {GL_R32F, GL_RED, GL_FLOAT};
     case Format::RG16F: return {GL_RG16F, GL_RG, GL_HALF_FLOAT};
+    case Format::RG32F: return {GL_RG32F, GL_RG, GL_FLOAT};
     case Format::RGBA8: return {GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE};
     case Format::RGBA16F: return {GL_RGBA16F, GL_RGBA, GL_HALF_FLOAT};
     case Format::RGBA32F: return {GL_RGBA32F, GL_RGBA, GL_FLOAT};

@@ -15,6 +15,7 @@ VkFormat toVkFormat(Format f) {
     case Format::R16F: return VK_FORMAT_R16_SFLOAT;
     case Format::R32F: return VK_FORMAT_R32_SFLOAT;
     case Format::RG16F: return VK_FORMAT_R16G16_SFLOAT;
+    case Format::RG32F: return VK_FORMAT_R32G32_SFLOAT;
     case Format::RGBA8: return VK_FORMAT_R8G8B8A8_UNORM;
     case Format::RGBA16F: return VK_FORMAT_R16G16B16A16_SFLOAT;
     case Format::RGBA32F: return VK_FORMAT_R32G32B32A32_SFLOAT;
@@ -45,6 +46,7 @@ void packTexels(Format f, std::span<const float> in, std::byte* out) {
         }
         break;
     case Format::R32F:
+    case Format::RG32F:
     case Format::RGBA32F:
         std::memcpy(out, in.data(), in.size_bytes());
         break;
@@ -67,6 +69,7 @@ void unpackTexels(Format f, const std::byte* in, std::span<float> out) {
         }
         break;
     case Format::R32F:
+    case Format::RG32F:
     case Format::RGBA32F:
     case Format::D32:
         std::memcpy(out.data(), in, out.size_bytes());

@@ -8,6 +8,8 @@
 #include "reference/refs.h"
 #include "reference/vec.h"
 
+#include <bit>
+#include <cstdint>
 #include <utility>
 #include <vector>
 
@@ -27,10 +29,24 @@ inline std::pair<int, int> layerTexel(const kernels::FrameUniforms& f, int k, in
 // The levels of depth_pyramid's output.
 int levelCount();
 
-// The level-0 pixel whose depth texel (tx, ty) of `level` holds. Every
-// depth a fast kernel reads off the pyramid passes through here, so it also
-// counts the read in levelReads().
+// pyramidValue()'s second channel (include/pyramid_texel.glsl): the level-0
+// pixel (x, y) a texel's depth came from, its bits as they are.
+inline float packSource(int x, int y) {
+    return std::bit_cast<float>(int32_t(0x40000000 | (y << 15) | x));
+}
+
+// A level-0 image of the pyramid (depth in channel 0, two channels, as a
+// build writes it): each pixel's own packSource in channel 1.
+void packSources(HostImage& level0);
+
+// The level-0 pixel whose depth texel (tx, ty) of `level` holds, found by
+// undoing the picks: the readers' statement of the rule, where the GPU reads
+// the pixel the build stored. Every depth a fast kernel reads off the
+// pyramid passes through here, so it also counts the read in levelReads().
 void sourcePixel(const std::vector<HostImage>& zmip, int level, int& tx, int& ty);
+
+// The same, without counting.
+void undoPicks(const std::vector<HostImage>& zmip, int level, int& tx, int& ty);
 
 // How many depths the references have read from each pyramid level since
 // the last reset: which code paths of the fast kernels a configuration

@@ -41,30 +41,6 @@ Vec3 positionAt(const kernels::FrameUniforms& f, int x, int y, float depth) {
     return {ndcX * f.camera[0] * depth, -ndcY * f.camera[1] * depth, -depth};
 }
 
-int levelCount() {
-    const auto* k = kernels::find("depth_pyramid");
-    return k && !k->outputs.empty() ? k->outputs[0].mipLevels : 1;
-}
-
-std::vector<long long>& levelReads() {
-    thread_local std::vector<long long> reads;
-    return reads;
-}
-
-// The pyramid's picks, undone one level at a time (include/pyramid.glsl does
-// it in closed form).
-void sourcePixel(const std::vector<HostImage>& zmip, int level, int& tx, int& ty) {
-    auto& reads = levelReads();
-    if (reads.size() <= size_t(level)) reads.resize(size_t(level) + 1, 0);
-    ++reads[size_t(level)];
-    for (int k = level; k > 0; --k) {
-        const HostImage& above = zmip[size_t(k - 1)];
-        const int px = std::min(2 * tx + (ty & 1), above.width - 1);
-        ty = std::min(2 * ty + (tx & 1), above.height - 1);
-        tx = px;
-    }
-}
-
 View view(const kernels::FrameUniforms& f, int levels) {
     return {0.5f * float(f.size[0]) * portableReciprocal(f.camera[0]),
             -0.5f * float(f.size[1]) * portableReciprocal(f.camera[1]), 0.5f * float(f.size[0]),
@@ -129,6 +105,7 @@ using pyramid::findMsb;
 using pyramid::kLogMaxOffset;
 using pyramid::octDecode;
 using pyramid::octEncode;
+using pyramid::packSources;
 using pyramid::positionAt;
 using pyramid::sourcePixel;
 
@@ -201,26 +178,12 @@ Result<std::vector<HostImage>> blurSeparable(const Context& ctx, bool horizontal
 
 }  // namespace
 
-std::vector<HostImage> pyramidLevels(const HostImage& level0, int levels) {
-    std::vector<HostImage> chain;
-    chain.push_back(level0);
-    for (int l = 1; l < levels; ++l) {
-        const HostImage& above = chain.back();
-        HostImage next(std::max(1, level0.width >> l), std::max(1, level0.height >> l), 1);
-        for (int y = 0; y < next.height; ++y)
-            for (int x = 0; x < next.width; ++x)
-                next.at(x, y) = above.at(std::min(2 * x + (y & 1), above.width - 1),
-                                         std::min(2 * y + (x & 1), above.height - 1));
-        chain.push_back(std::move(next));
-    }
-    return chain;
-}
-
 Result<std::vector<HostImage>> depthPyramid(const Context& ctx) {
     CAVITY_TRY(requireInputs(ctx, {1, 1}));
     auto out = makeOutputs(ctx);
     for (int y = 0; y < ctx.frame.size[1]; ++y)
         for (int x = 0; x < ctx.frame.size[0]; ++x) out[0].at(x, y) = ctx.inputs[0]->at(x, y);
+    packSources(out[0]);
     return out;
 }
 
@@ -231,6 +194,7 @@ Result<std::vector<HostImage>> depthPyramidSingle(const Context& ctx) {
     auto out = makeOutputs(ctx);
     for (int y = 0; y < ctx.frame.size[1]; ++y)
         for (int x = 0; x < ctx.frame.size[0]; ++x) out[0].at(x, y) = ctx.inputs[0]->at(x, y);
+    packSources(out[0]);
     return out;
 }
 

@@ -9,6 +9,7 @@
 // srcSize = full), and its inputs are full size; the upsample's frame is
 // the full one, and its half-size inputs are whatever size they are.
 #include "reference/portable_math.h"
+#include "reference/pyramid.h"
 #include "reference/refs.h"
 #include "reference/vec.h"
 
@@ -59,6 +60,8 @@ Result<std::vector<HostImage>> downsampleDepth(const Context& ctx) {
             }
             out[2].at(x, y) = position.at(bx, by, 3);
         }
+    // downsample_pyramid: the depth as the pyramid's level 0, beside its pixel.
+    if (out[2].channels == 2) pyramid::packSources(out[2]);
     return out;
 }
 

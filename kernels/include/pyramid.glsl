@@ -1,6 +1,7 @@
 // Reading the linear-depth pyramid (depth_pyramid.glsl): the fast AO
 // kernels' shared helpers, mirrored by harness/reference/ref_fast.cpp.
 #include "include/screen_space.glsl"
+#include "include/pyramid_texel.glsl"
 
 // Samples up to 2^(3 + 1) = 16 px away read level 0; each doubling of the
 // distance moves one level down (after Scalable Ambient Obscurance).
@@ -36,54 +37,15 @@ int pyramidTinyLevel() {
     return min(findMSB(frame.size.x), findMSB(frame.size.y)) + 1;
 }
 
-// The level-0 pixel whose depth texel t of `level` holds, for a level below
-// the tiny ones: undoes depth_pyramid.glsl's pick (2x + (y & 1), 2y + (x & 1))
-// once per level. The pick appends one bit to each coordinate per level, and
-// the bits it appends alternate: to x the parity of y, then of x, then of
-// y...; to y the other way round. So the whole chain is a shift and two
-// masks, where a loop over the levels cost a sixth of the pass on the H200
-// (bench/ROOFLINE.md). The clamp into a level above never acts while that
-// level is at least 2 texels across (t < floor(s / 2) gives 2t + 1 < s).
-ivec2 sourcePixelBelowTiny(ivec2 t, int level) {
-    if (level == 0) return t;
-    int high = int(0xAAAAAAAAu >> uint(32 - level));   // bits level-1, level-3, ...
-    int low = ((1 << level) - 1) ^ high;                // bits level-2, level-4, ...
-    ivec2 parity = t & 1;
-    return (t << level) | ivec2(parity.y * high | parity.x * low, parity.x * high | parity.y * low);
-}
-
-// The level-0 pixel whose depth texel t of `level` holds, at any level:
-// past the tiny levels each pick is undone a level at a time with its
-// clamp, as the build made it. (pyramidTexel calls it only past them; with
-// a bare loop there instead, hemisphere_fast measured 1-5% slower on the
-// H200, bench/results/2026-12-03_h200_overheads.)
-ivec2 sourcePixel(ivec2 t, int level) {
-    if (level < pyramidTinyLevel()) return sourcePixelBelowTiny(t, level);
-    for (int k = level; k > 0; --k) t = min(t * 2 + ivec2(t.y & 1, t.x & 1), levelSize(k - 1) - 1);
-    return t;
-}
-
-// The texel of `level` that covers the in-image pixel s, and (`source`) the
-// level-0 pixel whose depth that texel holds. `tiny`: pyramidTinyLevel().
-// Below the tiny levels a level's size is frame.size >> level (levelSize's
-// max() never acts) and the picks undo by masks; at and past them, each
-// pick is undone a level at a time with its clamp, as the build made it.
-// Choosing the path once per sample, with `tiny` computed once per pixel,
-// rather than testing inside the undoing, took 7-10% off the fast kernels'
-// AO passes on the H200 with the same bits
-// (bench/results/2026-12-03_h200_overheads).
-ivec2 pyramidTexel(ivec2 s, int level, int tiny, out ivec2 source) {
-    ivec2 t;
-    // tiny >= 32: no level can be a tiny one (level <= 28), and a constant
-    // there (belowTiny) drops the other path at compile time.
-    if (tiny >= 32 || level < tiny) {
-        t = min(s >> level, (frame.size >> level) - 1);
-        source = sourcePixelBelowTiny(t, level);
-    } else {
-        t = min(s >> level, levelSize(level) - 1);
-        source = sourcePixel(t, level);
-    }
-    return t;
+// The texel of `level` that covers the in-image pixel s. `tiny`:
+// pyramidTinyLevel(). Below the tiny levels a level's size is
+// frame.size >> level (levelSize's max() never acts); choosing the path
+// once per sample, with `tiny` computed once per pixel, and a constant
+// there (belowTiny) drops the other path at compile time.
+ivec2 pyramidTexel(ivec2 s, int level, int tiny) {
+    // tiny >= 32: no level can be a tiny one (level <= 28).
+    if (tiny >= 32 || level < tiny) return min(s >> level, (frame.size >> level) - 1);
+    return min(s >> level, levelSize(level) - 1);
 }
 
 // What projecting a view-space point onto this pass's pixels takes:
@@ -99,6 +61,23 @@ float pyramidDepth(ivec2 t, int level) {
     if (level == 0) return texelFetch(in_zlayers, cavityLayerTexel(t), 0).r;
 #endif
     return texelFetch(in_zmip, t, level).r;
+}
+
+// The depth of texel t of `level`, and (`source`) the level-0 pixel it came
+// from, which the texel stores beside it (include/pyramid_texel.glsl): one
+// fetch, and no undoing of the picks, which took a fifth of alchemy_fast's
+// AO pass as a shift and two masks. Level 0 of the interleaved layers holds
+// the depth alone, and there the source is t itself.
+float pyramidFetch(ivec2 t, int level, out ivec2 source) {
+#if defined(CAVITY_INTERLEAVE) && CAVITY_INTERLEAVE > 1
+    if (level == 0) {
+        source = t;
+        return texelFetch(in_zlayers, cavityLayerTexel(t), 0).r;
+    }
+#endif
+    vec2 texel = texelFetch(in_zmip, t, level).rg;
+    source = pyramidSourceOf(texel.y);
+    return texel.x;
 }
 
 struct PyramidView {
@@ -135,8 +114,7 @@ bool pyramidLookup(PyramidView v, vec3 s, ivec2 pixel, out ivec2 source, out flo
     if (any(greaterThanEqual(uvec2(texel), uvec2(frame.size)))) return false;
     ivec2 away = abs(texel - pixel);
     int level = pyramidLevel(max(away.x, away.y), v.maxLevel);
-    ivec2 tl = pyramidTexel(texel, level, v.tiny, source);
-    zq = pyramidDepth(tl, level);
+    zq = pyramidFetch(pyramidTexel(texel, level, v.tiny), level, source);
     if (isBackground(zq)) return false;
     return true;
 }

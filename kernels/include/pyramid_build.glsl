@@ -4,6 +4,7 @@
 // downsample_pyramid.glsl, which makes level 0 itself at half resolution.
 // The including kernel has a one-dispatch mip output named zmip
 // (OutputDecl::oneDispatch, so write_zmip_level) of frame.size.
+#include "include/pyramid_texel.glsl"
 
 ivec2 levelSizeOf(int l) {
     return max(frame.size >> l, ivec2(1));
@@ -28,8 +29,8 @@ bool pyramidLink(int k, ivec2 pixel, vec4 depth) {
     return true;
 }
 
-// Level 0's texel `pixel`, of depth `depth`, written to every level whose
-// texel picked it (level 0 itself is the caller's).
+// Level 0's texel `pixel`, its pyramidValue `depth`, written to every level
+// whose texel picked it (level 0 itself is the caller's).
 void writePyramidChain(ivec2 pixel, vec4 depth) {
     // The links written out, each with its level a constant, where a loop
     // over k was one: NVIDIA's GL driver kept that loop rolled, picking the
