@@ -23,7 +23,20 @@
 #include "include/noise.glsl"
 #include "include/octahedral.glsl"
 #include "include/alchemy_spiral.glsl"
+// positionAt() in fused multiply-adds (include/pyramid.glsl).
+#define CAVITY_FMA_POSITIONS 1
 #include "include/pyramid.glsl"
+
+// With the GPU's own arithmetic the sum's common factor, the seed's
+// 2 pi c / n, multiplies the sum once instead of every term (one multiply a
+// sample); exact, it stays in each term as the CPU reference has it.
+#ifdef CAVITY_INEXACT
+#define WEIGHTED_TERM(weight, term) (term)
+#define WEIGHTED_SUM(weight, sum) ((weight) * (sum))
+#else
+#define WEIGHTED_TERM(weight, term) ((weight) * (term))
+#define WEIGHTED_SUM(weight, sum) (sum)
+#endif
 
 // Sample i of the seed's spiral (include/alchemy_spiral.glsl), its
 // direction read from P.spiral and turned by the pixel's phase: (cos, sin)
@@ -88,7 +101,7 @@ bool sampleTerm(const bool belowTiny, int i, Receiver r, out float term) {
     EXACT vec3 omega = positionAt(source, zs) - r.X;
     float omega2 = lengthSquared(omega);
     if (omega2 > r.R * r.R) return false;
-    term = r.weight * max(0.0, dot(r.N, omega) - P.bias) / max(r.c * r.c, omega2);
+    term = WEIGHTED_TERM(r.weight, max(0.0, dot(r.N, omega) - P.bias) / max(r.c * r.c, omega2));
     return true;
 }
 
@@ -100,7 +113,7 @@ float obscuranceWrittenOut(const bool belowTiny, Receiver r) {
     float S = 0.0, term;
 #define SAMPLE_TERM(i) if (sampleTerm(belowTiny, i, r, term)) S += term;
     CAVITY_REPEAT_samples(SAMPLE_TERM)
-    return S;
+    return WEIGHTED_SUM(r.weight, S);
 }
 
 // The receiver of the pixel at X (normal N, depth d) with n samples: the
@@ -151,9 +164,9 @@ float obscurance(const bool belowTiny, int n, ivec2 pixel, vec3 X, vec3 N, float
         EXACT vec3 omega = positionAt(source, zs) - X;
         float omega2 = lengthSquared(omega);
         if (omega2 > R * R) continue;
-        S += weight * max(0.0, dot(N, omega) - P.bias) / max(c * c, omega2);
+        S += WEIGHTED_TERM(weight, max(0.0, dot(N, omega) - P.bias) / max(c * c, omega2));
     }
-    return S;
+    return WEIGHTED_SUM(weight, S);
 }
 
 void cavity_main(ivec2 pixel) {

@@ -9,10 +9,24 @@ const int LOG_MAX_OFFSET = 3;
 
 // viewRayAt(pixel) * depth with each operation rounded as the CPU's is: the
 // rebuilt positions feed discrete decisions (a radius or a depth test).
+// A kernel that defines CAVITY_FMA_POSITIONS gets, with the GPU's own
+// arithmetic (CAVITY_INEXACT), the ray as one fused multiply-add of the
+// pixel instead: (pixel + 0.5) * 2 / size - 1 folded into a scale and an
+// offset. On the H200 that took 4% off alchemy_fast's AO pass on both APIs,
+// which asks for it. hemisphere_fast does not: 7% faster on Vulkan, 1.2%
+// slower on GL, and a kernel whose images differ between the APIs by a
+// flipped ray fails the CPU-baseline gate on one of them
+// (bench/results/2026-12-04_h200_pyramid_sources).
 vec3 positionAt(ivec2 pixel, float depth) {
+#if defined(CAVITY_INEXACT) && defined(CAVITY_FMA_POSITIONS)
+    vec2 camera = vec2(frame.camera.x, -frame.camera.y);
+    vec2 ray = fma(vec2(pixel), 2.0 * frame.invSize * camera, (frame.invSize - 1.0) * camera);
+    return vec3(ray * depth, -depth);
+#else
     EXACT vec2 ndc = (vec2(pixel) + 0.5) * frame.invSize * 2.0 - 1.0;
     EXACT vec3 p = vec3(ndc.x * frame.camera.x * depth, -ndc.y * frame.camera.y * depth, -depth);
     return p;
+#endif
 }
 
 // The size of pyramid level l: level 0 is this pass's size, and each mip
