@@ -6,8 +6,9 @@
 //
 // The pixel's bits go in the second channel as they are: x in bits 0-14, y
 // in bits 15-29, and bit 30 set, which keeps the float's exponent field
-// between 128 and 254 for any image under 32512 rows: never a NaN, an
-// infinity or a denormal that an implementation could flush on the way.
+// between 128 and 254 for any image under 32512 rows (the harness takes at
+// most 16384 a side): never a NaN, an infinity or a denormal that an
+// implementation could flush on the way.
 // A copy from texel to texel (the per-level build) moves the bits unchanged.
 vec4 pyramidValue(float depth, ivec2 source) {
     return vec4(depth, intBitsToFloat(0x40000000 | (source.y << 15) | source.x), 0.0, 0.0);
