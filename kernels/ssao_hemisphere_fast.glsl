@@ -67,6 +67,10 @@ float blockedShare(PyramidView view, ivec2 pixel, vec3 X, vec3 N, float level, f
     // ssao_hemisphere.glsl.
     // The point count compiled in and the loop unrolled, as in
     // ssao_alchemy_fast.glsl: 8% off this pass on the H200's Vulkan.
+    // NVIDIA's GL driver keeps the loop rolled; there four points an
+    // iteration took 1.5% (n16) and 1.9% (n32) off the pass with the same
+    // images, where every point written out cost 2.7% and 35%
+    // (bench/results/2026-12-04_h200_pyramid_sources).
 #ifdef CAVITY_REPEAT_samples   // a count from 1 to 64 compiled in (assemble())
     const int n = CAVITY_CONST_samples;
 #define POINT_LOOP CAVITY_UNROLL
@@ -77,20 +81,30 @@ float blockedShare(PyramidView view, ivec2 pixel, vec3 X, vec3 N, float level, f
     float R = P.radius;
     float occlusion = 0.0, directions = 0.0, blocked = 0.0, u = 0.0;
     int inGroup = 0;
-    POINT_LOOP for (int i = 0; i < n; ++i) {
-        vec4 k = P.kernel[i];
-        if (inGroup == 0 && P.step_jitter != 0) u = sampleHash(phasePixel(pixel), int(directions));
-        EXACT float lengthScale = R;
-        if (P.step_jitter != 0) lengthScale = R * (1.0 - u * portableReciprocal(float(inGroup + 1)));
-        blocked = max(blocked, occludedBy(view, X, N, level, d, k.xyz, tn, b, lengthScale, pixel));
-        ++inGroup;
-        if (k.w > 0.5 || i == n - 1) {
-            occlusion += blocked;
-            directions += 1.0;
-            blocked = 0.0;
-            inGroup = 0;
-        }
+#define HEMISPHERE_POINT(i) { \
+        vec4 k = P.kernel[i]; \
+        if (inGroup == 0 && P.step_jitter != 0) u = sampleHash(phasePixel(pixel), int(directions)); \
+        EXACT float lengthScale = R; \
+        if (P.step_jitter != 0) lengthScale = R * (1.0 - u * portableReciprocal(float(inGroup + 1))); \
+        blocked = max(blocked, occludedBy(view, X, N, level, d, k.xyz, tn, b, lengthScale, pixel)); \
+        ++inGroup; \
+        if (k.w > 0.5 || (i) == n - 1) { \
+            occlusion += blocked; \
+            directions += 1.0; \
+            blocked = 0.0; \
+            inGroup = 0; \
+        } \
     }
+#if defined(CAVITY_REPEAT_samples) && !defined(VULKAN) && CAVITY_CONST_samples % 4 == 0
+    for (int i = 0; i < n; i += 4) {
+        HEMISPHERE_POINT(i)
+        HEMISPHERE_POINT(i + 1)
+        HEMISPHERE_POINT(i + 2)
+        HEMISPHERE_POINT(i + 3)
+    }
+#else
+    POINT_LOOP for (int i = 0; i < n; ++i) HEMISPHERE_POINT(i)
+#endif
     return occlusion / directions;
 }
 

@@ -221,7 +221,9 @@ TEST_P(KernelVsReference, ThinImagesReadTheTinyLevels) {
 
 // The fast kernels compile their sample count in and unroll the loop up to
 // 64 samples (ssao_alchemy_fast.glsl); past that the count is the uniform's.
-// Both sides of that limit, and an odd count, against the CPU reference.
+// Both sides of that limit, and an odd count, against the CPU reference. On
+// GL hemisphere_fast takes a compiled-in count that is a multiple of four
+// four points an iteration, and the odd count one at a time.
 TEST_P(KernelVsReference, SampleCountsUnrolledAndNot) {
     for (const std::string kernel : {"alchemy_fast", "hemisphere_fast"})
         for (int n : {7, 64, 72}) {
