@@ -112,7 +112,6 @@ KernelDecl composite() {
 
 // --- the fast variants: the same estimators on a depth pyramid --
 
-
 KernelDecl depthPyramid() {
     KernelDecl k;
     k.name = "depth_pyramid";

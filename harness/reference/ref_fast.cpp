@@ -178,8 +178,12 @@ Result<std::vector<HostImage>> blurSeparable(const Context& ctx, bool horizontal
 
 }  // namespace
 
-Result<std::vector<HostImage>> depthPyramid(const Context& ctx) {
-    CAVITY_TRY(requireInputs(ctx, {1, 1}));
+namespace {
+
+// A pyramid build's outputs with level 0 made: each pixel's depth (the
+// first input) beside the pixel itself. Its other levels are checked against
+// pyramidLevels by the tests.
+std::vector<HostImage> pyramidLevel0(const Context& ctx) {
     auto out = makeOutputs(ctx);
     for (int y = 0; y < ctx.frame.size[1]; ++y)
         for (int x = 0; x < ctx.frame.size[0]; ++x) out[0].at(x, y) = ctx.inputs[0]->at(x, y);
@@ -187,15 +191,17 @@ Result<std::vector<HostImage>> depthPyramid(const Context& ctx) {
     return out;
 }
 
-// depth_pyramid_single: the same level 0 (its other levels are checked
-// against pyramidLevels by the tests, as depth_pyramid's are).
+}  // namespace
+
+Result<std::vector<HostImage>> depthPyramid(const Context& ctx) {
+    CAVITY_TRY(requireInputs(ctx, {1, 1}));
+    return pyramidLevel0(ctx);
+}
+
+// depth_pyramid_single: the same level 0.
 Result<std::vector<HostImage>> depthPyramidSingle(const Context& ctx) {
     CAVITY_TRY(requireInputs(ctx, {1}));
-    auto out = makeOutputs(ctx);
-    for (int y = 0; y < ctx.frame.size[1]; ++y)
-        for (int x = 0; x < ctx.frame.size[0]; ++x) out[0].at(x, y) = ctx.inputs[0]->at(x, y);
-    packSources(out[0]);
-    return out;
+    return pyramidLevel0(ctx);
 }
 
 // depth_pyramid_layered: that level 0, and again split into k x k layers

@@ -60,8 +60,14 @@ Result<std::vector<HostImage>> downsampleDepth(const Context& ctx) {
             }
             out[2].at(x, y) = position.at(bx, by, 3);
         }
-    // downsample_pyramid: the depth as the pyramid's level 0, beside its pixel.
-    if (out[2].channels == 2) pyramid::packSources(out[2]);
+    return out;
+}
+
+// downsample_pyramid: the same texels, and the depth as the pyramid's level
+// 0 beside its pixel.
+Result<std::vector<HostImage>> downsamplePyramid(const Context& ctx) {
+    CAVITY_ASSIGN(auto out, downsampleDepth(ctx));
+    pyramid::packSources(out[2]);
     return out;
 }
 

@@ -25,6 +25,7 @@ Result<std::vector<HostImage>> blurBoxDepth(const Context& ctx);
 Result<std::vector<HostImage>> depthFromPositionHalf(const Context& ctx);
 // ref_halfres.cpp
 Result<std::vector<HostImage>> downsampleDepth(const Context& ctx);
+Result<std::vector<HostImage>> downsamplePyramid(const Context& ctx);
 Result<std::vector<HostImage>> upsampleBilateral(const Context& ctx);
 Result<std::vector<HostImage>> upsampleComposite(const Context& ctx);
 // ref_ssdo.cpp
@@ -44,7 +45,7 @@ std::vector<RefEntry> screenSpaceRefs() {
         {"downsample_depth", downsampleDepth},
         // The same texels, and the depth as the pyramid's level 0 (its other
         // levels are checked against pyramidLevels by the tests).
-        {"downsample_pyramid", downsampleDepth},
+        {"downsample_pyramid", downsamplePyramid},
         {"upsample_bilateral", upsampleBilateral},
         {"upsample_composite", upsampleComposite},
         {"ssdo", ssdoDirect},
