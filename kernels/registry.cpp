@@ -240,7 +240,9 @@ KernelDecl hemisphereFast() {
     k.inputs = {{"zmip", {gpu::Filter::Nearest, gpu::Address::ClampToEdge, true}}, {"normal", {}}, {"zlayers", {}}};
     k.outputs = {{"ao", Format::R16F}, {"ao_key", Format::RGBA16F}};
     k.interleaved = true;
-    k.compileTime = {"samples"};   // the point loop unrolls (ssao_hemisphere_fast.glsl)
+    // The point loop unrolls, and each point's place on its ray is a constant
+    // (ssao_hemisphere_fast.glsl).
+    k.compileTime = {"samples", "steps"};
     k.arrays = {{"kernel", maxKernelPoints()}};
     k.derive = [](const ParamValues& v, std::map<std::string, std::vector<float>>& arrays) {
         arrays["kernel"] = cosineKernel(intValue(v, "samples"), intValue(v, "steps"));

@@ -40,6 +40,7 @@ struct Case {
     // arithmetic, is held to the precision contract's tolerance instead
     // (DefaultFastKernelsHoldTheStatedTolerance).
     bool exact = true;
+    int steps = 0;   // hemisphere_fast's points a ray; 0: the kernel's default
 };
 
 class KernelVsReference : public GpuTest {};
@@ -148,6 +149,9 @@ void checkChain(gpu::Backend& gpu, gpu::Api api, const Case& cs, CheckedChain* k
     if (cs.samples > 0) {
         ASSERT_TRUE(setParam(c, "samples", std::to_string(cs.samples)).ok());
     }
+    if (cs.steps > 0) {
+        ASSERT_TRUE(setParam(c, "steps", std::to_string(cs.steps)).ok());
+    }
     if (const auto* k = kernels::find(cs.kernel); cs.exact && k && kernels::declares(*k, "exact")) {
         ASSERT_TRUE(setParam(c, "exact", "1").ok());
     }
@@ -221,9 +225,13 @@ TEST_P(KernelVsReference, ThinImagesReadTheTinyLevels) {
 
 // The fast kernels compile their sample count in and unroll the loop up to
 // 64 samples (ssao_alchemy_fast.glsl); past that the count is the uniform's.
-// Both sides of that limit, and an odd count, against the CPU reference. On
-// GL hemisphere_fast takes a compiled-in count that is a multiple of four
-// four points an iteration, and the odd count one at a time.
+// Both sides of that limit, and an odd count, against the CPU reference.
+// hemisphere_fast compiles its rays' shape in too (ssao_hemisphere_fast.glsl):
+// n = 7 in rays of 4 ends in a shorter ray; 64 is 16 rays, two an iteration
+// on GL; 15 in rays of 3 is an odd count of rays, one an iteration; 16 in
+// rays of 3 ends in a ray of 1; 4 points in rays of 8 are one ray (steps
+// over n); 16 in rays of 1 are 16 one-point rays; and 72 takes the shape
+// from the table.
 TEST_P(KernelVsReference, SampleCountsUnrolledAndNot) {
     for (const std::string kernel : {"alchemy_fast", "hemisphere_fast"})
         for (int n : {7, 64, 72}) {
@@ -231,6 +239,12 @@ TEST_P(KernelVsReference, SampleCountsUnrolledAndNot) {
             cs.samples = n;
             checkChain(gpu(), api(), cs);
         }
+    for (const auto& [n, steps] : {std::pair{15, 3}, std::pair{16, 3}, std::pair{4, 8}, std::pair{16, 1}}) {
+        Case cs{"slats", 96, 54, "hemisphere_fast"};
+        cs.samples = n;
+        cs.steps = steps;
+        checkChain(gpu(), api(), cs);
+    }
 }
 
 // The separable blur's compute passes decode a workgroup's tile into shared
