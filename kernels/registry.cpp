@@ -316,6 +316,9 @@ KernelDecl ssdoFast() {
     k.summary = "ssdo_marched on a linear-depth mip pyramid, tested along the receiver's normal, with a separable blur";
     k.inputs = {{"zmip", {gpu::Filter::Nearest, gpu::Address::ClampToEdge, true}}, {"normal", {}}, k.inputs.at(2)};
     k.outputs = {{"visibility", Format::R16F}, {"radiance", Format::RGBA16F}, {"ao_key", Format::RGBA16F}};
+    // The directions and their points compiled in (include/ssdo_fast.glsl);
+    // the bounce pass walks the same points, compiled alike.
+    k.compileTime = {"samples", "steps"};
     // Every direction marched to its last point (an open one is).
     k.cost = [](const ParamValues& v) {
         const double points = v.at("samples") * v.at("steps"), sky = v.at("samples") * skyTexels(v);
@@ -333,6 +336,7 @@ KernelDecl ssdoFastIndirect() {
     k.summary = "ssdo_fast's one-bounce indirect light, from the first blocked point of each marched direction";
     k.inputs = {{"zmip", {gpu::Filter::Nearest, gpu::Address::ClampToEdge, true}}, {"normal", {}}, {"albedo", {}},
                 {"radiance", {}}};
+    k.compileTime = {"samples", "steps"};
     // Upper bound: every point fetched, and every direction blocked, so
     // every one reads its sender's normal, radiance and albedo.
     k.cost = [](const ParamValues& v) {

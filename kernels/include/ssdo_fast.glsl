@@ -10,6 +10,21 @@
 #include "include/ssdo_sampling.glsl"
 #include "include/pyramid.glsl"
 
+// The direction count (up to 64) and the points a direction compiled in
+// (KernelDecl::compileTime), as hemisphere_fast compiles its rays' shape:
+// each point's distance along its direction is then a constant apart from
+// the jitter, and the points are unrolled (Vulkan) or written out (GL,
+// whose driver keeps a loop of constant count rolled). Past 64 directions
+// both counts are the uniforms'.
+#if defined(CAVITY_REPEAT_samples) && defined(CAVITY_REPEAT_steps)
+#define SSDO_FAST_COMPILED 1
+#define SSDO_FAST_COUNT CAVITY_CONST_samples
+#define SSDO_FAST_STEPS CAVITY_CONST_steps
+#else
+#define SSDO_FAST_COUNT clamp(P.samples, 1, 256)
+#define SSDO_FAST_STEPS clamp(P.steps, 1, 16)
+#endif
+
 struct FastSample {
     vec3 dir;
     bool visible;
@@ -29,14 +44,21 @@ FastSample ssdoFastSample(PyramidView v, SsdoBasis f, vec3 p, float level, ivec2
     s.visible = true;
     float u = sampleHash(pixel, i);
     EXACT float perStep = portableReciprocal(float(steps));
-    for (int j = 0; j < steps; ++j) {
-        EXACT float lambda = radius * ((float(j + 1) - u) * perStep);
-        EXACT vec3 point = p + s.dir * lambda;
-        if (pyramidBlocks(v, f.n, level, point, pixel, bias, s.sender, s.senderDepth)) {
-            s.visible = false;
-            return s;
-        }
+#define SSDO_FAST_POINT(j) { \
+        EXACT float lambda = radius * ((float((j) + 1) - u) * perStep); \
+        EXACT vec3 point = p + s.dir * lambda; \
+        if (pyramidBlocks(v, f.n, level, point, pixel, bias, s.sender, s.senderDepth)) { \
+            s.visible = false; \
+            return s; \
+        } \
     }
+#if defined(SSDO_FAST_COMPILED) && !defined(VULKAN)
+    CAVITY_REPEAT_steps(SSDO_FAST_POINT)
+#elif defined(SSDO_FAST_COMPILED)
+    CAVITY_UNROLL for (int j = 0; j < SSDO_FAST_STEPS; ++j) SSDO_FAST_POINT(j)
+#else
+    for (int j = 0; j < steps; ++j) SSDO_FAST_POINT(j)
+#endif
     s.sender = ivec2(-1);
     s.senderDepth = 0.0;
     return s;
@@ -65,8 +87,8 @@ bool fastReceiver(ivec2 pixel, out FastReceiver r) {
     r.level = orderedDot(r.n, r.X);
     r.f = ssdoBasis(pixel, r.n);
     r.view = pyramidView();
-    r.count = clamp(P.samples, 1, 256);
-    r.steps = clamp(P.steps, 1, 16);
+    r.count = SSDO_FAST_COUNT;
+    r.steps = SSDO_FAST_STEPS;
     return true;
 }
 
