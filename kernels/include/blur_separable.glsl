@@ -45,7 +45,7 @@ float tapWeight(int t, vec3 N, vec3 tapNormal, float dd, float twoSigma2) {
 // meets at the barrier) and compiles its radius in, which sizes the tile
 // and writes the taps out. The tile keeps to 768 texels, 15 KiB, under the
 // 16 KiB of shared memory every Vulkan device has: every radius (1 to 32)
-// in the declared workgroups, 32x8 along x and 8x32 along y, which run the
+// in the declared workgroups, 64x4 along x and 4x64 along y, which run the
 // tile long along the axis. A shape that overflows it (CAVITY_WORKGROUP),
 // and the fragment stage, take the texture path.
 #if defined(CAVITY_STAGE_COMPUTE) && defined(CAVITY_CONST_blur)
