@@ -5,12 +5,16 @@
 # folder: no image travels), then renders it again and again and judges each
 # render there, by digest. What comes back in $OUT is small: approvals.json,
 # each clean run's gate.json and summary.md, the manifests, the clocks.
-#   scripts/gpu_references.sh MATRIX SECONDS    (clean renders until SECONDS have passed; at least one)
+#   scripts/gpu_references.sh MATRIX SECONDS [FILTER]
+# renders until SECONDS have passed (at least one clean render); FILTER, a
+# regular expression, keeps the configurations whose id it matches (those of
+# the kernels an edit touched), as cavity_render --filter does.
 # Back here: copy $OUT/approvals.json to baselines/ after review.
 set -uo pipefail
 cd "$(dirname "$0")/.."
 . scripts/gpu_env.sh
-matrix="${1:-gpu}"; budget="${2:-300}"
+matrix="${1:-gpu}"; budget="${2:-300}"; filter="${3:-}"
+only=(); [ -n "$filter" ] && only=(--filter "$filter")
 work=/tmp/cavity-references
 rm -rf "$work"; mkdir -p "$work" "$OUT"
 cp -r baselines "$work/base"
@@ -18,16 +22,16 @@ smi_start "$OUT/clocks.csv"
 start=$(date +%s)
 ms() { echo $(( ($(date +%s%N) - $1) / 1000000 )); }
 t0=$(date +%s%N)
-.bundle/render.sh --matrix "$matrix" --baselines "$work/base" --out "$work/r0" 2> "$OUT/render0.err"
+.bundle/render.sh --matrix "$matrix" "${only[@]}" --baselines "$work/base" --out "$work/r0" 2> "$OUT/render0.err"
 echo "render 0: exit $? in $(ms "$t0") ms" | tee -a "$OUT/log.txt"
 cp "$work/r0/manifest.json" "$OUT/manifest0.json"
 .bundle/cavity.sh baselines approve --from "$work/r0" --baselines "$work/base" --by gpu_references.sh \
-  --why "$matrix rendered on $(nvidia-smi --query-gpu=name,driver_version --format=csv,noheader | head -1)" | tee -a "$OUT/log.txt"
+  --why "$matrix${filter:+ (configurations matching $filter)} rendered on $(nvidia-smi --query-gpu=name,driver_version --format=csv,noheader | head -1)" | tee -a "$OUT/log.txt"
 cp "$work/base/approvals.json" "$OUT/approvals.json"
 i=1
 while [ "$i" -eq 1 ] || [ $(( $(date +%s) - start )) -lt "$budget" ]; do
   t0=$(date +%s%N)
-  .bundle/render.sh --matrix "$matrix" --baselines "$work/base" --out "$work/r$i" 2> "$OUT/render$i.err"
+  .bundle/render.sh --matrix "$matrix" "${only[@]}" --baselines "$work/base" --out "$work/r$i" 2> "$OUT/render$i.err"
   rc=$?
   t1=$(date +%s%N)
   .bundle/cavity.sh gate judge "$work/r$i" --baselines "$work/base" --out "$work/g$i" --quiet > "$OUT/summary$i.md"
