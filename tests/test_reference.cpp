@@ -231,7 +231,9 @@ TEST_P(KernelVsReference, ThinImagesReadTheTinyLevels) {
 // on GL; 15 in rays of 3 is an odd count of rays, one an iteration; 16 in
 // rays of 3 ends in a ray of 1; 4 points in rays of 8 are one ray (steps
 // over n); 16 in rays of 1 are 16 one-point rays; and 72 takes the shape
-// from the table.
+// from the table. ssdo_fast compiles its direction count and points a
+// direction in (include/ssdo_fast.glsl), both passes alike: 7 directions of
+// 3 points and of 1, and 72, past the limit, from the uniforms.
 TEST_P(KernelVsReference, SampleCountsUnrolledAndNot) {
     for (const std::string kernel : {"alchemy_fast", "hemisphere_fast"})
         for (int n : {7, 64, 72}) {
@@ -241,6 +243,12 @@ TEST_P(KernelVsReference, SampleCountsUnrolledAndNot) {
         }
     for (const auto& [n, steps] : {std::pair{15, 3}, std::pair{16, 3}, std::pair{4, 8}, std::pair{16, 1}}) {
         Case cs{"slats", 96, 54, "hemisphere_fast"};
+        cs.samples = n;
+        cs.steps = steps;
+        checkChain(gpu(), api(), cs);
+    }
+    for (const auto& [n, steps] : {std::pair{7, 3}, std::pair{7, 1}, std::pair{72, 0}}) {
+        Case cs{"slats", 96, 54, "ssdo_fast"};
         cs.samples = n;
         cs.steps = steps;
         checkChain(gpu(), api(), cs);
