@@ -82,7 +82,7 @@ float blockedShare(PyramidView view, ivec2 pixel, vec3 X, vec3 N, float level, f
     // not divide n, and one ray of every point when steps is over n), so
     // that each point's place on its ray, and with it the jitter's
     // 1 / (j + 1), is a constant, and the test that closes a ray is gone:
-    // 12-13% off this pass on the H200's Vulkan, 9-11% on GL, the same images
+    // 12-13% off this pass on the H200's Vulkan, 7-10% on GL, the same images
     // (bench/results/2026-12-04_h200_hemisphere_rays). NVIDIA's GL driver
     // keeps a loop of constant count rolled; there two rays an iteration
     // were 1.7-2.1% faster than one.
