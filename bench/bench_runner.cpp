@@ -30,9 +30,9 @@ std::map<gpu::Api, std::unique_ptr<gpu::Backend>>& backends() {
 }
 
 // Per-pixel cost model, shared with the roofline note (bench/ROOFLINE.md).
-double bytesPerPixel(const PassSpec& p, const RunConfig& c) {
+double bytesPerPixel(const PassSpec& p, const RunConfig& c, const kernels::PassShape& shape) {
     const auto* k = kernels::find(p.kernel);
-    return k && k->cost ? k->cost(kernels::withDefaults(*k, c.params)).bytesPerPixel : 0.0;
+    return k && k->cost ? k->cost(kernels::withDefaults(*k, c.params), shape).bytesPerPixel : 0.0;
 }
 
 double aoSamplesPerPixel(const PassSpec& p, const RunConfig& c) {
@@ -63,7 +63,7 @@ void setFloorCounters(benchmark::State& state, const gpu::Backend& gpu, const Pa
     const GpuClocks* gpuClocks = GpuClocks::forDevice(gpu.info());
     const DeviceFloor device = deviceFloor(gpu.info(), gpuClocks ? gpuClocks->maxSmMhz() : std::nullopt);
     for (size_t i = 0; i < passes.size(); ++i) {
-        const auto f = passFloor(device, passes[i].kernel, c.params, double(chain.passPixels(i)));
+        const auto f = passFloor(device, passes[i].kernel, c.params, double(chain.passPixels(i)), chain.passShape(i));
         if (!f.floor) continue;
         state.counters["floor_" + passes[i].name + "_ms"] = f.floor->ms();
         state.counters["over_floor_" + passes[i].name] = t.passes[i].stats.median / f.floor->ms();
@@ -87,7 +87,7 @@ void setWorkCounters(benchmark::State& state, const PassChain& chain, const RunC
         }
         const double px = double(chain.passPixels(i));
         samples += px * aoSamplesPerPixel(passes[i], c);
-        bytes += px * bytesPerPixel(passes[i], c);
+        bytes += px * bytesPerPixel(passes[i], c, chain.passShape(i));
         state.counters["pass_" + passes[i].name + "_ms"] = t.passes[i].stats.median;
     }
     pixels = double(c.width) * c.height;

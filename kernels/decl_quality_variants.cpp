@@ -49,8 +49,8 @@ void setDefault(KernelDecl& k, const std::string& param, double def) {
 // each step past the seed's one fetches a position and a normal more.
 void marchEveryStep(KernelDecl& k) {
     setDefault(k, "steps", kMarchedSteps);
-    k.cost = [seedCost = k.cost](const ParamValues& v) {
-        Cost c = seedCost(v);
+    k.cost = [seedCost = k.cost](const ParamValues& v, const PassShape& shape) {
+        Cost c = seedCost(v, shape);
         const double extra = v.at("samples") * (v.at("steps") - 1);
         c.fetchesPerPixel += 2 * extra;
         c.bytesPerPixel += extra * (16 + kRgba16f);
@@ -90,7 +90,7 @@ KernelDecl blurBoxDepth(const std::vector<KernelDecl>& seeds) {
         if (p.name() == "radius") k.params.push_back(p);
     k.inputs = {{"ao", {}}, {"depth", {}}, {"normal", {}}};
     k.outputs = {{"ao", Format::R16F}};
-    k.cost = [](const ParamValues&) {
+    k.cost = [](const ParamValues&, const PassShape&) {
         return Cost{48, 16 * (kR16f + kR32f + kRgba16f) + kR16f, 16 * (1 + 1 + fetchSlots(kRgba16f)),
                     kR16f + kR32f + kRgba16f + kR16f};
     };
@@ -103,7 +103,7 @@ KernelDecl depthFromPositionHalf(const std::vector<KernelDecl>& seeds) {
     k.file = "depth_from_position_half.glsl";
     k.summary = "half-resolution hardware depth where each half texel's centre ray meets its texel's tangent plane";
     k.inputs = {{"position", {}}, {"normal", {}}};
-    k.cost = [](const ParamValues&) {
+    k.cost = [](const ParamValues&, const PassShape&) {
         return Cost{2, kRgba32f + kRgba16f + kR32f, fetchSlots(kRgba32f) + fetchSlots(kRgba16f), kRgba32f + kRgba16f + kR32f};
     };
     return k;

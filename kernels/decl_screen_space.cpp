@@ -33,7 +33,7 @@ KernelDecl depthFromPosition() {
     k.role = Role::GBuffer;
     k.inputs = {{"position", {}}};
     k.outputs = {{"depth", Format::R32F}};
-    k.cost = [](const ParamValues&) { return Cost{1, kRgba32f + kR32f, fetchSlots(kRgba32f), kRgba32f + kR32f}; };
+    k.cost = [](const ParamValues&, const PassShape&) { return Cost{1, kRgba32f + kR32f, fetchSlots(kRgba32f), kRgba32f + kR32f}; };
     return k;
 }
 
@@ -65,7 +65,7 @@ KernelDecl hemisphere() {
     k.derive = [](const ParamValues& v, std::map<std::string, std::vector<float>>& arrays) {
         arrays["kernel"] = hemisphereKernel(intValue(v, "samples"));
     };
-    k.cost = [](const ParamValues& v) {
+    k.cost = [](const ParamValues& v, const PassShape&) {
         const double n = v.at("samples");
         // The 4x4 noise tile is 256 bytes in all: no DRAM traffic per pixel.
         return Cost{3 + n, kR32f + kRgba16f + kRgba32f + n * kR32f + kR16f,
@@ -105,7 +105,7 @@ KernelDecl blurBox() {
     k.role = Role::Blur;
     k.inputs = {{"ao", {}}};
     k.outputs = {{"ao", Format::R16F}};
-    k.cost = [](const ParamValues&) { return Cost{16, 16 * kR16f + kR16f, 16 * fetchSlots(kR16f), kR16f + kR16f}; };
+    k.cost = [](const ParamValues&, const PassShape&) { return Cost{16, 16 * kR16f + kR16f, 16 * fetchSlots(kR16f), kR16f + kR16f}; };
     return k;
 }
 
@@ -122,7 +122,7 @@ KernelDecl downsampleDepth() {
     // fetched again (a cache hit), the three written. DRAM: the 2x2 block of
     // both full-resolution images (every cache line of the normals is
     // touched even though one texel in four is used).
-    k.cost = [](const ParamValues&) {
+    k.cost = [](const ParamValues&, const PassShape&) {
         return Cost{6, 4 * kRgba32f + kRgba16f + kRgba32f + kRgba16f + kR32f,
                     4 * fetchSlots(kRgba32f) + fetchSlots(kRgba32f) + fetchSlots(kRgba16f),
                     4 * kRgba32f + 4 * kRgba16f + kRgba32f + kRgba16f + kR32f};
@@ -148,13 +148,30 @@ KernelDecl downsamplePyramid() {
     k.outputs = {{"position_half", Format::RGBA32F}, {"normal_half", Format::RGBA16F}, zmip};
     // downsample_depth's reads; its writes with the depth as level 0, and a
     // third of a depth more (1/4 + 1/16 + ...) for the smaller levels.
-    k.cost = [](const ParamValues&) {
+    k.cost = [](const ParamValues&, const PassShape&) {
         const double rest = (1 - std::pow(0.25, kPyramidLevels - 1)) / 3;
         const double writes = kRgba32f + kRgba16f + kRg32f + rest * kRg32f;
         return Cost{6, 4 * kRgba32f + kRgba16f + writes, 4 * fetchSlots(kRgba32f) + fetchSlots(kRgba32f) + fetchSlots(kRgba16f),
                     4 * kRgba32f + 4 * kRgba16f + writes};
     };
     return k;
+}
+
+// A pixel of the bilateral upsample: its own position and normal, and its
+// share of the half texels (AO, position, normal) its workgroup blends. A
+// compute workgroup of even sides loads them once into a tile of
+// (W/2 + 2) x (H/2 + 2) (include/upsample.glsl); otherwise each pixel
+// fetches its 4. DRAM: the half-resolution inputs are a quarter texel a
+// pixel, and the AO is written.
+Cost upsampleCost(const PassShape& shape) {
+    const double w = shape.workgroup.x, h = shape.workgroup.y;
+    const bool tiled = shape.compute && shape.workgroup.x % 2 == 0 && shape.workgroup.y % 2 == 0;
+    const double texels = tiled ? (w / 2 + 2) * (h / 2 + 2) / (w * h) : 4;
+    const double half = kR16f + kRgba32f + kRgba16f;
+    return Cost{2 + 3 * texels, kRgba32f + kRgba16f + texels * half + kR16f,
+                fetchSlots(kRgba32f) + fetchSlots(kRgba16f) +
+                    texels * (fetchSlots(kR16f) + fetchSlots(kRgba32f) + fetchSlots(kRgba16f)),
+                kRgba32f + kRgba16f + half / 4 + kR16f};
 }
 
 KernelDecl upsampleBilateral() {
@@ -168,13 +185,7 @@ KernelDecl upsampleBilateral() {
     k.params = {use("upsample_depth_tolerance"), use("fused_tail")};
     k.inputs = {{"ao_half", {}}, {"position_half", {}}, {"position", {}}, {"normal", {}}, {"normal_half", {}}};
     k.outputs = {{"ao", Format::R16F}};
-    k.cost = [](const ParamValues&) {
-        // DRAM: the half-resolution inputs are a quarter texel per pixel.
-        return Cost{14, kRgba32f + kRgba16f + 4 * (kR16f + kRgba32f + kRgba16f) + kR16f,
-                    fetchSlots(kRgba32f) + fetchSlots(kRgba16f) +
-                        4 * (fetchSlots(kR16f) + fetchSlots(kRgba32f) + fetchSlots(kRgba16f)),
-                    kRgba32f + kRgba16f + (kR16f + kRgba32f + kRgba16f) / 4 + kR16f};
-    };
+    k.cost = [](const ParamValues&, const PassShape& shape) { return upsampleCost(shape); };
     return k;
 }
 
@@ -191,13 +202,15 @@ KernelDecl upsampleComposite() {
     k.params = {use("upsample_depth_tolerance"), use("dither"), use("fused_tail")};
     k.inputs = {{"ao_half", {}}, {"position_half", {}}, {"position", {}}, {"normal", {}}, {"normal_half", {}}, {"albedo", {}}};
     k.outputs = {{"color", Format::RGBA8}, {"ao", Format::R16F}};
-    k.cost = [](const ParamValues&) {
-        // upsample_bilateral's fetches, plus the albedo; the AO is written
-        // once and never read back, and the normal is read once.
-        return Cost{15, kRgba32f + kRgba16f + 4 * (kR16f + kRgba32f + kRgba16f) + kRgba8 + kR16f + kRgba8,
-                    fetchSlots(kRgba32f) + fetchSlots(kRgba16f) +
-                        4 * (fetchSlots(kR16f) + fetchSlots(kRgba32f) + fetchSlots(kRgba16f)) + fetchSlots(kRgba8),
-                    kRgba32f + kRgba16f + (kR16f + kRgba32f + kRgba16f) / 4 + kRgba8 + kR16f + kRgba8};
+    k.cost = [](const ParamValues&, const PassShape& shape) {
+        // upsample_bilateral's, plus the albedo read and the colour written;
+        // the AO is written once and never read back.
+        Cost c = upsampleCost(shape);
+        c.fetchesPerPixel += 1;
+        c.bytesPerPixel += 2 * kRgba8;
+        c.fetchSlotsPerPixel += fetchSlots(kRgba8);
+        c.dramBytesPerPixel += 2 * kRgba8;
+        return c;
     };
     return k;
 }
@@ -231,7 +244,7 @@ KernelDecl ssdo() {
     };
     k.inputs = {{"position", {}}, {"normal", {}}, {"sky", skySampler()}};
     k.outputs = {{"visibility", Format::R16F}, {"radiance", Format::RGBA16F}};
-    k.cost = [](const ParamValues& v) {
+    k.cost = [](const ParamValues& v, const PassShape&) {
         const double n = v.at("samples");
         const double sky = skyTexels(v);
         // The sky panorama (256x128 RGBA32F and its mips, 0.7 MB) stays in
@@ -260,7 +273,7 @@ KernelDecl blurBilateralSsdo() {
     k.derive = [](const ParamValues& v, std::map<std::string, std::vector<float>>& arrays) {
         arrays["weights"] = gaussianWeights(intValue(v, "blur"));
     };
-    k.cost = [](const ParamValues& v) {
+    k.cost = [](const ParamValues& v, const PassShape&) {
         const double r = v.at("blur");
         const double taps = (2 * r + 1) * (2 * r + 1);
         return Cost{4 * taps, taps * (kR16f + kRgba16f + kRgba32f + kRgba16f) + kR16f + kRgba16f,
@@ -287,7 +300,7 @@ KernelDecl ssdoIndirect() {
     k.inputs = {{"position", {}}, {"normal", {}}, {"albedo", {}}, {"radiance", {}}};
     k.outputs = {{"indirect", Format::RGBA16F}};
     // Upper bound: every sample occluded, so every one reads its sender.
-    k.cost = [](const ParamValues& v) {
+    k.cost = [](const ParamValues& v, const PassShape&) {
         const double n = v.at("samples");
         return Cost{2 + 4 * n, kRgba32f + kRgba16f + n * (kRgba32f + kRgba16f + kRgba16f + kRgba8) + kRgba16f,
                     fetchSlots(kRgba32f) + fetchSlots(kRgba16f) +
@@ -308,7 +321,7 @@ KernelDecl compositeSsdo() {
     k.outputs = {{"color", Format::RGBA8}};
     k.arrays = {{"sky_sh", 9}};
     k.derive = [](const ParamValues&, std::map<std::string, std::vector<float>>& arrays) { arrays["sky_sh"] = skySh(); };
-    k.cost = [](const ParamValues&) {
+    k.cost = [](const ParamValues&, const PassShape&) {
         return Cost{5, kR16f + kRgba16f + kRgba16f + kRgba16f + kRgba8 + kRgba8,
                     fetchSlots(kR16f) + 3 * fetchSlots(kRgba16f) + fetchSlots(kRgba8),
                     kR16f + kRgba16f + kRgba16f + kRgba16f + kRgba8 + kRgba8};

@@ -43,7 +43,7 @@ KernelDecl sdfKernel(std::string name, std::string file, std::string summary, do
     k.compileTime = {"scene"};
     // Reads its own pixel of the G-buffer; the distance probes are
     // arithmetic, not memory traffic, so the floor says nothing of them.
-    k.cost = [](const ParamValues&) { return gbufferPixelCost(); };
+    k.cost = [](const ParamValues&, const PassShape&) { return gbufferPixelCost(); };
     return k;
 }
 
@@ -65,7 +65,7 @@ KernelDecl groundTruth() {
     k.inputs = {{"position", {}}, {"normal", {}}};
     k.outputs = {{"ao", Format::R16F}};
     k.compileTime = {"scene"};
-    k.cost = [](const ParamValues&) { return gbufferPixelCost(); };
+    k.cost = [](const ParamValues&, const PassShape&) { return gbufferPixelCost(); };
     return k;
 }
 

@@ -131,6 +131,15 @@ struct Workgroup {
     int groupsY(int h) const { return (h + int(y) - 1) / int(y); }
 };
 
+// How a pass runs, for its cost: a compute pass's workgroup may load a tile
+// of its inputs into shared memory once (include/blur_separable.glsl,
+// include/upsample.glsl), so that its pixels fetch fewer texels than their
+// taps read. The fragment stage has no workgroup and fetches every tap.
+struct PassShape {
+    bool compute = true;
+    Workgroup workgroup;
+};
+
 struct KernelDecl {
     std::string name;                   // "alchemy"
     std::string file;                   // "ssao_alchemy.glsl", relative to kernels/
@@ -144,7 +153,7 @@ struct KernelDecl {
     std::vector<ArrayDecl> arrays;
     DeriveFn derive;                    // may be empty
     Role role = Role::Ao;
-    std::function<Cost(const ParamValues&)> cost;   // may be empty
+    std::function<Cost(const ParamValues&, const PassShape&)> cost;   // may be empty
     // Parameters whose value is compiled into the shader as well as passed
     // in the uniform block: assemble() defines CAVITY_CONST_<name> when it
     // is given the values. For a value that selects whole code paths (the

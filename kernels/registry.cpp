@@ -31,7 +31,7 @@ KernelDecl gbufferSdf() {
                  {"albedo", Format::RGBA8},
                  {"linear_depth", Format::R32F}};
     k.compileTime = {"scene"};
-    k.cost = [](const ParamValues&) {
+    k.cost = [](const ParamValues&, const PassShape&) {
         return Cost{0, kRgba32f + kRgba16f + kRgba8 + kR32f, 0, kRgba32f + kRgba16f + kRgba8 + kR32f};
     };
     return k;
@@ -59,7 +59,7 @@ KernelDecl alchemy() {
     };
     k.inputs = {{"position", {}}, {"normal", {}}};
     k.outputs = {{"ao", Format::R16F}};
-    k.cost = [](const ParamValues& v) {
+    k.cost = [](const ParamValues& v, const PassShape&) {
         const double n = v.at("samples");
         return Cost{2 + n, kRgba32f + kRgba16f + n * kRgba32f + kR16f,
                     fetchSlots(kRgba32f) + fetchSlots(kRgba16f) + n * fetchSlots(kRgba32f), kRgba32f + kRgba16f + kR16f};
@@ -84,7 +84,7 @@ KernelDecl blurBilateral() {
     k.derive = [](const ParamValues& v, std::map<std::string, std::vector<float>>& arrays) {
         arrays["weights"] = gaussianWeights(intValue(v, "blur"));
     };
-    k.cost = [](const ParamValues& v) {
+    k.cost = [](const ParamValues& v, const PassShape&) {
         const double r = v.at("blur");
         const double taps = (2 * r + 1) * (2 * r + 1);
         return Cost{3 * taps, taps * (kR16f + kRgba32f + kRgba16f) + kR16f,
@@ -103,7 +103,7 @@ KernelDecl composite() {
     k.params = {use("dither")};
     k.inputs = {{"ao", {}}, {"normal", {}}, {"albedo", {}}};
     k.outputs = {{"color", Format::RGBA8}};
-    k.cost = [](const ParamValues&) {
+    k.cost = [](const ParamValues&, const PassShape&) {
         return Cost{3, kR16f + kRgba16f + kRgba8 + kRgba8, fetchSlots(kR16f) + fetchSlots(kRgba16f) + fetchSlots(kRgba8),
                     kR16f + kRgba16f + kRgba8 + kRgba8};
     };
@@ -124,7 +124,7 @@ KernelDecl depthPyramid() {
     k.params = {use("pyramid_per_level")};
     // Per level-0 pixel: one R32F fetch and an 8-byte store at level 0,
     // and a third more of both (1/4 + 1/16 + ...) for the smaller levels.
-    k.cost = [](const ParamValues&) {
+    k.cost = [](const ParamValues&, const PassShape&) {
         const double rest = (1 - std::pow(0.25, kPyramidLevels - 1)) / 3;
         return Cost{1 + rest, kR32f + kRg32f + rest * 2 * kRg32f, fetchSlots(kR32f) + rest * fetchSlots(kRg32f),
                     kR32f + kRg32f + rest * 2 * kRg32f};
@@ -147,7 +147,7 @@ KernelDecl depthPyramidSingle() {
     k.params = {use("pyramid_per_level")};
     // Per level-0 pixel: one R32F fetch, an 8-byte store at level 0 and a
     // third of one (1/4 + 1/16 + ...) for the smaller levels; nothing is read twice.
-    k.cost = [](const ParamValues&) {
+    k.cost = [](const ParamValues&, const PassShape&) {
         const double rest = (1 - std::pow(0.25, kPyramidLevels - 1)) / 3;
         return Cost{1, kR32f + kRg32f + rest * kRg32f, fetchSlots(kR32f), kR32f + kRg32f + rest * kRg32f};
     };
@@ -165,7 +165,7 @@ KernelDecl depthPyramidLayered() {
     zlayers.layered = true;
     k.outputs.push_back(zlayers);
     k.params = {use("interleave")};
-    k.cost = [](const ParamValues&) {
+    k.cost = [](const ParamValues&, const PassShape&) {
         const double rest = (1 - std::pow(0.25, kPyramidLevels - 1)) / 3;
         const double bytes = kR32f + kRg32f + kR32f + rest * kRg32f;
         return Cost{1, bytes, fetchSlots(kR32f), bytes};
@@ -176,7 +176,7 @@ KernelDecl depthPyramidLayered() {
 // A fast AO kernel's cost: the pixel's depth and normal, n RG32F samples
 // of the pyramid (a depth and its source pixel), the AO and its packed key
 // written; the pyramid's smaller levels are a third of level 0 in DRAM.
-Cost pyramidAoCost(const ParamValues& v) {
+Cost pyramidAoCost(const ParamValues& v, const PassShape&) {
     const double n = v.at("samples");
     return Cost{2 + n, kRg32f + kRgba16f + n * kRg32f + kR16f + kRgba16f,
                 fetchSlots(kRg32f) + fetchSlots(kRgba16f) + n * fetchSlots(kRg32f),
@@ -251,6 +251,17 @@ KernelDecl hemisphereFast() {
     return k;
 }
 
+// Keys a pixel of the separable blur fetches: its share of the workgroup's
+// tile (include/blur_separable.glsl: a compute pass, r >= 1, the tile at
+// most 768 texels), or else one a tap. A workgroup hanging over the image's
+// edge loads a whole tile for fewer pixels; the image's pixels are counted.
+double blurKeyFetches(double r, bool alongX, const PassShape& shape) {
+    const double w = shape.workgroup.x, h = shape.workgroup.y;
+    const double tile = alongX ? (w + 2 * r) * h : (h + 2 * r) * w;
+    if (shape.compute && r >= 1 && tile <= 768) return tile / (w * h);
+    return 2 * r + 1;
+}
+
 KernelDecl blurSeparable(const std::string& axis) {
     KernelDecl k = blurBilateral();
     k.name = "blur_separable_" + axis;
@@ -270,9 +281,9 @@ KernelDecl blurSeparable(const std::string& axis) {
     // another 1-7% in 64x4 and 4x64 (bench/results/2026-12-04_h200_last_build).
     k.workgroup = axis == "x" ? Workgroup{64, 4} : Workgroup{4, 64};
     const double out = axis == "x" ? kRgba16f : kR16f;
-    k.cost = [out](const ParamValues& v) {
-        const double taps = 2 * v.at("blur") + 1;
-        return Cost{taps, taps * kRgba16f + out, taps * fetchSlots(kRgba16f), kRgba16f + out};
+    k.cost = [out, axis](const ParamValues& v, const PassShape& shape) {
+        const double keys = blurKeyFetches(v.at("blur"), axis == "x", shape);
+        return Cost{keys, keys * kRgba16f + out, keys * fetchSlots(kRgba16f), kRgba16f + out};
     };
     return k;
 }
@@ -291,10 +302,11 @@ KernelDecl blurSeparableSsdo(const std::string& axis) {
         k.outputs = {{"ao_key", Format::RGBA16F}, {"radiance", Format::RGBA16F}};
     else
         k.outputs = {{"visibility", Format::R16F}, {"radiance", Format::RGBA16F}};
+    // The key from the tile, the radiance fetched at every tap.
     const double out = (axis == "x" ? kRgba16f : kR16f) + kRgba16f;
-    k.cost = [out](const ParamValues& v) {
-        const double taps = 2 * v.at("blur") + 1;
-        return Cost{2 * taps, 2 * taps * kRgba16f + out, 2 * taps * fetchSlots(kRgba16f), 2 * kRgba16f + out};
+    k.cost = [out, axis](const ParamValues& v, const PassShape& shape) {
+        const double fetches = blurKeyFetches(v.at("blur"), axis == "x", shape) + 2 * v.at("blur") + 1;
+        return Cost{fetches, fetches * kRgba16f + out, fetches * fetchSlots(kRgba16f), 2 * kRgba16f + out};
     };
     return k;
 }
@@ -321,7 +333,7 @@ KernelDecl ssdoFast() {
     // the bounce pass walks the same points, compiled alike.
     k.compileTime = {"samples", "steps"};
     // Every direction marched to its last point (an open one is).
-    k.cost = [](const ParamValues& v) {
+    k.cost = [](const ParamValues& v, const PassShape&) {
         const double points = v.at("samples") * v.at("steps"), sky = v.at("samples") * skyTexels(v);
         return Cost{2 + points + v.at("samples"), kRg32f + kRgba16f + points * kRg32f + sky * kRgba32f + kR16f + 2 * kRgba16f,
                     fetchSlots(kRg32f) + fetchSlots(kRgba16f) + points * fetchSlots(kRg32f) + sky / 4 * fetchSlots(kRgba32f),
@@ -340,7 +352,7 @@ KernelDecl ssdoFastIndirect() {
     k.compileTime = {"samples", "steps"};
     // Upper bound: every point fetched, and every direction blocked, so
     // every one reads its sender's normal, radiance and albedo.
-    k.cost = [](const ParamValues& v) {
+    k.cost = [](const ParamValues& v, const PassShape&) {
         const double n = v.at("samples"), points = n * v.at("steps");
         return Cost{2 + points + 3 * n, kRg32f + kRgba16f + points * kRg32f + n * (2 * kRgba16f + kRgba8) + kRgba16f,
                     fetchSlots(kRg32f) + fetchSlots(kRgba16f) + points * fetchSlots(kRg32f) +

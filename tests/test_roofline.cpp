@@ -7,10 +7,12 @@
 #include "pipeline/config_id.h"
 #include "pipeline/pipeline.h"
 #include "measure/roofline.h"
+#include "compiler/compiler.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -136,7 +138,7 @@ TEST(Roofline, NoCostDeclaredHasNoFloor) {
     it->cost = nullptr;
     const PassFloorResult none = passFloor(d, "composite", {}, kPixels1080p);
     // A cost written before the floor existed: fetches and bytes only.
-    it->cost = [](const kernels::ParamValues&) { return kernels::Cost{3, 18}; };
+    it->cost = [](const kernels::ParamValues&, const kernels::PassShape&) { return kernels::Cost{3, 18}; };
     const PassFloorResult partial = passFloor(d, "composite", {}, kPixels1080p);
     it->cost = saved;
     EXPECT_FALSE(none.floor);
@@ -163,6 +165,65 @@ TEST(Roofline, EveryDeclaredCostIsComplete) {
     }
 }
 
+// --- tiled passes -----------------------------------------------------------
+
+// Whether SPIR-V declares a variable in workgroup memory: an OpVariable
+// (opcode 59: count and opcode, type, id, storage class) of storage class
+// Workgroup (4).
+bool declaresWorkgroupMemory(const std::vector<uint32_t>& spirv) {
+    for (size_t i = 5; i < spirv.size();) {
+        const uint32_t count = spirv[i] >> 16, opcode = spirv[i] & 0xffff;
+        if (count == 0) break;
+        if (opcode == 59 && i + 3 < spirv.size() && spirv[i + 3] == 4) return true;
+        i += count;
+    }
+    return false;
+}
+
+// A tiled pass's cost counts the tile's fetches exactly where its shader
+// builds the tile: the C++ model (blurKeyFetches, upsampleCost) restates
+// the shader's conditions (include/blur_separable.glsl, include/upsample.glsl),
+// and this holds the two together. For each kernel, workgroup shape
+// (CAVITY_WORKGROUP: declared, square, too large for the blur's tile, odd
+// for the upsample's) and blur radius, the compute shader is compiled and
+// its SPIR-V read for workgroup memory; the cost in that shape must count
+// fewer fetches than the fragment stage's (every tap) exactly when it does.
+TEST(Roofline, TiledCostWhereTheShaderTiles) {
+    struct Env {
+        ~Env() { unsetenv("CAVITY_WORKGROUP"); }
+    } restore;
+    int tiled = 0, untiled = 0;
+    for (const std::string name : {"blur_separable_x", "blur_separable_y", "blur_separable_ssdo_x",
+                                   "blur_separable_ssdo_y", "upsample_bilateral", "upsample_composite"}) {
+        const kernels::KernelDecl* k = kernels::find(name);
+        ASSERT_TRUE(k) << name;
+        // An odd side stops the upsample's tile; a blur's tile one pixel
+        // across its axis would load its 2r + 1 taps a pixel (no saving to
+        // see), so the blurs take even shapes.
+        const bool upsample = name.starts_with("upsample");
+        for (const char* shape : {"", "8x8", "32x32", upsample ? "1x32" : "64x4", upsample ? "32x1" : "4x64"})
+            for (const double radius : {1.0, 4.0, 32.0}) {
+                setenv("CAVITY_WORKGROUP", shape, 1);   // empty: the kernel's own
+                const auto wg = kernels::workgroupSize(*k);
+                ASSERT_TRUE(wg) << wg.error().message;
+                const kernels::ParamValues v = kernels::withDefaults(*k, {{"blur", radius}});
+                auto src = kernels::assemble(*k, gpu::Stage::Compute, {}, &v);
+                ASSERT_TRUE(src) << name << ": " << src.error().message;
+                const auto spirv = kernels::compileToSpirv(*src, gpu::Api::Vulkan);
+                ASSERT_TRUE(spirv) << name << ": " << spirv.error().message;
+                const bool shaderTiles = declaresWorkgroupMemory(*spirv);
+                const kernels::Cost compute = k->cost(v, {true, *wg}), fragment = k->cost(v, {false, *wg});
+                EXPECT_EQ(compute.fetchesPerPixel < fragment.fetchesPerPixel, shaderTiles)
+                    << name << " in " << wg->x << "x" << wg->y << ", r = " << radius << ": the cost counts "
+                    << compute.fetchesPerPixel << " fetches a pixel, the fragment stage's " << fragment.fetchesPerPixel;
+                (shaderTiles ? tiled : untiled) += 1;
+            }
+    }
+    // Both sides of every condition were reached.
+    EXPECT_GT(tiled, 0);
+    EXPECT_GT(untiled, 0);
+}
+
 // --- bench/ROOFLINE.md -------------------------------------------------------
 
 std::string fixed(double v, int digits) {
@@ -179,21 +240,27 @@ std::string number(double v) {
 
 // The default configuration of each screen-space kernel and of one SDF
 // kernel (the six share one cost), full and (where it exists) half
-// resolution, at 1920x1080 on the H200's table entry: one row per distinct
-// pass (kernel and size), naming the pipelines it is part of.
+// resolution, and the fast kernels' half resolution with the fused tail, at
+// 1920x1080 on the H200's table entry, every pass compute in its declared
+// workgroup: one row per distinct pass (kernel and size), naming the
+// pipelines it is part of.
 std::string floorTable() {
     const DeviceFloor d = deviceFloor(device("NVIDIA H200"), std::nullopt);
     struct Row { std::string pass, kernel; double pixels; PassFloor floor; std::vector<std::string> in; };
     std::vector<Row> rows;
     int pipelines = 0;
-    for (const std::string kernel : {"alchemy", "hemisphere", "hemisphere_cosine", "ssdo", "sdf_classic"})
-        for (const bool half : {false, true}) {
-            if (half && !supportsHalf(kernel)) continue;
+    for (const std::string kernel : {"alchemy", "hemisphere", "hemisphere_cosine", "ssdo", "sdf_classic", "alchemy_fast",
+                                     "hemisphere_fast", "ssdo_fast"})
+        for (const int variant : {0, 1, 2}) {   // full, half, half with the fused tail
+            const bool half = variant > 0, fast = kernel.ends_with("_fast");
+            if ((half && !supportsHalf(kernel)) || (variant == 2 && !fast)) continue;
             RunConfig c;
             c.kernel = kernel;
             c.width = 1920;
             c.height = 1080;
             c.half = half;
+            if (variant == 2) c.params["fused_tail"] = 1;
+            const std::string name = kernel + (variant == 1 ? " half" : variant == 2 ? " half fused" : "");
             ++pipelines;
             for (const PassSpec& p : buildPasses(c)) {
                 const double pixels = p.half ? double((c.width + 1) / 2) * ((c.height + 1) / 2) : double(c.width) * c.height;
@@ -202,7 +269,7 @@ std::string floorTable() {
                 auto it = std::find_if(rows.begin(), rows.end(),
                                        [&](const Row& x) { return x.pass == p.name && x.kernel == p.kernel && x.pixels == pixels; });
                 if (it == rows.end()) it = rows.insert(rows.end(), Row{p.name, p.kernel, pixels, *r.floor, {}});
-                it->in.push_back(kernel + (half ? " half" : ""));
+                it->in.push_back(name);
             }
         }
     std::string out = "| pass | kernel | pixels | fetches / px | slots / px | DRAM bytes / px | fetch floor | "

@@ -142,7 +142,8 @@ json toJson(const RunRecord& r) {
     json passes = json::array();
     for (size_t i = 0; i < r.passes.size() && i < r.timing.passes.size(); ++i) {
         const auto [w, h] = r.passSizes[i];
-        const PassFloorResult floor = passFloor(r.floorDevice, r.passes[i].kernel, r.config.params, double(w) * h);
+        const auto shape = i < r.passShapes.size() ? std::optional(r.passShapes[i]) : std::nullopt;
+        const PassFloorResult floor = passFloor(r.floorDevice, r.passes[i].kernel, r.config.params, double(w) * h, shape);
         const auto pipeline = r.pipelines.find(r.passes[i].name);
         const gpu::PipelineInfo info = pipeline == r.pipelines.end() ? gpu::PipelineInfo{} : pipeline->second;
         passes.push_back({{"name", r.passes[i].name},

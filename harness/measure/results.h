@@ -27,6 +27,7 @@ struct RunRecord {
     Timing timing;                    // what was measured
     std::vector<PassSpec> passes;
     std::vector<std::pair<int, int>> passSizes;
+    std::vector<kernels::PassShape> passShapes;   // PassChain::passShape, for the floors
     DeviceFloor floorDevice;          // the figures each pass's floor is computed from
     std::map<std::string, gpu::PipelineInfo> pipelines;   // by pass name
     std::map<std::string, std::map<std::string, std::string>> images;   // image -> {"exr": path, "png": path}

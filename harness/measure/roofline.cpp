@@ -74,10 +74,10 @@ std::string describe(const DeviceFloor& d) {
 }
 
 PassFloorResult passFloor(const DeviceFloor& device, const std::string& kernel, const kernels::ParamValues& params,
-                          double pixels) {
+                          double pixels, const std::optional<kernels::PassShape>& shape) {
     const kernels::KernelDecl* k = kernels::find(kernel);
     if (!k || !k->cost) return {std::nullopt, "no cost declared"};
-    const kernels::Cost cost = k->cost(kernels::withDefaults(*k, params));
+    const kernels::Cost cost = k->cost(kernels::withDefaults(*k, params), shape.value_or(kernels::PassShape{true, k->workgroup}));
     // The fields a declaration written before the floor leaves at 0.
     if ((cost.fetchesPerPixel > 0 && cost.fetchSlotsPerPixel <= 0) || cost.dramBytesPerPixel <= 0)
         return {std::nullopt, "cost declares no fetch slots or no DRAM bytes (kernels/kernel.h Cost)"};

@@ -63,8 +63,10 @@ struct PassFloorResult {
 };
 
 // The floor of a pass of `kernel` over `pixels` output pixels, with the
-// configuration's parameters (the kernel's defaults fill the rest).
+// configuration's parameters (the kernel's defaults fill the rest), run as
+// `shape` says (PassChain::passShape); unset, a compute pass in the
+// kernel's declared workgroup.
 PassFloorResult passFloor(const DeviceFloor& device, const std::string& kernel, const kernels::ParamValues& params,
-                          double pixels);
+                          double pixels, const std::optional<kernels::PassShape>& shape = std::nullopt);
 
 }  // namespace cavity::measure

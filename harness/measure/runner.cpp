@@ -73,6 +73,7 @@ Result<RunRecord> runConfig(gpu::Backend& gpu, const RunConfig& given, const Run
     for (size_t i = 0; i < chain->passCount(); ++i) {
         const bool half = r.passes[i].half;
         r.passSizes.push_back({half ? (c.width + 1) / 2 : c.width, half ? (c.height + 1) / 2 : c.height});
+        r.passShapes.push_back(chain->passShape(i));
     }
     r.pipelines = chain->pipelineInfos();
     r.timingOptions = timingOptions(gpu.info(), o);

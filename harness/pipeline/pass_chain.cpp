@@ -359,6 +359,10 @@ long long PassChain::passPixels(size_t i) const {
     return (long long)passes_[i]->width * passes_[i]->height;
 }
 
+kernels::PassShape PassChain::passShape(size_t i) const {
+    return {passes_[i]->stage == gpu::Stage::Compute, passes_[i]->workgroup};
+}
+
 Result<std::map<std::string, HostImage>> renderImages(gpu::Backend& gpu, const RunConfig& c,
                                                       const std::vector<std::string>& images,
                                                       const SourceOverrides& overrides) {

@@ -118,6 +118,8 @@ public:
     std::map<std::string, gpu::PipelineInfo> pipelineInfos() const;
     // Pixels each pass writes (for throughput counters).
     long long passPixels(size_t i) const;
+    // How pass i runs (its stage and compute workgroup), for its floor.
+    kernels::PassShape passShape(size_t i) const;
 
 private:
     explicit PassChain(gpu::Backend& gpu);
