@@ -99,32 +99,29 @@ float blockedShare(PyramidView view, ivec2 pixel, vec3 X, vec3 N, float level, f
         blocked = max(blocked, occludedBy(view, X, N, level, d, P.kernel[(ray) * RAY_STEPS + (j)].xyz, tn, b, lengthScale, pixel)); \
     }
 #define RAY_POINT_OF_THIS_RAY(j) RAY_POINT(ray, j)
-#define RAY(g) { \
+    // Ray g, its points the statement POINTS (of `ray`).
+#define RAY(g, POINTS) { \
         int ray = g; \
         if (P.step_jitter != 0) u = sampleHash(phasePixel(pixel), ray); \
         blocked = 0.0; \
-        RAY_POINTS(RAY_POINT_OF_THIS_RAY) \
+        POINTS \
         occlusion += blocked; \
         directions += 1.0; \
     }
+#define WHOLE_RAY RAY_POINTS(RAY_POINT_OF_THIS_RAY)
     const int kRays = CAVITY_CONST_samples / RAY_STEPS;   // whole rays
 #if !defined(VULKAN) && (CAVITY_CONST_samples / RAY_STEPS) % 2 == 0
     for (int g = 0; g < kRays; g += 2) {
-        RAY(g)
-        RAY(g + 1)
+        RAY(g, WHOLE_RAY)
+        RAY(g + 1, WHOLE_RAY)
     }
 #else
-    POINT_LOOP for (int g = 0; g < kRays; ++g) RAY(g)
+    POINT_LOOP for (int g = 0; g < kRays; ++g) RAY(g, WHOLE_RAY)
 #endif
 #if CAVITY_CONST_samples % RAY_STEPS != 0
-    {
-        int ray = kRays;   // the last ray, shorter
-        if (P.step_jitter != 0) u = sampleHash(phasePixel(pixel), ray);
-        blocked = 0.0;
-        POINT_LOOP for (int j = 0; j < CAVITY_CONST_samples % RAY_STEPS; ++j) RAY_POINT(ray, j)
-        occlusion += blocked;
-        directions += 1.0;
-    }
+    // The last ray, shorter.
+#define SHORT_RAY POINT_LOOP for (int j = 0; j < CAVITY_CONST_samples % RAY_STEPS; ++j) RAY_POINT(ray, j)
+    RAY(kRays, SHORT_RAY)
 #endif
 #else
     // Past 64 points: the rays' shape from the table, P.kernel[i].w = 1

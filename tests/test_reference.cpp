@@ -40,7 +40,7 @@ struct Case {
     // arithmetic, is held to the precision contract's tolerance instead
     // (DefaultFastKernelsHoldTheStatedTolerance).
     bool exact = true;
-    int steps = 0;   // hemisphere_fast's points a ray; 0: the kernel's default
+    int steps = 0;   // points a ray (hemisphere_fast) or a direction (ssdo_fast); 0: the kernel's default
 };
 
 class KernelVsReference : public GpuTest {};

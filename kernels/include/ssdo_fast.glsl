@@ -33,17 +33,16 @@ struct FastSample {
 };
 
 // Direction i of `count` from the receiver at view point p (at `level` =
-// N . p along its normal), marched in
-// `steps` points out to R as ssdoSample marches it (point j at
-// (j + 1 - u) R / steps, u drawn per pixel and direction), blocked by its
-// first hidden point.
-FastSample ssdoFastSample(PyramidView v, SsdoBasis f, vec3 p, float level, ivec2 pixel, int i, int count, int steps,
+// N . p along its normal), marched in SSDO_FAST_STEPS points out to R as
+// ssdoSample marches it (point j at (j + 1 - u) R / steps, u drawn per
+// pixel and direction), blocked by its first hidden point.
+FastSample ssdoFastSample(PyramidView v, SsdoBasis f, vec3 p, float level, ivec2 pixel, int i, int count,
                           float radius, float bias) {
     FastSample s;
     s.dir = ssdoDirection(f, i, count);
     s.visible = true;
     float u = sampleHash(pixel, i);
-    EXACT float perStep = portableReciprocal(float(steps));
+    EXACT float perStep = portableReciprocal(float(SSDO_FAST_STEPS));
 #define SSDO_FAST_POINT(j) { \
         EXACT float lambda = radius * ((float((j) + 1) - u) * perStep); \
         EXACT vec3 point = p + s.dir * lambda; \
@@ -57,6 +56,7 @@ FastSample ssdoFastSample(PyramidView v, SsdoBasis f, vec3 p, float level, ivec2
 #elif defined(SSDO_FAST_COMPILED)
     CAVITY_UNROLL for (int j = 0; j < SSDO_FAST_STEPS; ++j) SSDO_FAST_POINT(j)
 #else
+    int steps = SSDO_FAST_STEPS;
     for (int j = 0; j < steps; ++j) SSDO_FAST_POINT(j)
 #endif
     s.sender = ivec2(-1);
@@ -73,7 +73,7 @@ struct FastReceiver {
     float level;   // N . X
     SsdoBasis f;
     PyramidView view;
-    int count, steps;
+    int count;
 };
 
 // The receiver at `pixel`; false on the background (or a pixel without a
@@ -88,11 +88,10 @@ bool fastReceiver(ivec2 pixel, out FastReceiver r) {
     r.f = ssdoBasis(pixel, r.n);
     r.view = pyramidView();
     r.count = SSDO_FAST_COUNT;
-    r.steps = SSDO_FAST_STEPS;
     return true;
 }
 
 // Direction i of the receiver at `pixel`, marched.
 FastSample fastSample(FastReceiver r, ivec2 pixel, int i) {
-    return ssdoFastSample(r.view, r.f, r.X, r.level, pixel, i, r.count, r.steps, P.radius, P.bias);
+    return ssdoFastSample(r.view, r.f, r.X, r.level, pixel, i, r.count, P.radius, P.bias);
 }
