@@ -5,6 +5,8 @@
 // then the indirect light; the key's visibility is blurred again and not
 // used).
 #define BLUR_ALONG_X 1
+#define BLUR_WITH 1
+#define BLUR_WITH_IN_TILE 1   // the radiance, tiled beside the key
 #include "include/blur_separable.glsl"
 
 vec3 blurredWith(ivec2 q) {

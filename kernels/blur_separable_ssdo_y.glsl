@@ -1,6 +1,7 @@
 // The vertical pass of ssdo_fast's separable blur
 // (blur_separable_ssdo_x.glsl): the blurred visibility, as every blur writes
 // it, and the blurred radiance.
+#define BLUR_WITH 1   // the radiance, fetched a tap (include/blur_separable.glsl says why)
 #include "include/blur_separable.glsl"
 
 vec3 blurredWith(ivec2 q) {

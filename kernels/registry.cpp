@@ -251,14 +251,15 @@ KernelDecl hemisphereFast() {
     return k;
 }
 
-// Keys a pixel of the separable blur fetches: its share of the workgroup's
-// tile (include/blur_separable.glsl: a compute pass, r >= 1, the tile at
-// most 768 texels), or else one a tap. A workgroup hanging over the image's
-// edge loads a whole tile for fewer pixels; the image's pixels are counted.
-double blurKeyFetches(double r, bool alongX, const PassShape& shape) {
+// Texels of each tiled image a pixel of the separable blur fetches: its
+// share of the workgroup's tile (include/blur_separable.glsl: a compute
+// pass, r >= 1, the tile at most `limit` texels), or else one a tap. A
+// workgroup hanging over the image's edge loads a whole tile for fewer
+// pixels; the image's pixels are counted.
+double blurTileFetches(double r, bool alongX, const PassShape& shape, double limit) {
     const double w = shape.workgroup.x, h = shape.workgroup.y;
     const double tile = alongX ? (w + 2 * r) * h : (h + 2 * r) * w;
-    if (shape.compute && r >= 1 && tile <= 768) return tile / (w * h);
+    if (shape.compute && r >= 1 && tile <= limit) return tile / (w * h);
     return 2 * r + 1;
 }
 
@@ -282,7 +283,7 @@ KernelDecl blurSeparable(const std::string& axis) {
     k.workgroup = axis == "x" ? Workgroup{64, 4} : Workgroup{4, 64};
     const double out = axis == "x" ? kRgba16f : kR16f;
     k.cost = [out, axis](const ParamValues& v, const PassShape& shape) {
-        const double keys = blurKeyFetches(v.at("blur"), axis == "x", shape);
+        const double keys = blurTileFetches(v.at("blur"), axis == "x", shape, 768);
         return Cost{keys, keys * kRgba16f + out, keys * fetchSlots(kRgba16f), kRgba16f + out};
     };
     return k;
@@ -302,10 +303,13 @@ KernelDecl blurSeparableSsdo(const std::string& axis) {
         k.outputs = {{"ao_key", Format::RGBA16F}, {"radiance", Format::RGBA16F}};
     else
         k.outputs = {{"visibility", Format::R16F}, {"radiance", Format::RGBA16F}};
-    // The key from the tile, the radiance fetched at every tap.
+    // The key from a tile; the radiance from the same tile along x (then of
+    // at most 512 texels), a fetch a tap along y (blur_separable_ssdo_x.glsl).
     const double out = (axis == "x" ? kRgba16f : kR16f) + kRgba16f;
     k.cost = [out, axis](const ParamValues& v, const PassShape& shape) {
-        const double fetches = blurKeyFetches(v.at("blur"), axis == "x", shape) + 2 * v.at("blur") + 1;
+        const double r = v.at("blur");
+        const double fetches = axis == "x" ? 2 * blurTileFetches(r, true, shape, 512)
+                                           : blurTileFetches(r, false, shape, 768) + 2 * r + 1;
         return Cost{fetches, fetches * kRgba16f + out, fetches * fetchSlots(kRgba16f), 2 * kRgba16f + out};
     };
     return k;
