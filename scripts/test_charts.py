@@ -845,5 +845,36 @@ class Floor(unittest.TestCase):
             self.assertFalse(os.path.exists(out))
 
 
+class FloorTable(unittest.TestCase):
+    """scripts/floor_table.py: each pass's median against its floor, and the pipeline's: the median of
+    the repetitions' sums (the G-buffer not counted) against the sum of the floors."""
+
+    def test_pipeline_row(self):
+        def rep(cid, ao, blur, floors=True):
+            b = {"name": cid + "/iterations:1/manual_time", "run_type": "iteration", "real_time": ao + blur,
+                 "pass_gbuffer_ms": 0.09, "pass_ao_ms": ao, "pass_blur_ms": blur, "sm_mhz_median": 1980}
+            if floors:
+                b.update({"floor_ao_ms": 0.07, "floor_blur_ms": 0.01})
+            else:
+                b["floor_ao_ms"] = 0.07   # the blur has none (a software renderer has neither)
+            return b
+        a, c = "corner/alchemy_fast/n16/b4/full/1920x1080/vk/compute", "corner/alchemy_fast/n16/b4/full/1920x1080/gl/compute"
+        # Sums 0.10, 0.12 and 0.14: the median 0.12, where the passes' medians (0.09 + 0.03) sum alike.
+        doc = {"benchmarks": [rep(a, 0.08, 0.02), rep(a, 0.09, 0.03), rep(a, 0.10, 0.04), rep(c, 0.1, 0.03, floors=False)]}
+        with tempfile.TemporaryDirectory() as d:
+            path = os.path.join(d, "bench.json")
+            with open(path, "w") as f:
+                json.dump(doc, f)
+            r = subprocess.run([sys.executable, os.path.join(HERE, "floor_table.py"), path],
+                               capture_output=True, text=True)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        rows = {tuple(c.strip() for c in line.strip("|").split("|")[:2]): [c.strip() for c in line.strip("|").split("|")[2:]]
+                for line in r.stdout.splitlines() if line.startswith("| corner/")}
+        pipeline = "pipeline (2 passes, the G-buffer not counted)"
+        self.assertEqual(rows[(a, pipeline)][:3], ["0.1200", "0.0800", "1.50x"])
+        self.assertEqual(rows[(a, "ao")][:3], ["0.0900", "0.0700", "1.29x"])
+        self.assertEqual(rows[(c, pipeline)][:3], ["0.1300", "-", "-"])   # a pass without a floor: no sum
+
+
 if __name__ == "__main__":
     unittest.main()
