@@ -5,6 +5,7 @@
 #    ssdo_fast's horizontal blur with its radiance in the tile (.bundle),
 #    alchemy_fast and hemisphere_fast n16 full and half with the fused
 #    tail, ssdo_fast n16, both APIs.
+#    Then a probe of the upsample (1b).
 # 2. The whole gpu matrix rendered with B and judged by digest.
 # 3. The targets with B, 10 interleaved repetitions, every pass against its
 #    floor, the clocks beside them.
@@ -21,7 +22,20 @@ smi_start $K/ab.clocks.csv
   --bench-args='--sweep gpu --max-time 0.3' --out $K/ab > $K/ab.txt 2>&1
 echo "== ab: rc $? ($(el) s)"; smi_stop
 grep -E "compute +(blur_x|blur_y|indirect_blur_x|indirect_blur_y|pipeline) " $K/ab.txt | cut -c1-150
+# 1b. A probe: the upsample's background texel weighed 0 by a select, where
+#     a branch skipped it (upsample_select.glsl, include/upsample.glsl; the
+#     same digests on the CPU renderers, 132 of 132), B against B.
+abf='^corner/(alchemy_fast|hemisphere_fast)/n16/b4/(fused_tail=1/)?half/1920x1080/(gl|vk)/compute/'
+smi_start $K/ab_upsample.clocks.csv
+.bundle/cavity.sh ab --a .bundle --b .bundle --rounds 4 --filter "$abf" --bench-args='--sweep gpu --max-time 0.3' \
+  --b-args="--kernel-source include/upsample.glsl=$D/upsample_select.glsl" --out $K/ab_upsample > $K/ab_upsample.txt 2>&1
+echo "== ab upsample: rc $? ($(el) s)"; smi_stop
+grep -E "compute +(upsample|upsample_composite|pipeline) " $K/ab_upsample.txt | cut -c1-150
 work=/tmp/refs; rm -rf $work; mkdir -p $work; cp -r baselines $work/base
+.bundle/render.sh --matrix gpu --filter half --kernel-source include/upsample.glsl=$D/upsample_select.glsl \
+  --baselines $work/base --out $work/r_upsample > $K/render_upsample.txt 2>&1
+.bundle/cavity.sh gate judge $work/r_upsample --baselines $work/base --out $work/g_upsample --quiet > $K/judge_upsample.md 2>&1
+echo "== judge upsample: rc $?"; head -3 $K/judge_upsample.md
 .bundle/render.sh --matrix gpu --baselines $work/base --out $work/r > $K/render.txt 2>&1
 echo "== render: rc $? ($(el) s)"; tail -1 $K/render.txt
 .bundle/cavity.sh gate judge $work/r --baselines $work/base --out $work/g --quiet > $K/judge.md 2>&1
