@@ -114,15 +114,16 @@ struct BlurSums {
 // the tap: 3.7-7.0% off each pass on the H200, the same sums (0 added).
 void addTileTap(int t, int i, ivec2 pixel, vec3 N, float z, float twoSigma2, inout BlurSums s) {
     vec4 tap = tileNormalDepth[i];
+    bool counts = !isBackground(tap.w);
     float W = tapWeight(t, N, tap.xyz, z - tap.w, twoSigma2);
-    W = isBackground(tap.w) ? 0.0 : W;
+    W = counts ? W : 0.0;
     s.ao += tileAo[i] * W;
 #if defined(BLUR_WITH_IN_TILE)
     s.value += vec3(tileWithR[i], tileWithG[i], tileWithB[i]) * W;
 #elif defined(BLUR_WITH)
     // Fetched only for a tap that counts: a background one may lie past the
     // image's edge.
-    if (!isBackground(tap.w)) s.value += blurredWith(pixel + kBlurAxis * t) * W;
+    if (counts) s.value += blurredWith(pixel + kBlurAxis * t) * W;
 #endif
     s.weight += W;
 }
