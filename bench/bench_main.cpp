@@ -15,7 +15,7 @@
 #include "console_reporter.h"
 #include "per_pass_reporter.h"
 
-#include "cli.h"
+#include "values.h"
 #include "flags.h"
 
 #include <benchmark/benchmark.h>
@@ -37,12 +37,12 @@ using cavity::Result;
 using cavity::Status;
 
 Status parsePlant(const std::string& text, cavity::pipeline::PlantedSlowdown& plant) {
-    CAVITY_ASSIGN(const auto items, cavity::cli::splitList("--plant", text));
+    CAVITY_ASSIGN(const auto items, cavity::flags::splitList("--plant", text));
     for (const auto& item : items) {
         const auto colon = item.find(':');
         if (colon == std::string::npos || colon == 0)
             return cavity::badInput("--plant '" + item + "': must be PASS:FMAS, e.g. ao:120");
-        CAVITY_ASSIGN(const int n, cavity::cli::parseInt("--plant " + item.substr(0, colon), item.substr(colon + 1), 1,
+        CAVITY_ASSIGN(const int n, cavity::flags::parseInt("--plant " + item.substr(0, colon), item.substr(colon + 1), 1,
                                                          1000000));
         if (!plant.emplace(item.substr(0, colon), n).second)
             return cavity::badInput("--plant " + item.substr(0, colon) + ": given twice");
@@ -76,9 +76,9 @@ Status readPlantFile(const std::string& path, std::map<std::string, cavity::pipe
 }
 
 // The flags of cavity_bench, declared once: --help and the parse read this.
-const cavity::cli::CommandSpec& benchSpec() {
-    static const cavity::cli::CommandSpec spec = [] {
-        cavity::cli::CommandSpec c;
+const cavity::flags::CommandSpec& benchSpec() {
+    static const cavity::flags::CommandSpec spec = [] {
+        cavity::flags::CommandSpec c;
         c.program = "cavity_bench";
         c.description =
             "One Google Benchmark per configuration of the sweep (harness/plan/sweep.h), named by its configuration id; "
@@ -100,7 +100,7 @@ const cavity::cli::CommandSpec& benchSpec() {
              "Options", true},
             {"--device", "K", "device index (0..64; default 0)"},
         };
-        c.footer = "\n" + cavity::cli::kernelHelp("Kernels (the sweep's AO pipelines; select by id with --benchmark_filter)") +
+        c.footer = "\n" + cavity::flags::kernelHelp("Kernels (the sweep's AO pipelines; select by id with --benchmark_filter)") +
                    "\nExit codes: 0 ok, 2 bad usage (or no benchmark matches the filter), 3 no backend, 4 GPU error.";
         c.examples = {
             "cavity_bench --backend vk --benchmark_filter=/alchemy_fast/",
@@ -114,7 +114,7 @@ const cavity::cli::CommandSpec& benchSpec() {
 
 // Takes Cavity's own flags out of argv; --benchmark_* and --v= go to Google Benchmark.
 Result<cavity::bench::Options> parse(int argc, char** argv, std::vector<char*>& rest, bool& help) {
-    using namespace cavity::cli;
+    using namespace cavity::flags;
     cavity::bench::Options o;
     rest = {argv[0]};
     std::vector<std::string> own;

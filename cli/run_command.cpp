@@ -160,7 +160,7 @@ void runOnBackend(gpu::Backend& gpu, gpu::Api api, const std::vector<RunConfig>&
         // (README, Exit codes); its images and results are still written.
         for (const auto& n : r->nonFinite) {
             std::cerr << "cavity run: " << configId(c) << ": " << n.message() << "\n";
-            out.worst = std::max(out.worst, int(ErrorCode::Regression));
+            out.worst = std::max(out.worst, int(ErrorCode::CheckFailed));
         }
         out.runs.push_back(std::move(*r));
     }

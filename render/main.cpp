@@ -2,7 +2,8 @@
 // machine. It links no OpenImageIO (tests/test_render.cpp reads its dynamic
 // section to keep it so); images go to a render folder that `cavity gate
 // judge` reads. Exit codes as cavity's (README.md, "Exit codes").
-#include "cli.h"
+#include "quality_command.h"
+#include "values.h"
 #include "render_command.h"
 
 #include <string>
@@ -11,6 +12,6 @@
 int main(int argc, char** argv) {
     std::vector<std::string> args(argv + 1, argv + argc);
     if (!args.empty() && args[0] == "quality")
-        return cavity::cli::qualityCommand({args.begin() + 1, args.end()}, "cavity_render quality");
+        return cavity::flags::qualityCommand({args.begin() + 1, args.end()}, "cavity_render quality");
     return cavity::render::renderCommand(args);
 }

@@ -2,7 +2,7 @@
 
 #include "kernel.h"
 
-#include "cli.h"
+#include "values.h"
 #include "flags.h"
 #include "gate/gate_judge.h"
 #include "render/render_folder.h"
@@ -31,8 +31,8 @@ namespace fs = std::filesystem;
 namespace {
 
 // The flags of cavity_render, declared once: --help and the parse read this.
-const cli::CommandSpec& renderSpec() {
-    static const cli::CommandSpec spec{
+const flags::CommandSpec& renderSpec() {
+    static const flags::CommandSpec spec{
         "cavity_render",
         "Renders a matrix of DIR/matrices.json (default: the repository's baselines/) into a render folder for `cavity gate judge`, "
         "on the GPU machine (no OpenImageIO). `cavity_render quality [the flags of cavity quality]` measures "
@@ -58,7 +58,7 @@ const cli::CommandSpec& renderSpec() {
              "(<baselines>/manifest.json), with the nearest image approved for the device's class, fetched from this "
              "image store; only the images that fail (or have no reference of the class) are written, the others "
              "travel as verdicts and metrics (docs/store.md)"},
-            cli::storeCacheFlag(),
+            flags::storeCacheFlag(),
         },
         "",
         "",
@@ -76,7 +76,7 @@ const cli::CommandSpec& renderSpec() {
 
 int fail(const Error& e) {
     std::cerr << "cavity_render: " << e.message << "\n";
-    return cli::exitCode(e);
+    return flags::exitCode(e);
 }
 
 std::string joined(const std::vector<std::string>& argv) {
@@ -94,8 +94,8 @@ int worst(const RenderManifest& m) {
         for (const auto& r : c.renders) {
             bad |= r.errorCode == int(ErrorCode::BadInput);
             backend |= r.errorCode == int(ErrorCode::BackendUnavailable);
-            nonFinite |= r.errorCode == int(ErrorCode::Regression);
-            gpuError |= r.errorCode != 0 && r.errorCode != int(ErrorCode::Regression);
+            nonFinite |= r.errorCode == int(ErrorCode::CheckFailed);
+            gpuError |= r.errorCode != 0 && r.errorCode != int(ErrorCode::CheckFailed);
         }
     return bad ? 2 : backend ? 3 : gpuError ? 4 : nonFinite ? 1 : 0;
 }
@@ -173,7 +173,7 @@ private:
 Result<RenderCommand> parseRenderFlags(const std::vector<std::string>& argv) {
     std::optional<std::string> shardFlag;
     RenderCommand o;
-    CAVITY_ASSIGN(const cli::ParsedFlags parsed, cli::parseFlags(renderSpec(), argv));
+    CAVITY_ASSIGN(const flags::ParsedFlags parsed, flags::parseFlags(renderSpec(), argv));
     o.help = parsed.help;
     if (parsed.help) {
         o.helpText = parsed.helpText;
@@ -193,23 +193,23 @@ Result<RenderCommand> parseRenderFlags(const std::vector<std::string>& argv) {
         } else if (flag == "--shard") {
             shardFlag = v;
         } else if (flag == "--device") {
-            CAVITY_ASSIGN(o.render.device, cli::parseInt(flag, v, 0, 64));
+            CAVITY_ASSIGN(o.render.device, flags::parseInt(flag, v, 0, 64));
         } else if (flag == "--repeat") {
-            CAVITY_ASSIGN(o.render.repeat, cli::parseInt(flag, v, 1, 1000));
+            CAVITY_ASSIGN(o.render.repeat, flags::parseInt(flag, v, 1, 1000));
         } else if (flag == "--kernel-source") {
             // NAME=FILE: render with kernels/NAME replaced by FILE's text, so a
             // planted defect can be rendered on a machine without a build.
-            CAVITY_TRY(cli::addKernelSource(v, o.render.overrides, o.replaced));
+            CAVITY_TRY(flags::addKernelSource(v, o.render.overrides, o.replaced));
         } else if (flag == "--timing") {
             if (v != "batch" && v != "drained") return badInput("--timing " + v + ": must be batch or drained");
             o.render.mode = v == "batch" ? TimingMode::Batch : TimingMode::Drained;
         } else if (flag == "--max-noise") {
-            CAVITY_ASSIGN(const double pct, cli::parseNumber(flag, v, 0, 100));
+            CAVITY_ASSIGN(const double pct, flags::parseNumber(flag, v, 0, 100));
             o.render.maxNoise = pct / 100;
         } else if (flag == "--max-time") {
-            CAVITY_ASSIGN(o.render.maxSeconds, cli::parseNumber(flag, v, 0.001, 3600));
+            CAVITY_ASSIGN(o.render.maxSeconds, flags::parseNumber(flag, v, 0.001, 3600));
         } else if (flag == "--views") {
-            CAVITY_ASSIGN(o.render.views, cli::parseInt(flag, v, 1, 4));
+            CAVITY_ASSIGN(o.render.views, flags::parseInt(flag, v, 1, 4));
         } else if (flag == "--store") {
             if (!o.store) o.store.emplace();
             o.store->location = v;
@@ -219,17 +219,17 @@ Result<RenderCommand> parseRenderFlags(const std::vector<std::string>& argv) {
         }
     }
     // As cavity's commands find them: from the working directory up, else the
-    // source tree this binary was built from (cli::defaultBaselines).
+    // source tree this binary was built from (flags::defaultBaselines).
     if (o.baselines.empty()) {
-        CAVITY_ASSIGN(o.baselines, cli::defaultBaselines());
+        CAVITY_ASSIGN(o.baselines, flags::defaultBaselines());
     }
     if (o.matrix.empty()) return badInput("--matrix: missing (name a matrix of " + o.baselines + "/matrices.json)");
     if (o.out.empty()) return badInput("--out: missing (the render folder to write)");
     // --shard, GoogleTest's and Bazel's variables: one partition (shard_sources.h).
-    CAVITY_ASSIGN(const cli::Shard shard, cli::resolveShard(shardFlag));
+    CAVITY_ASSIGN(const flags::Shard shard, flags::resolveShard(shardFlag));
     o.shardIndex = shard.index;
     o.shardCount = shard.count;
-    CAVITY_TRY(cli::touchShardStatusFiles());
+    CAVITY_TRY(flags::touchShardStatusFiles());
     return o;
 }
 

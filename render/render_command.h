@@ -20,7 +20,7 @@ using namespace cavity::harness;
 struct RenderCommand {
     bool help = false;                    // --help given: print helpText, exit 0, nothing else read
     std::string helpText;
-    std::string matrix, baselines, out, filter;   // baselines: empty until found (cli::defaultBaselines)
+    std::string matrix, baselines, out, filter;   // baselines: empty until found (flags::defaultBaselines)
     int shardIndex = 0, shardCount = 1;
     RenderOptions render;
     std::vector<ReplacedSource> replaced;   // --kernel-source, recorded in the manifest

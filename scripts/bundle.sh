@@ -108,4 +108,6 @@ if [ "${BUNDLE_XZ:-1}" != 0 ]; then
 fi
 size=$(du -sm "$out" | cut -f1)
 echo "bundle: $out ($size MiB): ${binaries[*]} baselines/ lib/: $(ls "$out/lib" | tr '\n' ' ')"
-if [ "$size" -gt 56 ]; then echo "bundle: over the 56 MiB limit" >&2; exit 1; fi
+# BUNDLE_MAX_MIB: a dry run's unstripped sanitizer build is larger, and stays here.
+limit="${BUNDLE_MAX_MIB:-56}"
+if [ "$size" -gt "$limit" ]; then echo "bundle: $size MiB, over the $limit MiB limit" >&2; exit 1; fi

@@ -13,10 +13,14 @@
 # manifests, the store's index (digest, bytes, sha256 of each object; the
 # store itself, about 90 MiB an API at 1920x1080, stays there), the clocks.
 #   scripts/gpu_store_run.sh MATRIX API DEFECTS_DIR
+# FILTER (a regular expression) keeps MATRIX's configurations whose id it
+# matches, and a defect's configurations that it matches too.
 set -uo pipefail
 cd "$(dirname "$0")/.."
 . scripts/gpu_env.sh
 matrix="$1"; api="$2"; defects="$3"
+filter="${FILTER:-}"
+only=(); [ -n "$filter" ] && only=(--filter "$filter")
 work=/tmp/cavity-store-run
 rm -rf "$work"; mkdir -p "$work" "$OUT/planted"
 cp -r .bundle/baselines "$work/base"
@@ -26,7 +30,7 @@ smi_start "$OUT/clocks.csv"
 ms() { echo $(( ($(date +%s%N) - $1) / 1000000 )); }
 log() { echo "$*" | tee -a "$OUT/log.txt"; }
 t0=$(date +%s%N)
-.bundle/render.sh --matrix "$matrix" --backend "$api" --baselines "$work/none" --out "$work/r0" 2> "$OUT/render0.err"
+.bundle/render.sh --matrix "$matrix" "${only[@]}" --backend "$api" --baselines "$work/none" --out "$work/r0" 2> "$OUT/render0.err"
 log "render with every image: exit $? in $(ms "$t0") ms, $(du -sm "$work/r0" | cut -f1) MiB"
 t0=$(date +%s%N)
 .bundle/cavity.sh baselines approve --from "$work/r0" --baselines "$work/base" --store "$work/store" \
@@ -39,7 +43,7 @@ mkdir -p "$OUT/r"
 while read -r name file touches; do
   t0=$(date +%s%N)
   .bundle/render.sh --matrix "$matrix" --backend "$api" --baselines "$work/base" --store "$work/store" \
-    --filter "$touches" --kernel-source "$file=$defects/$name.glsl" --out "$work/p_$name" > "$work/p_$name.out" 2>&1
+    --filter "${filter:+^(?=.*$filter).*}$touches" --kernel-source "$file=$defects/$name.glsl" --out "$work/p_$name" > "$work/p_$name.out" 2>&1
   rc=$?
   log "planted $name: exit $rc in $(ms "$t0") ms: $(grep '^judged here' "$work/p_$name.out")"
   cp "$work/p_$name/manifest.json" "$OUT/planted/$name.json" 2>/dev/null
@@ -47,7 +51,7 @@ while read -r name file touches; do
 done < "$defects/list.txt"
 if [ "${CLEAN:-1}" = 1 ]; then
 t0=$(date +%s%N)
-.bundle/render.sh --matrix "$matrix" --backend "$api" --baselines "$work/base" --store "$work/store" --out "$work/clean" \
+.bundle/render.sh --matrix "$matrix" "${only[@]}" --backend "$api" --baselines "$work/base" --store "$work/store" --out "$work/clean" \
   > "$work/clean.out" 2>&1
 rc=$?
 t1=$(date +%s%N)

@@ -17,10 +17,11 @@ plant() {   # name, file under kernels/, configurations regex, sed expression
   if cmp -s "kernels/$file" "$out/$name.glsl"; then echo "planted_defects: $name did not apply to $file" >&2; exit 1; fi
   echo "$name $file $touches" >> "$out/list.txt"
 }
-# The depth pyramid's pick undone with x and y swapped from level 3 down:
-# read only where samples land 64 px or more away.
-plant pyramid_level3 include/pyramid.glsl '_fast/' \
-  's|    ivec2 parity = t \& 1;|    ivec2 parity = t \& 1;\n    if (level >= 3) parity = parity.yx;|'
+# The depth pyramid's pick with x and y swapped from level 3 down, in the
+# one-dispatch build: coarse texels hold another pixel's depth, read only
+# where samples land 64 px or more away.
+plant pyramid_level3 include/pyramid_build.glsl '_fast/' \
+  's|    if (pick != pixel >> (k - 1)) return false;|    if (k >= 3) pick = min(t * 2 + ivec2(t.x \& 1, t.y \& 1), levelSizeOf(k - 1) - 1);\n&|'
 # alchemy_fast reads one pyramid level too coarse everywhere.
 plant alchemy_fast_level ssao_alchemy_fast.glsl '/alchemy_fast/' \
   's|int level = pyramidLevel(int(h), maxLevel);|int level = min(pyramidLevel(int(h), maxLevel) + 1, maxLevel);|'

@@ -44,6 +44,12 @@ if ((${#missing[@]})); then
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 fi
 
+# The commit-msg hook (subjects of at most 72 characters, as `git log
+# --oneline` shows them), for a clone; a tarball has no .git to hook.
+if git rev-parse --is-inside-work-tree >/dev/null 2>&1; then
+  git config core.hooksPath scripts/hooks
+fi
+
 # CAVITY_SANITIZE=ON builds with ASan + UBSan, into build-asan/ unless
 # BUILD_DIR says otherwise (CI does this: .ci/run).
 sanitize="${CAVITY_SANITIZE:-OFF}"

@@ -71,7 +71,7 @@ private:
         if (status != PGRES_COMMAND_OK && status != PGRES_TUPLES_OK) {
             const std::string what = where_ + ": " + firstLine(PQerrorMessage(conn_));
             // A server that went away mid-way is unavailable, not our bug.
-            if (PQstatus(conn_) == CONNECTION_BAD) return storeUnavailable(what);
+            if (PQstatus(conn_) == CONNECTION_BAD) return unreachable(what);
             return internal(what + " in: " + sql.substr(0, 80));
         }
         std::vector<Row> rows;
@@ -121,7 +121,7 @@ Result<std::unique_ptr<Database>> openPostgres(const std::string& url) {
         // refused, wrong password, no such database) is the server's answer.
         if (why.find("invalid") != std::string::npos && why.find("URI") != std::string::npos)
             return badInput("--db " + where + ": " + why);
-        return storeUnavailable("--db " + where + ": cannot connect: " + why);
+        return unreachable("--db " + where + ": cannot connect: " + why);
     }
     PQsetNoticeProcessor(conn, quiet, nullptr);
     return std::unique_ptr<Database>(std::make_unique<PostgresDatabase>(conn, where));

@@ -39,7 +39,7 @@ private:
         if (rc == SQLITE_NOTADB || rc == SQLITE_CORRUPT) return badInput(what + " (not an SQLite database, or a damaged one)");
         if (rc == SQLITE_READONLY || rc == SQLITE_CANTOPEN || rc == SQLITE_PERM)
             return badInput(what + " (the file or its folder cannot be written)");
-        if (rc == SQLITE_BUSY || rc == SQLITE_LOCKED) return storeUnavailable(what + " (another process holds the database)");
+        if (rc == SQLITE_BUSY || rc == SQLITE_LOCKED) return unreachable(what + " (another process holds the database)");
         if (rc == SQLITE_FULL || rc == SQLITE_IOERR) return internal(what);
         return internal(what + " in: " + sql.substr(0, 80));
     }

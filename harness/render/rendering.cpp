@@ -68,7 +68,7 @@ Status renderEntries(const plan::Matrix& m, const std::vector<plan::MatrixEntry>
                     // A NaN anywhere fails the configuration, whatever its
                     // checked images show (an 8-bit composite clamps it away).
                     for (const auto& n : rec->nonFinite) r.error += (r.error.empty() ? "" : "; ") + n.message();
-                    r.errorCode = int(ErrorCode::Regression);
+                    r.errorCode = int(ErrorCode::CheckFailed);
                 } else {
                     r.deterministic = rec->deterministic;
                     for (const auto& p : rec->timing.passes) {

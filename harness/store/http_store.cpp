@@ -81,7 +81,7 @@ public:
             fs::remove(cached, ec);   // damaged in the cache: fetched again below
         }
         CAVITY_ASSIGN(Response r, request("GET", digest, nullptr));
-        if (r.status == 404) return storeUnavailable("store " + url_ + ": no object " + digest + " (HTTP 404)");
+        if (r.status == 404) return unreachable("store " + url_ + ": no object " + digest + " (HTTP 404)");
         if (r.status != 200) return refused("GET", digest, r.status);
         CAVITY_TRY(decodeObject(r.body, digest, url_ + "/" + objectPath(digest)));
         fs::create_directories(cached.parent_path(), ec);
@@ -108,13 +108,13 @@ private:
     Error refused(const std::string& method, const std::string& digest, long status) const {
         const std::string head = "store " + url_ + ": " + method + " " + objectPath(digest) + ": HTTP " + std::to_string(status);
         if (status == 401)
-            return storeUnavailable(head + (method == "PUT" ? ": credentials missing, refused, or without write access"
+            return unreachable(head + (method == "PUT" ? ": credentials missing, refused, or without write access"
                                                             : ": credentials missing or refused") +
                                     " (CAVITY_STORE_TOKEN, CAVITY_STORE_USER and CAVITY_STORE_PASSWORD, or a netrc file)");
         if (status == 403 || status == 405)
-            return storeUnavailable(head + (method == "PUT" ? ": these credentials may not write to the store"
+            return unreachable(head + (method == "PUT" ? ": these credentials may not write to the store"
                                                              : ": these credentials may not read the store"));
-        return storeUnavailable(head);
+        return unreachable(head);
     }
 
     Result<Response> request(const std::string& method, const std::string& digest, const std::string* upload);
@@ -187,9 +187,9 @@ Result<Response> HttpStore::request(const std::string& method, const std::string
     curl_slist_free_all(headers);
     curl_easy_cleanup(h);
     if (c == CURLE_WRITE_ERROR)
-        return storeCorrupt("store " + url_ + ": " + objectPath(digest) + ": larger than " +
+        return corrupt("store " + url_ + ": " + objectPath(digest) + ": larger than " +
                             std::to_string(kMaxObjectBytes >> 20) + " MiB, no image object");
-    if (c != CURLE_OK) return storeUnavailable("store " + url_ + ": " + method + " " + objectPath(digest) + ": " + failureText(c, detail));
+    if (c != CURLE_OK) return unreachable("store " + url_ + ": " + method + " " + objectPath(digest) + ": " + failureText(c, detail));
     return r;
 }
 

@@ -27,9 +27,9 @@ public:
         const fs::path p = fs::path(root_) / objectPath(digest);
         std::error_code ec;
         if (!fs::is_regular_file(p, ec))
-            return storeUnavailable("store " + root_ + ": no object " + digest + " (" + p.string() + ")");
+            return unreachable("store " + root_ + ": no object " + digest + " (" + p.string() + ")");
         std::ifstream f(p, std::ios::binary);
-        if (!f) return storeUnavailable("store " + root_ + ": cannot read " + p.string());
+        if (!f) return unreachable("store " + root_ + ": cannot read " + p.string());
         return std::string((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
     }
 
@@ -42,7 +42,7 @@ public:
         const fs::path p = fs::path(root_) / objectPath(digest);
         std::error_code ec;
         fs::create_directories(p.parent_path(), ec);
-        if (ec) return storeUnavailable("store " + root_ + ": cannot create " + p.parent_path().string() + ": " + ec.message());
+        if (ec) return unreachable("store " + root_ + ": cannot create " + p.parent_path().string() + ": " + ec.message());
         return writeFileAtomically(p.string(), bytes);
     }
 
@@ -101,9 +101,9 @@ Result<HostImage> getImage(ImageStore& s, const std::string& digest) {
 
 Result<HostImage> decodeObject(const std::string& bytes, const std::string& digest, const std::string& label) {
     auto image = render::decodeImage(bytes, label);
-    if (!image) return storeCorrupt(image.error().message);
+    if (!image) return corrupt(image.error().message);
     if (const std::string actual = imageDigest(*image); actual != digest)
-        return storeCorrupt(label + ": corrupt: its pixels have digest " + actual + ", not " + digest);
+        return corrupt(label + ": corrupt: its pixels have digest " + actual + ", not " + digest);
     return image;
 }
 

@@ -67,7 +67,7 @@ std::string defaultLocation(const std::string& baselines);
 
 // Bytes of an object decoded and checked against the digest they are filed
 // under (`label` names them in messages): anything else is
-// ErrorCode::StoreCorrupt.
+// ErrorCode::Corrupt.
 Result<HostImage> decodeObject(const std::string& bytes, const std::string& digest, const std::string& label);
 // The image filed under `digest`, decoded and checked (decodeObject).
 Result<HostImage> getImage(ImageStore& s, const std::string& digest);

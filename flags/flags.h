@@ -21,7 +21,7 @@
 #include <string>
 #include <vector>
 
-namespace cavity::cli {
+namespace cavity::flags {
 
 struct FlagSpec {
     std::string name;          // "--samples"
@@ -62,4 +62,4 @@ std::string wrapText(const std::string& text, size_t width = kHelpWidth);
 // The candidate nearest to `word` by edit distance, or "" when none is close.
 std::string nearest(const std::string& word, const std::vector<std::string>& candidates);
 
-}  // namespace cavity::cli
+}  // namespace cavity::flags

@@ -7,7 +7,7 @@
 #include <algorithm>
 #include <regex>
 
-namespace cavity::cli {
+namespace cavity::flags {
 
 Result<std::map<std::pair<std::string, int>, double>> loadCosts(const std::string& path, bool half) {
     CAVITY_ASSIGN(const compare::SampleSets sets, compare::loadSampleSets(path));
@@ -85,4 +85,4 @@ nlohmann::json candidateJson(const Candidate& c) {
             {"cost_ms", c.costMs ? nlohmann::json(*c.costMs) : nlohmann::json(nullptr)}, {"screen_space", c.screenSpace}};
 }
 
-}  // namespace cavity::cli
+}  // namespace cavity::flags

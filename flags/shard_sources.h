@@ -13,7 +13,7 @@
 #include <optional>
 #include <string>
 
-namespace cavity::cli {
+namespace cavity::flags {
 
 struct Shard {
     int index = 0, count = 1;
@@ -34,4 +34,4 @@ Result<Shard> resolveShard(const std::optional<std::string>& flag, const EnvLook
 // not). Touches each one that is set.
 Status touchShardStatusFiles(const EnvLookup& env = processEnv);
 
-}  // namespace cavity::cli
+}  // namespace cavity::flags

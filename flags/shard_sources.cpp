@@ -1,12 +1,12 @@
 #include "shard_sources.h"
 
-#include "cli.h"
+#include "values.h"
 
 #include <cstdlib>
 #include <fstream>
 #include <vector>
 
-namespace cavity::cli {
+namespace cavity::flags {
 
 namespace {
 
@@ -58,4 +58,4 @@ Status touchShardStatusFiles(const EnvLookup& env) {
     return {};
 }
 
-}  // namespace cavity::cli
+}  // namespace cavity::flags

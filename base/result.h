@@ -10,14 +10,17 @@
 
 namespace cavity {
 
+// The codes any layer may return; each is also the process exit code that
+// main() gives it (README, "Exit codes"), so none names one layer's outcome.
 enum class ErrorCode {
-    Regression = 1,           // a gate check failed (not an error of the program)
+    CheckFailed = 1,          // a result failed a check (an image against its reference, a non-finite
+                              // pixel): the program worked, the thing it measured did not pass
     BadInput = 2,             // a flag, file or value the user gave is wrong
     BackendUnavailable = 3,   // no ICD, no EGL device, ...
     Internal = 4,             // a GPU call failed after the backend started
-    StoreUnavailable = 5,     // the image store or the results database server (cavity history) cannot be
-                              // reached, refused us, or lacks an object
-    StoreCorrupt = 6,         // a store object's pixels do not have the digest it is filed under
+    Unreachable = 5,          // a server we were pointed at (an image store, a results database)
+                              // cannot be reached, refused us, or lacks an object
+    Corrupt = 6,              // stored data fails its own check (an object's pixels against its digest)
 };
 
 struct Error {
@@ -28,8 +31,8 @@ struct Error {
 inline Error badInput(std::string m) { return {ErrorCode::BadInput, std::move(m)}; }
 inline Error unavailable(std::string m) { return {ErrorCode::BackendUnavailable, std::move(m)}; }
 inline Error internal(std::string m) { return {ErrorCode::Internal, std::move(m)}; }
-inline Error storeUnavailable(std::string m) { return {ErrorCode::StoreUnavailable, std::move(m)}; }
-inline Error storeCorrupt(std::string m) { return {ErrorCode::StoreCorrupt, std::move(m)}; }
+inline Error unreachable(std::string m) { return {ErrorCode::Unreachable, std::move(m)}; }
+inline Error corrupt(std::string m) { return {ErrorCode::Corrupt, std::move(m)}; }
 
 // A value or an error, in the spirit of std::expected (C++23).
 template <class T>

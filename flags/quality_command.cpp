@@ -1,6 +1,7 @@
 // `cavity quality`: each AO kernel's error against the ray-traced ground
 // truth, as a table on stdout and quality.json.
-#include "cli.h"
+#include "values.h"
+#include "quality_command.h"
 #include "quality_recommend.h"
 #include "pipeline/config_id.h"
 #include "pipeline/pipeline.h"
@@ -18,7 +19,7 @@
 #include <optional>
 #include <regex>
 
-namespace cavity::cli {
+namespace cavity::flags {
 
 namespace {
 
@@ -344,4 +345,4 @@ int qualityCommand(const std::vector<std::string>& argv, const std::string& prog
     return 0;
 }
 
-}  // namespace cavity::cli
+}  // namespace cavity::flags

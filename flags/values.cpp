@@ -1,4 +1,4 @@
-#include "cli.h"
+#include "values.h"
 #include "core/digest.h"
 
 #include "kernel.h"
@@ -13,7 +13,7 @@
 #include <map>
 #include <sstream>
 
-namespace cavity::cli {
+namespace cavity::flags {
 
 Result<int> parseInt(const std::string& flag, const std::string& text, int lo, int hi) {
     int v = 0;
@@ -208,4 +208,4 @@ int fail(const std::string& program, const Error& e) {
     return exitCode(e);
 }
 
-}  // namespace cavity::cli
+}  // namespace cavity::flags

@@ -9,7 +9,7 @@
 #include <algorithm>
 #include <memory>
 
-namespace cavity::cli {
+namespace cavity::flags {
 
 namespace {
 
@@ -206,4 +206,4 @@ Result<ParsedFlags> parseFlags(const CommandSpec& spec, const std::vector<std::s
     return out;
 }
 
-}  // namespace cavity::cli
+}  // namespace cavity::flags

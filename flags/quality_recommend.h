@@ -17,7 +17,7 @@
 #include <utility>
 #include <vector>
 
-namespace cavity::cli {
+namespace cavity::flags {
 
 using namespace cavity::harness;
 
@@ -44,4 +44,4 @@ std::optional<Candidate> bestWithin(const std::vector<Candidate>& all, double bu
 
 nlohmann::json candidateJson(const Candidate& c);
 
-}  // namespace cavity::cli
+}  // namespace cavity::flags
