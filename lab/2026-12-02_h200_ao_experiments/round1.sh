@@ -6,7 +6,7 @@ set -uo pipefail
 cd "$(dirname "$0")/.."
 . scripts/gpu_env.sh
 work=/tmp/exp; rm -rf $work; mkdir -p $work
-E=bench/results/2026-12-02_h200_ao_experiments/variants
+E=lab/2026-12-02_h200_ao_experiments/variants
 declare -A V
 V[v0]=""
 V[closed]="--kernel-source ssao_alchemy_fast.glsl=$E/ao_closed.glsl"

@@ -7,7 +7,7 @@ set -uo pipefail
 cd "$(dirname "$0")/.."
 . scripts/gpu_env.sh
 work=/tmp/exp2; rm -rf $work; mkdir -p $work
-E=bench/results/2026-12-02_h200_ao_experiments/variants
+E=lab/2026-12-02_h200_ao_experiments/variants
 declare -A V
 V[new]=""
 V[deint]="--kernel-source ssao_alchemy_fast.glsl=$E/ao2_deint.glsl"

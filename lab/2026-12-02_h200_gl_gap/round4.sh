@@ -3,9 +3,9 @@
 # copy): is GL's extra time in the work, or in every store or dispatch?
 # Run from the repository root on the GPU machine, .gl and .bundle carried.
 set -uo pipefail
-cd "$(dirname "$0")/../../.."
+cd "$(dirname "$0")/../.."
 . scripts/gpu_env.sh
-v=bench/results/2026-12-02_h200_gl_gap/variants
+v=lab/2026-12-02_h200_gl_gap/variants
 work=/tmp/exp4; rm -rf $work; mkdir -p $work
 declare -A V
 V[base]=""

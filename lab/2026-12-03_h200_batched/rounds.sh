@@ -8,15 +8,15 @@
 # reshaped (CAVITY_WORKGROUP), the composite an empty dispatch at three
 # shapes (how much of a pass the launch is). corner n16 b4 full
 # 1920x1080, compute, both APIs, batch timing, ROUNDS interleaved rounds.
-#   bench/results/2026-12-03_h200_batched/rounds.sh [ROUNDS (3)]
+#   lab/2026-12-03_h200_batched/rounds.sh [ROUNDS (3)]
 # As run. The variants/*.glsl it names are kept as diffs: README.md says how
 # to rebuild them.
 set -uo pipefail
-cd "$(dirname "$0")/../../.."
+cd "$(dirname "$0")/../.."
 . scripts/gpu_env.sh
 rounds="${1:-3}"
 work=/tmp/batched; rm -rf $work; mkdir -p $work
-E=bench/results/2026-12-03_h200_batched/variants
+E=lab/2026-12-03_h200_batched/variants
 A=ssao_alchemy_fast.glsl
 H=ssao_hemisphere_fast.glsl
 declare -A V K W
@@ -33,7 +33,7 @@ V[h_batched]="--kernel-source $H=$E/hemisphere_batched.glsl"; K[h_batched]=hemis
 for wg in 16x16 32x8 16x8; do V[a_wg$wg]=""; K[a_wg$wg]=alchemy_fast; W[a_wg$wg]=$wg; done
 V[h_wg16x16]=""; K[h_wg16x16]=hemisphere_fast; W[h_wg16x16]=16x16
 for wg in 8x8 16x16 32x32; do
-  V[e_wg$wg]="--kernel-source composite.glsl=scripts/gl_gap/composite_empty.glsl"; K[e_wg$wg]=alchemy_fast; W[e_wg$wg]=$wg
+  V[e_wg$wg]="--kernel-source composite.glsl=lab/scripts/gl_gap/composite_empty.glsl"; K[e_wg$wg]=alchemy_fast; W[e_wg$wg]=$wg
 done
 order=(a_new a_old a_unrolled a_branch a_batch4 a_batch16 a_wg16x16 a_wg32x8 a_wg16x8 e_wg8x8 e_wg16x16 e_wg32x32
        h_new h_old h_noskip h_batched h_wg16x16)

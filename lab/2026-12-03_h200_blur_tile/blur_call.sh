@@ -3,7 +3,7 @@
 # loop written out, both APIs; then the gpu matrix's fast pipelines rendered
 # to see whether any digest moved.
 set -uo pipefail
-cd "$(dirname "$0")/../../.."
+cd "$(dirname "$0")/../.."
 for f in .bundle/*.xz .bundle/lib/*.xz; do xz -d "$f"; done
 chmod +x .bundle/cavity_bench .bundle/cavity .bundle/cavity_render
 . scripts/gpu_env.sh

@@ -3,7 +3,7 @@
 # judged by digest (baselines/approvals.json as committed), then the
 # targets with 10 interleaved repetitions, the clocks beside them.
 set -uo pipefail
-cd "$(dirname "$0")/../../.."
+cd "$(dirname "$0")/../.."
 for f in .bundle/*.xz .bundle/lib/*.xz; do xz -d "$f"; done
 chmod +x .bundle/cavity_bench .bundle/cavity .bundle/cavity_render
 . scripts/gpu_env.sh

@@ -8,7 +8,7 @@
 #    .old/alchemy_pre11.glsl), to see whether that is what moved GL's digests.
 # 3. The targets: 10 interleaved repetitions, the clocks beside them.
 set -uo pipefail
-cd "$(dirname "$0")/../../.."
+cd "$(dirname "$0")/../.."
 for f in .bundle/*.xz .bundle/lib/*.xz; do xz -d "$f"; done
 chmod +x .bundle/cavity_bench .bundle/cavity .bundle/cavity_render
 . scripts/gpu_env.sh

@@ -2,7 +2,7 @@
 # The separable blur in 32x8 (x) and 8x32 (y) workgroups (B, .bundle2)
 # against 16x16 (A, .bundle), interleaved.
 set -uo pipefail
-cd "$(dirname "$0")/../../.."
+cd "$(dirname "$0")/../.."
 for f in .bundle/*.xz .bundle/lib/*.xz .bundle2/*.xz .bundle2/lib/*.xz; do xz -d "$f"; done
 chmod +x .bundle/cavity_bench .bundle/cavity .bundle2/cavity_bench
 . scripts/gpu_env.sh

@@ -2,7 +2,7 @@
 # ssdo_fast's direct and bounce passes with a copy of their loops below the
 # tiny levels (B, --kernel-source) against the build as it is (A).
 set -uo pipefail
-cd "$(dirname "$0")/../../.."
+cd "$(dirname "$0")/../.."
 for f in .bundle/*.xz .bundle/lib/*.xz; do xz -d "$f"; done
 chmod +x .bundle/cavity_bench .bundle/cavity
 . scripts/gpu_env.sh

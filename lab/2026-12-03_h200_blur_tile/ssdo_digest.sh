@@ -3,7 +3,7 @@
 # and bounce passes (given as --kernel-source over the bundle of fd45e48)
 # and judged there by approved digest.
 set -uo pipefail
-cd "$(dirname "$0")/../../.."
+cd "$(dirname "$0")/../.."
 for f in .bundle/*.xz .bundle/lib/*.xz; do xz -d "$f"; done
 chmod +x .bundle/cavity_render .bundle/cavity
 . scripts/gpu_env.sh

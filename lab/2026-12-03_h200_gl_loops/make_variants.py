@@ -2,7 +2,7 @@
 """Writes the three planted variants of kernels/ssao_alchemy_fast.glsl that
 plant_call.sh measured into .old/plant/: 512 FMAs after the sample loop,
 their result multiplied by frame.pad_ (0), so the images stay the same.
-    python3 bench/results/2026-12-03_h200_gl_loops/make_variants.py   (from the repository root)"""
+    python3 lab/2026-12-03_h200_gl_loops/make_variants.py   (from the repository root)"""
 import os
 
 src = open("kernels/ssao_alchemy_fast.glsl").read()

@@ -2,7 +2,7 @@
 # The last call of the session: the statistics test again (the query
 # rewritten), an edited kernel timed with cavity ab --b-args (one phase for
 # every pixel, B only), and the fast kernels against their targets with 10
-# interleaved repetitions (scripts/gpu_kernels2.sh 10 0.3).
+# interleaved repetitions (lab/scripts/gpu_kernels2.sh 10 0.3).
 set -uo pipefail
 cd "$(dirname "$0")/.."
 for f in .bundle/*.xz; do xz -dk "$f"; done
@@ -17,5 +17,5 @@ smi_start $OUT/ab.clocks.csv
 echo "cavity ab: rc $? ($(el) s)"; tail -12 $OUT/ab.txt
 smi_stop
 tar czf $OUT/ab.tgz -C /tmp ab
-bash scripts/gpu_kernels2.sh 10 0.3 2>&1 | tail -14
+bash lab/scripts/gpu_kernels2.sh 10 0.3 2>&1 | tail -14
 echo "all: $(el) s"

@@ -9,9 +9,9 @@
 #   git show 914f511:kernels/ssao_alchemy_fast.glsl > .old/alchemy_fast.glsl
 #   (B: the working tree of ab_call.sh's call, as .old/pyramid_B.glsl and
 #   .old/alchemy_fast_B.glsl)
-#   bench/results/2026-12-03_h200_overheads/ab3_call.sh [ROUNDS]   (carry .old)
+#   lab/2026-12-03_h200_overheads/ab3_call.sh [ROUNDS]   (carry .old)
 set -uo pipefail
-cd "$(dirname "$0")/../../.."
+cd "$(dirname "$0")/../.."
 . scripts/gpu_env.sh
 work=$(mktemp -d); start=$(date +%s)
 smi_start "$work/clocks.csv"

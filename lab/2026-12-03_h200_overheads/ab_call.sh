@@ -6,9 +6,9 @@
 # rounds. As run, from a tree where .old/ held the old sources:
 #   mkdir .old; git show 914f511:kernels/include/pyramid.glsl > .old/pyramid.glsl
 #   git show 914f511:kernels/ssao_alchemy_fast.glsl > .old/alchemy_fast.glsl
-#   bench/results/2026-12-03_h200_overheads/ab_call.sh [ROUNDS]   (carry .old)
+#   lab/2026-12-03_h200_overheads/ab_call.sh [ROUNDS]   (carry .old)
 set -uo pipefail
-cd "$(dirname "$0")/../../.."
+cd "$(dirname "$0")/../.."
 . scripts/gpu_env.sh
 work=$(mktemp -d); start=$(date +%s)
 smi_start "$work/clocks.csv"

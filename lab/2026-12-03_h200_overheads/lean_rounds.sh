@@ -12,15 +12,15 @@
 # cavity_render process, ROUNDS shuffled rounds, the clocks beside them.
 # Leaves lean.tgz in $OUT.
 # As run. The variants it reads as NAME.glsl are kept as diffs against
-# c096d07 (bench/results/2026-12-03_h200_overheads/README.md says how to
+# c096d07 (lab/2026-12-03_h200_overheads/README.md says how to
 # rebuild them there first).
-#   bench/results/2026-12-03_h200_overheads/lean_rounds.sh [ROUNDS (3)]
+#   lab/2026-12-03_h200_overheads/lean_rounds.sh [ROUNDS (3)]
 set -uo pipefail
-cd "$(dirname "$0")/../../.."
+cd "$(dirname "$0")/../.."
 . scripts/gpu_env.sh
 rounds="${1:-3}"
 work=$(mktemp -d)
-V=bench/results/2026-12-03_h200_overheads/variants
+V=lab/2026-12-03_h200_overheads/variants
 declare -A SRC KERNEL
 SRC[a_committed]="";                                                    KERNEL[a_committed]=alchemy_fast
 SRC[a_lean]="--kernel-source ssao_alchemy_fast.glsl=$V/alchemy_fast_lean.glsl"; KERNEL[a_lean]=alchemy_fast

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """The tables of README.md from the tarballs beside this file.
 
-    python3 bench/results/2026-12-03_h200_overheads/table.py
+    python3 lab/2026-12-03_h200_overheads/table.py
 
 probes: median over the processes of each probe's median_us counter;
 chain and tile: median over every repetition of each pass's median (ms);

@@ -14,7 +14,7 @@ smi_start /tmp/keep/ab.clocks.csv
 echo "== written: rc $? ($(el) s)"
 smi_stop
 grep -E "compute  +(ao|pipeline) " /tmp/keep/written.txt | awk '{print $1, $2, $3, $4, $5, $NF}'
-bash scripts/gpu_kernels2.sh 10 0.3 2>&1 | tail -12
+bash lab/scripts/gpu_kernels2.sh 10 0.3 2>&1 | tail -12
 mv $OUT/kernels2.tgz /tmp/keep/
 tar czf $OUT/all.tgz -C /tmp keep
 echo "all: $(el) s"

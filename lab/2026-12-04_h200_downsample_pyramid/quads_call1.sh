@@ -11,7 +11,7 @@ smi_start $K/ab.clocks.csv
   --bench-args='--sweep gpu --max-time 0.3' --out $K/ab > $K/ab.txt 2>&1
 echo "== ab: rc $? ($(el) s)"
 grep -E "compute +(pipeline|upsample|upsample_composite) " $K/ab.txt | cut -c1-125
-.bundle/cavity.sh ab --a .bundle --b .bundle --b-args="--kernel-source upsample_composite=bench/results/2026-12-04_h200_downsample_pyramid/quads_preload.glsl" --rounds 4 \
+.bundle/cavity.sh ab --a .bundle --b .bundle --b-args="--kernel-source upsample_composite=lab/2026-12-04_h200_downsample_pyramid/quads_preload.glsl" --rounds 4 \
   --filter '^corner/alchemy_fast/n16/b4/fused_tail=1/half/1920x1080/(gl|vk)/compute/' \
   --bench-args='--sweep gpu --max-time 0.3' --out $K/ab_preload > $K/ab_preload.txt 2>&1
 echo "== ab preload: rc $? ($(el) s)"; smi_stop

@@ -6,7 +6,7 @@ start=$(date +%s); el() { echo $(( $(date +%s) - start )); }
 K=/tmp/keep; rm -rf $K; mkdir -p $K
 F='^corner/alchemy_fast/n16/b4/(fused_tail=1/)?half/1920x1080/(gl|vk)/compute/'
 smi_start $K/clocks.csv
-.bundle/cavity.sh ab --a .bundle --b .bundle --b-args="--kernel-source upsample_composite.glsl=bench/results/2026-12-04_h200_downsample_pyramid/quads_preload.glsl" --rounds 4 \
+.bundle/cavity.sh ab --a .bundle --b .bundle --b-args="--kernel-source upsample_composite.glsl=lab/2026-12-04_h200_downsample_pyramid/quads_preload.glsl" --rounds 4 \
   --filter "$F" --bench-args='--sweep gpu --max-time 0.3' --out $K/ab_preload > $K/ab_preload.txt 2>&1
 echo "== ab preload: rc $? ($(el) s)"
 grep -E "compute +(pipeline|upsample_composite) " $K/ab_preload.txt | cut -c1-125

@@ -17,7 +17,7 @@
 set -uo pipefail
 . scripts/gpu_env.sh
 start=$(date +%s); el() { echo $(( $(date +%s) - start )); }
-D=bench/results/2026-12-04_h200_floors
+D=lab/2026-12-04_h200_floors
 K=/tmp/keep; rm -rf $K; mkdir -p $K
 nvidia-smi --query-gpu=name,driver_version,clocks.max.sm --format=csv > $K/gpu.txt 2>&1
 abf='^corner/alchemy_fast/n16/b4/(full|fused_tail=1/half)/1920x1080/(gl|vk)/compute/'
@@ -57,7 +57,7 @@ smi_start $K/targets.clocks.csv
   --benchmark_enable_random_interleaving=true --max-time 0.3 \
   --benchmark_out=$K/targets.json --benchmark_out_format=json > $K/targets.txt 2> $K/targets.err
 echo "== targets: rc $? ($(el) s)"; smi_stop
-python3 bench/results/2026-12-04_h200_inexact_default/table.py $K/targets.json > $K/table.md 2>&1
+python3 lab/2026-12-04_h200_inexact_default/table.py $K/targets.json > $K/table.md 2>&1
 python3 $D/floors.py $K/targets.json > $K/floors.md 2>&1
 head -12 $K/table.md; tail -3 $K/floors.md
 gzip -f $K/targets.json

@@ -7,7 +7,7 @@
 set -uo pipefail
 . scripts/gpu_env.sh
 start=$(date +%s); el() { echo $(( $(date +%s) - start )); }
-D=bench/results/2026-12-04_h200_fused_blur
+D=lab/2026-12-04_h200_fused_blur
 nvidia-smi --query-gpu=name,driver_version,clocks.max.sm --format=csv > $OUT/gpu.txt 2>&1
 filter='^corner/(alchemy_fast|hemisphere_fast)/n(16|32)/b4/(fused_blur=1/)?full/1920x1080/(gl|vk)/compute/'
 filter+='|^corner/(alchemy_fast|hemisphere_fast)/n16/b4/(fused_blur=1/)?((fused_tail=1/)?half)/1920x1080/(gl|vk)/compute/'

@@ -24,7 +24,7 @@ smi_start $K/targets.clocks.csv
   --benchmark_enable_random_interleaving=true --max-time 0.3 \
   --benchmark_out=$K/targets.json --benchmark_out_format=json > $K/targets.txt 2> $K/targets.err
 echo "== targets: rc $? ($(el) s)"; smi_stop
-python3 bench/results/2026-12-04_h200_inexact_default/table.py $K/targets.json | head -14
+python3 lab/2026-12-04_h200_inexact_default/table.py $K/targets.json | head -14
 gzip -f $K/targets.json
 work=/tmp/refs; rm -rf $work; mkdir -p $work; cp -r baselines $work/base
 .bundle/render.sh --matrix gpu --filter '/hemisphere_fast/' --baselines $work/base --out $work/r > $K/render.txt 2>&1

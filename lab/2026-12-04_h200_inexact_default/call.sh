@@ -11,7 +11,7 @@
 #    (lavapipe) baselines by tolerance.
 # 4. Quality: MAE after the blur against the ground truth, exact 0 and 1.
 set -uo pipefail
-cd "$(dirname "$0")/../../.."
+cd "$(dirname "$0")/../.."
 . scripts/gpu_env.sh
 start=$(date +%s); el() { echo $(( $(date +%s) - start )); }
 K=/tmp/keep; rm -rf $K; mkdir -p $K

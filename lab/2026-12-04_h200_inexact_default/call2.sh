@@ -10,11 +10,11 @@
 #    lavapipe baselines where OpenImageIO is (cavity gate judge).
 # 4. The targets again, 10 interleaved repetitions, the clocks beside them.
 set -uo pipefail
-cd "$(dirname "$0")/../../.."
+cd "$(dirname "$0")/../.."
 . scripts/gpu_env.sh
 start=$(date +%s); el() { echo $(( $(date +%s) - start )); }
 K=/tmp/keep; rm -rf $K; mkdir -p $K
-A=bench/results/2026-12-04_h200_inexact_default/ssao_hemisphere_fast_loop.glsl   # the kernel as committed; B: hemisphere_written_out.patch applied
+A=lab/2026-12-04_h200_inexact_default/ssao_hemisphere_fast_loop.glsl   # the kernel as committed; B: hemisphere_written_out.patch applied
 smi_start $K/ab.clocks.csv
 .bundle/cavity.sh ab --a .bundle --b .bundle --rounds 4 \
   --filter '^corner/hemisphere_fast/n(16|32)/b4/full/1920x1080/(gl|vk)/compute/' \

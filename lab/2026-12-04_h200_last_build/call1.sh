@@ -9,7 +9,7 @@
 set -uo pipefail
 . scripts/gpu_env.sh
 start=$(date +%s); el() { echo $(( $(date +%s) - start )); }
-D=bench/results/2026-12-04_h200_last_build
+D=lab/2026-12-04_h200_last_build
 K=/tmp/keep; rm -rf $K; mkdir -p $K
 nvidia-smi --query-gpu=name,driver_version,clocks.max.sm --format=csv > $K/gpu.txt 2>&1
 probe() {   # NAME FILTER KERNEL_SOURCE
@@ -32,7 +32,7 @@ smi_start $K/targets.clocks.csv
   --benchmark_enable_random_interleaving=true --max-time 0.3 \
   --benchmark_out=$K/targets.json --benchmark_out_format=json > $K/targets.txt 2> $K/targets.err
 echo "== targets: rc $? ($(el) s)"; smi_stop
-python3 bench/results/2026-12-04_h200_inexact_default/table.py $K/targets.json > $K/table.md 2>&1
+python3 lab/2026-12-04_h200_inexact_default/table.py $K/targets.json > $K/table.md 2>&1
 head -14 $K/table.md
 gzip -f $K/targets.json
 tar czf $OUT/call1.tgz -C /tmp keep; echo "all: $(el) s"

@@ -14,7 +14,7 @@ smi_start $K/targets.clocks.csv
   --benchmark_enable_random_interleaving=true --max-time 0.3 \
   --benchmark_out=$K/targets.json --benchmark_out_format=json > $K/targets.txt 2> $K/targets.err
 echo "== targets: rc $? ($(el) s)"; smi_stop
-python3 bench/results/2026-12-04_h200_inexact_default/table.py $K/targets.json > $K/table.md 2>&1
+python3 lab/2026-12-04_h200_inexact_default/table.py $K/targets.json > $K/table.md 2>&1
 cat $K/table.md
 gzip -f $K/targets.json
 tar czf $OUT/call4.tgz -C /tmp keep; echo "all: $(el) s"

@@ -7,7 +7,7 @@
 #    (no image file written); judged by digest.
 # 3. The targets, 10 interleaved repetitions, the clocks beside them.
 set -uo pipefail
-cd "$(dirname "$0")/../../.."
+cd "$(dirname "$0")/../.."
 . scripts/gpu_env.sh
 (cd .bundle2 && [ -x unpack.sh ] && ./unpack.sh)
 start=$(date +%s); el() { echo $(( $(date +%s) - start )); }

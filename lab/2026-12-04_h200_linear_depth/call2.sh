@@ -5,7 +5,7 @@
 # depth (.bundle2), B this one, 4 rounds, alchemy_fast full and half; then
 # the gpu matrix's half-resolution pipelines rendered and judged by digest.
 set -uo pipefail
-cd "$(dirname "$0")/../../.."
+cd "$(dirname "$0")/../.."
 . scripts/gpu_env.sh
 .bundle2/unpack.sh   # the wrappers unpack on first use; cavity ab runs its binary
 [ "${SKIP_RENDER:-0}" = 1 ] && RENDER=0 || RENDER=1

@@ -9,7 +9,7 @@ set -uo pipefail
 . scripts/gpu_env.sh
 .bundle2/unpack.sh
 start=$(date +%s); el() { echo $(( $(date +%s) - start )); }
-D=bench/results/2026-12-04_h200_ssdo_compiled
+D=lab/2026-12-04_h200_ssdo_compiled
 K=/tmp/keep; rm -rf $K; mkdir -p $K
 nvidia-smi --query-gpu=name,driver_version,clocks.max.sm --format=csv > $K/gpu.txt 2>&1
 filter='^corner/ssdo_fast/n(8|16|32)/b4/full/1920x1080/(gl|vk)/compute/'

@@ -1,9 +1,9 @@
 #!/usr/bin/env python3
 """How many rounds of `cavity ab` it took to call a planted change.
 
-    python3 scripts/ab_rounds.py AB_DIR [--pass ao] [--cavity build/harness/cavity] > rounds.md
+    python3 lab/scripts/ab_rounds.py AB_DIR [--pass ao] [--cavity build/harness/cavity] > rounds.md
 
-AB_DIR is one `cavity ab --out` folder (scripts/gpu_ab.sh brings back ab1/,
+AB_DIR is one `cavity ab --out` folder (lab/scripts/gpu_ab.sh brings back ab1/,
 A against A with a plant, and aa/, A against A): a_<r>.json and b_<r>.json,
 one process per side and round. For every prefix of 3..R rounds it merges
 each side's first rounds (repetition k = round k, as `cavity ab` does),
@@ -25,7 +25,8 @@ import subprocess
 import sys
 import tempfile
 
-import cavity_json   # scripts/cavity_json.py: plain or gzip (X.json.gz)
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts", "charts"))
+import cavity_json   # scripts/charts/cavity_json.py: plain or gzip (X.json.gz)
 
 
 def rounds(d):
@@ -58,7 +59,7 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("dir")
     ap.add_argument("--pass", dest="planted", default="ao", help="the planted pass (default ao)")
-    ap.add_argument("--cavity", default=os.path.join(os.path.dirname(__file__), "..", "build", "harness", "cavity"))
+    ap.add_argument("--cavity", default=os.path.join(os.path.dirname(__file__), "..", "..", "build", "harness", "cavity"))
     a = ap.parse_args()
     rs = rounds(a.dir)
     if len(rs) < 3:

@@ -4,7 +4,7 @@
 # defect, packed into $OUT/planted.tar. Judge each here:
 #   for d in out/planted/*/; do build/harness/cavity gate judge $d --out out/judge-$(basename $d); done
 set -uo pipefail
-cd "$(dirname "$0")/.."
+cd "$(dirname "$0")/../.."
 . scripts/gpu_env.sh
 work=/tmp/cavity-planted
 rm -rf "$work"; mkdir -p "$work"

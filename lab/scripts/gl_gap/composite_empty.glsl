@@ -1,4 +1,4 @@
-// The composite reduced to an empty dispatch (scripts/gpu_gl_gap.sh): every
+// The composite reduced to an empty dispatch (lab/scripts/gpu_gl_gap.sh): every
 // invocation runs and stores nothing (the store below never happens, and
 // keeps the image bound as in every other pass).
 #include "include/common.glsl"

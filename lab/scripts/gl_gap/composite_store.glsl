@@ -1,4 +1,4 @@
-// The composite reduced to its store (scripts/gpu_gl_gap.sh): one RGBA8
+// The composite reduced to its store (lab/scripts/gpu_gl_gap.sh): one RGBA8
 // store a pixel, nothing fetched, so that a pass's fixed cost shows.
 #include "include/common.glsl"
 
