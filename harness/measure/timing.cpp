@@ -92,9 +92,10 @@ Result<bool> decideWarm(gpu::Backend& gpu, PassChain& chain, const TimingOptions
     CAVITY_ASSIGN(std::string note, clockVerdict(gpu, chain, check, frameMs));
     // A failed check is tried twice more before the clock moves: timestamps
     // that miss the work fail every time, while a hiccup of the host during
-    // the drained wall-clock frames fails one (on the H200, 11 of 928
-    // repetitions moved to the wall clock with one check each, and their
-    // configurations had no verdict: mixed clocks).
+    // the drained wall-clock frames fails one (on the H200, with one check
+    // each, some repetitions moved to the wall clock, and their
+    // configurations had no verdict: mixed clocks; study
+    // 2026-12-03_h200_sensitivity2).
     std::string passedOnRetry;
     for (int retry = 0; retry < kClockRetries && !note.empty(); ++retry) {
         CAVITY_ASSIGN(const std::string again, clockVerdict(gpu, chain, check, frameMs));
