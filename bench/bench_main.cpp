@@ -1,7 +1,7 @@
 // The benchmark runner: one Google Benchmark per configuration of the sweep
 // (harness/plan/sweep.h), named by its configuration id. Each benchmark iteration
 // is one whole measurement (harness/measure/timing.h): frames recorded back to back
-// after a steady warm-up until the medians are known to 0.5%; the iteration's
+// after a steady warm-up until the medians meet the noise target; the iteration's
 // time is the median per-frame GPU time of the AO pipeline (every pass but
 // the G-buffer), from the backend's timestamps (UseManualTime) or from the
 // drained wall clock where the timestamps do not bracket the work. Run with

@@ -112,7 +112,7 @@ KernelDecl blurBox() {
 KernelDecl downsampleDepth() {
     KernelDecl k;
     k.name = "downsample_depth";
-    k.workgroup = {8, 8};   // between resolutions: 2-3 us slower in 16x16 (kernel.h)
+    k.workgroup = {8, 8};   // between resolutions: slower in 16x16 (kernel.h)
     k.file = "downsample_depth.glsl";
     k.summary = "half-resolution G-buffer: one real texel of each 2x2 block, nearest and farthest in a checkerboard";
     k.role = Role::Downsample;
@@ -177,7 +177,7 @@ Cost upsampleCost(const PassShape& shape) {
 KernelDecl upsampleBilateral() {
     KernelDecl k;
     k.name = "upsample_bilateral";
-    k.workgroup = {8, 8};   // between resolutions: 2-3 us slower in 16x16 (kernel.h)
+    k.workgroup = {8, 8};   // between resolutions: slower in 16x16 (kernel.h)
     k.file = "upsample_bilateral.glsl";
     k.wholeWorkgroups = true;   // the half texels' tile (include/upsample.glsl)
     k.summary = "joint bilateral upsample of half-resolution AO: bilinear x tangent-plane distance x normal weights";
@@ -194,7 +194,7 @@ KernelDecl upsampleBilateral() {
 KernelDecl upsampleComposite() {
     KernelDecl k;
     k.name = "upsample_composite";
-    k.workgroup = {8, 8};   // between resolutions: 2-3 us slower in 16x16 (kernel.h)
+    k.workgroup = {8, 8};   // between resolutions: slower in 16x16 (kernel.h)
     k.file = "upsample_composite.glsl";
     k.wholeWorkgroups = true;   // the half texels' tile (include/upsample.glsl)
     k.summary = "the half-resolution tail in one pass: joint bilateral upsample, then the composite of its AO";

@@ -16,8 +16,8 @@
 // the kernel will look for it.
 //
 // Where the plane is seen nearly edge-on the intersection runs far along
-// the ray; a move of more than 5% of the depth (a plane under about 5
-// degrees to the ray at 320x180, less at larger sizes) keeps the borrowed
+// the ray; a move of more than a twentieth of the depth (a plane under about
+// 5 degrees to the ray at 320x180, less at larger sizes) keeps the borrowed
 // depth instead, as before.
 #include "include/screen_space.glsl"
 

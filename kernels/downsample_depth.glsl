@@ -16,9 +16,9 @@
 // The picks compare the positions' w, whose texels the copy then reads
 // again from cache. Comparing the G-buffer's linear depth instead (R32F, a
 // quarter of the bytes) and fetching the chosen position and normal after
-// made this pass 8% slower on the H200, both APIs: the chosen texel's
+// made this pass slower on the H200, both APIs: the chosen texel's
 // position was then a second trip to memory
-// (bench/results/2026-12-04_h200_linear_depth). Beside the half position and
+// (study 2026-12-04_h200_linear_depth). Beside the half position and
 // normal it writes the chosen depth, the half-resolution pyramid's level 0,
 // for a pipeline that builds that pyramid in a pass of its own
 // (downsample_pyramid.glsl builds it here).

@@ -116,13 +116,14 @@ enum class Role {
 
 // A compute pass's workgroup shape. Each invocation shades its own pixel
 // whatever the shape, so the images do not change with it; the time does. A
-// full-resolution pass cannot be faster than launching its workgroups: on
-// the H200 an empty 1920x1080 dispatch took 22.6 us in 8x8 workgroups and
-// 7.9 us in 16x16, which took 30% off the pyramid and the composite and
-// moved neither the AO nor the blur passes; the passes between the two
-// resolutions became 2-3 us slower in 16x16 and declare 8x8
-// (docs/timing.md). 256 invocations is over Vulkan's guaranteed minimum of
-// 128: a device with fewer needs CAVITY_WORKGROUP=8x8.
+// full-resolution pass cannot be faster than launching its workgroups, and
+// on the H200 an empty 1920x1080 dispatch launches much faster in 16x16
+// workgroups than in 8x8. That made the pyramid and the composite faster
+// and moved neither the AO nor the blur passes; the passes between the two
+// resolutions became slower in 16x16 and declare 8x8 (docs/timing.md;
+// studies 2026-12-03_h200_batched and 2026-12-03_h200_kernels3). 256
+// invocations is over Vulkan's guaranteed minimum of 128: a device with
+// fewer needs CAVITY_WORKGROUP=8x8.
 struct Workgroup {
     uint32_t x = 16, y = 16;
 

@@ -277,9 +277,9 @@ KernelDecl blurSeparable(const std::string& axis) {
     k.compileTime = {"blur"};
     k.wholeWorkgroups = true;
     // Long along the axis: a 16x16 tile loads 1.5 texels a pixel at r = 4,
-    // 32x8 1.25, 64x4 1.125. On the H200 blur_x took 11% less in 32x8 than
-    // in 16x16 (bench/results/2026-12-03_h200_blur_tile), and the pair
-    // another 1-7% in 64x4 and 4x64 (bench/results/2026-12-04_h200_last_build).
+    // 32x8 1.25, 64x4 1.125. On the H200 blur_x was faster in 32x8 than in
+    // 16x16 (study 2026-12-03_h200_blur_tile), and the pair faster again in
+    // 64x4 and 4x64 (study 2026-12-04_h200_last_build).
     k.workgroup = axis == "x" ? Workgroup{64, 4} : Workgroup{4, 64};
     const double out = axis == "x" ? kRgba16f : kR16f;
     k.cost = [out, axis](const ParamValues& v, const PassShape& shape) {

@@ -53,12 +53,12 @@ ivec2 spiralSampleTurned(int i, vec2 phase, float discScale, vec2 fragCentre, ou
 // The sample count compiled in (KernelDecl::compileTime), up to 64, and the
 // samples unrolled: the spiral's directions then come from fixed offsets of
 // the uniform block. Vulkan: the loop with the Unroll hint, which NVIDIA's
-// driver takes (the AO pass 13% faster on the H200). GL: the samples
-// written out by the preprocessor (CAVITY_REPEAT_samples), because NVIDIA's
-// GL driver keeps a loop rolled whatever the hint; that took 10% off its AO
-// pass. Each API keeps the form measured faster on it: the GL form, with
-// its per-sample function, made Vulkan's pass 9% slower, and samples written
-// out in the loop's own form 2% slower (bench/results/2026-12-03_h200_unroll).
+// driver takes (the AO pass faster on the H200). GL: the samples written
+// out by the preprocessor (CAVITY_REPEAT_samples), because NVIDIA's GL
+// driver keeps a loop rolled whatever the hint; written out, its AO pass
+// was faster. Each API keeps the form measured faster on it: the GL form,
+// with its per-sample function, made Vulkan's pass slower, and so did
+// samples written out in the loop's own form (study 2026-12-03_h200_unroll).
 #ifdef CAVITY_REPEAT_samples   // a count from 1 to 64 compiled in (assemble())
 #define SAMPLE_COUNT CAVITY_CONST_samples
 #define CAVITY_SAMPLE_LOOP CAVITY_UNROLL
@@ -107,7 +107,7 @@ bool sampleTerm(const bool belowTiny, int i, Receiver r, out float term) {
 
 // The seed's sum S over the receiver's samples, written out.
 // One sample at a time: fetching a batch of samples' depths before using
-// any was 20% slower on the H200 (bench/results/2026-12-03_h200_batched),
+// any was slower on the H200 (study 2026-12-03_h200_batched),
 // the registers it takes costing more occupancy than the latency it hides.
 float obscuranceWrittenOut(const bool belowTiny, Receiver r) {
     float S = 0.0, term;
@@ -147,7 +147,7 @@ float obscurance(const bool belowTiny, int n, ivec2 pixel, vec3 X, vec3 N, float
     vec2 fragCentre = vec2(pixel) + 0.5;
 
     // One sample at a time: fetching a batch of samples' depths before using
-    // any was 20% slower on the H200 (bench/results/2026-12-03_h200_batched),
+    // any was slower on the H200 (study 2026-12-03_h200_batched),
     // the registers it takes costing more occupancy than the latency it hides.
     float S = 0.0;
     CAVITY_SAMPLE_LOOP for (int i = 0; i < n; ++i) {

@@ -61,12 +61,13 @@ float blockedShare(PyramidView view, ivec2 pixel, vec3 X, vec3 N, float level, f
     // Points come in groups along one ray (P.kernel[i].w = 1 closes one):
     // a ray is blocked when any of its points is. Every point is fetched,
     // also after one has blocked its ray fully (max() then keeps 1):
-    // skipping those was 2% slower on the H200
-    // (bench/results/2026-12-03_h200_batched). step_jitter moves ray g's
+    // skipping those was slower on the H200 (study
+    // 2026-12-03_h200_batched). step_jitter moves ray g's
     // points in by a share u of a step, drawn per pixel and ray, as in
     // ssao_hemisphere.glsl.
     // The point count compiled in and the loop unrolled, as in
-    // ssao_alchemy_fast.glsl: 8% off this pass on the H200's Vulkan.
+    // ssao_alchemy_fast.glsl, which made this pass faster on the H200's
+    // Vulkan (study 2026-12-03_h200_unroll).
 #ifdef CAVITY_REPEAT_samples   // a count from 1 to 64 compiled in (assemble())
     const int n = CAVITY_CONST_samples;
 #define POINT_LOOP CAVITY_UNROLL
@@ -81,11 +82,11 @@ float blockedShare(PyramidView view, ivec2 pixel, vec3 X, vec3 N, float level, f
     // g steps .. g steps + steps - 1, the last ray shorter when steps does
     // not divide n, and one ray of every point when steps is over n), so
     // that each point's place on its ray, and with it the jitter's
-    // 1 / (j + 1), is a constant, and the test that closes a ray is gone:
-    // 12-13% off this pass on the H200's Vulkan, 7-10% on GL, the same images
-    // (bench/results/2026-12-04_h200_hemisphere_rays). NVIDIA's GL driver
-    // keeps a loop of constant count rolled; there two rays an iteration
-    // were 1.7-2.1% faster than one.
+    // 1 / (j + 1), is a constant, and the test that closes a ray is gone.
+    // That made this pass faster on both APIs of the H200, with the same
+    // images (study 2026-12-04_h200_hemisphere_rays). NVIDIA's GL driver
+    // keeps a loop of constant count rolled; there two rays an iteration were
+    // faster than one.
 #if CAVITY_CONST_steps <= CAVITY_CONST_samples
 #define RAY_STEPS CAVITY_CONST_steps
 #define RAY_POINTS CAVITY_REPEAT_steps

@@ -19,7 +19,7 @@ fi
 OUT="${OUT:-/tmp/out}"
 mkdir -p "$OUT"
 export OUT
-# Never change the clocks; record them. One row every 200 ms while $1 runs:
+# Never change the clocks; record them. One row per nvidia-smi interval (-lms) while $1 runs:
 #   smi_start FILE; ...; smi_stop
 smi_start() {
   command -v nvidia-smi >/dev/null 2>&1 || { echo "no nvidia-smi here" > "$1"; SMI_PID=; return 0; }

@@ -33,8 +33,8 @@ plant no_dither include/composite.glsl '/full/' 's|if (P.dither != 0) {|if (P.di
 plant blur_weight_shift include/blur_separable.glsl '_fast/' 's|return P.weights\[i >> 2\]\[i \& 3\];|return P.weights[(i + 1) >> 2][(i + 1) \& 3];|'
 # The bilateral upsample's normal weight to the 4th power instead of the 8th.
 plant upsample_normal include/upsample.glsl '/half/' 's|float normalWeight = cn \* cn;|float normalWeight = cn;|'
-# hemisphere_fast's radius 5% short.
+# hemisphere_fast's radius a twentieth short.
 plant hemisphere_fast_radius ssao_hemisphere_fast.glsl '/hemisphere_fast/' 's|float R = P.radius;|float R = 0.95 * P.radius;|'
-# ssdo_fast's bounce 10% weak.
+# ssdo_fast's bounce a tenth weak.
 plant ssdo_bounce ssdo_fast_indirect.glsl '/ssdo_fast/' 's|area \* P.bounce_strength / PI|area * 0.9 * P.bounce_strength / PI|'
 wc -l < "$out/list.txt" | xargs echo "planted_defects: defects in $out/list.txt:"

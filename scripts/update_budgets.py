@@ -8,10 +8,12 @@
 From cavity_bench JSON (--benchmark_repetitions=N, N >= 5), each pass's
 budget is its median over the repetitions plus a margin derived from the
 measured noise: max(--min-margin, --noise-factor x the repetition CV), and at
-least --min-abs-ms (a GL timestamp moves in steps of 128-256 ns: 3% of an 8 us
-pass is one step).
-On the H200 (repetition CV <= 0.63%) that is 3%, so a pass 10% slower fails
-by 7% while an unchanged run must move 5 standard deviations to fail.
+least --min-abs-ms (a GL timestamp moves in steps of its timer, and a short
+pass's margin must hold at least one step).
+On the H200 the repetition CV is small enough that --min-margin decides, so a
+pass that is several margins slower fails clearly while an unchanged run must
+move --noise-factor standard deviations to fail (study
+2026-12-01_h200_budget_check).
 
 Every pass of every configuration in gate.json gets budget = factor x its
 measured median (the largest over the runs, when several gate.json files are

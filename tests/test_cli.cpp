@@ -250,7 +250,7 @@ TEST_F(Cli, QualityRecommendsTheBestScreenSpaceKernelWithinABudget) {
     const auto doc = nlohmann::json::parse(f);
     EXPECT_EQ(doc["reach"], "shared");   // the default now
     const auto& rec = doc["recommendation"];
-    // The best within 0.16 ms: the least error among screen-space kernels that fit.
+    // The best within --budget-ms: the least error among screen-space kernels that fit.
     double best = 1e9;
     for (const auto& c : rec["candidates"])
         if (c["screen_space"].get<bool>() && c["cost_ms"].get<double>() <= 0.16) best = std::min(best, c["mae"].get<double>());

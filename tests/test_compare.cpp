@@ -57,7 +57,8 @@ const std::map<std::string, double> kBase = {{"ao", 0.6}, {"blur", 0.3}, {"compo
 const std::string kId = "corner/alchemy/n16/b4/full/1920x1080/vk/compute";
 const std::string kOtherId = "slats/alchemy/n16/b4/full/1920x1080/vk/compute";
 
-// `count` samples of each pass with +-1% noise from `seed`, `aoShift` ms added to the AO pass.
+// `count` samples of each pass around kBase, with noise of up to a hundredth of it from `seed`, and
+// `aoShift` (in ms) added to the AO pass.
 FakeConfig fakeConfig(const std::string& id, size_t count, uint64_t seed, double aoShift,
                       const std::string& clock = "gpu-timestamp") {
     FakeConfig c{id, {}, std::vector<std::string>(count, clock)};
@@ -229,8 +230,8 @@ TEST_F(Compare, BenchmarkJsonGivesOneSamplePerRepetitionInMilliseconds) {
 // ---- the verdicts ----
 
 TEST_F(Compare, KnownShiftIsSlowerAndTheRestIsSame) {
-    // Ten repetitions each; the new run's AO pass is 5% slower (0.03 of 0.6 ms),
-    // blur is the very same numbers, composite is fresh noise around the same time.
+    // Ten repetitions each; the new run's AO pass is slower by a twentieth of
+    // its base time, blur is the very same numbers, composite is fresh noise around the same time.
     const auto before = fakeConfig(kId, 10, 1, 0);
     auto after = fakeConfig(kId, 10, 2, 0.03);
     after.passMs["blur"] = before.passMs.at("blur");
@@ -257,7 +258,8 @@ TEST_F(Compare, KnownShiftIsSlowerAndTheRestIsSame) {
     EXPECT_NEAR(ao["change_pct"].get<double>(), 5.0, 1.0);
     EXPECT_GT(ao["ci_low_pct"].get<double>(), 0);
 
-    // The pipeline carries the same 0.03 ms over 1.0 ms: 3%, over --min-change 2.
+    // The pipeline carries the same shift, a smaller share of its longer time
+    // but still over --min-change.
     EXPECT_EQ(row(rows, kId, "pipeline")["verdict"], "slower");
     const json& blur = row(rows, kId, "blur");
     EXPECT_EQ(blur["verdict"], "same");
@@ -288,7 +290,7 @@ TEST_F(Compare, KnownShiftIsSlowerAndTheRestIsSame) {
     const Outcome back = cavity("compare " + n + " " + o + " --json " + out + " --fail-on-slower");
     EXPECT_EQ(back.code, 0) << back.output;
     EXPECT_EQ(row(rowsOf(out), kId, "ao")["verdict"], "faster");
-    // The same shift under a --min-change of 10% is not worth a verdict.
+    // The same shift under --min-change 10 is not worth a verdict.
     EXPECT_EQ(cavity("compare " + o + " " + n + " --min-change 10 --fail-on-slower").code, 0);
 }
 
@@ -302,16 +304,17 @@ TEST(CompareVerdict, DetectableChangeIsTheIntervalOrTheTimersStep) {
     cavity::compare::SampleSet a, b;
     for (double v : {1.0, 1.0, 1.0, 1.1, 1.1}) a.add(v, "gpu-timestamp");
     for (double v : {1.0, 1.0, 1.1, 1.1, 1.1}) b.add(v, "gpu-timestamp");
-    cavity::compare::CompareThresholds t;   // 2%
+    cavity::compare::CompareThresholds t;   // the default --min-change
     const auto r = compareSeries("x", "ao", &a, &b, t);
-    EXPECT_NEAR(r.timerStepPct, 10.0, 1e-9);   // a 0.1 ms step over a 1.0 ms median
+    EXPECT_NEAR(r.timerStepPct, 10.0, 1e-9);   // the samples' step over their median, a tenth
     EXPECT_GE(r.detectablePct, 10.0 - 1e-9);
     EXPECT_NEAR(r.detectablePct, std::max(10.0, (r.highPct - r.lowPct) / 2), 1e-9);
     EXPECT_EQ(r.verdict, "inconclusive");
     EXPECT_EQ(r.reason, "interval too wide");
     EXPECT_NE(r.next.find("more repetitions"), std::string::npos);
     // auto follows the detectable change up to --min-change: a timer this
-    // coarse leaves the row inconclusive, never "same" at a 10% threshold.
+    // coarse leaves the row inconclusive, never "same" at a threshold as
+    // coarse as the timer.
     t.autoMinChange = true;
     const auto a2 = compareSeries("x", "ao", &a, &b, t);
     EXPECT_DOUBLE_EQ(a2.thresholdPct, 2.0);
@@ -326,11 +329,12 @@ TEST(CompareVerdict, DetectableChangeIsTheIntervalOrTheTimersStep) {
     EXPECT_DOUBLE_EQ(same.thresholdPct, cavity::compare::kAutoFloorPct);
 }
 
-// --min-change auto never goes under kAutoFloorMs: two processes of one
-// build moved a 13 us pass by 0.256 us (+1.96%, every repetition of each on
-// one value, GL's 128 ns timer) on the H200. That move is "same" on a pass
-// that short, while +1.96% of a 40 us pass (0.78 us) is a change, and
-// 0.256 us of it (+0.64%) is not.
+// --min-change auto never goes under kAutoFloorMs: on the H200 two processes
+// of one build moved one of the shortest passes by two steps of GL's timer,
+// every repetition of each on one value (study 2026-12-03_h200_sensitivity;
+// the samples below are that pass's). That move is "same" on a pass that
+// short, while the same share of a pass three times longer is a change, and
+// the same move in time on that longer pass is not.
 TEST(CompareVerdict, AutoThresholdIsNeverUnderTheDriftBetweenProcesses) {
     using cavity::compare::compareSeries;
     auto run = [](double ms, double jitter) {
@@ -343,13 +347,13 @@ TEST(CompareVerdict, AutoThresholdIsNeverUnderTheDriftBetweenProcesses) {
     const auto shortA = run(0.013056, 0.0), shortB = run(0.013312, 0.0);
     const auto shortPass = compareSeries("x", "depth", &shortA, &shortB, t);
     EXPECT_NEAR(shortPass.changePct, 1.96, 0.01);
-    EXPECT_DOUBLE_EQ(shortPass.thresholdPct, 2.0);   // 0.3 us is 2.3% of 13 us; --min-change caps it
+    EXPECT_DOUBLE_EQ(shortPass.thresholdPct, 2.0);   // kAutoFloorMs is over --min-change here; --min-change caps it
     EXPECT_EQ(shortPass.verdict, "same");
-    // With Vulkan's 32 ns of jitter inside each process (constant samples
+    // With jitter of one Vulkan timer step inside each process (constant samples
     // would make the shift itself the smallest step, the timer's).
     const auto longA = run(0.040, 0.000032), longB = run(0.040784, 0.000032), longDrift = run(0.040256, 0.000032);
     const auto longPass = compareSeries("x", "ao", &longA, &longB, t);
-    EXPECT_NEAR(longPass.thresholdPct, 100 * 0.0003 / longPass.oldMedianMs, 1e-9);   // 0.75%
+    EXPECT_NEAR(longPass.thresholdPct, 100 * 0.0003 / longPass.oldMedianMs, 1e-9);   // kAutoFloorMs over the old median
     EXPECT_EQ(longPass.verdict, "slower");
     EXPECT_EQ(compareSeries("x", "ao", &longA, &longDrift, t).verdict, "same");
     // A fixed --min-change is the user's: no floor is added to it.
@@ -369,7 +373,7 @@ TEST(CompareVerdict, TooFewToReachAlphaIsInconclusive) {
     EXPECT_DOUBLE_EQ(smallestAttainableP(10, 10), 2.0 / 184756.0);
     cavity::compare::SampleSet a, b;
     for (double v : {1.0, 1.01, 1.02}) a.add(v, "gpu-timestamp");
-    for (double v : {2.0, 2.01, 2.02}) b.add(v, "gpu-timestamp");   // +100%
+    for (double v : {2.0, 2.01, 2.02}) b.add(v, "gpu-timestamp");   // twice the time
     const cavity::compare::CompareThresholds t;
     const auto r = cavity::compare::compareSeries("x", "ao", &a, &b, t);
     EXPECT_EQ(r.verdict, "inconclusive");
@@ -399,9 +403,9 @@ TEST(CompareVerdict, ASoftwareRenderersClocksApartAreItsOwnVerdict) {
 }
 
 // The SM clock moved between the runs: the change is judged in cycles (time x
-// clock) too, and a verdict stands only where both agree. By hand: 1.0 ms at
-// 2000 MHz is 2000 thousand cycles, 1.1 ms at 1800 MHz 1980: +10% in time,
-// -1% in cycles.
+// clock) too, and a verdict stands only where both agree. By hand, in
+// thousands of cycles: a at 2000 MHz is 2000, b at 1800 MHz 1980; so b is a
+// tenth slower in time and a hundredth fewer in cycles.
 TEST(CompareVerdict, AnSmClockDifferenceIsJudgedInCyclesToo) {
     using cavity::compare::compareSeries;
     cavity::compare::SampleSet a, b, c, d;
@@ -409,9 +413,9 @@ TEST(CompareVerdict, AnSmClockDifferenceIsJudgedInCyclesToo) {
         a.add(1.0, "gpu-timestamp", 2000);
         b.add(1.1, "gpu-timestamp", 1800);
         c.add(1.2, "gpu-timestamp", 1800);
-        d.add(1.1, "gpu-timestamp", 1990);   // one 0.5% step: not a difference
+        d.add(1.1, "gpu-timestamp", 1990);   // within one NVML step: not a difference
     }
-    const cavity::compare::CompareThresholds t;   // 2%
+    const cavity::compare::CompareThresholds t;   // the default --min-change
     const auto clockOnly = compareSeries("x", "ao", &a, &b, t);
     EXPECT_NEAR(clockOnly.changePct, 10.0, 1e-9);
     EXPECT_DOUBLE_EQ(clockOnly.oldSmMhz, 2000);
@@ -421,7 +425,7 @@ TEST(CompareVerdict, AnSmClockDifferenceIsJudgedInCyclesToo) {
     EXPECT_EQ(clockOnly.verdict, "inconclusive");
     EXPECT_EQ(clockOnly.reason, "SM clock differs");
     EXPECT_NE(clockOnly.next.find("lock"), std::string::npos);
-    // 1.2 ms at 1800 MHz is 2160: +8% in cycles, +20% in time; both slower.
+    // c at 1800 MHz is 2160 thousand cycles: slower in cycles and in time.
     const auto both = compareSeries("x", "ao", &a, &c, t);
     EXPECT_NEAR(both.cyclesChangePct, 8.0, 1e-9);
     EXPECT_EQ(both.cyclesVerdict, "slower");
@@ -443,9 +447,11 @@ TEST(CompareVerdict, AnSmClockDifferenceIsJudgedInCyclesToo) {
 // Both files carry the SM clock (cavity_bench's sm_mhz_median counter,
 // results.json's gpu_clocks) and `cavity compare` reports the cycles.
 TEST_F(Compare, TheSmClockOfEitherFileReachesTheVerdict) {
-    FakeConfig before = fakeConfig(kId, 10, 1, 0), after = fakeConfig(kId, 10, 2, 0.06);   // AO +10% in time
+    FakeConfig before = fakeConfig(kId, 10, 1, 0), after = fakeConfig(kId, 10, 2, 0.06);   // AO a tenth slower in time
     before.smMhz = 1980;
-    after.smMhz = 1800;   // -9.1%: the AO pass is +0% in cycles, blur and composite -9%
+    // The new clock is lower by as much as the AO pass is slower: the AO pass
+    // is the same in cycles, blur and composite take fewer.
+    after.smMhz = 1800;
     for (const bool bench : {true, false}) {
         const std::string format = bench ? "bench" : "results";
         const std::string o = write(format + "_old.json", bench ? benchmarkJson({before}) : resultsJson({before}));
@@ -466,16 +472,16 @@ TEST_F(Compare, TheSmClockOfEitherFileReachesTheVerdict) {
     }
 }
 
-// --min-change auto calls a change under the fixed 2% when the samples can
-// see it; a software renderer's times never give slower or faster.
+// --min-change auto calls a change under the default --min-change when the
+// samples can see it; a software renderer's times never give slower or faster.
 TEST_F(Compare, AutoThresholdCallsWhatTheNoiseAllowsAndSoftwareRenderersNeverJudge) {
     const auto before = fakeConfig(kId, 20, 1, 0);
-    const auto after = fakeConfig(kId, 20, 2, 0.009);   // +1.5% on a 0.6 ms AO pass, +-1% noise
+    const auto after = fakeConfig(kId, 20, 2, 0.009);   // under --min-change on the AO pass, over its noise
     const std::string o = write("old.json", benchmarkJson({before}));
     const std::string n = write("new.json", benchmarkJson({after}));
     const std::string out = (dir / "v.json").string();
     ASSERT_EQ(cavity("compare " + o + " " + n + " --json " + out).code, 0);
-    EXPECT_NE(row(rowsOf(out), kId, "ao")["verdict"], "slower");   // under 2%
+    EXPECT_NE(row(rowsOf(out), kId, "ao")["verdict"], "slower");   // under --min-change
     const Outcome autoRun = cavity("compare " + o + " " + n + " --min-change auto --json " + out);
     ASSERT_EQ(autoRun.code, 0) << autoRun.output;
     const json ao = row(rowsOf(out), kId, "ao");
@@ -693,7 +699,7 @@ TEST_F(Compare, AFewSamplesOnAnotherClockAreLeftOut) {
     const json rows = rowsOf(out);
     for (const char* pass : {"pipeline", "ao", "blur", "composite"}) {
         const json& one = row(rows, kOtherId, pass);
-        const bool shifted = std::string(pass) == "ao" || std::string(pass) == "pipeline";   // AO +0.1 ms
+        const bool shifted = std::string(pass) == "ao" || std::string(pass) == "pipeline";   // the AO pass shifted
         EXPECT_EQ(one["verdict"], shifted ? "slower" : "same") << pass;
         EXPECT_EQ(one["n_new"], 9) << pass;
         EXPECT_EQ(one["left_out_new"], 1) << pass;

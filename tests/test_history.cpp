@@ -38,7 +38,7 @@ std::string commitOf(int i) {
 }
 
 // cavity_bench JSON of commit i: 5 repetitions of two configurations, the
-// AO pass of kId 10% slower from commit `stepAt` on; +-0.5% deterministic noise.
+// AO pass of kId a tenth slower from commit `stepAt` on, with deterministic noise far smaller.
 json benchDoc(int i, int stepAt) {
     json benchmarks = json::array();
     for (const auto& id : {kId, kOther})

@@ -563,7 +563,7 @@ TEST_F(TwoStep, ImagesJudgedWhereTheyAreRenderedTravelAsVerdicts) {
     const Outcome a = cavity("baselines approve --from " + first.string() + " --baselines " + approved.string() +
                              " --store " + st.string() + " --by tester --why 'references'");
     ASSERT_EQ(a.code, 0) << a.output;
-    // A change the tolerances allow in the AO, 0.2% more occlusion.
+    // A change the tolerances allow in the AO: slightly more occlusion.
     std::ifstream in(fs::path(CAVITY_SOURCE_DIR) / "kernels/ssao_alchemy.glsl");
     std::string text((std::istreambuf_iterator<char>(in)), {});
     const std::string find = "1.0 - P.scale * S";

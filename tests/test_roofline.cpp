@@ -50,8 +50,8 @@ TEST(Roofline, H200TableEntryGivesEveryFigureWithItsSource) {
 
 // Alchemy, n = 16, at 1920x1080: 2 + 16 fetches; slots 4 (position) + 2
 // (normal) + 16 x 4 (RGBA32F positions) = 70; DRAM 16 + 8 read + 2 written
-// = 26 bytes. Fetch: 2073600 x 70 / 1.04544e12 s = 0.138843 ms. DRAM:
-// 2073600 x 26 / 4.8e12 s = 0.011232 ms.
+// = 26 bytes. In ms, fetch: 1e3 x 2073600 x 70 / 1.04544e12 = 0.138843;
+// DRAM: 1e3 x 2073600 x 26 / 4.8e12 = 0.011232.
 TEST(Roofline, AlchemyN16At1080pOnTheH200) {
     const DeviceFloor d = deviceFloor(device("NVIDIA H200"), std::nullopt);
     const PassFloorResult r = passFloor(d, "alchemy", {{"samples", 16}}, kPixels1080p);
@@ -67,7 +67,7 @@ TEST(Roofline, AlchemyN16At1080pOnTheH200) {
 }
 
 // The bilateral blur at r = 4: 81 taps of R16F + RGBA32F + RGBA16F, 7 slots
-// each = 567; 2073600 x 567 / 1.04544e12 s = 1.124628 ms.
+// each = 567; in ms, 1e3 x 2073600 x 567 / 1.04544e12 = 1.124628.
 TEST(Roofline, BlurR4At1080pOnTheH200) {
     const DeviceFloor d = deviceFloor(device("NVIDIA H200"), std::nullopt);
     const PassFloorResult r = passFloor(d, "blur_bilateral", {}, kPixels1080p);
@@ -77,7 +77,7 @@ TEST(Roofline, BlurR4At1080pOnTheH200) {
 }
 
 // The ray-marched G-buffer fetches nothing: only its 32 bytes written, so
-// DRAM-bound at 2073600 x 32 / 4.8e12 s = 0.013824 ms.
+// DRAM-bound at, in ms, 1e3 x 2073600 x 32 / 4.8e12 = 0.013824.
 TEST(Roofline, GBufferIsDramBound) {
     const DeviceFloor d = deviceFloor(device("NVIDIA H200"), std::nullopt);
     const PassFloorResult r = passFloor(d, "gbuffer_sdf", {}, kPixels1080p);

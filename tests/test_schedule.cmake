@@ -97,8 +97,8 @@ endforeach()
 # with exit 2 before anything is judged; the render binary's libraries; an
 # image file's bytes. Each process works in its own folder (named by its
 # pid), so they run beside other tests, as test_render's budgets of 1e6 ms
-# would let its other tests too (54 s of the 350 s of serial tests on
-# 2026-12-02).
+# would let its other tests too (they were a large part of the serial
+# tests' time).
 foreach(name
     "TwoStep.OverlappingShardsAreRefused"
     "TwoStep.FoldersOfTwoBuildsAreRefused"
@@ -109,8 +109,8 @@ foreach(name
     # report test asserts that the failing configurations come first and
     # that there are some, which a budget overrun under load cannot break;
     # the other two run no gate. The unchanged build's two runs, the
-    # longest test (164 s of an 825 s CI run on 2026-12-04, the other core
-    # idle throughout), judge images and determinism: on a software
+    # longest test (a large part of a CI run, with the other core idle
+    # throughout), judge images and determinism: on a software
     # renderer a budget overrun is reported, not failed
     # (GateOptions::enforceCpuBudgets), so load cannot fail them either.
     "Gate.UnchangedBuildPassesTwiceOnBothApis"

@@ -32,12 +32,12 @@ TEST(Stats, SummarizesAKnownSample) {
 
 TEST(ClockCheck, RejectsTimersThatMissTheWork) {
     const ClockCheck c;
-    // llvmpipe GL, measured (docs/gpu.md): 0.06 ms between the
-    // timestamps of a pass whose drained wall time is 48.8 ms.
+    // llvmpipe GL, measured (docs/gpu.md): the timestamps of a pass bracket
+    // almost none of its drained wall time.
     EXPECT_FALSE(c.trusted(0.06, 48.8));
     EXPECT_FALSE(c.trusted(0.0, 1.0));
     EXPECT_FALSE(c.trusted(10.0, 5.0));        // more GPU time than wall time
-    // H100: timestamps within 6% of the wall clock; tiny frames within the
+    // H100: timestamps close to the wall clock; tiny frames within the
     // fixed submission overhead.
     EXPECT_TRUE(c.trusted(0.339, 0.351));
     EXPECT_TRUE(c.trusted(0.05, 0.2));
@@ -269,7 +269,7 @@ TEST(HodgesLehmann, IntervalCoversTheTrueShiftAsOftenAsItSays) {
     EXPECT_GT(normal, 0.93);
     EXPECT_LT(normal, 0.97);
     // Exact quantiles (5 against 7): at least the nominal level, as the step
-    // function of U allows (the step just above 95% there is 95.2%).
+    // function of U allows (the step just above the nominal level there).
     const double small = coverage(5, 7, 0.05, 0.05, false, exact);
     EXPECT_TRUE(exact);
     EXPECT_GT(small, 0.935);
@@ -279,7 +279,7 @@ TEST(HodgesLehmann, IntervalCoversTheTrueShiftAsOftenAsItSays) {
     const double tied = coverage(30, 30, 0.10, 0.05, true, exact);
     EXPECT_FALSE(exact);
     EXPECT_GT(tied, 0.93);
-    // At 90% the interval is narrower and covers less.
+    // A 90% interval is narrower and covers less.
     const double ninety = coverage(20, 25, 0.05, 0.10, false, exact);
     EXPECT_GT(ninety, 0.87);
     EXPECT_LT(ninety, 0.93);

@@ -3,10 +3,10 @@
 // things at once: the U test says the two samples differ (p < alpha), the
 // estimated shift is large enough to matter (>= min-change percent of the old
 // median), and the interval of the shift lies wholly above zero. GPU
-// timestamps are steady enough that the test alone flags a 0.1% move
-// (bench/results/ has one, with 5 repetitions a side); the size alone flags
-// noise when samples are few; the interval keeps the estimate honest when the
-// test and the shift disagree on a skewed sample.
+// timestamps are steady enough that the test alone flags a move far too
+// small to matter (the measurement notebook has one, with 5 repetitions a
+// side); the size alone flags noise when samples are few; the interval keeps
+// the estimate honest when the test and the shift disagree on a skewed sample.
 #pragma once
 
 #include "compare/namespace.h"
@@ -22,31 +22,31 @@ struct CompareThresholds {
     double minChangePct = 2;   // smallest shift, in percent of the old median, worth a verdict
     // --min-change auto: each pass's threshold is its detectable change
     // (below), never under kAutoFloorPct or kAutoFloorMs nor over
-    // minChangePct (2%): noisier samples are inconclusive.
+    // minChangePct: noisier samples are inconclusive.
     bool autoMinChange = false;
 };
 
 // The floor of --min-change auto: two unchanged runs of one build, one after
-// the other on an H200, moved untouched passes by up to 0.45% with p < 0.05
-// (bench/results/2026-12-01_h200_verdict); a change the drift between two
+// the other on an H200, moved untouched passes by just under this much with
+// p < 0.05 (study 2026-12-01_h200_verdict); a change the drift between two
 // processes can make is not called.
 constexpr double kAutoFloorPct = 0.5;
 
 // And never under this much time, in ms: separate processes of one build
 // move a short pass by a fixed amount the repetitions inside either process
 // cannot see. On the H200 two unchanged processes one after the other moved
-// passes of 10-50 us by up to 0.256 us (two 128 ns steps of GL's timer; 0.13
-// us on Vulkan), 0.5-2% of them, with intervals of +-0.4% inside each
-// process (bench/results/2026-12-03_h200_sensitivity). 0.3 us is 0.2% of a
-// 0.14 ms AO pass and 2% of a 15 us blur.
+// the shortest passes by up to two steps of GL's timer (less on Vulkan), far
+// more than the intervals inside each process allow for, and this floor is
+// just over that move (study 2026-12-03_h200_sensitivity). It is a
+// negligible share of an AO pass and a noticeable one of a short blur.
 constexpr double kAutoFloorMs = 0.0003;
 
 // A side whose samples come from two clocks (a repetition whose warm clock
 // check failed and moved to the wall clock) is judged on the clock most of
 // both sides' samples share, leaving the others out, when that keeps at
-// least this share of each side; otherwise it has no verdict. On the H200 1
-// repetition in 928 moved (bench/results/2026-12-03_h200_sensitivity2), and
-// took its configuration's verdict with it in every pass.
+// least this share of each side; otherwise it has no verdict. On the H200 a
+// single repetition that moved (study 2026-12-03_h200_sensitivity2) took its
+// configuration's verdict with it in every pass.
 constexpr double kMixedClockKeepShare = 0.75;
 
 // Fewer samples than this on a side gives no verdict: with 2 against 2 the
@@ -92,8 +92,9 @@ struct CompareRow {
 };
 
 // Two runs whose median SM clocks differ by more than this, in percent, are
-// judged in cycles as well. NVML reads the clock in 15 MHz steps on Hopper
-// (0.76% of 1980 MHz), so one step is not a difference.
+// judged in cycles as well. NVML reads the clock in 15 MHz steps on Hopper,
+// a smaller share of its working clock than this, so one step is not a
+// difference.
 constexpr double kSmClockDiffersPct = 1.0;
 
 // Either side may be null: the pass is new or gone. `software`: either run

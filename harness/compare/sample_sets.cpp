@@ -46,7 +46,7 @@ namespace {
 
 // Numbers only: results.json writes a sample that was NaN as null, and a
 // sample that was never a time tells nothing about the change. A series with
-// no time at all would compare as "-100%", so it is bad input.
+// no time at all would compare as a fall to nothing, so it is bad input.
 Status addSamples(SampleSet& s, const JsonObject& owner, const std::string& clock, double smMhz) {
     CAVITY_ASSIGN(const auto samples, owner.numbers("samples_ms", 0, 1e12, true));
     size_t added = 0;

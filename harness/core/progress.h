@@ -1,7 +1,8 @@
 // Progress on stderr for the commands that measure (run, gate, quality), the
 // one progress line of every command:
-//     [3/12] corner/alchemy/n16/b4/full/320x180/vk/compute  elapsed 4.1 s  ETA 12.3 s
-// one line rewritten in place (\r) when stderr is a terminal, a plain line
+//     [3/12] corner/alchemy/n16/b4/full/320x180/vk/compute  elapsed E s  ETA R s
+// (E the seconds since the start, R the seconds the ETA expects still), one
+// line rewritten in place (\r) when stderr is a terminal, a plain line
 // per step otherwise (a pipe, a CI log); --quiet gives a Progress that says
 // nothing. The ETA is the mean time per finished step times the steps left.
 #pragma once

@@ -28,7 +28,7 @@ namespace cavity::history {
 
 struct DetectorOptions {
     double alpha = 0.001;     // the t test's level a change point must reach
-    double minChange = 0.02;  // |mean after / mean before - 1| a change point must reach (0.02: 2%)
+    double minChange = 0.02;  // |mean after / mean before - 1| a change point must reach
     size_t window = 50;       // points E-divisive looks at at once (Otava's default)
 };
 

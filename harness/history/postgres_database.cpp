@@ -107,8 +107,8 @@ std::string redactUrl(const std::string& url) {
 
 Result<std::unique_ptr<Database>> openPostgres(const std::string& url) {
     const std::string where = redactUrl(url);
-    // A server that does not answer fails within 10 s unless the URL or
-    // PGCONNECT_TIMEOUT says otherwise (the URL's own setting wins: it is expanded after).
+    // A server that does not answer fails after the connect_timeout below unless the
+    // URL or PGCONNECT_TIMEOUT says otherwise (the URL's own setting wins: it is expanded after).
     const char* timeout = std::getenv("PGCONNECT_TIMEOUT");
     const char* keys[] = {"connect_timeout", "dbname", nullptr};
     const char* values[] = {timeout && *timeout ? timeout : "10", url.c_str(), nullptr};

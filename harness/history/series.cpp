@@ -22,7 +22,7 @@ void medianInterval(const std::vector<double>& x, double& lo, double& hi, bool& 
         below += std::exp(std::lgamma(double(n) + 1) - std::lgamma(double(j) + 1) - std::lgamma(double(n - j) + 1) -
                           double(n) * std::log(2.0));
         if (below > 0.025) break;
-        k = j + 1;   // [x_(k), x_(n+1-k)] (1-based) misses with probability 2 P(B < k) <= 5%
+        k = j + 1;   // [x_(k), x_(n+1-k)] (1-based) misses with probability 2 P(B < k) <= 0.05
     }
     if (k == 0) return;
     lo = x[k - 1];

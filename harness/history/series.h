@@ -26,7 +26,7 @@ struct Point {
     int runs = 0;
     double median = 0, lo = 0, hi = 0;   // the median and its 95% interval
     double min = 0, max = 0;
-    bool intervalCoversLess = false;     // too few repetitions for 95%: lo, hi are min, max
+    bool intervalCoversLess = false;     // too few repetitions for a 95% interval: lo, hi are min, max
 };
 
 struct Series {
@@ -46,8 +46,8 @@ Result<std::string> resolveBound(Database& db, const std::string& flag, const st
 
 // The 95% interval of a sample's median from order statistics (the
 // binomial(n, 1/2) distribution of how many values lie below it): the
-// narrowest [x_(k), x_(n+1-k)] covering at least 95%. With fewer than 6
-// values none does: [min, max], and `coversLess` is set.
+// narrowest [x_(k), x_(n+1-k)] that is at least a 95% interval. With fewer
+// than 6 values none is: [min, max], and `coversLess` is set.
 void medianInterval(const std::vector<double>& sorted, double& lo, double& hi, bool& coversLess);
 
 }  // namespace cavity::history

@@ -116,10 +116,10 @@ std::string oneLine(const std::vector<std::string>& messages) {
 // Asked for floats, OpenImageIO 2.4's read_scanlines converts through a
 // scratch buffer of about 64 MiB whatever the image's size: free in a
 // release build (pages never touched), but under ASan every such buffer has
-// its 8 MiB of shadow written when allocated and again when freed, 68 ms
-// per 160x90 read against 3 ms for a read in the file's own type
+// its 8 MiB of shadow written when allocated and again when freed, which made
+// a small read many times slower than a read in the file's own type
 // (TypeDesc::UNKNOWN, the one type 2.4 reads straight into the caller's
-// buffer), a third of a gate run on the sanitizer build. So the file's own
+// buffer), and a large part of a gate run on the sanitizer build. So the file's own
 // type is read, and converted with the function read_scanlines converts
 // with (the same floats, checked on every stored baseline).
 bool readFloats(ImageInput& in, HostImage& img) {

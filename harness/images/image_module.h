@@ -1,7 +1,7 @@
 // The OpenImageIO half of the harness, a module loaded with dlopen on first
 // use (harness/images/image_module.cpp). Linking OpenImageIO makes the loader map
-// and relocate 261 shared libraries at every start (0.45 s for `cavity
-// --help`, 0.8 s under the sanitizers), and most starts read or write no
+// and relocate 261 shared libraries at every start, a delay `cavity --help`
+// paid too (more under the sanitizers), and most starts read or write no
 // image: --help, bad flags, `list`, `compare`, the tests' own processes.
 //
 // Everything that calls OpenImageIO is in the module (image_io.cpp,

@@ -7,8 +7,8 @@ namespace cavity::measure {
 // Decides whether the timestamps bracket the work: a few drained frames, the
 // frame against its wall time, and each pass timed alone against its own (a
 // frame total can hide a pass whose work lands in the next scope: llvmpipe GL
-// defers draws to the next flush, so a raster pass reads 0.1 ms and the pass
-// after it pays). Returns the note explaining a "no", empty for a "yes".
+// defers draws to the next flush, so a raster pass reads almost nothing and
+// the pass after it pays). Returns the note explaining a "no", empty for a "yes".
 Result<std::string> clockVerdict(gpu::Backend& gpu, PassChain& chain, const ClockCheck& check, double& frameMs) {
     const size_t n = chain.passCount();
     std::vector<std::vector<double>> stamps(n), alone(n);

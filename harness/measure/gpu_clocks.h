@@ -30,8 +30,9 @@ struct GpuClockSummary {
     double smMin = 0, smMedian = 0, smMax = 0;
     double memMin = 0, memMedian = 0, memMax = 0;
     uint64_t reasons = 0;   // every reason seen, OR-ed
-    // The SM clock moved during the measurement: its range exceeds 1% of
-    // its median (NVML reports whole MHz in steps of 15 on Hopper).
+    // The SM clock moved during the measurement: its range exceeds the share
+    // of its median tested below (NVML reports whole MHz in steps of 15 on
+    // Hopper).
     bool moved() const { return samples > 1 && smMax - smMin > 0.01 * smMedian; }
     std::vector<std::string> reasonNames() const;
 };

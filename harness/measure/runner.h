@@ -17,8 +17,8 @@ namespace cavity::measure {
 struct RunOptions {
     int warmup = 5;                   // warm-up frames at least
     int frames = 50;                  // measured frames at least (exactly, with a fixed count)
-    // Unset: the device's default (timing.h: batch, stop on 0.5% noise within
-    // 2 s on a GPU; a fixed count on a software renderer).
+    // Unset: the device's default (timing.h: batch, stop at the noise target
+    // or the time limit on a GPU; a fixed count on a software renderer).
     std::optional<TimingMode> mode;
     std::optional<double> maxNoise;   // relative; 0: a fixed count of frames
     std::optional<double> maxSeconds;

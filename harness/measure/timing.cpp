@@ -59,8 +59,8 @@ double worstNoise(const Timing& t) {
 // 1. A cold probe: a frame time to size the warm-up's batches with, and the
 // clock the warm-up runs on. It decides nothing: a cold GPU (first-use
 // compiles, a low clock, a first configuration of its API in a process) can
-// fail the check a warm one passes (bench/results/2026-12-01_h200_verdict:
-// 2 configurations of 16 took "wall" from a cold probe).
+// fail the check a warm one passes (study 2026-12-01_h200_verdict: some
+// configurations took "wall" from a cold probe).
 Status probeClock(gpu::Backend& gpu, PassChain& chain, const TimingOptions& o, const ClockCheck& check, Timing& t) {
     double frameMs = 0;
     CAVITY_ASSIGN(const std::string note, clockVerdict(gpu, chain, check, frameMs));
@@ -92,9 +92,10 @@ Result<bool> decideWarm(gpu::Backend& gpu, PassChain& chain, const TimingOptions
     CAVITY_ASSIGN(std::string note, clockVerdict(gpu, chain, check, frameMs));
     // A failed check is tried twice more before the clock moves: timestamps
     // that miss the work fail every time, while a hiccup of the host during
-    // the drained wall-clock frames fails one (on the H200, 11 of 928
-    // repetitions moved to the wall clock with one check each, and their
-    // configurations had no verdict: mixed clocks).
+    // the drained wall-clock frames fails one (on the H200, with one check
+    // each, some repetitions moved to the wall clock, and their
+    // configurations had no verdict: mixed clocks; study
+    // 2026-12-03_h200_sensitivity2).
     std::string passedOnRetry;
     for (int retry = 0; retry < kClockRetries && !note.empty(); ++retry) {
         CAVITY_ASSIGN(const std::string again, clockVerdict(gpu, chain, check, frameMs));
@@ -150,10 +151,11 @@ public:
         t_.warmupSeconds = secondsSince(t0);
         t_.steadyChecked = o_.steadyWarmup;
         // The probe's drained frames carry first-use costs (NVIDIA's GL
-        // compiles a fragment pipeline at its first draws: 8 ms probe frames,
-        // 0.1 ms warm ones), so size the batches again from the warm GPU
-        // time: a batch of 3 such frames was 0.3 ms of GPU work in 0.7 ms of
-        // wall time and failed the clock check on submission overhead alone.
+        // compiles a fragment pipeline at its first draws, which makes its
+        // probe frames far longer than its warm ones), so size the batches
+        // again from the warm GPU time: a batch sized from the probe was too
+        // short, its wall time mostly submission overhead, and failed the
+        // clock check on that alone.
         if (!wall_ && t_.mode == TimingMode::Batch && lastWarmGpuMs > 0) t_.batchFrames = batchFramesFor(o_, lastWarmGpuMs);
         clockSamples_.clear();
         return {};

@@ -50,7 +50,7 @@ struct TimingOptions {
     TimingMode mode = TimingMode::Batch;
     int warmup = 5;                 // warm-up frames at least
     bool steadyWarmup = true;       // then on until steady (or warmupSeconds)
-    double steadyTolerance = 0.01;  // consecutive batch medians within 1%
+    double steadyTolerance = 0.01;  // consecutive batch medians within this share
     double warmupSeconds = 2.0;
     int frames = 50;                // measured frames at least; exactly this many when maxNoise is 0
     double maxNoise = 0.005;        // target half-width of the medians' 95% interval, relative; 0: fixed count

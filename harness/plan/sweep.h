@@ -5,14 +5,15 @@
 // compute stage and its default configuration on the fragment stage: its
 // blur and upsample passes are the same passes the screen-space sweep already
 // measures, and with all of it the GPU sweep no longer fits one 10-minute
-// call (measured on the H200: 622 benchmarks took 578 s, 183 s of it the SDF
-// fragment axes; the full product would be 1102). Since then the SDF
+// call (on the H200 622 benchmarks came too close to it, the SDF fragment
+// axes a large part of them; the full product would be 1102; study
+// 2026-11-30_h200_full_sweep). Since then the SDF
 // family also gets samples x half at the default blur (compute), for the
 // quality-cost chart, and hemisphere_cosine the screen-space product, so the
 // whole GPU sweep no longer fits one call: split it with
 // --benchmark_filter (scripts/gpu_quality_cost.sh runs the part the chart
-// needs in about 60 s). Both the benchmark runner
-// and its tests read this list; nothing is registered by hand.
+// needs, well within one call). Both the benchmark runner and its tests
+// read this list; nothing is registered by hand.
 #pragma once
 
 #include "plan/namespace.h"

@@ -22,7 +22,7 @@
 // with |a - b| <= 1e-3 max(1, |b|), not a flat 1e-3. Expected on GPUs that
 // quantise filter weights to 8 bits (not measured): radiance within about
 // 1/512 of the difference between neighbouring sky texels (at level 5,
-// under 0.5% next to the sun); visibility, a ratio of sums of the same
+// under 5e-3 relative next to the sun); visibility, a ratio of sums of the same
 // weights, within 1e-3.
 //
 // The sky's levels come from the constant image's own generator, since a

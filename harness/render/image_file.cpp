@@ -23,8 +23,8 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr char kMagic[8] = {'C', 'A', 'V', 'F', '3', '2', 'Z', '1'};
-// zlib's default level: on 1920x1080 renders level 1 gave files 1.4x larger
-// (colour 1.6x) for 40% of the time; the GPU machine's upload is the scarcer
+// zlib's default level: on 1920x1080 renders level 1 was faster but gave
+// files 1.4x larger (colour 1.6x); the GPU machine's upload is the scarcer
 // resource (README.md, "Why this image format").
 
 void putU32(std::string& s, size_t at, uint32_t v) {

@@ -52,9 +52,10 @@ float tapWeight(int t, vec3 N, vec3 tapNormal, float dd, float twoSigma2) {
 // more (the radiance, fetched once where every tap fetched it), and the
 // tile keeps to 512 texels, 16 KiB, which still holds every radius in those
 // shapes.
-// ssdo_fast's horizontal pass tiles its radiance so (8.6-8.9% off it on the
-// H200's Vulkan, 0-1.6% on GL); its vertical pass, whose taps fetch down a
-// column, got 8% slower on Vulkan that way and fetches its radiance a tap.
+// ssdo_fast's horizontal pass tiles its radiance so, which made it faster on
+// the H200's Vulkan and no slower on GL; its vertical pass, whose taps fetch
+// down a column, got slower on Vulkan that way and fetches its radiance a
+// tap (study 2026-12-04_h200_floors).
 // A shape that overflows it (CAVITY_WORKGROUP), and the fragment stage,
 // take the texture path.
 #if defined(CAVITY_STAGE_COMPUTE) && defined(CAVITY_CONST_blur)
@@ -111,7 +112,8 @@ struct BlurSums {
 #ifdef BLUR_TILED
 // Tap t, tile texel i, of the centre `pixel` (normal N, linear depth z). A
 // background tap weighs 0, chosen by a select rather than a branch around
-// the tap: 3.7-7.0% off each pass on the H200, the same sums (0 added).
+// the tap: each pass was faster so on the H200, with the same sums (0 added;
+// study 2026-12-04_h200_floors).
 void addTileTap(int t, int i, ivec2 pixel, vec3 N, float z, float twoSigma2, inout BlurSums s) {
     vec4 tap = tileNormalDepth[i];
     bool counts = !isBackground(tap.w);
@@ -141,8 +143,8 @@ vec4 blurAlong(ivec2 pixel, out vec3 value) {
 #ifdef BLUR_TILED
     // The taps written out, -r to r in the loop's order (the same sums):
     // NVIDIA's GL driver keeps a loop of constant count rolled, and written
-    // out the pass took 25-31% less time there and as much or 2% less on
-    // Vulkan (bench/results/2026-12-03_h200_blur_tile).
+    // out the pass took much less time there and no more on Vulkan
+    // (study 2026-12-03_h200_blur_tile).
     ivec2 local = ivec2(gl_LocalInvocationID.xy) + kBlurAxis * CAVITY_CONST_blur;
     int c = local.y * kTileW + local.x;
     int stride = kBlurAxis.x + kBlurAxis.y * kTileW;

@@ -70,8 +70,8 @@ vec2 cosSinTurns(float turns) {
 // 1 / x for x != 0 (either sign: the int subtraction wraps, and the estimate
 // keeps the sign), the same bits on every implementation. A GLSL division
 // may be off by 2.5 ulp (and often is a reciprocal times a multiply), so
-// this starts from an exponent-bit estimate (relative error under 5.1%) and
-// refines it with Newton steps y' = y (2 - x y), each of which squares the
+// this starts from an exponent-bit estimate and refines it with Newton
+// steps y' = y (2 - x y), each of which squares the estimate's relative
 // error: 5e-2 -> 2.6e-3 -> 6.6e-6 -> 4e-11, so three leave only float
 // rounding (under 3 ulp; exactness is not the point, agreement is).
 float portableReciprocal(float x) {

@@ -12,11 +12,11 @@ const int LOG_MAX_OFFSET = 3;
 // A kernel that defines CAVITY_FMA_POSITIONS gets, with the GPU's own
 // arithmetic (CAVITY_INEXACT), the ray as one fused multiply-add of the
 // pixel instead: (pixel + 0.5) * 2 / size - 1 folded into a scale and an
-// offset. On the H200 that took 4% off alchemy_fast's AO pass on both APIs,
-// which asks for it. hemisphere_fast does not: 7% faster on Vulkan, 1.2%
+// offset. On the H200 that made alchemy_fast's AO pass faster on both APIs,
+// and alchemy_fast asks for it. hemisphere_fast does not: faster on Vulkan,
 // slower on GL, and a kernel whose images differ between the APIs by a
 // flipped ray fails the CPU-baseline gate on one of them
-// (bench/results/2026-12-04_h200_pyramid_sources).
+// (study 2026-12-04_h200_pyramid_sources).
 vec3 positionAt(ivec2 pixel, float depth) {
 #if defined(CAVITY_INEXACT) && defined(CAVITY_FMA_POSITIONS)
     vec2 camera = vec2(frame.camera.x, -frame.camera.y);

@@ -35,8 +35,8 @@ void writePyramidChain(ivec2 pixel, vec4 depth) {
     // The links written out, each with its level a constant, where a loop
     // over k was one: NVIDIA's GL driver kept that loop rolled, picking the
     // level's image through a chain of tests every iteration, and this form
-    // took 7.5% off the pass there (Vulkan unrolled it already;
-    // bench/results/2026-12-03_h200_unroll).
+    // made the pass faster there (Vulkan unrolled it already; study
+    // 2026-12-03_h200_unroll).
     if (!pyramidLink(1, pixel, depth)) return;
     if (!pyramidLink(2, pixel, depth)) return;
     if (!pyramidLink(3, pixel, depth)) return;

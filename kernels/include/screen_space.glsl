@@ -25,8 +25,8 @@ vec3 orderedCross(vec3 a, vec3 b) {
 }
 
 // 1 / sqrt(x) for x > 0 with the same bits everywhere (GLSL's inversesqrt
-// may be 2 ulp off): an exponent-bit estimate (error under 3.5%) and four
-// Newton steps y' = y (1.5 - x/2 y^2), which converge to rounding.
+// may be 2 ulp off): an exponent-bit estimate (relative error under 3.5e-2)
+// and four Newton steps y' = y (1.5 - x/2 y^2), which converge to rounding.
 float portableInverseSqrt(float x) {
 #ifdef CAVITY_INEXACT
     return inversesqrt(x);
