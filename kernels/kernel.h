@@ -78,7 +78,7 @@ struct ArrayDecl {
 
 // What one output pixel of a kernel costs in memory traffic, for the
 // benchmark's bytes/s counter and each pass's floor (harness/measure/roofline.h,
-// bench/ROOFLINE.md). Fill all four: a cost with fetches but no fetch slots,
+// docs/roofline.md). Fill all four: a cost with fetches but no fetch slots,
 // or no DRAM bytes, gives its pass no floor rather than a floor of zero.
 struct Cost {
     double fetchesPerPixel = 0;      // texel fetches
@@ -93,7 +93,7 @@ struct Cost {
 // Texture-unit slots one fetch of a texel takes: 1 up to 32 bits (R16F,
 // R32F, RGBA8), 2 for 64-bit (RGBA16F), 4 for 128-bit (RGBA32F). An
 // assumption from NVIDIA's texture units filtering 32 bits per slot, not a
-// measurement (bench/ROOFLINE.md); a bilinear fetch is one fetch, a
+// measurement (docs/roofline.md); a bilinear fetch is one fetch, a
 // trilinear one two.
 constexpr double fetchSlots(double texelBytes) { return texelBytes <= 4 ? 1 : texelBytes / 4; }
 

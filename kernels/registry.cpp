@@ -195,7 +195,7 @@ KernelDecl alchemyFast() {
     // Sample i's spiral direction at phase 0, (cos, sin) of (i + 0.5) 7/9
     // turns, one vec4 each for samples up to 256: the kernel turns it by the
     // pixel's phase once computed, where evaluating cos and sin per sample
-    // was a sixth of the pass on the H200 (bench/ROOFLINE.md). Whatever the
+    // was a sixth of the pass on the H200 (docs/roofline.md). Whatever the
     // table's last bits, the shader and the CPU reference read the same ones.
     k.params.push_back(use("exact"));
     k.params.push_back(use("interleave"));

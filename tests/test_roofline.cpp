@@ -1,7 +1,7 @@
 // Each pass's floor (harness/measure/roofline.h): the arithmetic against numbers
 // worked by hand for the H200's table entry, where each figure comes from,
 // the cases with no floor, every declaration's cost being complete, and
-// bench/ROOFLINE.md's table being what the code computes.
+// docs/roofline.md's table being what the code computes.
 #include "harness.h"
 #include "core/config.h"
 #include "pipeline/config_id.h"
@@ -224,7 +224,7 @@ TEST(Roofline, TiledCostWhereTheShaderTiles) {
     EXPECT_GT(untiled, 0);
 }
 
-// --- bench/ROOFLINE.md -------------------------------------------------------
+// --- docs/roofline.md -------------------------------------------------------
 
 std::string fixed(double v, int digits) {
     char buf[32];
@@ -289,7 +289,7 @@ std::string floorTable() {
 }
 
 TEST(Roofline, RooflineDocumentHoldsTheComputedTable) {
-    const std::string path = std::string(CAVITY_SOURCE_DIR) + "/bench/ROOFLINE.md";
+    const std::string path = std::string(CAVITY_SOURCE_DIR) + "/docs/roofline.md";
     std::ifstream f(path);
     ASSERT_TRUE(f) << path;
     std::stringstream text;

@@ -10,7 +10,7 @@ namespace {
 // Figures no driver reports (texture units, DRAM bandwidth) and the
 // fallbacks for those it may not (SM count, maximum SM clock). Data-sheet
 // figures, not measurements: a copy reaches less bandwidth (about 3.0 TB/s
-// of the H100's 3.35, bench/ROOFLINE.md), so the DRAM floor is optimistic.
+// of the H100's 3.35, docs/roofline.md), so the DRAM floor is optimistic.
 struct TableEntry {
     const char* name;           // VkPhysicalDeviceProperties::deviceName; GL_RENDERER up to its first '/'
     double smCount, textureUnitsPerSm, maxSmClockMhz, dramGBps;

@@ -1,6 +1,6 @@
 // Each pass's floor: the least time its memory traffic allows on the device
 // that ran it, from the kernel's declared cost (kernels/kernel.h Cost) and
-// the device's figures. bench/ROOFLINE.md explains the model and the H200's
+// the device's figures. docs/roofline.md explains the model and the H200's
 // numbers; results.json and the benchmark JSON carry them.
 //
 //   fetch floor = pixels x fetch slots per pixel / (SMs x texture units per SM x SM clock)
