@@ -35,8 +35,8 @@ smi_stop
 # One file per commit: the rounds' iteration entries, repetition k = round k.
 python3 - "$OUT/runs" "$OUT" <<'PY'
 import glob, json, os, re, sys
-sys.path.insert(0, "scripts")
-import cavity_json   # scripts/cavity_json.py
+sys.path.insert(0, "scripts/charts")
+import cavity_json   # scripts/charts/cavity_json.py
 runs, out = sys.argv[1], sys.argv[2]
 by = {}
 for f in sorted(glob.glob(os.path.join(runs, "*_*.json"))):
