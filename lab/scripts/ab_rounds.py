@@ -1,9 +1,9 @@
 #!/usr/bin/env python3
 """How many rounds of `cavity ab` it took to call a planted change.
 
-    python3 scripts/ab_rounds.py AB_DIR [--pass ao] [--cavity build/harness/cavity] > rounds.md
+    python3 lab/scripts/ab_rounds.py AB_DIR [--pass ao] [--cavity build/harness/cavity] > rounds.md
 
-AB_DIR is one `cavity ab --out` folder (scripts/gpu_ab.sh brings back ab1/,
+AB_DIR is one `cavity ab --out` folder (lab/scripts/gpu_ab.sh brings back ab1/,
 A against A with a plant, and aa/, A against A): a_<r>.json and b_<r>.json,
 one process per side and round. For every prefix of 3..R rounds it merges
 each side's first rounds (repetition k = round k, as `cavity ab` does),
@@ -25,7 +25,9 @@ import subprocess
 import sys
 import tempfile
 
-import cavity_json   # scripts/cavity_json.py: plain or gzip (X.json.gz)
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+sys.path.insert(0, os.path.join(ROOT, "scripts", "charts"))
+import cavity_json  # noqa: E402  scripts/charts/cavity_json.py: plain or gzip (X.json.gz)
 
 
 def rounds(d):

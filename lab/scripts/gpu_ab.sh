@@ -1,11 +1,11 @@
 #!/usr/bin/env bash
 # Interleaved A/B on the GPU machine (docs/comparing.md, "Two builds
 # interleaved"): `cavity ab` with B the bundle's cavity_bench given a planted
-# slowdown (PLANT.json, from scripts/gpu_sensitivity.sh), then A against A,
+# slowdown (PLANT.json, from lab/scripts/gpu_sensitivity.sh), then A against A,
 # each with the clocks sampled beside it. Every round's JSON comes back in
 # ab.tgz, so that the rounds needed to call the change can be counted here
-# (scripts/ab_rounds.py ab1, and aa).
-#   scripts/gpu_ab.sh PLANT.json [ROUNDS (8)] [MAX_TIME_S (0.25)] [FILTER]
+# (lab/scripts/ab_rounds.py ab1, and aa).
+#   lab/scripts/gpu_ab.sh PLANT.json [ROUNDS (8)] [MAX_TIME_S (0.25)] [FILTER]
 set -uo pipefail
 cd "$(dirname "$0")/.."
 . scripts/gpu_env.sh

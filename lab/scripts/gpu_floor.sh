@@ -13,8 +13,8 @@
 #            quality --blur 0 and 4, the shared reach);
 #   render:  the gpu-cpu gate matrix's fast configurations rendered here, to
 #            judge against the lavapipe baselines.
-# Leaves floor.tgz in $OUT; read it here with scripts/floor_table.py.
-#   scripts/gpu_floor.sh [PARTS ("bench quality render")] [REPS (10)] [MAX_TIME_S (0.25)]
+# Leaves floor.tgz in $OUT; read it here with scripts/charts/floor_table.py.
+#   lab/scripts/gpu_floor.sh [PARTS ("bench quality render")] [REPS (10)] [MAX_TIME_S (0.25)]
 set -uo pipefail
 cd "$(dirname "$0")/.."
 . scripts/gpu_env.sh

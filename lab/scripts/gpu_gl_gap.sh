@@ -6,11 +6,11 @@
 # call: ROUNDS rounds, each cavity_render of alchemy_fast at 1920x1080 on both
 # APIs with --views 1 and --views 4, and cavity_bench of the same
 # configuration, and with --views 4 the composite reduced to its store
-# (store4) and to an empty dispatch (empty4, scripts/gl_gap/), which part
+# (store4) and to an empty dispatch (empty4, lab/scripts/gl_gap/), which part
 # of GL's per-pass cost is the pass itself; the five in a shuffled order,
 # the clocks beside them.
 # Leaves gl_gap.tgz (the render manifests, the benchmark JSON) in $OUT.
-#   scripts/gpu_gl_gap.sh [ROUNDS (3)]
+#   lab/scripts/gpu_gl_gap.sh [ROUNDS (3)]
 set -uo pipefail
 cd "$(dirname "$0")/.."
 . scripts/gpu_env.sh
@@ -25,8 +25,8 @@ for r in $(seq 1 "$rounds"); do
       views1|views4|store4|empty4)
         src=()
         case $k in
-          store4) src=(--kernel-source composite.glsl=scripts/gl_gap/composite_store.glsl) ;;
-          empty4) src=(--kernel-source composite.glsl=scripts/gl_gap/composite_empty.glsl) ;;
+          store4) src=(--kernel-source composite.glsl=lab/scripts/gl_gap/composite_store.glsl) ;;
+          empty4) src=(--kernel-source composite.glsl=lab/scripts/gl_gap/composite_empty.glsl) ;;
         esac
         timeout 180 .bundle/render.sh --matrix gpu --filter "^$id\$" --max-noise 0.5 --max-time 1 \
           --views "${k: -1}" "${src[@]}" --out "$d" > "$d.log" 2>&1

@@ -10,7 +10,7 @@
 # --interleave 4) against the ground truth after the blur, corner and slats,
 # n16 and n32. Leaves kernels2.tgz in $OUT; compare pairs here with
 # `cavity compare --filter`, quality with the quality.json files.
-#   scripts/gpu_kernels2.sh [REPS (10)] [MAX_TIME_S (0.35)]
+#   lab/scripts/gpu_kernels2.sh [REPS (10)] [MAX_TIME_S (0.35)]
 set -uo pipefail
 cd "$(dirname "$0")/.."
 . scripts/gpu_env.sh

@@ -10,7 +10,7 @@
 #     they are and none (the pipeline's images are then undefined; only the
 #     time is read);
 #  3. tiles (CAVITY_TILE, an experiment since reverted: apply
-#     bench/results/2026-12-03_h200_overheads/variants/tile.patch before
+#     lab/2026-12-03_h200_overheads/variants/tile.patch before
 #     building the bundle, else the three settings are one): alchemy_fast n16 b4 full, half
 #     and half with the fused tail, both APIs, with each kernel's own tile
 #     (2x2 in the upsamples), one pixel an invocation everywhere (1x1, as
@@ -19,15 +19,15 @@
 #     be the same;
 #  4. alchemy_fast with its per-sample arithmetic in half floats against
 #     the same kernel in floats, both --exact 0
-#     (bench/results/2026-12-03_h200_overheads/variants/), timed by
+#     (lab/2026-12-03_h200_overheads/variants/), timed by
 #     cavity_render, then its quality against the ground truth after the
 #     blur, corner and slats, n16 and n32.
 # Each step's variants run as separate processes in a shuffled order,
 # ROUNDS rounds, the clocks sampled beside them. Leaves overheads.tgz in $OUT.
 # As run. The variants it reads as NAME.glsl are kept as diffs against
-# c096d07 (bench/results/2026-12-03_h200_overheads/README.md says how to
+# c096d07 (lab/2026-12-03_h200_overheads/README.md says how to
 # rebuild them there first).
-#   scripts/gpu_overheads.sh [ROUNDS (3)] [MAX_TIME_S (0.3)] [STEPS ("probes chain tile fp16 quality")]
+#   lab/scripts/gpu_overheads.sh [ROUNDS (3)] [MAX_TIME_S (0.3)] [STEPS ("probes chain tile fp16 quality")]
 set -uo pipefail
 cd "$(dirname "$0")/.."
 . scripts/gpu_env.sh
@@ -36,7 +36,7 @@ maxt="${2:-0.3}"
 steps=" ${3:-probes chain tile fp16 quality} "
 want() { [[ "$steps" == *" $1 "* ]]; }
 work=$(mktemp -d)
-V=bench/results/2026-12-03_h200_overheads/variants
+V=lab/2026-12-03_h200_overheads/variants
 start=$(date +%s)
 env_of() { case $1 in full) echo CAVITY_FULL_BARRIERS=1 ;; none) echo CAVITY_NO_BARRIERS=1 ;; *) echo CAVITY_X=0 ;; esac; }
 smi_start "$work/clocks.csv"

@@ -7,7 +7,7 @@
 # 1920x1080 (cavity_bench, Vulkan, compute, blur 4). Each step has its own
 # time limit so that what finished still comes back; everything is packed
 # into $OUT/quality_cost.tgz (the device tool returns at most 8 files).
-#   [BUNDLE=DIR] scripts/gpu_quality_cost.sh [QUALITY_S] [BENCH_S]   (BUNDLE: default .bundle)
+#   [BUNDLE=DIR] lab/scripts/gpu_quality_cost.sh [QUALITY_S] [BENCH_S]   (BUNDLE: default .bundle)
 set -uo pipefail
 cd "$(dirname "$0")/.."
 . scripts/gpu_env.sh

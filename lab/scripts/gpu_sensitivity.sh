@@ -6,8 +6,8 @@
 # memory latency and the cost curve is steepest just where 1% lies), and the
 # unchanged build again (A2). Every run is its own process with the clocks
 # sampled beside it. Leaves sensitivity.tgz in $OUT; judge it here with
-# scripts/verdict_table.py.
-#   scripts/gpu_sensitivity.sh [REPS (10)] [MAX_TIME_S (0.35)] [TARGETS ("0.01 0.02")] [FILTER]
+# lab/scripts/verdict_table.py.
+#   lab/scripts/gpu_sensitivity.sh [REPS (10)] [MAX_TIME_S (0.35)] [TARGETS ("0.01 0.02")] [FILTER]
 set -uo pipefail
 cd "$(dirname "$0")/.."
 . scripts/gpu_env.sh
@@ -24,13 +24,13 @@ bench cal2048 --plant ao:2048 --benchmark_repetitions=3
 for t in $targets; do
   p=$(pct "$t")
   points=(--point "512:$OUT/cal512.json" --point "2048:$OUT/cal2048.json")
-  python3 scripts/plant_calibrate.py "$OUT/a1.json" "${points[@]}" --passes ao --target "$t" \
+  python3 lab/scripts/plant_calibrate.py "$OUT/a1.json" "${points[@]}" --passes ao --target "$t" \
     > "$OUT/guess${p}a.json" 2>> "$OUT/calibration.log" || exit 1
   for round in a b; do
     bench "r${p}${round}" --plant-file "$OUT/guess${p}${round}.json" --benchmark_repetitions=3
     points+=(--point-file "$OUT/guess${p}${round}.json:$OUT/r${p}${round}.json")
     next=$([ "$round" = a ] && echo "guess${p}b.json" || echo "plant${p}.json")
-    python3 scripts/plant_calibrate.py "$OUT/a1.json" "${points[@]}" --passes ao --target "$t" \
+    python3 lab/scripts/plant_calibrate.py "$OUT/a1.json" "${points[@]}" --passes ao --target "$t" \
       > "$OUT/$next" 2>> "$OUT/calibration.log" || exit 1
   done
 done

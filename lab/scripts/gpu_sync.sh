@@ -5,8 +5,8 @@
 # barriers and with CAVITY_FULL_BARRIERS=1 (README, "Synchronisation between
 # passes"), alternating narrow, full, narrow, full in separate processes, 5
 # interleaved repetitions each, clocks sampled beside them. Leaves sync.tgz
-# in $OUT; compare with scripts/sync_table.py.
-#   scripts/gpu_sync.sh [REPS (5)] [MAX_TIME_S (0.25)]
+# in $OUT; compare with lab/scripts/sync_table.py.
+#   lab/scripts/gpu_sync.sh [REPS (5)] [MAX_TIME_S (0.25)]
 set -uo pipefail
 cd "$(dirname "$0")/.."
 . scripts/gpu_env.sh

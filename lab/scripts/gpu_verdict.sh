@@ -4,8 +4,8 @@
 # the AO pass (B5), the unchanged build again (A/A), every pass +10% (B10, for
 # the budgets) and the AO pass +2% (B2, if time allows), each run with the
 # clocks sampled beside it. Leaves verdict.tgz in $OUT; judge it here with
-# scripts/verdict_table.py.
-#   scripts/gpu_verdict.sh [REPS (10)] [MAX_TIME_S (0.35)] [FILTER]
+# lab/scripts/verdict_table.py.
+#   lab/scripts/gpu_verdict.sh [REPS (10)] [MAX_TIME_S (0.35)] [FILTER]
 set -uo pipefail
 cd "$(dirname "$0")/.."
 . scripts/gpu_env.sh
@@ -16,7 +16,7 @@ start=$(date +%s)
 elapsed() { echo $(( $(date +%s) - start )); }
 calibrate() {   # out, passes, target, refinement points...
   local out=$1 passes=$2 target=$3; shift 3
-  python3 scripts/plant_calibrate.py "$OUT/a1.json" --point "512:$OUT/cal512.json" --point "2048:$OUT/cal2048.json" \
+  python3 lab/scripts/plant_calibrate.py "$OUT/a1.json" --point "512:$OUT/cal512.json" --point "2048:$OUT/cal2048.json" \
     --passes "$passes" --target "$target" "$@" > "$OUT/$out" 2>> "$OUT/calibration.log"
 }
 bench a1 || exit 1

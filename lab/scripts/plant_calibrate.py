@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Calibrates a planted slowdown for the timing-verdict check.
 
-    python3 scripts/plant_calibrate.py base.json --point 512:cal512.json --point 2048:cal2048.json \\
+    python3 lab/scripts/plant_calibrate.py base.json --point 512:cal512.json --point 2048:cal2048.json \\
         --passes ao --target 0.05 > plant.json
 
 base.json and each cal file are cavity_bench JSON of the same configurations,
@@ -16,11 +16,14 @@ cavity_bench --plant-file; says on stderr what it expects of each.
 """
 import argparse
 import json
+import os
 import re
 import statistics
 import sys
 
-import cavity_json   # scripts/cavity_json.py: plain or gzip (X.json.gz)
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+sys.path.insert(0, os.path.join(ROOT, "scripts", "charts"))
+import cavity_json  # noqa: E402  scripts/charts/cavity_json.py: plain or gzip (X.json.gz)
 
 SUFFIX = re.compile(r"(/[a-z_]+:[^/]*|/manual_time|/real_time)+$")
 

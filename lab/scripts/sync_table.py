@@ -1,17 +1,19 @@
 #!/usr/bin/env python3
 """What the narrow barriers buy: frame medians per configuration with the
 narrow barriers and with CAVITY_FULL_BARRIERS=1, from the folder
-scripts/gpu_sync.sh leaves (narrow_1.json, full_1.json, narrow_2.json,
+lab/scripts/gpu_sync.sh leaves (narrow_1.json, full_1.json, narrow_2.json,
 full_2.json, or each .json.gz). Each round's median beside the pooled one, so the spread
 between two rounds of the same mode shows what a difference must beat.
 Markdown on stdout.
-  scripts/sync_table.py FOLDER"""
+  lab/scripts/sync_table.py FOLDER"""
 import collections
 import os
 import statistics
 import sys
 
-import cavity_json   # scripts/cavity_json.py: plain or gzip (X.json.gz)
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+sys.path.insert(0, os.path.join(ROOT, "scripts", "charts"))
+import cavity_json  # noqa: E402  scripts/charts/cavity_json.py: plain or gzip (X.json.gz)
 
 
 def frames(path):

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
-"""The timing-verdict tables from what scripts/gpu_verdict.sh brought back.
+"""The timing-verdict tables from what lab/scripts/gpu_verdict.sh brought back.
 
-    python3 scripts/verdict_table.py DIR [--cavity build/harness/cavity] > table.md
+    python3 lab/scripts/verdict_table.py DIR [--cavity build/harness/cavity] > table.md
 
 DIR holds a1.json, a2.json (unchanged build) and b<N>.json (a slowdown of
 N percent planted as DIR/plant<N>.json says: b1, b2, b5 in the AO pass, b10
@@ -22,7 +22,9 @@ import subprocess
 import sys
 import tempfile
 
-import cavity_json   # scripts/cavity_json.py: plain or gzip (X.json.gz)
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+sys.path.insert(0, os.path.join(ROOT, "scripts", "charts"))
+import cavity_json  # noqa: E402  scripts/charts/cavity_json.py: plain or gzip (X.json.gz)
 
 SUFFIX = re.compile(r"(/[a-z_]+:[^/]*|/manual_time|/real_time)+$")
 
@@ -114,7 +116,7 @@ def main():
     print(f"\nlargest repetition CV: {100 * worst:.2f}%\n")
 
     print_clock_decisions(d)
-    if not a2:   # scripts/gpu_budget_check.sh: no A/A, no A/B tables
+    if not a2:   # lab/scripts/gpu_budget_check.sh: no A/A, no A/B tables
         return budgets_and_clocks(a, d, runs, passes)
     aa = compare(a.cavity, d, "a1", "a2", a.min_change)
     diffs = [abs(r["new_median_ms"] / r["old_median_ms"] - 1) for r in aa.values()
