@@ -18,7 +18,7 @@
 # `bench` runs every N-th benchmark from the I-th of cavity_bench's list (as
 # --benchmark_filter, regex FILTER first; CAVITY_BENCH_FILTER replaces it)
 # on the test's GPU into OUTROOT/bench-I.json; `bench-merge` joins them into
-# OUTROOT/bench.json for `cavity compare` and scripts/charts.py.
+# OUTROOT/bench.json for `cavity compare` and scripts/charts/charts.py.
 set -uo pipefail
 resource_device() {
     # The device CTest gave this test: 0 without a resource spec.

@@ -30,7 +30,8 @@ import statistics
 import sys
 import tempfile
 
-import cavity_json   # scripts/cavity_json.py: plain or gzip (X.json.gz)
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "charts"))
+import cavity_json  # noqa: E402  scripts/charts/cavity_json.py: plain or gzip (X.json.gz)
 
 
 def from_bench(doc, a):

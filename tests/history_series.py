@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 """Writes a history of cavity_bench JSON files, one per commit, made from a
-real recorded sweep (bench/results/): its context, names, labels and
-counters kept, the times of a few configurations scaled per commit with
-seeded noise and planted steps, the repetitions Google Benchmark would write.
+real recorded sweep (the H200's of 2026-11-30, a copy in tests/data/): its
+context, names, labels and counters kept, the times of a few configurations
+scaled per commit with seeded noise and planted steps, the repetitions Google
+Benchmark would write.
 
     history_series.py SOURCE_DIR OUT_DIR [--commits N]
 
@@ -33,7 +34,7 @@ def commit_sha(i):
 
 
 def main():
-    with gzip.open(os.path.join(SOURCE, "bench/results/2026-11-30_h200_full_sweep.json.gz"), "rt") as f:
+    with gzip.open(os.path.join(SOURCE, "tests/data/2026-11-30_h200_full_sweep.json.gz"), "rt") as f:
         doc = json.load(f)
     base = {b["run_name"].split("/iterations")[0]: b for b in doc["benchmarks"]
             if b["run_name"].split("/iterations")[0] in KEEP}

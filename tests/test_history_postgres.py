@@ -9,8 +9,8 @@ over TCP, and stopped and removed at the end even on failure.
 Real files go into both PostgreSQL and an SQLite file, each with the same
 commit and date: a history of cavity_bench files made from a recorded H200
 sweep with planted steps (tests/history_series.py), the recorded H100 and
-H200 sweeps, two recorded gate.json files and a results.json that
-`cavity run` writes here. Then show --json and alerts --json must be the
+H200 sweeps, two recorded gate.json files (copies in tests/data/) and a
+results.json that `cavity run` writes here. Then show --json and alerts --json must be the
 same from both, and alerts must find the planted steps. Also: the same file
 twice is one run; a kill -9 halfway through an ingest leaves the whole run
 or nothing; a newer schema is refused (exit 2); a wrong password, a server
@@ -112,7 +112,7 @@ def run_files(work):
     p = subprocess.run([sys.executable, os.path.join(SOURCE, "tests/history_series.py"), SOURCE,
                         os.path.join(work, "series"), "--commits", "20"], capture_output=True, text=True, check=True)
     files = [tuple(line.split(" ", 2)) for line in p.stdout.strip().splitlines()]
-    rec = os.path.join(SOURCE, "bench/results")
+    rec = os.path.join(SOURCE, "tests/data")
     files += [("aa11" * 10, "2026-10-01T00:00:00Z", os.path.join(rec, "2026-11-24_h100_full_sweep.json.gz")),
               ("bb22" * 10, "2026-10-02T00:00:00Z", os.path.join(rec, "2026-11-24_h100_first_look_5reps.json.gz")),
               ("cc33" * 10, "2026-10-03T00:00:00Z", os.path.join(rec, "2026-12-02_h200_gate2/gate_ci.json.gz")),
@@ -213,7 +213,7 @@ def main():
         chart = cavity("chart", "--db", server.url(), "--pass", "ao", "--id", "1920x1080", "--out", os.path.join(work, "chart"))
         check(chart.returncode == 0 and os.path.exists(os.path.join(work, "chart/index.html")),
               f"chart from PostgreSQL: {chart.stdout.strip()} {chart.stderr.strip()}")
-        kill_halfway(server, work, os.path.join(SOURCE, "bench/results/2026-11-30_h200_full_sweep.json.gz"))
+        kill_halfway(server, work, os.path.join(SOURCE, "tests/data/2026-11-30_h200_full_sweep.json.gz"))
         errors(server, work, files[0][2])
     finally:
         if server:

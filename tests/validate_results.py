@@ -90,7 +90,7 @@ def check_shader_stats(run):
 
 def check_shader_stats_branch(schema, run):
     """The statistics NVIDIA's driver reported on the H200
-    (bench/results/2026-12-03_h200_shader_stats) validate; spoiled copies do not."""
+    (in the shader-statistics study of 2026-12-03) validate; spoiled copies do not."""
     run = copy.deepcopy(run)
     for p in run["passes"]:
         p["shader_stats"] = [{"executable": "CS", "name": "Register Count", "value": 31},

@@ -33,7 +33,7 @@ std::string summaryMarkdown(const GateRun& run, const std::string& reportUrl = "
 // What index.html is built from: {"gate": toJson(run), "view": {...}}, the
 // view holding what only the page shows (order, labels, verdict notes,
 // images as data: URIs by path, the heat-map scale, charts).
-// chartsDir: a folder of charts (index.json from scripts/charts.py) to embed, if it exists.
+// chartsDir: a folder of charts (index.json from scripts/charts/charts.py) to embed, if it exists.
 nlohmann::json reportData(const GateRun& run, const std::string& chartsDir);
 // harness/report/index.html with report.js and reportData inlined.
 Result<std::string> reportHtml(const GateRun& run, const std::string& chartsDir);

@@ -81,7 +81,7 @@ nlohmann::json shownImages(const GateRun& run) {
     return images;
 }
 
-// Charts from scripts/charts.py, when a benchmark run left them (and their
+// Charts from scripts/charts/charts.py, when a benchmark run left them (and their
 // index.json) next to the report; by name.
 nlohmann::json charts(const std::string& chartsDir) {
     nlohmann::json out = nlohmann::json::array();

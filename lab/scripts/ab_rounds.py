@@ -25,8 +25,9 @@ import subprocess
 import sys
 import tempfile
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts", "charts"))
-import cavity_json   # scripts/charts/cavity_json.py: plain or gzip (X.json.gz)
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+sys.path.insert(0, os.path.join(ROOT, "scripts", "charts"))
+import cavity_json  # noqa: E402  scripts/charts/cavity_json.py: plain or gzip (X.json.gz)
 
 
 def rounds(d):
@@ -59,7 +60,7 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("dir")
     ap.add_argument("--pass", dest="planted", default="ao", help="the planted pass (default ao)")
-    ap.add_argument("--cavity", default=os.path.join(os.path.dirname(__file__), "..", "..", "build", "harness", "cavity"))
+    ap.add_argument("--cavity", default=os.path.join(os.path.dirname(__file__), "..", "build", "harness", "cavity"))
     a = ap.parse_args()
     rs = rounds(a.dir)
     if len(rs) < 3:

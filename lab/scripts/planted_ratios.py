@@ -14,8 +14,9 @@ of RMSE's. Prints a Markdown table.
 import os
 import sys
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts", "charts"))
-import cavity_json   # scripts/charts/cavity_json.py: plain or gzip (X.json.gz)
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+sys.path.insert(0, os.path.join(ROOT, "scripts", "charts"))
+import cavity_json  # noqa: E402  scripts/charts/cavity_json.py: plain or gzip (X.json.gz)
 
 UPPER = {"max_abs": "max_abs", "mean_abs": "mean_abs", "rmse": "rmse", "over_threshold_share": "over_threshold_share",
          "flip_mean": "flip_mean_max", "differing_share": "differing_share_max"}

@@ -11,8 +11,9 @@ import os
 import statistics
 import sys
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts", "charts"))
-import cavity_json   # scripts/charts/cavity_json.py: plain or gzip (X.json.gz)
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+sys.path.insert(0, os.path.join(ROOT, "scripts", "charts"))
+import cavity_json  # noqa: E402  scripts/charts/cavity_json.py: plain or gzip (X.json.gz)
 
 
 def frames(path):

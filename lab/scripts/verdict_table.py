@@ -22,8 +22,9 @@ import subprocess
 import sys
 import tempfile
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts", "charts"))
-import cavity_json   # scripts/charts/cavity_json.py: plain or gzip (X.json.gz)
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+sys.path.insert(0, os.path.join(ROOT, "scripts", "charts"))
+import cavity_json  # noqa: E402  scripts/charts/cavity_json.py: plain or gzip (X.json.gz)
 
 SUFFIX = re.compile(r"(/[a-z_]+:[^/]*|/manual_time|/real_time)+$")
 
@@ -83,8 +84,8 @@ def clocks(path):
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("dir")
-    ap.add_argument("--cavity", default=os.path.join(os.path.dirname(__file__), "..", "..", "build", "harness", "cavity"))
-    ap.add_argument("--budgets", default=os.path.join(os.path.dirname(__file__), "..", "..", "baselines", "budgets.json"))
+    ap.add_argument("--cavity", default=os.path.join(os.path.dirname(__file__), "..", "build", "harness", "cavity"))
+    ap.add_argument("--budgets", default=os.path.join(os.path.dirname(__file__), "..", "baselines", "budgets.json"))
     ap.add_argument("--pattern", default="NVIDIA H200")
     ap.add_argument("--min-change", default="auto", help="cavity compare's --min-change (default auto)")
     a = ap.parse_args()

@@ -1,6 +1,6 @@
 """JSON files that may be gzip-compressed, read the same way as plain ones.
 
-bench/results/ keeps its large benchmark JSON as X.json.gz (gzip -9 -n). A
+Recorded runs keep their large benchmark JSON as X.json.gz (gzip -9 -n). A
 file is decompressed when its name ends in .gz or its first two bytes are
 gzip's magic (1f 8b), so a compressed file under a .json name reads too.
 Where a name given does not exist but the same name plus .gz does (a command
@@ -10,8 +10,8 @@ in a note written before the file was compressed), that one is read.
     doc = cavity_json.load(path)          # OSError, ValueError (bad gzip, bad JSON)
     raw = cavity_json.read_bytes(path)    # the decompressed bytes
 
-Standard library only; used by scripts/charts.py (cavity_charts/) and the
-table scripts beside it.
+Standard library only; used by scripts/charts/charts.py (cavity_charts/) and the
+table scripts beside it (sys.path: this folder).
 """
 import gzip
 import json

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Charts from cavity_bench results (Google Benchmark JSON).
 
-    python3 scripts/charts.py RESULT.json [MORE.json ...] --out DIR [--title TEXT]
+    python3 scripts/charts/charts.py RESULT.json [MORE.json ...] --out DIR [--title TEXT]
 
 Writes DIR/<chart>.png (150 dpi) and DIR/<chart>.svg for every chart the data
 has an axis for, DIR/index.json listing them (name, title, png, svg), and
@@ -35,7 +35,7 @@ and what is wrong; nothing is written); 3 matplotlib is missing.
 
 Subcommand: quality against cost
 
-    python3 scripts/charts.py quality-cost --quality Q.json [Q.json ...] --bench BENCH.json [...] --out DIR
+    python3 scripts/charts/charts.py quality-cost --quality Q.json [Q.json ...] --bench BENCH.json [...] --out DIR
                               [--api vk|gl] [--size WxH] [--note TEXT]
 
 plots each AO kernel x sample count x full/half as one point: the error
@@ -52,7 +52,7 @@ with no benchmark (or the reverse) is listed on stderr and left out.
 
 Subcommand: measured against floor
 
-    python3 scripts/charts.py floor RESULTS.json [MORE.json ...] --out DIR [--filter REGEX]
+    python3 scripts/charts/charts.py floor RESULTS.json [MORE.json ...] --out DIR [--filter REGEX]
 
 reads `cavity run`'s results.json (schema cavity.results/1), or cavity_bench's
 JSON (each `<id>@<pass>` entry's median over the repetitions), and draws, one row
@@ -71,7 +71,7 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))   # cavity_charts/ and cavity_json.py beside this file
 
-# The package's names, for `import charts` (scripts/test_charts.py and anyone else who did).
+# The package's names, for `import charts` (scripts/charts/test_charts.py and anyone else who did).
 from cavity_charts.cli import CHART_NAMES, CHARTS, SUBCOMMANDS, main, parse_args  # noqa: E402,F401
 from cavity_charts.compute_vs_fragment import fragment_ratios  # noqa: E402,F401
 from cavity_charts.floor import main as floor_main  # noqa: E402,F401

@@ -1,16 +1,16 @@
 #!/usr/bin/env python3
 """Medians per configuration and pass, with each pass's floor,
 measured/floor and register count (where the driver reports one), from
-cavity_bench JSON files with repetitions (what scripts/gpu_floor.sh
+cavity_bench JSON files with repetitions (what a floor run
 leaves), and each configuration's pipeline (every pass but the G-buffer:
 the median of the repetitions' sums against the sum of the floors, when
 every one of those passes has a floor). Markdown on stdout.
-  scripts/floor_table.py BENCH.json[.gz] [BENCH.json[.gz] ...]"""
+  scripts/charts/floor_table.py BENCH.json[.gz] [BENCH.json[.gz] ...]"""
 import collections
 import statistics
 import sys
 
-import cavity_json   # scripts/cavity_json.py: plain or gzip (X.json.gz)
+import cavity_json   # scripts/charts/cavity_json.py: plain or gzip (X.json.gz)
 
 
 def main(paths):

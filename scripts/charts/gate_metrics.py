@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Per pipeline and API, the worst value of every image metric in gate runs.
 
-    python3 scripts/gate_metrics.py out/gate/gate.json [more gate.json ...] > metrics.md
+    python3 scripts/charts/gate_metrics.py out/gate/gate.json [more gate.json ...] > metrics.md
 
 What a device class's tolerances in baselines/manifest.json should be set
 from: for each pipeline (kernel, full|half) and API, over every configuration,
@@ -12,7 +12,7 @@ import math
 import sys
 from collections import defaultdict
 
-import cavity_json   # scripts/cavity_json.py: plain or gzip (X.json.gz)
+import cavity_json   # scripts/charts/cavity_json.py: plain or gzip (X.json.gz)
 
 WORST = {"max_abs": max, "mean_abs": max, "rmse": max, "over_threshold_share": max, "psnr": min, "ssim": min,
          "flip_mean": max}

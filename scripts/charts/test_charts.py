@@ -1,14 +1,16 @@
 #!/usr/bin/env python3
-"""Tests for scripts/charts.py and its package, scripts/cavity_charts/.
+"""Tests for scripts/charts/charts.py and its package, scripts/charts/cavity_charts/,
+and the table scripts beside them (floor_table.py).
 
-    python3 -m unittest scripts/test_charts.py
-    python3 scripts/test_charts.py
+    python3 -m unittest scripts/charts/test_charts.py
+    python3 scripts/charts/test_charts.py
 
 Drawing needs matplotlib (Debian's python3-matplotlib); charts.py re-runs
 itself under /usr/bin/python3 when the python3 on PATH lacks it, so these
-tests run from either. Every chart kind is drawn from committed results in
-bench/results/ (stored gzip, X.json.gz) and from the small synthetic files in
-bench/testdata/.
+tests run from either. Every chart kind is drawn from the small synthetic
+files in testdata/ and from copies of real H100 and H200 runs kept there too
+(stored gzip, X.json.gz; the large ones cut to the configurations the tests
+use): the folder needs nothing outside it.
 """
 
 import gzip
@@ -21,14 +23,15 @@ import tempfile
 import unittest
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-ROOT = os.path.dirname(HERE)
+TESTDATA = os.path.join(HERE, "testdata")
 CHARTS = os.path.join(HERE, "charts.py")
-SAMPLE = os.path.join(ROOT, "bench", "testdata", "sample_benchmark.json")
-SAMPLE_OLD = os.path.join(ROOT, "bench", "testdata", "sample_benchmark_old.json")
-RESULTS = os.path.join(ROOT, "bench", "results")
-SWEEPS = [os.path.join(RESULTS, n) for n in ("2026-11-24_h100_full_sweep.json.gz", "2026-11-30_h200_full_sweep.json.gz")]
-QUALITY_COST = os.path.join(RESULTS, "2026-12-02_h200_quality_cost")
-FLOOR_LIFT = os.path.join(RESULTS, "2026-12-02_h200_floor3", "lift.json.gz")
+SAMPLE = os.path.join(TESTDATA, "sample_benchmark.json")
+SAMPLE_OLD = os.path.join(TESTDATA, "sample_benchmark_old.json")
+SWEEPS = [os.path.join(TESTDATA, n) for n in ("2026-11-24_h100_full_sweep.json.gz", "2026-11-30_h200_full_sweep.json.gz")]
+QUALITY_COST = os.path.join(TESTDATA, "2026-12-02_h200_quality_cost")
+FLOOR3 = os.path.join(TESTDATA, "2026-12-02_h200_floor3")
+FLOOR_LIFT = os.path.join(FLOOR3, "lift.json.gz")
+SHADER_STATS = os.path.join(TESTDATA, "2026-12-03_h200_shader_stats")
 SINGLE_FILE_CHARTS = ("time_vs_samples", "time_vs_blur", "full_vs_half", "time_vs_megapixels",
                       "gl_vs_vk", "compute_vs_fragment", "passes")
 
@@ -239,7 +242,7 @@ class Command(unittest.TestCase):
 
 
 class Package(unittest.TestCase):
-    """charts.py is the command line of scripts/cavity_charts/: --help names every chart and
+    """charts.py is the command line of cavity_charts/: --help names every chart and
     subcommand, and every chart kind draws from committed (gzip) results."""
 
     def check_index(self, out, names):
@@ -330,25 +333,20 @@ class Package(unittest.TestCase):
             self.assertFalse(os.path.exists(out))
 
     def test_table_scripts_read_gzip(self):
-        floor3 = os.path.join(RESULTS, "2026-12-02_h200_floor3")
-        r = subprocess.run([sys.executable, os.path.join(HERE, "floor_table.py"), os.path.join(floor3, "fragment.json.gz")],
+        r = subprocess.run([sys.executable, os.path.join(HERE, "floor_table.py"), os.path.join(FLOOR3, "fragment.json.gz")],
                            capture_output=True, text=True, timeout=120)
         self.assertEqual(r.returncode, 0, r.stderr)
         self.assertIn("| measured / floor | registers |", r.stdout)
         self.assertGreater(len(r.stdout.splitlines()), 10)
-        # The H200's register counts (bench/results/2026-12-03_h200_shader_stats):
+        # The H200's register counts (testdata/2026-12-03_h200_shader_stats):
         # alchemy_fast's AO pass takes 31, as the driver reported there.
-        stats = os.path.join(RESULTS, "2026-12-03_h200_shader_stats", "regs.json.gz")
+        stats = os.path.join(SHADER_STATS, "regs.json.gz")
         r = subprocess.run([sys.executable, os.path.join(HERE, "floor_table.py"), stats],
                            capture_output=True, text=True, timeout=120)
         self.assertEqual(r.returncode, 0, r.stderr)
         ao = [l for l in r.stdout.splitlines() if l.startswith("| corner/alchemy_fast/n16/b4/full/1920x1080/vk/compute | ao |")]
         self.assertEqual(len(ao), 1, r.stdout)
         self.assertTrue(ao[0].endswith("| 31 |"), ao[0])
-        r = subprocess.run([sys.executable, os.path.join(HERE, "sync_table.py"), os.path.join(RESULTS, "2026-12-02_h200_sync")],
-                           capture_output=True, text=True, timeout=120)
-        self.assertEqual(r.returncode, 0, r.stderr)
-        self.assertGreater(len(r.stdout.splitlines()), 3)
 
 
 def bench_doc(times, software=False, clock="gpu-timestamp", clocks=None):
@@ -584,7 +582,7 @@ class Passes(unittest.TestCase):
 
     def test_committed_sweep_with_repetitions(self):
         with tempfile.TemporaryDirectory() as d:
-            r = run_charts(os.path.join(RESULTS, "2026-12-02_h200_floor3", "compute.json.gz"), "--out", d)
+            r = run_charts(os.path.join(FLOOR3, "compute.json.gz"), "--out", d)
             self.assertEqual(r.returncode, 0, r.stderr)
             entry = index_of(d)["passes"]
             kernels = {row["id"].split("/")[1] for row in entry["rows"]}
@@ -692,7 +690,7 @@ class QualityCost(unittest.TestCase):
     def test_committed_results_front_and_labels(self):
         """On the committed H200 data: no SDF kernel on the front, every fast kernel the data has is drawn,
         and no two labels overlap."""
-        floor3 = os.path.join(RESULTS, "2026-12-02_h200_floor3")
+        floor3 = FLOOR3
         sets = {"sdf": (["quality_full/quality.json", "quality_half/quality.json"], QUALITY_COST,
                         [f"bench_{i}.json.gz" for i in range(3)]),
                 "fast": (["quality_corner_b4/quality.json", "quality_slats_b4/quality.json"], floor3,
@@ -846,7 +844,7 @@ class Floor(unittest.TestCase):
 
 
 class FloorTable(unittest.TestCase):
-    """scripts/floor_table.py: each pass's median against its floor, and the pipeline's: the median of
+    """floor_table.py: each pass's median against its floor, and the pipeline's: the median of
     the repetitions' sums (the G-buffer not counted) against the sum of the floors."""
 
     def test_pipeline_row(self):

@@ -1,8 +1,8 @@
 """Charts from Cavity's benchmark results, drawn with matplotlib; the command
-line is scripts/charts.py (cli.py here).
+line is scripts/charts/charts.py (cli.py here).
 
     inputs.py        reading cavity_bench (Google Benchmark) JSON, quality.json and
-                     results.json, plain or gzip (scripts/cavity_json.py)
+                     results.json, plain or gzip (scripts/charts/cavity_json.py)
     labels.py        how devices, slices, series and files are written on a chart
     plotting.py      pick_slice (the slice a chart draws) and Canvas (matplotlib set
                      up, title block, legend, log axes, PNG + SVG written and listed)

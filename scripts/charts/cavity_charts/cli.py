@@ -1,4 +1,4 @@
-"""The command line of scripts/charts.py: the main command (every time chart
+"""The command line of scripts/charts/charts.py: the main command (every time chart
 from cavity_bench JSON or results.json) and the subcommands quality-cost and floor."""
 
 import argparse

@@ -2,7 +2,7 @@
 and `cavity run`'s results.json: load_results for the time charts and
 quality-cost's cost, load_floor_rows (bench_floor_rows) for floor, and
 `cavity quality`'s quality.json (load_quality). Each file may be gzip
-(X.json.gz, as bench/results/ keeps them): see scripts/cavity_json.py.
+(X.json.gz, as recorded runs are kept): see scripts/charts/cavity_json.py.
 
 Every loader raises BadInput with the one line printed (naming the file)
 when a file is not usable.
