@@ -9,8 +9,8 @@ Benchmark would write.
 
 Prints one line per file: COMMIT DATE PATH. The planted steps (the tests
 check that alerts finds them, at the right commit, and nothing else):
-  corner/alchemy/n16/b4/full/1920x1080/gl/compute  pass ao    +10% from commit 12
-  corner/alchemy/n16/b4/full/1920x1080/vk/compute  pass blur  -6% from commit 7
+  corner/alchemy/n16/b4/full/1920x1080/gl/compute  pass ao    a tenth slower from commit 12
+  corner/alchemy/n16/b4/full/1920x1080/vk/compute  pass blur  six hundredths faster from commit 7
 """
 import copy
 import gzip

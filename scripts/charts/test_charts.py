@@ -399,8 +399,8 @@ def quartiles(v):
     return q(0.25), q(0.75)
 
 
-# A CPU-renderer sweep like the one that misled: OpenGL at n16 once took 146 ms among repetitions of
-# about 60, so its median and its spread are wide, and full/half and gl/vk drawn from it are noise.
+# A CPU-renderer sweep like the one that misled: one OpenGL repetition at n16 took over twice as
+# long as the others, so its median and its spread are wide, and full/half and gl/vk drawn from it are noise.
 NOISY = {
     "corner/alchemy/n4/b4/full/320x180/gl/compute": [52, 50, 55],
     "corner/alchemy/n16/b4/full/320x180/gl/compute": [60, 146, 95],
@@ -649,8 +649,8 @@ class QualityCost(unittest.TestCase):
             self.assertAlmostEqual(pts[("alchemy", "full")]["mae"], 0.07)      # mean over the two scenes
             self.assertAlmostEqual(pts[("alchemy", "full")]["ms"], 0.20)       # median of 0.18, 0.20, 0.24
             self.assertAlmostEqual(pts[("hemisphere", "full")]["ms"], 0.12)    # ao + box
-            # half alchemy (0.05 ms, 0.09) and full alchemy (0.20, 0.07) are on the front; the
-            # hemisphere (0.12 ms, 0.30) is beaten by half alchemy, ssdo (0.5, 0.05) is the most exact.
+            # Half and full alchemy are on the front (each the cheapest at its error); the hemisphere
+            # is beaten by half alchemy (cheaper and more exact); ssdo, the most exact, is on it too.
             self.assertEqual({k for k, p in pts.items() if p["pareto"]},
                              {("alchemy", "half"), ("alchemy", "full"), ("ssdo", "full")})
 

@@ -1,5 +1,5 @@
-"""gl_vs_vk: OpenGL time against Vulkan time for the same configuration (log-log, the
-±10% band around y = x), each point with both spreads; a difference within them is drawn hollow.
+"""gl_vs_vk: OpenGL time against Vulkan time for the same configuration (log-log, a
+band of a tenth either side of y = x), each point with both spreads; a difference within them is drawn hollow.
 
 draw(c) draws it on a plotting.Canvas (or says on stderr why it is skipped).
 """
