@@ -114,7 +114,12 @@ const cavity::flags::CommandSpec& benchSpec() {
 
 // Takes Cavity's own flags out of argv; --benchmark_* and --v= go to Google Benchmark.
 Result<cavity::bench::Options> parse(int argc, char** argv, std::vector<char*>& rest, bool& help) {
-    using namespace cavity::flags;
+    using cavity::flags::addKernelSource;
+    using cavity::flags::helpText;
+    using cavity::flags::ParsedFlags;
+    using cavity::flags::parseFlags;
+    using cavity::flags::parseInt;
+    using cavity::flags::parseNumber;
     cavity::bench::Options o;
     rest = {argv[0]};
     std::vector<std::string> own;

@@ -1,7 +1,7 @@
 // Registration and the body of every Cavity benchmark.
 #pragma once
 
-#include "harness.h"
+#include "imports.h"
 #include "pipeline/pipeline.h"
 #include "result.h"
 #include "measure/timing.h"
@@ -13,7 +13,6 @@
 
 namespace cavity::bench {
 
-using namespace cavity::harness;
 
 struct Options {
     std::string backend = "all";   // gl, vk, all

@@ -1,11 +1,10 @@
-#include "harness.h"
+#include "imports.h"
 #include "per_pass_reporter.h"
 
 #include <string>
 
 namespace cavity::bench {
 
-using namespace cavity::harness;
 
 namespace {
 

@@ -4,7 +4,7 @@
 #pragma once
 
 #include "flags.h"
-#include "harness.h"
+#include "imports.h"
 #include "quality_command.h"
 #include "shard_sources.h"
 #include "values.h"
@@ -14,7 +14,6 @@
 
 namespace cavity::cli {
 
-using namespace cavity::harness;
 
 using flags::addKernelSource;
 using flags::CommandSpec;

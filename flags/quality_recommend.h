@@ -5,7 +5,7 @@
 // scene's distance function) and the most accurate of them within a budget.
 #pragma once
 
-#include "harness.h"
+#include "imports.h"
 #include "measure/quality.h"
 #include "result.h"
 
@@ -19,7 +19,6 @@
 
 namespace cavity::flags {
 
-using namespace cavity::harness;
 
 struct Candidate {
     std::string kernel;

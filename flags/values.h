@@ -3,7 +3,7 @@
 // what is allowed (the flags themselves are declared and parsed in flags.h).
 #pragma once
 
-#include "harness.h"
+#include "imports.h"
 #include "pipeline/pipeline.h"
 #include "flags.h"
 #include "result.h"
@@ -16,7 +16,6 @@
 
 namespace cavity::flags {
 
-using namespace cavity::harness;
 
 Result<int> parseInt(const std::string& flag, const std::string& text, int lo, int hi);
 // A finite number in [lo, hi]; "nan", "inf", "1e999" and trailing text fail.

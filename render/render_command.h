@@ -4,7 +4,7 @@
 //   cavity_render quality [the flags of cavity quality]
 #pragma once
 
-#include "harness.h"
+#include "imports.h"
 #include "render/rendering.h"
 #include "store/store.h"
 
@@ -15,7 +15,6 @@
 
 namespace cavity::render {
 
-using namespace cavity::harness;
 
 struct RenderCommand {
     bool help = false;                    // --help given: print helpText, exit 0, nothing else read

@@ -1,4 +1,4 @@
-#include "harness.h"
+#include "harness_names.h"
 #include "analytic_scenes.h"
 
 #include "core/camera.h"

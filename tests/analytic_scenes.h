@@ -18,7 +18,7 @@
 //     this differ, no screen-space kernel can close the gap.
 #pragma once
 
-#include "harness.h"
+#include "harness_names.h"
 #include "core/config.h"
 
 #include <functional>

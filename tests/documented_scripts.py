@@ -44,7 +44,7 @@ RUN_BY = {
     "scripts/charts/gate_metrics.py": ["scripts/charts/test_charts.py"],
 }
 
-PATH_REF = re.compile(r"\bscripts/[\w./-]*[\w-]")
+PATH_REF = re.compile(r"\bscripts/[\w./-]*[\w-](?![\w*])")   # not a glob (scripts/gpu_*.sh)
 BARE_REF = re.compile(r"(?<![\w/.-])([\w-]+\.(?:sh|py))\b")
 
 

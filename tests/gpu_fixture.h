@@ -9,7 +9,7 @@
 // Vulkan validation layer); the tests that need them then skip.
 #pragma once
 
-#include "harness.h"
+#include "harness_names.h"
 #include "backend.h"
 #include "core/image.h"
 

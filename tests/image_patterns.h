@@ -2,7 +2,7 @@
 // and samples for test_mann_whitney.
 #pragma once
 
-#include "harness.h"
+#include "harness_names.h"
 #include "core/image.h"
 
 #include <cmath>

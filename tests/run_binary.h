@@ -2,7 +2,7 @@
 // what it printed: the one helper the command-line tests share.
 #pragma once
 
-#include "harness.h"
+#include "harness_names.h"
 #include <string>
 
 namespace cavity::test {

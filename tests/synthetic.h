@@ -2,7 +2,7 @@
 // sees of planes facing it, at chosen depths.
 #pragma once
 
-#include "harness.h"
+#include "harness_names.h"
 #include "core/camera.h"
 #include "core/image.h"
 

@@ -1,7 +1,7 @@
 // LDR-FLIP (flip.h).
 // Expected values come from the definitions, by arithmetic stated next to
 // them, never from the code under test. CPU only.
-#include "harness.h"
+#include "harness_names.h"
 #include "images/flip.h"
 #include "images/metrics.h"
 #include "image_patterns.h"

@@ -1,7 +1,7 @@
 // The Mann-Whitney U test (mann_whitney.h).
 // Expected values come from the definitions, by arithmetic stated next to
 // them, never from the code under test. CPU only.
-#include "harness.h"
+#include "harness_names.h"
 #include "stats/mann_whitney.h"
 #include "image_patterns.h"
 

@@ -1,7 +1,7 @@
 // Image metrics (metrics.h): the comparison numbers and the heat-map.
 // Expected values come from the definitions, by arithmetic stated next to
 // them, never from the code under test. CPU only.
-#include "harness.h"
+#include "harness_names.h"
 #include "images/metrics.h"
 #include "image_patterns.h"
 

@@ -1,7 +1,7 @@
 // Kernel parameters: each name declared once (kernels/params.cpp), every
 // kernel referring to that declaration, and one parse that makes an integer
 // parameter an integer.
-#include "harness.h"
+#include "harness_names.h"
 #include "core/config.h"
 #include "kernel.h"
 #include "pipeline/pipeline.h"

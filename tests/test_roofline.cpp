@@ -2,7 +2,7 @@
 // worked by hand for the H200's table entry, where each figure comes from,
 // the cases with no floor, every declaration's cost being complete, and
 // docs/roofline.md's table being what the code computes.
-#include "harness.h"
+#include "harness_names.h"
 #include "core/config.h"
 #include "pipeline/config_id.h"
 #include "pipeline/pipeline.h"

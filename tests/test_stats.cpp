@@ -1,5 +1,5 @@
 // Statistics and configuration ids: plain functions, no GPU.
-#include "harness.h"
+#include "harness_names.h"
 #include "core/config.h"
 #include "pipeline/config_id.h"
 #include "stats/hodges_lehmann.h"

@@ -1,7 +1,7 @@
 // summary.md stays short whatever fails (report/summary.cpp): at most
 // kSummaryLines lines, failures grouped by kernel and check, worst first,
 // OpenGL and Vulkan counted once when both fail the same way.
-#include "harness.h"
+#include "harness_names.h"
 #include "report/gate_report.h"
 
 #include <gtest/gtest.h>

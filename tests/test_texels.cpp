@@ -2,7 +2,7 @@
 // _Float16 conversion (libgcc's, an independent implementation), on every
 // rounding boundary of every normal half and on every float that becomes a
 // half denormal; UNORM8 as GPUs store it.
-#include "harness.h"
+#include "harness_names.h"
 #include "texels/texels.h"
 
 #include <gtest/gtest.h>

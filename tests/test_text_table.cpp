@@ -1,6 +1,6 @@
 // The text tables of run, quality and --help (harness/core/text_table.h): columns
 // as wide as their widest cell, whatever the cells are.
-#include "harness.h"
+#include "harness_names.h"
 #include "core/text_table.h"
 
 #include <gtest/gtest.h>

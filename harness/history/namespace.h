@@ -1,12 +1,18 @@
-// history/ uses these folders below it (tests/layering.py keeps them below);
-// their names are visible inside cavity::history without qualification.
-// compare/ and gate/ are named where used: their readers of the run files.
+// What history/ uses from the folders below it, named one by one: a name here
+// is visible inside cavity::history without qualification. Every other name
+// from below is written qualified (core::, measure::). The folders are those
+// its CMake target links (tests/layering.py holds the includes to the links).
 #pragma once
 
-namespace cavity::core {}
-namespace cavity::stats {}
+#include "core/digest.h"
+#include "core/json_file.h"
+#include "stats/stats.h"
 
 namespace cavity::history {
-using namespace cavity::core;
-using namespace cavity::stats;
+using core::digestText;
+using core::fnv1a64;
+using core::nullNonFiniteTokens;
+using core::readJsonFile;
+using core::writeFileAtomically;
+using stats::percentile;
 }  // namespace cavity::history

@@ -1,9 +1,11 @@
-// reference/ uses core/ (the image type); its names are visible inside
-// cavity::reference without qualification.
+// What reference/ uses from the folders below it, named one by one: a name here
+// is visible inside cavity::reference without qualification. Every other name
+// from below is written qualified (core::, measure::). The folders are those
+// its CMake target links (tests/layering.py holds the includes to the links).
 #pragma once
 
-namespace cavity::core {}
+#include "core/image.h"
 
 namespace cavity::reference {
-using namespace cavity::core;
+using core::HostImage;
 }  // namespace cavity::reference

@@ -1,9 +1,8 @@
-// stats/ uses these folders below it (tests/layering.py keeps them below);
-// their names are visible inside cavity::stats without qualification.
+// What stats/ uses from the folders below it, named one by one: a name here
+// is visible inside cavity::stats without qualification. Every other name
+// from below is written qualified (core::, measure::). The folders are those
+// its CMake target links (tests/layering.py holds the includes to the links).
 #pragma once
 
-namespace cavity::core {}
-
 namespace cavity::stats {
-using namespace cavity::core;
 }  // namespace cavity::stats

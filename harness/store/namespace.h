@@ -1,11 +1,15 @@
-// store/ uses these folders below it (tests/layering.py keeps them below);
-// their names are visible inside cavity::store without qualification.
+// What store/ uses from the folders below it, named one by one: a name here
+// is visible inside cavity::store without qualification. Every other name
+// from below is written qualified (core::, measure::). The folders are those
+// its CMake target links (tests/layering.py holds the includes to the links).
 #pragma once
 
-namespace cavity::core {}
-namespace cavity::render {}
+#include "core/digest.h"
+#include "core/image.h"
+#include "core/json_file.h"
 
 namespace cavity::store {
-using namespace cavity::core;
-using namespace cavity::render;
+using core::HostImage;
+using core::imageDigest;
+using core::writeFileAtomically;
 }  // namespace cavity::store

@@ -1,6 +1,6 @@
-// The front ends (cli/, render/, bench/, tests/) use every harness folder:
-// `using namespace cavity::harness;` inside their own namespace makes the
-// folders' names visible there without qualification.
+// The tests use every harness folder: `using namespace cavity::harness;`
+// makes the folders' names visible in a test without qualification. The
+// product's folders name what they use instead (namespace.h, imports.h).
 #pragma once
 
 namespace cavity::core {}
