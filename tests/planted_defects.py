@@ -9,7 +9,7 @@ instead of silently passing the GPU store run that reads the same list.
 
     planted_defects.py SOURCE_DIR BUILD_DIR
 
-Each defect is judged on corner's Vulkan compute configurations it touches
+Each defect is judged on the Vulkan compute configurations it touches
 (both APIs compile the same GLSL; the gate's own tests hold GL to Vulkan).
 """
 import json
@@ -33,7 +33,7 @@ def main():
         for name, file, touches in rows:
             out = os.path.join(tmp, "gate_" + name)
             cmd = [cavity, "gate", "--matrix", "ci",
-                   "--filter", f"^corner/(?=.*/vk/compute$).*{touches}",
+                   "--filter", f"^(?=.*/vk/compute$).*{touches}",
                    "--kernel-source", f"{file}={os.path.join(defects, name + '.glsl')}",
                    "--out", out, "--quiet"]
             g = subprocess.run(cmd, capture_output=True, text=True, timeout=900)
