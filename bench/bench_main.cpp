@@ -12,6 +12,7 @@
 // through cli/flags.h, as cavity's are; --benchmark_* and --v= go to
 // Google Benchmark untouched.
 #include "bench_runner.h"
+#include "package/package.h"
 #include "console_reporter.h"
 #include "per_pass_reporter.h"
 
@@ -186,6 +187,12 @@ std::string benchmarkFlag(const std::vector<char*>& args, const char* name) {
 }  // namespace
 
 int main(int argc, char** argv) {
+    // Kernel packages first (--kernels DIR, CAVITY_KERNELS): the sweep and the
+    // flags then hold their kernels and parameters.
+    if (const auto loaded = cavity::kernels::loadPackagesFromCommandLine(argc, argv); !loaded) {
+        std::cerr << "cavity_bench: " << loaded.error().message << "\n";
+        return 2;
+    }
     std::vector<char*> rest;
     bool help = false;
     auto options = parse(argc, argv, rest, help);

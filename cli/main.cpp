@@ -4,6 +4,7 @@
 // object does not match its digest. `cavity history` uses 5 for a database
 // server that cannot be reached or refuses the connection.
 #include "cli.h"
+#include "package/package.h"
 
 #include <iostream>
 
@@ -23,6 +24,9 @@ constexpr const char* kUsage =
     "  compare    two runs (results.json or cavity_bench JSON) pass by pass: change, interval, verdict\n"
     "  quality    each AO kernel's mean absolute error against the ray-traced ground truth\n"
     "  history    runs kept in a database over commits: ingest, show, chart, alerts (change points)\n"
+    "  kernels    the kernels: list, show NAME, check DIR (a kernel package on both APIs and stages)\n"
+    "--kernels DIR (any command, repeatable) loads the kernel packages in DIR, as CAVITY_KERNELS does\n"
+    "(folders separated by ':'); a package's kernel then works as a built-in one.\n"
     "`cavity COMMAND --help` lists a command's flags. `cavity` alone prints this and exits 2;\n"
     "`cavity --help` prints it and exits 0.\n"
     "\n"
@@ -35,6 +39,13 @@ constexpr const char* kUsage =
 
 int main(int argc, char** argv) {
     std::vector<std::string> args(argv + 1, argv + argc);
+    // Kernel packages first (--kernels DIR, anywhere on the line, and
+    // CAVITY_KERNELS): every command then sees their kernels and parameters
+    // as the built-ins'.
+    if (const auto loaded = cavity::kernels::loadPackagesFromCommandLine(args); !loaded) {
+        std::cerr << "cavity: " << loaded.error().message << "\n";
+        return 2;
+    }
     if (args.empty() || args[0] == "--help" || args[0] == "-h") {
         std::cout << kUsage;
         return args.empty() ? 2 : 0;
@@ -49,8 +60,9 @@ int main(int argc, char** argv) {
     if (command == "ab") return cavity::cli::abCommand(args);
     if (command == "quality") return cavity::cli::qualityCommand(args);
     if (command == "history") return cavity::cli::historyCommand(args);
+    if (command == "kernels") return cavity::cli::kernelsCommand(args);
     // One line, as every usage error (README "Exit codes").
-    const std::string near = cavity::cli::nearest(command, {"run", "gate", "baselines", "compare", "quality", "store", "ab", "history"});
+    const std::string near = cavity::cli::nearest(command, {"run", "gate", "baselines", "compare", "quality", "store", "ab", "history", "kernels"});
     std::cerr << "cavity: unknown command '" << command << "'" << (near.empty() ? "" : " (did you mean " + near + "?)")
               << "; see cavity --help\n";
     return 2;

@@ -3,6 +3,7 @@
 // preamble is generated from the declaration, so the GLSL and the C++ side can
 // never disagree on a binding number or a uniform offset.
 #include "kernel.h"
+#include "package/package.h"
 
 #include <cmath>
 #include <cstdio>
@@ -19,7 +20,29 @@ const std::map<std::string, std::string>& embeddedSources();   // kernel_sources
 const std::string* sourceFile(const std::string& name) {
     const auto& files = embeddedSources();
     auto it = files.find(name);
-    return it == files.end() ? nullptr : &it->second;
+    if (it != files.end()) return &it->second;
+    const PackageSource* p = packageSource(name);
+    return p ? &p->text : nullptr;
+}
+
+// How diagnostics name a source: its path in the repository, or for a file a
+// package brought from disk, its path there.
+std::string sourceLabel(const std::string& name) {
+    if (embeddedSources().count(name)) return "kernels/" + name;
+    const PackageSource* p = packageSource(name);
+    return p ? p->label : "kernels/" + name;
+}
+
+// An include's key: a path relative to the including file's own folder when
+// that file exists (a package's own includes), else relative to kernels/
+// (the shared includes, "include/common.glsl").
+std::string includeKey(const std::string& from, const std::string& path) {
+    const auto slash = from.rfind('/');
+    if (slash != std::string::npos) {
+        const std::string local = from.substr(0, slash + 1) + path;
+        if (sourceFile(local)) return local;
+    }
+    return path;
 }
 
 const KernelDecl* find(const std::string& name) {
@@ -132,15 +155,16 @@ Status expand(const std::string& name, const std::map<std::string, std::string>&
     const std::string* text = nullptr;
     if (auto it = overrides.find(name); it != overrides.end()) text = &it->second;
     else text = sourceFile(name);
-    if (!text) return internal("kernel source 'kernels/" + name + "' is not embedded (kernels/CMakeLists.txt)");
+    if (!text) return badInput(sourceLabel(name) + ": no such kernel source (an #include of a file that is neither "
+                                 "beside its includer nor under kernels/)");
     const size_t index = files.size();
     // A replacement read from a file names it on a first line of its own
     // (kReplacedFrom), so that a compile error points at the file given.
-    std::string label = "kernels/" + name, body = *text;
+    std::string label = sourceLabel(name), body = *text;
     if (body.rfind(kReplacedFrom, 0) == 0) {
         const size_t eol = body.find('\n');
         label = body.substr(std::strlen(kReplacedFrom), eol == std::string::npos ? std::string::npos : eol - std::strlen(kReplacedFrom)) +
-                " (replacing kernels/" + name + ")";
+                " (replacing " + sourceLabel(name) + ")";
         body = eol == std::string::npos ? std::string() : body.substr(eol + 1);
     }
     files.push_back(label);
@@ -154,8 +178,8 @@ Status expand(const std::string& name, const std::map<std::string, std::string>&
         if (first != std::string::npos && line.compare(first, 8, "#include") == 0) {
             const auto q0 = line.find('"'), q1 = line.rfind('"');
             if (q0 == std::string::npos || q1 <= q0)
-                return internal("kernels/" + name + ":" + std::to_string(lineNo) + ": malformed #include");
-            CAVITY_TRY(expand(line.substr(q0 + 1, q1 - q0 - 1), overrides, seen, files, out));
+                return badInput(label + ":" + std::to_string(lineNo) + ": malformed #include");
+            CAVITY_TRY(expand(includeKey(name, line.substr(q0 + 1, q1 - q0 - 1)), overrides, seen, files, out));
             out += "#line " + std::to_string(lineNo + 1) + " " + std::to_string(index) + "\n";
             continue;
         }

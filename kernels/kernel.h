@@ -177,6 +177,12 @@ struct KernelDecl {
     // meet at barrier() (the separable blur's tile); the kernel must then
     // write nothing for a pixel outside frame.size. Compute stage only.
     bool wholeWorkgroups = false;
+    // What the analytic tests hold this kernel to where it differs from the
+    // family's bands (a package's [expectations], docs/packages.md): keys
+    // "open_worst", "open_mean", "crease" (numbers as text), "narrow_gap"
+    // ("layer" or "seed"). Empty for the C++ declarations, which
+    // tests/test_analytic.cpp names itself.
+    std::map<std::string, std::string> expectations;
 };
 
 // The fixed uniform block every kernel sees at binding 0 (std140).

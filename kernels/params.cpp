@@ -4,6 +4,8 @@
 // note (registry.cpp, decl_*.cpp).
 #include "params.h"
 
+#include "kernel.h"
+
 #include <charconv>
 #include <cmath>
 #include <limits>
@@ -153,9 +155,38 @@ bool isIntegral(ParamType t) { return t != ParamType::Float; }
 
 }  // namespace
 
-const std::vector<ParamDecl>& paramDecls() {
-    static const std::vector<ParamDecl> decls = declare();
+namespace {
+
+std::deque<ParamDecl>& storage() {
+    static std::deque<ParamDecl> decls = [] {
+        const auto built = declare();
+        return std::deque<ParamDecl>(built.begin(), built.end());
+    }();
     return decls;
+}
+
+}  // namespace
+
+// True on the thread that is building the registry (registry.cpp).
+bool& registryBuilding() {
+    thread_local bool building = false;
+    return building;
+}
+
+// The built-in packages declare parameters as the registry is built, so the
+// list is complete only after it: anyone else asking builds it first.
+const std::deque<ParamDecl>& paramDecls() {
+    if (!registryBuilding()) (void)all();
+    return storage();
+}
+
+void forgetParamsAfter(size_t count) {
+    while (storage().size() > count) storage().pop_back();
+}
+
+const ParamDecl* declareParam(ParamDecl p) {
+    storage().push_back(std::move(p));
+    return &storage().back();
 }
 
 const ParamDecl* findParam(const std::string& name) {

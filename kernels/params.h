@@ -12,6 +12,7 @@
 
 #include "result.h"
 
+#include <deque>
 #include <map>
 #include <string>
 #include <vector>
@@ -32,8 +33,14 @@ struct ParamDecl {
 };
 
 // Every kernel parameter the harness knows, one declaration per name, in the
-// order --help lists them.
-const std::vector<ParamDecl>& paramDecls();
+// order --help lists them: the built-in ones, then those kernel packages
+// declared (a deque, so that a declaration's address never moves).
+const std::deque<ParamDecl>& paramDecls();
+// Adds a package's parameter; its name must be new (the caller checks).
+const ParamDecl* declareParam(ParamDecl p);
+// Drops the package parameters declared after the first `count`: a folder of
+// packages that failed to load leaves none behind.
+void forgetParamsAfter(size_t count);
 // The declaration of a name, or null.
 const ParamDecl* findParam(const std::string& name);
 

@@ -5,6 +5,7 @@
 #include "blur_weights.h"
 #include "families.h"
 #include "kernel.h"
+#include "package/package.h"
 #include "screen_space_tables.h"
 
 #include <cmath>
@@ -370,6 +371,7 @@ KernelDecl ssdoFastIndirect() {
 
 std::vector<KernelDecl>& registryForTests() {
     static std::vector<KernelDecl> kernels = [] {
+        registryBuilding() = true;
         std::vector<KernelDecl> k = {gbufferSdf(), alchemy(), blurBilateral(), composite()};
         for (auto& d : screenSpaceKernels()) k.push_back(std::move(d));
         for (auto& d : qualityVariantKernels()) k.push_back(std::move(d));
@@ -377,6 +379,8 @@ std::vector<KernelDecl>& registryForTests() {
                         ssdoFastIndirect(), blurSeparableSsdo("x"), blurSeparableSsdo("y")})
             k.push_back(d);
         for (auto& d : sdfAoKernels()) k.push_back(std::move(d));
+        appendBuiltInPackages(k);
+        registryBuilding() = false;
         return k;
     }();
     return kernels;

@@ -18,6 +18,7 @@ packages=(
   libcli11-dev                                                  # command-line flags and --help
   libimath-dev                                                  # half floats (backends/texels; also OpenEXR's)
   libfmt-dev                                                    # text tables (harness/core/text_table.cpp)
+  libtomlplusplus-dev                                           # kernel packages: kernel.toml (kernels/package)
   zlib1g-dev                                                    # render folders (cavity_render)
   xz-utils                                                      # scripts/bundle.sh: the GPU bundle, compressed (tests/test_bundle.py)
   libcurl4-openssl-dev                                          # the HTTP image store (harness/store)

@@ -16,6 +16,7 @@
 #include "gpu_fixture.h"
 #include "pipeline/kernel_runner.h"
 #include "pipeline/pipeline.h"
+#include "package/package.h"
 #include "reference/reference.h"
 
 #include <algorithm>
@@ -198,6 +199,12 @@ void checkChain(gpu::Backend& gpu, gpu::Api api, const Case& cs, CheckedChain* k
 void checkAll(gpu::Backend& gpu, gpu::Api api, const std::string& scene, int w, int h) {
     for (const auto& k : kernels::all()) {
         if (k.role != cavity::kernels::Role::Ao) continue;
+        // A kernel package may come without a CPU reference: approvals gate
+        // its images (docs/packages.md). Every kernel declared in C++ has one.
+        if (!reference::hasReference(k.name)) {
+            EXPECT_NE(kernels::findPackage(k.name), nullptr) << k.name << ": a C++ kernel without a CPU reference";
+            continue;
+        }
         for (bool half : {false, true}) {
             if (half && !supportsHalf(k.name)) continue;
             for (auto stage : {gpu::Stage::Compute, gpu::Stage::Fragment}) {

@@ -79,10 +79,11 @@ Result<std::vector<uint32_t>> compileToSpirv(const gpu::ShaderSource& src, gpu::
 
 namespace {
 
-Result<std::vector<uint32_t>> compileUncached(const gpu::ShaderSource& src, gpu::Api target) {
+// Parses and links one stage for the client API; the error names the files.
+Status parseAndLink(glslang::TShader& shader, glslang::TProgram& program, const gpu::ShaderSource& src,
+                    gpu::Api target) {
     initOnce();
     const EShLanguage stage = toGlslang(src.stage);
-    glslang::TShader shader(stage);
     const char* text = src.glsl.c_str();
     shader.setStrings(&text, 1);
     if (target == gpu::Api::Vulkan) {
@@ -100,11 +101,19 @@ Result<std::vector<uint32_t>> compileUncached(const gpu::ShaderSource& src, gpu:
     if (!shader.parse(GetDefaultResources(), 450, false, messages)) {
         return internal("compile " + who + ": " + nameSourceLines(shader.getInfoLog(), src.files));
     }
-    glslang::TProgram program;
     program.addShader(&shader);
     if (!program.link(messages)) {
         return internal("link " + who + ": " + nameSourceLines(program.getInfoLog(), src.files));
     }
+    return {};
+}
+
+Result<std::vector<uint32_t>> compileUncached(const gpu::ShaderSource& src, gpu::Api target) {
+    const EShLanguage stage = toGlslang(src.stage);
+    glslang::TShader shader(stage);
+    glslang::TProgram program;
+    CAVITY_TRY(parseAndLink(shader, program, src, target));
+    const std::string who = src.name + " (" + (target == gpu::Api::Vulkan ? "vk" : "gl") + ")";
     std::vector<uint32_t> spirv;
     glslang::SpvOptions options;
     options.validate = true;
@@ -115,5 +124,15 @@ Result<std::vector<uint32_t>> compileUncached(const gpu::ShaderSource& src, gpu:
 }
 
 }  // namespace
+
+Result<std::vector<std::string>> activeUniforms(const gpu::ShaderSource& src, gpu::Api target) {
+    glslang::TShader shader(toGlslang(src.stage));
+    glslang::TProgram program;
+    CAVITY_TRY(parseAndLink(shader, program, src, target));
+    if (!program.buildReflection(EShReflectionDefault)) return internal("reflection of " + src.name + " failed");
+    std::vector<std::string> names;
+    for (int i = 0; i < program.getNumUniformVariables(); ++i) names.push_back(program.getUniform(i).name);
+    return names;
+}
 
 }  // namespace cavity::kernels

@@ -14,6 +14,11 @@ namespace cavity::kernels {
 // diagnostic, e.g. "alchemy: kernels/ssao_alchemy.glsl:42: 'foo' : undeclared identifier".
 Result<std::vector<uint32_t>> compileToSpirv(const gpu::ShaderSource& source, gpu::Api target);
 
+// The uniforms the linked shader reads, by glslang's reflection: block
+// members as "Block.member" ("Params.radius"), samplers by name ("in_normal").
+// A member or sampler the code never reads is not among them, which is how
+// `cavity kernels check` finds a declared parameter the shader ignores.
+Result<std::vector<std::string>> activeUniforms(const gpu::ShaderSource& source, gpu::Api target);
 // Rewrite "K:LINE" source-number references in a compiler or driver log into
 // "files[K]:LINE", so that GL driver messages (GLSL fallback path) also name files.
 std::string nameSourceLines(const std::string& log, const std::vector<std::string>& files);

@@ -38,10 +38,13 @@ bool isSsdo(const kernels::KernelDecl& k) {
 // separable blur reads: its last output, "ao_key".
 bool packsKey(const kernels::KernelDecl& k) { return k.outputs.size() >= 2 && k.outputs.back().name == "ao_key"; }
 
+// The AO kernels, then the reference: a package's AO kernel joins the list
+// before the ground truth, wherever the registry holds it.
 std::string aoKernelNames() {
     std::string s;
-    for (const auto& k : kernels::all())
-        if (k.role == kernels::Role::Ao || k.role == kernels::Role::Reference) s += (s.empty() ? "" : ", ") + k.name;
+    for (const auto role : {kernels::Role::Ao, kernels::Role::Reference})
+        for (const auto& k : kernels::all())
+            if (k.role == role) s += (s.empty() ? "" : ", ") + k.name;
     return s;
 }
 

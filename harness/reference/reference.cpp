@@ -49,6 +49,24 @@ Status requireInputs(const Context& ctx, std::initializer_list<int> minChannels)
     return {};
 }
 
+namespace {
+
+std::vector<RefEntry> allRefs() {
+    std::vector<RefEntry> table = firstSliceRefs();
+    for (const auto& e : screenSpaceRefs()) table.push_back(e);
+    for (const auto& e : sdfAoRefs()) table.push_back(e);
+    for (const auto& e : fastRefs()) table.push_back(e);
+    return table;
+}
+
+}  // namespace
+
+bool hasReference(const std::string& kernel) {
+    for (const auto& e : allRefs())
+        if (kernel == e.kernel) return true;
+    return false;
+}
+
 Result<std::vector<HostImage>> run(const Context& ctx) {
     const std::string& name = ctx.kernel.name;
     if (ctx.inputs.size() != ctx.kernel.inputs.size())
@@ -61,11 +79,7 @@ Result<std::vector<HostImage>> run(const Context& ctx) {
         if (!ctx.params.count(p.name()))
             return internal("reference " + name + ": parameter '" + p.name() + "' has no value (use withDefaults)");
 
-    std::vector<RefEntry> table = firstSliceRefs();
-    for (const auto& e : screenSpaceRefs()) table.push_back(e);
-    for (const auto& e : sdfAoRefs()) table.push_back(e);
-    for (const auto& e : fastRefs()) table.push_back(e);
-    for (const auto& entry : table) {
+    for (const auto& entry : allRefs()) {
         if (name != entry.kernel) continue;
         CAVITY_ASSIGN(auto out, entry.fn(ctx));
         if (out.size() != ctx.kernel.outputs.size())

@@ -26,6 +26,9 @@ struct Context {
 // frame.size[0] x frame.size[1] with channelCount(output format) channels.
 // Fails (Internal) when the kernel has no reference.
 Result<std::vector<HostImage>> run(const Context& ctx);
+// Whether a CPU reference is registered for the kernel. A kernel package may
+// have none: its images are then gated by approved digests alone.
+bool hasReference(const std::string& kernel);
 
 // The linear-depth pyramid's `levels` levels rebuilt from level 0, as
 // kernels/depth_pyramid.glsl builds them (ref_fast.cpp).

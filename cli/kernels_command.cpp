@@ -1,0 +1,210 @@
+// `cavity kernels list|show NAME|check DIR`: the kernels the harness knows,
+// built-in and loaded from packages (--kernels DIR, CAVITY_KERNELS), one
+// kernel's declaration, and a package checked before it is used: its shader
+// compiled on both APIs and both stages, and its declaration held to what
+// the compiled shader reads (docs/packages.md).
+#include "cli.h"
+#include "compiler.h"
+#include "core/text_table.h"
+#include "package/package.h"
+#include "params.h"
+#include "pipeline/pipeline.h"
+#include "reference/reference.h"
+
+#include <filesystem>
+#include <iostream>
+#include <set>
+
+namespace cavity::cli {
+
+namespace {
+
+const CommandSpec& spec(const std::string& sub) {
+    static const CommandSpec list{"cavity kernels list", "Every kernel the harness knows: its role, where it comes from "
+                                  "(built in, or the package folder), whether it has a CPU reference, its summary.",
+                                  {}, "", "", "", {"cavity kernels list", "cavity --kernels my_kernels/ kernels list"}};
+    static const CommandSpec show{"cavity kernels show", "One kernel's declaration: parameters with their defaults and "
+                                  "ranges, inputs, outputs, its cost per pixel at the defaults, its passes, its files.",
+                                  {}, "NAME", "a kernel's name (cavity kernels list)", "", {"cavity kernels show gtao"}};
+    static const CommandSpec check{
+        "cavity kernels check",
+        "Loads the kernel package(s) in DIR, compiles each on Vulkan and OpenGL, compute and fragment, and holds its "
+        "declaration to the compiled shader: every declared parameter, array and input must be read. Prints the "
+        "flags it adds and what it lacks.",
+        {},
+        "DIR",
+        "a kernel package folder, or a folder of them",
+        "\nExit codes: 0 every package passed, 2 a declaration or shader error (one line each).",
+        {"cavity kernels check my_kernels/my_ao"}};
+    return sub == "list" ? list : sub == "show" ? show : check;
+}
+
+std::string roleName(kernels::Role r) {
+    switch (r) {
+    case kernels::Role::Ao: return "ao";
+    case kernels::Role::Reference: return "reference";
+    case kernels::Role::GBuffer: return "gbuffer";
+    case kernels::Role::Pyramid: return "pyramid";
+    case kernels::Role::Downsample: return "downsample";
+    case kernels::Role::Upsample: return "upsample";
+    case kernels::Role::Blur: return "blur";
+    case kernels::Role::Indirect: return "indirect";
+    case kernels::Role::Composite: return "composite";
+    }
+    return "?";
+}
+
+std::string origin(const kernels::KernelDecl& k) {
+    const auto* p = kernels::findPackage(k.name);
+    return p ? p->folder : "built in (kernels/)";
+}
+
+int list() {
+    core::TextTable t({{"kernel"}, {"role"}, {"from"}, {"CPU reference"}, {"summary"}});
+    for (const auto& k : kernels::all())
+        t.add({k.name, roleName(k.role), origin(k), reference::hasReference(k.name) ? "yes" : "no", k.summary});
+    t.print();
+    return 0;
+}
+
+std::string paramLine(const kernels::KernelParam& p) {
+    std::string s = "  --" + p.name() + " " + kernels::valueText(*p.decl, p.def) + "  (" + kernels::allowedValues(*p.decl) + ")";
+    if (!p.note.empty()) s += ": " + p.note;
+    return s;
+}
+
+int show(const std::string& name) {
+    const auto* k = kernels::find(name);
+    if (!k) return fail("cavity kernels show", badInput("'" + name + "': no such kernel (cavity kernels list)"));
+    std::cout << k->name << " (" << roleName(k->role) << ", " << origin(*k) << "): " << k->summary << "\n";
+    for (const auto& s : k->sources) std::cout << "source: " << s << "\n";
+    std::cout << "file: " << k->file << "\nparameters (default, allowed):\n";
+    for (const auto& p : k->params) std::cout << paramLine(p) << "\n";
+    std::cout << "inputs:";
+    for (const auto& i : k->inputs) std::cout << " " << i.name;
+    std::cout << "\noutputs:";
+    for (const auto& o : k->outputs) std::cout << " " << o.name << " (" << gpu::formatName(o.format) << ")";
+    std::cout << "\n";
+    const auto values = kernels::withDefaults(*k);
+    if (k->cost) {
+        const auto c = k->cost(values, {true, k->workgroup});
+        std::cout << "cost per pixel at the defaults: " << c.fetchesPerPixel << " fetches, " << c.bytesPerPixel
+                  << " bytes, " << c.fetchSlotsPerPixel << " fetch slots, " << c.dramBytesPerPixel << " DRAM bytes\n";
+    }
+    if (k->role == kernels::Role::Ao) {
+        core::RunConfig c;
+        c.kernel = k->name;
+        std::cout << "passes (full resolution):";
+        for (const auto& p : pipeline::buildPasses(c)) std::cout << " " << p.kernel;
+        std::cout << "\n";
+    }
+    std::cout << "CPU reference: " << (reference::hasReference(k->name) ? "yes" : "none") << "\n";
+    return 0;
+}
+
+// What the compiled shader reads, against what the declaration says it reads.
+std::vector<std::string> disagreements(const kernels::KernelDecl& k, const std::vector<std::string>& active) {
+    std::set<std::string> read;
+    for (const auto& a : active) read.insert(a.substr(a.rfind('.') == std::string::npos ? 0 : a.rfind('.') + 1));
+    const auto* pkg = kernels::findPackage(k.name);
+    const std::string where = pkg ? pkg->declaration : k.name;
+    std::vector<std::string> out;
+    for (const auto& p : k.params)
+        if (!read.count(p.name()) && !read.count(p.name() + "[0]"))
+            out.push_back(where + ": params: '" + p.name() + "' is declared, but the shader never reads P." + p.name() +
+                          " (the uniform block is made from the declaration: drop it, or read it)");
+    for (const auto& a : k.arrays)
+        if (!read.count(a.name) && !read.count(a.name + "[0]"))
+            out.push_back(where + ": arrays: '" + a.name + "' is declared, but the shader never reads P." + a.name);
+    for (const auto& i : k.inputs)
+        if (!read.count("in_" + i.name))
+            out.push_back(where + ": inputs: '" + i.name + "' is declared, but the shader never reads in_" + i.name);
+    return out;
+}
+
+std::vector<std::string> checkOne(const kernels::KernelDecl& k) {
+    std::vector<std::string> problems;
+    const auto values = kernels::withDefaults(k);
+    for (const auto api : {gpu::Api::Vulkan, gpu::Api::OpenGL}) {
+        for (const auto stage : {gpu::Stage::Compute, gpu::Stage::Fragment}) {
+            auto src = kernels::assemble(k, stage, {}, &values);
+            if (!src) {
+                problems.push_back(src.error().message);
+                continue;
+            }
+            auto active = kernels::activeUniforms(*src, api);
+            if (!active) {
+                problems.push_back(active.error().message);
+                continue;
+            }
+            if (api == gpu::Api::Vulkan && stage == gpu::Stage::Compute)
+                for (auto& d : disagreements(k, *active)) problems.push_back(std::move(d));
+        }
+    }
+    return problems;
+}
+
+int check(const std::string& dir) {
+    (void)kernels::all();   // the built-in packages load with the registry
+    namespace fs = std::filesystem;
+    std::vector<kernels::PackageInfo> chosen;
+    // A package loaded already (a built-in one, or by --kernels) is checked as loaded.
+    for (const auto& p : kernels::packages()) {
+        std::error_code ec;
+        if (fs::equivalent(p.folder, dir, ec)) chosen.push_back(p);
+    }
+    if (chosen.empty()) {
+        const size_t before = kernels::packages().size();
+        if (const auto s = kernels::loadPackages(dir); !s) return fail("cavity kernels check", s.error());
+        chosen.assign(kernels::packages().begin() + long(before), kernels::packages().end());
+    }
+    int bad = 0;
+    for (const auto& info : chosen) {
+        const auto* k = kernels::find(info.name);
+        const auto problems = checkOne(*k);
+        for (const auto& p : problems) std::cerr << "cavity kernels check: " << p << "\n";
+        bad += problems.empty() ? 0 : 1;
+        std::cout << info.name << " (" << info.declaration << "): "
+                  << (problems.empty() ? "compiles on vk and gl, compute and fragment; the declaration matches the shader"
+                                       : std::to_string(problems.size()) + " problem(s)")
+                  << "\n";
+        std::cout << "  flags it adds:";
+        if (info.addedParams.empty()) std::cout << " none (it reads harness parameters only)";
+        for (const auto& n : info.addedParams) {
+            const auto* p = kernels::findParam(n);
+            std::cout << " --" << n << " (" << kernels::allowedValues(*p) << ")";
+        }
+        std::cout << "\n  CPU reference: "
+                  << (reference::hasReference(k->name)
+                          ? "yes"
+                          : "none: its images are gated by approved digests (cavity baselines approve), and its quality "
+                            "is measured against the ground truth (cavity quality)")
+                  << "\n";
+    }
+    return bad ? 2 : 0;
+}
+
+}  // namespace
+
+int kernelsCommand(const std::vector<std::string>& argv) {
+    const std::vector<std::string> subs = {"list", "show", "check"};
+    if (argv.empty() || (argv[0] != "list" && argv[0] != "show" && argv[0] != "check")) {
+        const std::string near = argv.empty() ? "" : nearest(argv[0], subs);
+        std::cerr << "cavity kernels: " << (argv.empty() ? "needs a subcommand" : "unknown subcommand '" + argv[0] + "'")
+                  << " (list, show NAME, check DIR)" << (near.empty() ? "" : "; did you mean " + near + "?") << "\n";
+        return 2;
+    }
+    const std::string program = "cavity kernels " + argv[0];
+    auto parsed = parseFlags(spec(argv[0]), {argv.begin() + 1, argv.end()});
+    if (!parsed) return fail(program, parsed.error());
+    if (parsed->help) {
+        std::cout << parsed->helpText;
+        return 0;
+    }
+    if (argv[0] == "list") return list();
+    if (parsed->positionals.size() != 1)
+        return fail(program, badInput(argv[0] == "show" ? "give one kernel's NAME" : "give one package folder DIR"));
+    return argv[0] == "show" ? show(parsed->positionals[0]) : check(parsed->positionals[0]);
+}
+
+}  // namespace cavity::cli

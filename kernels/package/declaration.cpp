@@ -1,0 +1,167 @@
+#include "package/declaration.h"
+
+#include "package/toml_read.h"
+
+#include "blur_weights.h"
+#include "package/expression.h"
+#include "params.h"
+#include "screen_space_tables.h"
+
+
+#include <deque>
+#include <map>
+#include <regex>
+#include <set>
+#include <sstream>
+
+namespace cavity::kernels {
+
+namespace {
+
+using namespace toml_read;
+
+// ---- [[params]] ----------------------------------------------------------
+
+const std::map<std::string, ParamType>& paramTypes() {
+    static const std::map<std::string, ParamType> types = {
+        {"int", ParamType::Int}, {"float", ParamType::Float}, {"bool", ParamType::Bool}, {"enum", ParamType::Enum}};
+    return types;
+}
+
+Result<double> number(const Ctx& c, const toml::table& t, const std::string& where, const std::string& key) {
+    const toml::node* n = t.get(key);
+    if (!n) return c.fail(&t, where + key, "", "missing; a number is required");
+    if (n->is_boolean()) return *n->value<bool>() ? 1.0 : 0.0;
+    if (!n->is_number()) return c.fail(n, where + key, show(*n), "must be a number");
+    return *n->value<double>();
+}
+
+// A parameter the harness does not know: its whole declaration.
+Result<ParamDecl> newParam(const Ctx& c, const toml::table& t, const std::string& where, const std::string& name) {
+    ParamDecl p;
+    p.name = name;
+    CAVITY_ASSIGN(const std::string type, text(c, t, where, "type", true));
+    const auto ty = paramTypes().find(type);
+    if (ty == paramTypes().end())
+        return c.fail(t.get("type"), where + "type", type, "must be int, float, bool or enum");
+    p.type = ty->second;
+    CAVITY_ASSIGN(p.help, text(c, t, where, "help", true));
+    CAVITY_ASSIGN(p.unit, text(c, t, where, "unit", false));
+    if (p.type == ParamType::Bool) {
+        p.min = 0, p.max = 1;
+    } else if (p.type == ParamType::Enum) {
+        const auto* ch = t.get("choices") ? t.get("choices")->as_array() : nullptr;
+        if (!ch || ch->empty() || !ch->is_homogeneous(toml::node_type::string))
+            return c.fail(t.get("choices") ? t.get("choices") : &t, where + "choices", "", "an enum needs a list of names");
+        for (auto&& v : *ch) p.choices.push_back(*v.value<std::string>());
+        p.min = 0, p.max = double(p.choices.size() - 1);
+    } else {
+        CAVITY_ASSIGN(p.min, number(c, t, where, "min"));
+        CAVITY_ASSIGN(p.max, number(c, t, where, "max"));
+        if (p.min > p.max) return c.fail(t.get("max"), where + "max", show(*t.get("max")), "must be at least min");
+    }
+    return p;
+}
+
+// Reads the default, given as a number, a bool or (enum) a choice's name.
+Result<double> defaultValue(const Ctx& c, const toml::node& n, const ParamDecl& p, const std::string& key) {
+    if (p.type == ParamType::Enum && n.is_string()) {
+        CAVITY_ASSIGN(const double v, parseValue(p, *n.value<std::string>()));
+        return v;
+    }
+    if (n.is_boolean()) return *n.value<bool>() ? 1.0 : 0.0;
+    if (!n.is_number()) return c.fail(&n, key, show(n), "must be a number");
+    return *n.value<double>();
+}
+
+struct ParamsOut {
+    std::deque<ParamDecl> added;   // new declarations, registered only when the file is good
+};
+
+Status readParam(const Ctx& c, const toml::table& t, size_t i, KernelDecl& k, ParamsOut& out) {
+    const std::string where = "params[" + std::to_string(i) + "].";
+    CAVITY_ASSIGN(const std::string name, text(c, t, where, "name", true));
+    static const std::regex ident("[a-z][a-z0-9_]{0,31}");
+    if (!std::regex_match(name, ident))
+        return c.fail(t.get("name"), where + "name", name, "must be a GLSL name: a-z, then a-z, 0-9 or _ (32 at most)");
+    for (const auto& p : k.params)
+        if (p.name() == name) return c.fail(t.get("name"), where + "name", name, "declared twice in this kernel");
+    const ParamDecl* decl = findParam(name);
+    const bool fresh = !decl;
+    if (!fresh) {
+        for (const char* key : {"type", "min", "max", "unit", "help", "choices"})
+            if (t.get(key))
+                return c.fail(t.get(key), where + key, show(*t.get(key)),
+                              "'" + name + "' is a harness parameter (cavity run --help): a package sets its default "
+                              "and note, not its " + key);
+    }
+    CAVITY_TRY(onlyKeys(c, t, where, fresh ? std::set<std::string>{"name", "default", "note", "compiled_in", "type", "min",
+                                                                    "max", "unit", "help", "choices"}
+                                           : std::set<std::string>{"name", "default", "note", "compiled_in"}));
+    if (fresh) {
+        CAVITY_ASSIGN(ParamDecl added, newParam(c, t, where, name));
+        out.added.push_back(std::move(added));
+        decl = &out.added.back();
+    }
+    KernelParam kp{decl, decl->def, ""};
+    CAVITY_ASSIGN(kp.note, text(c, t, where, "note", false));
+    if (const toml::node* d = t.get("default")) {
+        CAVITY_ASSIGN(kp.def, defaultValue(c, *d, *decl, where + "default"));
+    } else if (fresh) {
+        return c.fail(&t, where + "default", "", "missing; a new parameter needs its default");
+    }
+    if (const Status s = checkValue(*decl, kp.def); !s)
+        return c.fail(t.get("default") ? t.get("default") : &t, where + "default", valueText(*decl, kp.def),
+                      "outside the parameter's range: must be " + allowedValues(*decl));
+    if (fresh) out.added.back().def = kp.def;
+    if (const toml::node* ci = t.get("compiled_in")) {
+        if (!ci->is_boolean()) return c.fail(ci, where + "compiled_in", show(*ci), "must be true or false");
+        if (*ci->value<bool>()) {
+            if (decl->type == ParamType::Float)
+                return c.fail(ci, where + "compiled_in", "true", "only an int, bool or enum parameter can be compiled in");
+            k.compileTime.push_back(name);
+        }
+    }
+    k.params.push_back(kp);
+    return {};
+}
+
+}  // namespace
+
+
+Result<KernelDecl> readDeclaration(const DeclarationInput& in, PackageInfo& info) {
+    using namespace toml_read;
+    const Ctx c{in};
+    toml::table root;
+    try {
+        root = toml::parse(in.text, in.label);
+    } catch (const toml::parse_error& e) {
+        return badInput(in.label + ":" + std::to_string(e.source().begin.line) + ": not TOML: " +
+                        std::string(e.description()));
+    }
+    KernelDecl k;
+    CAVITY_TRY(readTop(root, c, k));
+    ParamsOut params;
+    CAVITY_ASSIGN(const toml::array* ps, arrayOfTables(c, root, "params"));
+    if (ps)
+        for (size_t i = 0; i < ps->size(); ++i) CAVITY_TRY(readParam(c, *ps->get(i)->as_table(), i, k, params));
+    CAVITY_TRY(readInputs(root, c, k));
+    CAVITY_TRY(readOutputs(root, c, k));
+    CAVITY_TRY(readArrays(root, c, k));
+    CAVITY_TRY(readCost(root, c, k));
+    CAVITY_TRY(readPipeline(root, c, k));
+    CAVITY_TRY(readExpectations(root, c, k));
+    // Good: the new parameters join the harness's, and the kernel points at them.
+    for (auto& p : k.params) {
+        for (const auto& a : params.added)
+            if (p.decl == &a) {
+                p.decl = declareParam(a);
+                info.addedParams.push_back(a.name);
+            }
+    }
+    info.name = k.name;
+    info.declaration = in.label;
+    return k;
+}
+
+}  // namespace cavity::kernels

@@ -1,0 +1,28 @@
+// Reading one kernel.toml into a KernelDecl (package/declaration.cpp). Every
+// error is one line: "FILE:LINE: KEY = VALUE: what is allowed".
+#pragma once
+
+#include "kernel.h"
+#include "package/package.h"
+#include "result.h"
+
+#include <functional>
+#include <string>
+
+namespace cavity::kernels {
+
+struct DeclarationInput {
+    std::string text;          // kernel.toml's bytes
+    std::string label;         // its path, as messages name it
+    std::string keyPrefix;     // its folder's source keys start with this ("ao/gtao/", "mine/")
+    // Whether the package holds a file of this path relative to its folder.
+    std::function<bool(const std::string&)> hasFile;
+    // Whether a kernel of this name is registered already (a built-in or a package loaded before).
+    std::function<bool(const std::string&)> nameTaken;
+};
+
+// The declaration, with the parameters it adds declared (ParamDecl) only
+// when the whole file is good. `info` gets the name and the added params.
+Result<KernelDecl> readDeclaration(const DeclarationInput& in, PackageInfo& info);
+
+}  // namespace cavity::kernels

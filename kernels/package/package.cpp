@@ -1,0 +1,189 @@
+#include "package/package.h"
+
+#include "package/declaration.h"
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+
+namespace cavity::kernels {
+
+const std::map<std::string, std::string>& embeddedSources();   // kernel_sources.cpp
+
+namespace {
+
+namespace fs = std::filesystem;
+
+std::vector<PackageInfo>& loaded() {
+    static std::vector<PackageInfo> list;
+    return list;
+}
+
+std::map<std::string, PackageSource>& sources() {
+    static std::map<std::string, PackageSource> map;
+    return map;
+}
+
+// A package's files are its GLSL (with includes of its own) and kernel.toml;
+// anything larger than this is not a shader.
+constexpr std::uintmax_t kMaxFileBytes = 1 << 20;
+
+Result<std::string> readText(const fs::path& p) {
+    std::error_code ec;
+    const auto size = fs::file_size(p, ec);
+    if (ec) return badInput(p.string() + ": cannot read: " + ec.message());
+    if (size > kMaxFileBytes) return badInput(p.string() + ": " + std::to_string(size) + " bytes; a package file is at most 1 MiB");
+    std::ifstream in(p, std::ios::binary);
+    std::ostringstream s;
+    s << in.rdbuf();
+    if (!in && !in.eof()) return badInput(p.string() + ": cannot read");
+    std::string text = s.str();
+    if (text.find('\0') != std::string::npos) return badInput(p.string() + ": a NUL byte; a package file is text");
+    return text;
+}
+
+bool taken(const std::vector<KernelDecl>& registry, const std::string& name) {
+    return std::any_of(registry.begin(), registry.end(), [&](const KernelDecl& k) { return k.name == name; });
+}
+
+// One package folder from disk: its declaration, then its GLSL under the
+// keys "<name>/<path in the folder>", each labelled with its path on disk.
+Status loadFolder(const fs::path& folder, std::vector<KernelDecl>& registry) {
+    const fs::path decl = folder / "kernel.toml";
+    if (!fs::is_regular_file(decl)) return badInput(folder.string() + ": no kernel.toml (a package folder holds its declaration)");
+    CAVITY_ASSIGN(const std::string text, readText(decl));
+    std::map<std::string, std::string> glsl;   // path in the folder -> text
+    for (const auto& e : fs::recursive_directory_iterator(folder)) {
+        if (!e.is_regular_file() || e.path().extension() != ".glsl") continue;
+        CAVITY_ASSIGN(std::string body, readText(e.path()));
+        glsl[fs::relative(e.path(), folder).generic_string()] = std::move(body);
+    }
+    PackageInfo info;
+    DeclarationInput in{text, decl.string(), "", [&](const std::string& f) { return glsl.count(f) > 0; },
+                        [&](const std::string& n) { return taken(registry, n); }};
+    CAVITY_ASSIGN(KernelDecl k, readDeclaration(in, info));
+    // Its files' keys start with its name, which no other kernel has.
+    k.file = k.name + "/" + k.file;
+    info.folder = folder.string();
+    for (auto& [path, body] : glsl) {
+        const std::string key = k.name + "/" + path;
+        sources()[key] = {std::move(body), (folder / path).string()};
+        info.sourceKeys.push_back(key);
+    }
+    registry.push_back(std::move(k));
+    loaded().push_back(std::move(info));
+    return {};
+}
+
+}  // namespace
+
+const std::vector<PackageInfo>& packages() { return loaded(); }
+
+const PackageInfo* findPackage(const std::string& kernel) {
+    for (const auto& p : loaded())
+        if (p.name == kernel) return &p;
+    return nullptr;
+}
+
+const PackageSource* packageSource(const std::string& key) {
+    const auto it = sources().find(key);
+    return it == sources().end() ? nullptr : &it->second;
+}
+
+Status loadPackages(const std::string& dir) {
+    std::error_code ec;
+    if (!fs::is_directory(dir, ec)) return badInput(dir + ": no such folder");
+    std::vector<fs::path> folders;
+    if (fs::exists(fs::path(dir) / "kernel.toml")) {
+        folders.push_back(dir);
+    } else {
+        for (const auto& e : fs::directory_iterator(dir, ec))
+            if (e.is_directory() && fs::exists(e.path() / "kernel.toml")) folders.push_back(e.path());
+        if (folders.empty()) return badInput(dir + ": no kernel.toml in it or in any folder directly under it");
+        std::sort(folders.begin(), folders.end());
+    }
+    // All or nothing: a copy of the registry takes the folder's packages, and
+    // replaces the real one only when every one of them loaded.
+    std::vector<KernelDecl> registry = all();
+    const size_t before = loaded().size(), params = paramDecls().size();
+    for (const auto& f : folders) {
+        if (Status s = loadFolder(f, registry); !s) {
+            for (size_t i = before; i < loaded().size(); ++i)
+                for (const auto& key : loaded()[i].sourceKeys) sources().erase(key);
+            loaded().resize(before);
+            forgetParamsAfter(params);
+            return s;
+        }
+    }
+    registryForTests() = std::move(registry);
+    return {};
+}
+
+void appendBuiltInPackages(std::vector<KernelDecl>& registry) {
+    const auto& files = embeddedSources();
+    for (const auto& [key, text] : files) {
+        // "ao/<name>/kernel.toml"
+        if (key.rfind("ao/", 0) != 0 || key.size() < 16 || key.compare(key.size() - 12, 12, "/kernel.toml") != 0) continue;
+        const std::string folder = key.substr(0, key.size() - 12);
+        PackageInfo info;
+        DeclarationInput in{text, "kernels/" + key, folder + "/",
+                            [&](const std::string& f) { return files.count(folder + "/" + f) > 0; },
+                            [&](const std::string& n) { return taken(registry, n); }};
+        auto k = readDeclaration(in, info);
+        if (!k) throw std::logic_error("built-in kernel package: " + k.error().message);
+        info.folder = "kernels/" + folder;
+        info.builtIn = true;
+        for (const auto& [other, body] : files)
+            if (other.rfind(folder + "/", 0) == 0 && other != key) info.sourceKeys.push_back(other);
+        registry.push_back(std::move(*k));
+        loaded().push_back(std::move(info));
+    }
+}
+
+Status loadPackagesFromCommandLine(std::vector<std::string>& args) {
+    if (const char* env = std::getenv("CAVITY_KERNELS"); env && *env) {
+        std::string list = env;
+        for (size_t start = 0; start <= list.size();) {
+            const size_t end = std::min(list.find(':', start), list.size());
+            const std::string dir = list.substr(start, end - start);
+            if (!dir.empty())
+                if (Status s = loadPackages(dir); !s) return badInput("CAVITY_KERNELS=" + list + ": " + s.error().message);
+            start = end + 1;
+        }
+    }
+    for (size_t i = 0; i < args.size();) {
+        std::string dir;
+        size_t take = 0;
+        if (args[i] == "--kernels") {
+            if (i + 1 >= args.size() || args[i + 1].empty() || args[i + 1].rfind("--", 0) == 0)
+                return badInput("--kernels: a folder is required (a kernel package, or a folder of them)");
+            dir = args[i + 1], take = 2;
+        } else if (args[i].rfind("--kernels=", 0) == 0) {
+            dir = args[i].substr(10), take = 1;
+            if (dir.empty()) return badInput("--kernels: a folder is required (a kernel package, or a folder of them)");
+        } else {
+            ++i;
+            continue;
+        }
+        if (Status s = loadPackages(dir); !s) return badInput("--kernels " + dir + ": " + s.error().message);
+        args.erase(args.begin() + long(i), args.begin() + long(i + take));
+    }
+    return {};
+}
+
+Status loadPackagesFromCommandLine(int& argc, char** argv) {
+    std::vector<std::string> args(argv + 1, argv + argc);
+    CAVITY_TRY(loadPackagesFromCommandLine(args));
+    // Keep argv's own strings: copy the survivors back in order.
+    int out = 1;
+    for (int i = 1; i < argc && out <= int(args.size()); ++i)
+        if (args[size_t(out - 1)] == argv[i]) argv[out++] = argv[i];
+    argc = out;
+    return {};
+}
+
+}  // namespace cavity::kernels

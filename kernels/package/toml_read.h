@@ -1,0 +1,79 @@
+// What reading a kernel.toml shares between its two files: where an error
+// is, and the typed reads of a value, each failing with one line that names
+// the file, the line, the key, the value and what is allowed.
+#pragma once
+
+#include "package/declaration.h"
+
+#include <toml++/toml.h>
+
+#include <set>
+#include <sstream>
+#include <string>
+
+namespace cavity::kernels::toml_read {
+
+// Where an error is: the file and the line of the value (or of the table
+// that lacks a key), and the key's dotted path.
+struct Ctx {
+    const DeclarationInput& in;
+    Error fail(const toml::node* at, const std::string& key, const std::string& value, const std::string& allowed) const {
+        const auto line = at ? at->source().begin.line : 1;
+        return badInput(in.label + ":" + std::to_string(line) + ": " + key + (value.empty() ? "" : " = " + value) +
+                        ": " + allowed);
+    }
+};
+
+inline std::string show(const toml::node& n) {
+    std::ostringstream s;
+    if (n.is_table()) s << "{...}";
+    else if (const auto* a = n.as_array()) s << "[" << a->size() << " values]";
+    else n.visit([&](auto&& v) { s << v; });
+    return s.str();
+}
+
+inline std::string joined(const std::set<std::string>& names) {
+    std::string out;
+    for (const auto& n : names) out += (out.empty() ? "" : ", ") + n;
+    return out;
+}
+
+inline Status onlyKeys(const Ctx& c, const toml::table& t, const std::string& where, const std::set<std::string>& allowed) {
+    for (auto&& [k, v] : t) {
+        const std::string key(k.str());
+        if (!allowed.count(key))
+            return c.fail(&v, where + key, show(v), "unknown key; allowed here: " + joined(allowed));
+    }
+    return {};
+}
+
+inline Result<std::string> text(const Ctx& c, const toml::table& t, const std::string& where, const std::string& key,
+                         bool required) {
+    const toml::node* n = t.get(key);
+    if (!n) {
+        if (required) return c.fail(&t, where + key, "", "missing; a string is required");
+        return std::string();
+    }
+    if (!n->is_string()) return c.fail(n, where + key, show(*n), "must be a string");
+    return std::string(*n->value<std::string>());
+}
+
+inline Result<const toml::array*> arrayOfTables(const Ctx& c, const toml::table& t, const std::string& key) {
+    const toml::node* n = t.get(key);
+    if (!n) return static_cast<const toml::array*>(nullptr);
+    const toml::array* a = n->as_array();
+    if (!a || !a->is_array_of_tables())
+        return c.fail(n, key, show(*n), "must be an array of tables ([[" + key + "]] blocks)");
+    return a;
+}
+
+// The sections of a kernel.toml beside [[params]] (declaration_parts.cpp).
+Status readTop(const toml::table& root, const Ctx& c, KernelDecl& k);
+Status readInputs(const toml::table& root, const Ctx& c, KernelDecl& k);
+Status readOutputs(const toml::table& root, const Ctx& c, KernelDecl& k);
+Status readArrays(const toml::table& root, const Ctx& c, KernelDecl& k);
+Status readCost(const toml::table& root, const Ctx& c, KernelDecl& k);
+Status readPipeline(const toml::table& root, const Ctx& c, const KernelDecl& k);
+Status readExpectations(const toml::table& root, const Ctx& c, KernelDecl& k);
+
+}  // namespace cavity::kernels::toml_read
