@@ -189,7 +189,13 @@ const ParamDecl* declareParam(ParamDecl p) {
     return &storage().back();
 }
 
+// The built-in declarations first, without building the registry: static
+// initialisers ask for them (decl_screen_space.cpp's largest sample count)
+// before the registry may be built. Only a name they lack waits for the
+// packages' parameters.
 const ParamDecl* findParam(const std::string& name) {
+    for (const auto& p : storage())
+        if (p.name == name) return &p;
     for (const auto& p : paramDecls())
         if (p.name == name) return &p;
     return nullptr;

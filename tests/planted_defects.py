@@ -14,9 +14,13 @@ Each defect is judged on the Vulkan compute configurations it touches
 """
 import json
 import os
+import re
 import subprocess
 import sys
 import tempfile
+
+
+MAX_CONFIGS = 12
 
 
 def main():
@@ -32,8 +36,16 @@ def main():
         failures = []
         for name, file, touches in rows:
             out = os.path.join(tmp, "gate_" + name)
+            ids = subprocess.run([cavity, "gate", "--matrix", "ci", "--filter", f"^(?=.*/vk/compute$).*{touches}",
+                                  "--list"], capture_output=True, text=True).stdout.split()
+            if not ids:
+                failures.append(f"{name} ({file}): touches no configuration of the ci matrix ({touches})")
+                continue
+            # A defect in a shared pass (the composite) touches most of the
+            # matrix: every few of its configurations show it as well as all.
+            ids = ids[::-(-len(ids) // MAX_CONFIGS)]
             cmd = [cavity, "gate", "--matrix", "ci",
-                   "--filter", f"^(?=.*/vk/compute$).*{touches}",
+                   "--filter", "^(" + "|".join(re.escape(i) for i in ids) + ")$",
                    "--kernel-source", f"{file}={os.path.join(defects, name + '.glsl')}",
                    "--out", out, "--quiet"]
             g = subprocess.run(cmd, capture_output=True, text=True, timeout=900)
