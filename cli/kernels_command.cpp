@@ -14,6 +14,7 @@
 #include <filesystem>
 #include <iostream>
 #include <set>
+#include <sstream>
 
 namespace cavity::cli {
 
@@ -122,6 +123,19 @@ std::vector<std::string> disagreements(const kernels::KernelDecl& k, const std::
     return out;
 }
 
+// A compiler's log in one line: its errors, without glslang's closing counts.
+std::string oneLine(const std::string& message) {
+    std::string out, line;
+    std::istringstream in(message);
+    while (std::getline(in, line)) {
+        if (line.empty() || line.find("compilation terminated") != std::string::npos ||
+            line.find("compilation errors") != std::string::npos)
+            continue;
+        out += (out.empty() ? "" : " | ") + line;
+    }
+    return out;
+}
+
 std::vector<std::string> checkOne(const kernels::KernelDecl& k) {
     std::vector<std::string> problems;
     const auto values = kernels::withDefaults(k);
@@ -134,7 +148,7 @@ std::vector<std::string> checkOne(const kernels::KernelDecl& k) {
             }
             auto active = kernels::activeUniforms(*src, api);
             if (!active) {
-                problems.push_back(active.error().message);
+                problems.push_back(oneLine(active.error().message));
                 continue;
             }
             if (api == gpu::Api::Vulkan && stage == gpu::Stage::Compute)

@@ -1,0 +1,277 @@
+#!/usr/bin/env python3
+"""Kernel packages as a user makes them (docs/packages.md): a folder made
+here with a kernel.toml and its GLSL, no rebuild of Cavity.
+
+  - `cavity kernels check` passes it on both APIs and stages and names the
+    flag it adds; one whose declaration disagrees with the shader's uniform
+    block (a declared parameter the shader never reads) fails with a line
+    naming the declaration and the parameter;
+  - it runs through `cavity run` (both APIs), `cavity gate` (approved by
+    digest, then passing by digest), `cavity quality` and `cavity_bench`,
+    with configuration ids of the built-ins' form;
+  - each of the bad packages below exits 2 with one line that names the
+    file (and for a declaration error its line and key), and writes nothing.
+
+    test_packages.py SOURCE_DIR BUILD_DIR
+"""
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+
+GLSL = """// A test package: Alchemy-like obscurance on a ring of samples.
+#include "include/common.glsl"
+#include "ring.glsl"
+
+void cavity_main(ivec2 pixel) {
+    vec4 centre = texelFetch(in_position, pixel, 0);
+    if (isBackground(centre.w)) {
+        write_ao(pixel, vec4(1.0));
+        return;
+    }
+    vec3 N = texelFetch(in_normal, pixel, 0).xyz;
+    float occlusion = 0.0;
+    for (int i = 0; i < P.samples; ++i) {
+        ivec2 s = pixel + ringOffset(i, P.samples, P.ring_px);
+        if (!inImage(s)) continue;
+        vec4 S = texelFetch(in_position, s, 0);
+        if (isBackground(S.w)) continue;
+        vec3 d = S.xyz - centre.xyz;
+        if (lengthSquared(d) > P.radius * P.radius) continue;
+        occlusion += max(0.0, dot(N, normalize(d)));
+    }
+    write_ao(pixel, vec4(1.0 - occlusion / float(P.samples), 0.0, 0.0, 0.0));
+}
+"""
+
+RING = """// The package's own include, beside its kernel.
+ivec2 ringOffset(int i, int n, int radius) {
+    vec2 cs = cosSinTurns((float(i) + 0.5) / float(n));
+    return ivec2(round(cs * float(radius)));
+}
+"""
+
+TOML = """name = "ring_ao"
+summary = "a test package: obscurance from a ring of samples"
+role = "ao"
+file = "ring_ao.glsl"
+
+[[params]]
+name = "samples"
+default = 8
+
+[[params]]
+name = "radius"
+
+[[params]]
+name = "ring_px"
+type = "int"
+default = 4
+min = 1
+max = 32
+unit = "px"
+help = "the ring's radius in pixels"
+
+[[inputs]]
+name = "position"
+
+[[inputs]]
+name = "normal"
+
+[[outputs]]
+name = "ao"
+format = "R16F"
+
+[cost]
+fetches = "2 + samples"
+bytes = "RGBA32F + RGBA16F + samples * RGBA32F + R16F"
+fetch_slots = "slots(RGBA32F) + slots(RGBA16F) + samples * slots(RGBA32F)"
+dram_bytes = "RGBA32F + RGBA16F + R16F"
+"""
+
+
+def sub(text, old, new):
+    assert old in text, old
+    return text.replace(old, new, 1)
+
+
+# (what, edit of the package folder, expected: a regex the one line must match)
+def bad_packages():
+    t = TOML
+    cases = [
+        ("no kernel.toml", lambda d: os.remove(f"{d}/kernel.toml"), r"no kernel\.toml"),
+        ("not TOML", lambda d: w(d, "kernel.toml", t + "\n[cost\n"), r"kernel\.toml:\d+: not TOML"),
+        ("unknown key", lambda d: w(d, "kernel.toml", "colour = 1\n" + t), r"kernel\.toml:1: colour = 1: unknown key"),
+        ("no name", lambda d: w(d, "kernel.toml", sub(t, 'name = "ring_ao"\n', "")), r"kernel\.toml:1: name: missing"),
+        ("bad name", lambda d: w(d, "kernel.toml", sub(t, '"ring_ao"', '"Ring-AO"')), r":1: name = Ring-AO: must be a-z"),
+        ("built-in's name", lambda d: w(d, "kernel.toml", sub(t, '"ring_ao"', '"alchemy"')), r":1: name = alchemy: is taken"),
+        ("no summary", lambda d: w(d, "kernel.toml", re.sub(r"summary = .*\n", "", t)), r"summary: missing"),
+        ("role", lambda d: w(d, "kernel.toml", sub(t, 'role = "ao"', 'role = "blur"')), r":3: role = blur: must be ao"),
+        ("missing GLSL file", lambda d: os.remove(f"{d}/ring_ao.glsl"), r":4: file = ring_ao\.glsl: no such file"),
+        ("file outside", lambda d: w(d, "kernel.toml", sub(t, '"ring_ao.glsl"', '"../x.glsl"')), r"file = \.\./x\.glsl"),
+        ("duplicate parameter", lambda d: w(d, "kernel.toml", t + '\n[[params]]\nname = "radius"\n'),
+         r"params\[3\]\.name = radius: declared twice"),
+        ("default out of range", lambda d: w(d, "kernel.toml", sub(t, "default = 4", "default = 40")),
+         r"params\[2\]\.default = 40: outside the parameter's range: must be an integer in 1\.\.32"),
+        ("min over max", lambda d: w(d, "kernel.toml", sub(t, "min = 1\nmax = 32", "min = 9\nmax = 3")),
+         r"params\[2\]\.max = 3: must be at least min"),
+        ("new parameter without type", lambda d: w(d, "kernel.toml", sub(t, 'type = "int"\n', "")),
+         r"params\[2\]\.type: missing"),
+        ("unknown type", lambda d: w(d, "kernel.toml", sub(t, 'type = "int"', 'type = "double"')),
+         r"params\[2\]\.type = double: must be int, float, bool or enum"),
+        ("harness parameter's range", lambda d: w(d, "kernel.toml", sub(t, 'name = "radius"\n', 'name = "radius"\nmax = 2\n')),
+         r"params\[1\]\.max = 2: 'radius' is a harness parameter"),
+        ("float compiled in", lambda d: w(d, "kernel.toml", sub(t, 'name = "radius"\n', 'name = "radius"\ncompiled_in = true\n')),
+         r"params\[1\]\.compiled_in = true: only an int, bool or enum"),
+        ("input no pass provides", lambda d: w(d, "kernel.toml", sub(t, 'name = "normal"', 'name = "velocity"')),
+         r"inputs\[1\]\.name = velocity: no pass provides it"),
+        ("input read twice", lambda d: w(d, "kernel.toml", sub(t, 'name = "normal"', 'name = "position"')),
+         r"inputs\[1\]\.name = position: read twice"),
+        ("no inputs", lambda d: w(d, "kernel.toml", re.sub(r"\[\[inputs\]\]\nname = \"\w+\"\n\n", "", t)), r"inputs: missing"),
+        ("output format", lambda d: w(d, "kernel.toml", sub(t, 'format = "R16F"', 'format = "RGB10A2"')),
+         r"outputs\[0\]\.format = RGB10A2: no backend image of that format"),
+        ("output name", lambda d: w(d, "kernel.toml", sub(t, 'name = "ao"', 'name = "occlusion"')),
+         r"outputs\[0\]\.name = occlusion: must be ao"),
+        ("cost syntax", lambda d: w(d, "kernel.toml", sub(t, '"2 + samples"', '"2 + * samples"')),
+         r"cost\.fetches = \"2 \+ \* samples\": column 5"),
+        ("cost unknown name", lambda d: w(d, "kernel.toml", sub(t, '"2 + samples"', '"2 + taps"')),
+         r"cost\.fetches = \"2 \+ taps\": .*'taps' is neither a parameter"),
+        ("cost missing key", lambda d: w(d, "kernel.toml", re.sub(r"dram_bytes = .*\n", "", t)), r"cost\.dram_bytes: missing"),
+        ("array generator", lambda d: w(d, "kernel.toml", t + '\n[[arrays]]\nname = "taps"\nvec4 = 4\nderive = "sobol"\n'),
+         r"arrays\[0\]\.derive = sobol: must be gaussian_weights"),
+        ("pipeline blur", lambda d: w(d, "kernel.toml", t + '\n[pipeline]\nblur = "separable"\n'),
+         r"pipeline\.blur = separable: this kernel gets the bilateral blur"),
+        ("workgroup", lambda d: w(d, "kernel.toml", 'workgroup = [16, 3]\n' + t), r":1: workgroup = \[16, 3\]: must be"),
+    ]
+    return cases
+
+
+def w(folder, name, text):
+    with open(os.path.join(folder, name), "w") as f:
+        f.write(text)
+
+
+def make(folder, toml=TOML, glsl=GLSL):
+    os.makedirs(folder, exist_ok=True)
+    w(folder, "kernel.toml", toml)
+    w(folder, "ring_ao.glsl", glsl)
+    w(folder, "ring.glsl", RING)
+
+
+def run(cmd, **kw):
+    return subprocess.run(cmd, capture_output=True, text=True, timeout=600, **kw)
+
+
+def check_bad(cavity, root):
+    failures = 0
+    for what, edit, pattern in bad_packages():
+        pkg = os.path.join(root, "bad", what.replace(" ", "_").replace("'", ""))
+        make(pkg)
+        edit(pkg)
+        out = os.path.join(root, "bad_out")
+        r = run([cavity, "run", "--kernels", pkg, "--kernel", "ring_ao", "--res", "32x18", "--frames", "1",
+                 "--out", out])
+        lines = r.stderr.strip().splitlines()
+        ok = (r.returncode == 2 and len(lines) == 1 and re.search(pattern, lines[0]) and not os.path.exists(out)
+              and r.stdout == "")
+        if not ok:
+            failures += 1
+            print(f"FAIL bad package '{what}': exit {r.returncode}, stderr {r.stderr!r}, expected /{pattern}/")
+    # A GLSL error names the package's file and line, not the assembled source.
+    pkg = os.path.join(root, "bad", "glsl_error")
+    make(pkg, glsl=GLSL.replace("float occlusion = 0.0;", "float occlusion = undeclared_thing;"))
+    r = run([cavity, "kernels", "check", pkg])
+    if r.returncode != 2 or not re.search(re.escape(os.path.join(pkg, "ring_ao.glsl")) + r":12: .*undeclared_thing",
+                                          r.stderr):
+        failures += 1
+        print(f"FAIL a GLSL error: exit {r.returncode}, {r.stderr!r}")
+    # A shader that compiles on one API only: gl_VertexIndex is Vulkan's word.
+    pkg = os.path.join(root, "bad", "one_api")
+    make(pkg, glsl=GLSL.replace("float occlusion = 0.0;", "float occlusion = 0.0 * float(gl_VertexIndex);"))
+    r = run([cavity, "kernels", "check", pkg])
+    if r.returncode != 2 or "(gl)" not in r.stderr:
+        failures += 1
+        print(f"FAIL a shader for one API only: exit {r.returncode}, {r.stderr!r}")
+    n = len(bad_packages()) + 2
+    print(f"bad packages: {n - failures} of {n} refused with one line naming the file")
+    return failures
+
+
+def check_disagreement(cavity, root):
+    """A declared parameter the shader never reads: check names it."""
+    pkg = os.path.join(root, "unread")
+    make(pkg, toml=TOML + '\n[[params]]\nname = "bias"\n')
+    r = run([cavity, "kernels", "check", pkg])
+    line = [l for l in r.stderr.splitlines() if "bias" in l]
+    ok = r.returncode == 2 and line and "kernel.toml" in line[0] and "never reads P.bias" in line[0]
+    if not ok:
+        print(f"FAIL check did not catch a declared parameter the shader never reads: {r.returncode} {r.stderr!r}")
+    return 0 if ok else 1
+
+
+def main():
+    source, build = (os.path.abspath(p) for p in sys.argv[1:3])
+    cavity = os.path.join(build, "harness", "cavity")
+    bench = os.path.join(build, "bench", "cavity_bench")
+    with tempfile.TemporaryDirectory() as root:
+        pkg = os.path.join(root, "kernels", "ring_ao")
+        make(pkg)
+        failures = 0
+
+        r = run([cavity, "kernels", "check", pkg])
+        assert r.returncode == 0, r.stdout + r.stderr
+        assert "--ring_px" in r.stdout and "CPU reference: none" in r.stdout, r.stdout
+
+        # cavity run on both APIs, found through CAVITY_KERNELS.
+        env = dict(os.environ, CAVITY_KERNELS=os.path.dirname(pkg))
+        out = os.path.join(root, "run")
+        r = run([cavity, "run", "--kernel", "ring_ao", "--ring_px", "3", "--backend", "all", "--res", "64x36",
+                 "--frames", "2", "--out", out], env=env)
+        assert r.returncode == 0, r.stderr
+        results = json.load(open(os.path.join(out, "results.json")))
+        ids = sorted({c["id"] for c in results["configs"]} if "configs" in results else
+                     {c["id"] for c in results.get("runs", [])})
+        for api in ("gl", "vk"):
+            assert any(re.fullmatch(rf"corner/ring_ao/n8/b4/ring_px=3/full/64x36/{api}/compute", i) for i in ids), ids
+
+        # The gate: a matrix of the package's kernel; approve, then pass by digest.
+        base = os.path.join(root, "baselines")
+        os.makedirs(base)
+        for f in ("manifest.json", "budgets.json"):
+            shutil.copy(os.path.join(source, "baselines", f), base)
+        json.dump({"mine": {"description": "ring_ao on corner", "frames": 2, "warmup": 1, "groups": [
+            {"scenes": ["corner"], "kernels": ["ring_ao"], "samples": [8], "blurs": [4], "resolutions": ["full", "half"],
+             "sizes": ["64x36"], "apis": ["gl", "vk"], "stages": ["compute"]}]}}, open(os.path.join(base, "matrices.json"), "w"))
+        gate = [cavity, "gate", "--kernels", pkg, "--matrix", "mine", "--baselines", base, "--quiet"]
+        first = run(gate + ["--out", os.path.join(root, "gate1")])
+        assert first.returncode != 0, "a gate with neither baselines nor approvals passed"
+        r = run([cavity, "baselines", "approve", "--kernels", pkg, "--from", os.path.join(root, "gate1"), "--baselines",
+                 base, "--why", "the test package's first references", "--store", os.path.join(root, "store")])
+        assert r.returncode == 0, r.stderr
+        second = run(gate + ["--out", os.path.join(root, "gate2"), "--store", os.path.join(root, "store")])
+        assert second.returncode == 0, second.stdout + second.stderr
+        judged = json.dumps(json.load(open(os.path.join(root, "gate2", "gate.json"))))
+        assert "ring_ao" in judged and "digest" in judged, judged[:800]
+
+        # quality against the ground truth, and cavity_bench.
+        r = run([cavity, "quality", "--kernels", pkg, "--kernel", "ring_ao", "--samples", "8", "--scene", "corner",
+                 "--res", "64x36"])
+        assert r.returncode == 0 and re.search(r"corner\s+ring_ao\s+8\s+0\.\d+", r.stdout), r.stdout + r.stderr
+        r = run([bench, "--kernels", pkg, "--sweep", "cpu", "--benchmark_filter=/ring_ao/", "--benchmark_list_tests"])
+        assert r.returncode == 0 and "/ring_ao/" in r.stdout, r.stdout + r.stderr
+        one = next(l for l in r.stdout.split() if "/vk/" in l)
+        r = run([bench, "--kernels", pkg, "--sweep", "cpu", f"--benchmark_filter=^{re.escape(one)}$", "--max-time", "0.05",
+                 "--benchmark_format=json"])
+        assert r.returncode == 0 and '"name": "' + one in r.stdout, r.stdout[-2000:] + r.stderr
+
+        failures += check_disagreement(cavity, root)
+        failures += check_bad(cavity, root)
+    print(f"packages: {'passed' if not failures else str(failures) + ' failed'}")
+    sys.exit(1 if failures else 0)
+
+
+if __name__ == "__main__":
+    main()
