@@ -121,6 +121,10 @@ std::string helpText(const CommandSpec& spec) {
     std::string text = spec.description + "\n\nUsage: " + spec.program + " [OPTIONS]";
     if (!spec.positional.empty()) text += " " + spec.positional;
     text += "\n\nOptions:\n" + flagLine({"-h, --help", "", "print this help on stdout and exit 0"});
+    // Every program takes it before its command's own flags (main: package/package.h).
+    text += "\n" + flagLine({"--kernels", "DIR",
+                             "load the kernel packages in DIR first (repeatable; also CAVITY_KERNELS, folders "
+                             "separated by ':'; docs/packages.md)"});
     if (!spec.positional.empty()) text += "\n" + flagLine({spec.positional, "", spec.positionalHelp});
     std::vector<std::string> groups;
     for (const auto& f : spec.flags)

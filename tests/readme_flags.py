@@ -42,7 +42,7 @@ SUBCOMMANDS = {
     "cavity": [("run",), ("quality",), ("compare",), ("gate", "judge"), ("gate", "merge"), ("gate",),
                ("baselines", "update"), ("baselines", "approve"), ("store", "check"), ("ab",),
                ("history", "ingest"), ("history", "show"), ("history", "chart"), ("history", "alerts"),
-               ("history",)],
+               ("history",), ("kernels", "list"), ("kernels", "show"), ("kernels", "check")],
     "cavity_render": [("quality",)],
     "cavity_bench": [],
 }
