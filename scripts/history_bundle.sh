@@ -36,7 +36,7 @@ for c in "${commits[@]}"; do
     strip "$cache/bin/$short"
   fi
   cp "$cache/bin/$short" "$stage/history/bench_$short"
-  printf '%s\t%s\t%s\t%s\n' "$c" "$(git rev-parse "$c^" 2>/dev/null || true)" \
+  printf '%s\t%s\t%s\t%s\n' "$c" "$(git rev-parse --verify -q "$c^" || true)" \
     "$(git show -s --format=%cI "$c")" "$(git show -s --format=%s "$c" | cut -c1-100)" >> "$stage/history/commits.tsv"
 done
 # The libraries the binaries need that the GPU machine lacks (as scripts/bundle.sh decides).

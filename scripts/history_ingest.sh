@@ -11,7 +11,12 @@ out="${3:-$dir/chart}"
 shift $(( $# < 3 ? $# : 3 ))
 cavity="${CAVITY:-build/harness/cavity}"
 [ -f "$dir/commits.tsv" ] || { echo "history_ingest: $dir/commits.tsv: missing (scripts/gpu_history.sh writes it)" >&2; exit 2; }
-while IFS=$'\t' read -r commit parent date subject; do
+# Split on each tab by hand: `read` with IFS=$'\t' folds two tabs into one,
+# and a first commit's parent field is empty.
+while IFS= read -r line; do
+  commit=${line%%$'\t'*}; rest=${line#*$'\t'}
+  parent=${rest%%$'\t'*}; rest=${rest#*$'\t'}
+  date=${rest%%$'\t'*}; subject=${rest#*$'\t'}
   f="$dir/${commit:0:12}.json"
   [ -f "$f" ] || { echo "history_ingest: $f: missing for $commit ($subject)" >&2; exit 2; }
   "$cavity" history ingest --db "$db" --commit "$commit" ${parent:+--parent "$parent"} --date "$date" \
