@@ -35,6 +35,18 @@ done
 # matrices.json to render, approvals.json to leave approved images out, the
 # tolerances and budgets to judge there (cavity_render --store, cavity gate judge).
 cp baselines/matrices.json baselines/manifest.json baselines/budgets.json "$out/baselines/"
+# BUNDLE_KERNELS: kernel package folders (':' between them) that travel in
+# kernels/; every wrapper loads them (CAVITY_KERNELS), so the GPU machine
+# sees the package kernels as here (docs/packages.md).
+if [ -n "${BUNDLE_KERNELS:-}" ]; then
+  mkdir -p "$out/kernels"
+  IFS=: read -r -a kernel_dirs <<< "$BUNDLE_KERNELS"
+  for d in "${kernel_dirs[@]}"; do
+    [ -d "$d" ] || { echo "bundle: BUNDLE_KERNELS: $d: no such folder" >&2; exit 2; }
+    # A package folder, or a folder of them: each package becomes kernels/<folder>.
+    if [ -f "$d/kernel.toml" ]; then cp -r "$d" "$out/kernels/"; else cp -r "$d"/. "$out/kernels/"; fi
+  done
+fi
 [ -f baselines/approvals.json ] && cp baselines/approvals.json "$out/baselines/"
 # Libraries resolved by the loader here, minus what every glibc system and the
 # GPU machine's loaders provide. libz is part of every Linux base system
@@ -51,6 +63,7 @@ cat > "$out/run.sh" <<'RUN'
 # Runs the benchmark sweep on this machine; arguments go to cavity_bench.
 here="$(cd "$(dirname "$0")" && pwd)"
 export LD_LIBRARY_PATH="$here/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
+[ -d "$here/kernels" ] && export CAVITY_KERNELS="$here/kernels${CAVITY_KERNELS:+:$CAVITY_KERNELS}"
 exec "$here/cavity_bench" "$@"
 RUN
 cat > "$out/render.sh" <<'RENDER'
@@ -60,6 +73,7 @@ cat > "$out/render.sh" <<'RENDER'
 # copy of baselines/matrices.json unless --baselines says otherwise.
 here="$(cd "$(dirname "$0")" && pwd)"
 export LD_LIBRARY_PATH="$here/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
+[ -d "$here/kernels" ] && export CAVITY_KERNELS="$here/kernels${CAVITY_KERNELS:+:$CAVITY_KERNELS}"
 if [ "${1:-}" != quality ] && [[ " $* " != *" --baselines "* ]]; then
   set -- "$@" --baselines "$here/baselines"
 fi
@@ -70,6 +84,7 @@ cat > "$out/cavity.sh" <<'CAVITY'
 # Runs cavity (cavity ab, cavity gate judge) with the bundle's libraries.
 here="$(cd "$(dirname "$0")" && pwd)"
 export LD_LIBRARY_PATH="$here/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
+[ -d "$here/kernels" ] && export CAVITY_KERNELS="$here/kernels${CAVITY_KERNELS:+:$CAVITY_KERNELS}"
 exec "$here/cavity" "$@"
 CAVITY
 # The binaries and the larger libraries travel xz-compressed (about a third

@@ -7,6 +7,7 @@ error that names it, not a half-written program.
     test_bundle.py SOURCE_DIR BUILD_DIR
 """
 import os
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -20,7 +21,16 @@ def main():
     source, build = (os.path.abspath(p) for p in sys.argv[1:3])
     with tempfile.TemporaryDirectory() as tmp:
         out = os.path.join(tmp, "bundle")
-        env = dict(os.environ, BUNDLE_BINARIES="cavity_bench", BUILD_DIR=build)
+        # A kernel package travels in the bundle and its kernel is in the sweep there.
+        pkg = os.path.join(tmp, "pkgs")
+        shutil.copytree(os.path.join(source, "kernels", "ao", "gtao"), os.path.join(pkg, "gtao_copy"))
+        toml = os.path.join(pkg, "gtao_copy", "kernel.toml")
+        text = open(toml).read().replace('name = "gtao"', 'name = "gtao_copy"')
+        text = text.replace('name = "slices"', 'name = "copy_slices"').replace('name = "multibounce"', 'name = "copy_bounce"')
+        open(toml, "w").write(text)
+        glsl = os.path.join(pkg, "gtao_copy", "gtao.glsl")
+        open(glsl, "w").write(open(glsl).read().replace("P.slices", "P.copy_slices").replace("P.multibounce", "P.copy_bounce"))
+        env = dict(os.environ, BUNDLE_BINARIES="cavity_bench", BUILD_DIR=build, BUNDLE_KERNELS=pkg)
         packed = run([os.path.join(source, "scripts", "bundle.sh"), out], env=env)
         assert packed.returncode == 0, packed.stderr
         names = os.listdir(out)
@@ -33,6 +43,7 @@ def main():
             stdout, stderr = p.communicate(timeout=300)
             assert p.returncode == 0, stderr
             assert "/compute/" in stdout, stdout[:500]
+            assert "/gtao_copy/" in stdout, "the bundle's kernel package is not in the sweep"
         names = os.listdir(out)
         assert "cavity_bench" in names and not any(n.endswith(".xz") or ".unpack." in n for n in names), names
         assert os.access(os.path.join(out, "cavity_bench"), os.X_OK)
