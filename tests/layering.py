@@ -48,7 +48,8 @@ def read_codemodel(build):
     reply = os.path.join(build, ".cmake", "api", "v1", "reply")
     indexes = sorted(glob.glob(os.path.join(reply, "index-*.json")))
     if not indexes:
-        sys.exit(f"layering: {reply}: no CMake file-API reply; configure the build with the top-level CMakeLists.txt")
+        sys.exit(f"layering: {reply}: no CMake file-API reply; scripts/setup.sh asks for one before configuring "
+                 "(or configure once more: the top-level CMakeLists.txt writes the query)")
     index = json.load(open(indexes[-1]))
     model = next(o for o in index["objects"] if o["kind"] == "codemodel")
     code = json.load(open(os.path.join(reply, model["jsonFile"])))
