@@ -91,7 +91,7 @@ def main():
         # gpu_store_run.sh: references into a folder store, the planted defects judged against them.
         out = fresh_out(root, "store")
         run(["scripts/gpu_store_run.sh", "ci", "vk", defects], root,
-            dict(env, OUT=out, FILTER="^corner/alchemy_fast/n16/b4/full/160x90/"))
+            dict(env, OUT=out, FILTER="^corner/alchemy_fast/n16/b4/full/160x90/", CLEAN="0"))
         with tarfile.open(os.path.join(out, "results.tgz")) as t:
             got = t.getnames()
         assert any(n.endswith("approvals.json") for n in got), got
@@ -128,7 +128,7 @@ def main():
         bundle = os.path.join(root, "history.tar.xz")
         run(["scripts/history_bundle.sh", bundle, *commits], repo, env)
         out = fresh_out(root, "history")
-        run(["scripts/gpu_history.sh", bundle, "2", "0.01", f"^{one}$"], repo, dict(env, OUT=out))
+        run(["scripts/gpu_history.sh", bundle, "1", "0.01", f"^{one}$"], repo, dict(env, OUT=out))
         came = os.path.join(root, "history_back")
         with tarfile.open(os.path.join(out, "history.tgz")) as t:
             t.extractall(came)
