@@ -21,9 +21,18 @@ namespace cavity::cli {
 namespace {
 
 const CommandSpec& spec(const std::string& sub) {
-    static const CommandSpec list{"cavity kernels list", "Every kernel the harness knows: its role, where it comes from "
-                                  "(built in, or the package folder), whether it has a CPU reference, its summary.",
-                                  {}, "", "", "", {"cavity kernels list", "cavity --kernels my_kernels/ kernels list"}};
+    static const CommandSpec list{
+        "cavity kernels list",
+        "Every kernel the harness knows: its role, the package folder it comes from, whether it has a CPU reference, its "
+        "summary. --markdown prints the AO kernels as the tables README.md and docs/kernels.md hold (a test keeps them "
+        "equal).",
+        {{"--markdown", "TABLE",
+          "the AO kernels as a Markdown table: kernels (name and summary, with its sources) or pipelines (its passes "
+          "at full resolution, and its package)"}},
+        "",
+        "",
+        "",
+        {"cavity kernels list", "cavity --kernels my_kernels/ kernels list", "cavity kernels list --markdown pipelines"}};
     static const CommandSpec show{"cavity kernels show", "One kernel's declaration: parameters with their defaults and "
                                   "ranges, inputs, outputs, its cost per pixel at the defaults, its passes, its files.",
                                   {}, "NAME", "a kernel's name (cavity kernels list)", "", {"cavity kernels show gtao"}};
@@ -58,6 +67,45 @@ std::string roleName(kernels::Role r) {
 std::string origin(const kernels::KernelDecl& k) {
     const auto* p = kernels::findPackage(k.name);
     return p ? p->folder : "built in (kernels/)";
+}
+
+// A Markdown cell: no '|' may end it early.
+std::string cell(const std::string& text) {
+    std::string out;
+    for (const char c : text) {
+        if (c == '|') out += "\\|";
+        else out += c;
+    }
+    return out;
+}
+
+// The AO kernels (and the reference) as Markdown, generated from their
+// packages so that no hand-kept list can fall behind them.
+int markdown(const std::string& table) {
+    std::vector<const kernels::KernelDecl*> rows;
+    for (const auto role : {kernels::Role::Ao, kernels::Role::Reference})
+        for (const auto& k : kernels::all())
+            if (k.role == role) rows.push_back(&k);
+    if (table == "kernels") {
+        std::cout << "| `--kernel` | what | after |\n| --- | --- | --- |\n";
+        for (const auto* k : rows) {
+            std::string after;
+            for (const auto& source : k->sources) after += (after.empty() ? "" : "; ") + source;
+            std::cout << "| `" << k->name << "` | " << cell(k->summary) << " | " << cell(after.empty() ? "ours" : after)
+                      << " |\n";
+        }
+        return 0;
+    }
+    std::cout << "| `--kernel` | passes at full resolution | package | CPU reference |\n| --- | --- | --- | --- |\n";
+    for (const auto* k : rows) {
+        core::RunConfig c;
+        c.kernel = k->name;
+        std::string passes;
+        for (const auto& p : pipeline::buildPasses(c)) passes += (passes.empty() ? "" : " → ") + p.kernel;
+        std::cout << "| `" << k->name << "` | " << passes << " | `" << origin(*k) << "/` | "
+                  << (reference::hasReference(k->name) ? "yes" : "no: gated by approvals") << " |\n";
+    }
+    return 0;
 }
 
 int list() {
@@ -215,7 +263,14 @@ int kernelsCommand(const std::vector<std::string>& argv) {
         std::cout << parsed->helpText;
         return 0;
     }
-    if (argv[0] == "list") return list();
+    if (argv[0] == "list") {
+        std::string table;
+        for (const auto& [flag, value] : parsed->values)
+            if (flag == "--markdown") table = value;
+        if (!table.empty() && table != "kernels" && table != "pipelines")
+            return fail(program, badInput("--markdown " + table + ": must be kernels or pipelines"));
+        return table.empty() ? list() : markdown(table);
+    }
     if (parsed->positionals.size() != 1)
         return fail(program, badInput(argv[0] == "show" ? "give one kernel's NAME" : "give one package folder DIR"));
     return argv[0] == "show" ? show(parsed->positionals[0]) : check(parsed->positionals[0]);

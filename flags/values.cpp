@@ -43,8 +43,10 @@ Status addKernelSource(const std::string& value, SourceOverrides& overrides, std
     const auto eq = value.find('=');
     if (eq == std::string::npos || eq == 0 || eq + 1 == value.size())
         return badInput("--kernel-source '" + value + "': must be NAME=FILE, e.g. ssao_alchemy.glsl=broken.glsl");
-    const std::string name = value.substr(0, eq), file = value.substr(eq + 1), given = "--kernel-source " + value;
-    if (!kernels::sourceFile(name)) return badInput("--kernel-source " + name + ": no kernel source of that name (kernels/*.glsl)");
+    const std::string file = value.substr(eq + 1), given = "--kernel-source " + value;
+    auto key = kernels::sourceKey(value.substr(0, eq));
+    if (!key) return badInput("--kernel-source " + key.error().message);
+    const std::string name = *key;
     if (overrides.count(name)) return badInput(given + ": kernels/" + name + " is already replaced (give each NAME once)");
     std::error_code ec;
     if (!fs::is_regular_file(file, ec))

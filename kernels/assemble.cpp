@@ -5,6 +5,7 @@
 #include "kernel.h"
 #include "package/package.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -23,6 +24,34 @@ const std::string* sourceFile(const std::string& name) {
     if (it != files.end()) return &it->second;
     const PackageSource* p = packageSource(name);
     return p ? &p->text : nullptr;
+}
+
+Result<std::string> sourceKey(const std::string& name) {
+    if (sourceFile(name) && name.size() > 5 && name.compare(name.size() - 5, 5, ".glsl") == 0) return name;
+    // A file name alone: the one source of that name, wherever its package
+    // keeps it ("ssao_alchemy.glsl" for "ao/alchemy/ssao_alchemy.glsl").
+    std::vector<std::string> keys;
+    for (const auto& [key, text] : embeddedSources()) keys.push_back(key);
+    for (const auto& p : packages())
+        if (!p.builtIn) keys.insert(keys.end(), p.sourceKeys.begin(), p.sourceKeys.end());
+    std::vector<std::string> found;
+    for (const auto& key : keys)
+        if (key.size() > name.size() && key.compare(key.size() - name.size(), name.size(), name) == 0 &&
+            key[key.size() - name.size() - 1] == '/' && name.find('/') == std::string::npos)
+            found.push_back(key);
+    // A bare name always meant a kernel's own file; the shared includes were
+    // named with their folder ("include/composite.glsl").
+    if (found.size() > 1)
+        found.erase(std::remove_if(found.begin(), found.end(),
+                                   [](const std::string& k) { return k.rfind("include/", 0) == 0; }),
+                    found.end());
+    if (found.size() == 1 && found[0].size() > 5 && found[0].compare(found[0].size() - 5, 5, ".glsl") == 0) return found[0];
+    if (found.size() > 1) {
+        std::string list;
+        for (const auto& f : found) list += (list.empty() ? "" : ", ") + f;
+        return badInput(name + ": more than one kernel source of that name (" + list + "); give its path under kernels/");
+    }
+    return badInput(name + ": no kernel source of that name (a .glsl file under kernels/ or in a --kernels package)");
 }
 
 // How diagnostics name a source: its path in the repository, or for a file a

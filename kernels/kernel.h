@@ -277,6 +277,11 @@ inline uint32_t firstInputBinding(const KernelDecl& k, gpu::Stage stage) {
 
 // The text of an embedded kernel file (kernels/*.glsl, kernels/include/*.glsl).
 const std::string* sourceFile(const std::string& name);
+// The key of the kernel source `name` names (--kernel-source NAME=FILE): a
+// .glsl key itself ("ao/alchemy/ssao_alchemy.glsl", "include/common.glsl"),
+// or a file name that one source alone has ("ssao_alchemy.glsl"), so that a
+// command written before the kernels became packages still names its file.
+Result<std::string> sourceKey(const std::string& name);
 // The first line of a replacement source read from a file, naming that file
 // ("//!cavity-replaced-from: my_alchemy.glsl"): assemble() labels the
 // replacement's diagnostics with it, and drops the line.

@@ -126,4 +126,14 @@ ConstantImageDecl::Level noiseTile() {
     return l;
 }
 
+std::vector<float> spiralTable() {
+    std::vector<float> table(256 * 4, 0.0f);
+    for (int i = 0; i < 256; ++i) {
+        const double angle = 2 * 3.14159265358979323846 * std::fmod((i + 0.5) * 7.0 / 9.0, 1.0);
+        table[size_t(i) * 4] = float(std::cos(angle));
+        table[size_t(i) * 4 + 1] = float(std::sin(angle));
+    }
+    return table;
+}
+
 }  // namespace cavity::kernels

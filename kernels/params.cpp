@@ -1,7 +1,7 @@
 // Every kernel parameter, declared once (params.h). A name is one flag with
 // one value for every kernel of a pipeline, so its range, unit and help are
 // the same wherever it is read; what each kernel does with it is the kernel's
-// note (registry.cpp, decl_*.cpp).
+// note (its package's kernel.toml: kernels/ao/, kernels/passes/).
 #include "params.h"
 
 #include "kernel.h"
@@ -43,7 +43,7 @@ ParamDecl choice(std::string name, std::vector<std::string> choices, std::string
 // The hemisphere kernel array has room for the largest `samples` (256), so
 // every allowed sample count is honoured as given, none clamped: 4 KiB of
 // uniforms, well inside the 16 KiB every GL and Vulkan device offers
-// (decl_screen_space.cpp).
+// (the hemisphere kernels' packages).
 constexpr double kMaxSamples = 256;
 
 // The fast pipelines' switches: each picks another way to compute the same
@@ -107,7 +107,7 @@ std::vector<ParamDecl> declare() {
         make("steps", T::Int, 4, 1, 16, "points",
              "points tested along each ray, marched out to R (1: one point at a random length in (0, R], as published SSDO)"),
         // The box blur pass after the hemisphere kernels: seed 004's plain 4x4
-        // box, or blur_box_depth (decl_quality_variants.cpp), which keeps to
+        // box, or blur_box_depth (kernels/passes/blur_box_depth), which keeps to
         // the centre's surface.
         flag("depth_aware_box", false,
              "box-blur only the texels of the centre's surface (blur_box_depth), not all 16 (as the published hemisphere SSAO)"),
@@ -190,7 +190,7 @@ const ParamDecl* declareParam(ParamDecl p) {
 }
 
 // The built-in declarations first, without building the registry: static
-// initialisers ask for them (decl_screen_space.cpp's largest sample count)
+// initialisers ask for them (noise_tables.cpp's largest sample count)
 // before the registry may be built. Only a name they lack waits for the
 // packages' parameters.
 const ParamDecl* findParam(const std::string& name) {

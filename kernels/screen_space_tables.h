@@ -1,8 +1,8 @@
 // The tables the screen-space kernels read that the CPU makes: the sample
 // kernels of the hemisphere SSAO (noise_tables.cpp), the 4x4 rotation-noise
 // tile (noise_tables.cpp), and the sky panorama (sky_panorama.cpp) with its
-// spherical-harmonic projection (sky_sh.cpp). decl_screen_space.cpp declares
-// the kernels and images that use them.
+// spherical-harmonic projection (sky_sh.cpp). The kernels' packages name
+// them as derived arrays (docs/packages.md); constants.cpp declares the images.
 #pragma once
 
 #include "kernel.h"
@@ -29,5 +29,12 @@ void skyDirection(double u, double v, double& dx, double& dy, double& dz);
 
 // Irradiance / pi of the panorama as 9 SH coefficients (vec4s).
 std::vector<float> skySh();
+
+// Sample i's spiral direction at phase 0, (cos, sin) of (i + 0.5) 7/9 turns,
+// one vec4 each for samples up to 256: the fast Alchemy kernel turns it by
+// the pixel's phase once computed, where evaluating cos and sin per sample
+// was a sixth of the pass on the H200 (docs/roofline.md). Whatever the
+// table's last bits, the shader and the CPU reference read the same ones.
+std::vector<float> spiralTable();
 
 }  // namespace cavity::kernels

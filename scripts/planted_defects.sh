@@ -23,10 +23,10 @@ plant() {   # name, file under kernels/, configurations regex, sed expression
 plant pyramid_level3 include/pyramid_build.glsl '_fast/' \
   's|    if (pick != pixel >> (k - 1)) return false;|    if (k >= 3) pick = min(t * 2 + ivec2(t.x \& 1, t.y \& 1), levelSizeOf(k - 1) - 1);\n&|'
 # alchemy_fast reads one pyramid level too coarse everywhere.
-plant alchemy_fast_level ssao_alchemy_fast.glsl '/alchemy_fast/' \
+plant alchemy_fast_level ao/alchemy_fast/ssao_alchemy_fast.glsl '/alchemy_fast/' \
   's|int level = pyramidLevel(int(h), maxLevel);|int level = min(pyramidLevel(int(h), maxLevel) + 1, maxLevel);|'
 # Alchemy's bias lowered by a tenth: a little more self-occlusion on flat ground.
-plant alchemy_bias ssao_alchemy.glsl '/alchemy/' 's|dot(N, omega) - P.bias|dot(N, omega) - 0.9 * P.bias|'
+plant alchemy_bias ao/alchemy/ssao_alchemy.glsl '/alchemy/' 's|dot(N, omega) - P.bias|dot(N, omega) - 0.9 * P.bias|'
 # The composite's dither dropped: bands in the 8-bit gradients.
 plant no_dither include/composite.glsl '/full/' 's|if (P.dither != 0) {|if (P.dither != 0 \&\& false) {|'
 # The separable blur's Gaussian read one weight off (w[i+1] for w[i]).
@@ -34,7 +34,7 @@ plant blur_weight_shift include/blur_separable.glsl '_fast/' 's|return P.weights
 # The bilateral upsample's normal weight to the 4th power instead of the 8th.
 plant upsample_normal include/upsample.glsl '/half/' 's|float normalWeight = cn \* cn;|float normalWeight = cn;|'
 # hemisphere_fast's radius a twentieth short.
-plant hemisphere_fast_radius ssao_hemisphere_fast.glsl '/hemisphere_fast/' 's|float R = P.radius;|float R = 0.95 * P.radius;|'
+plant hemisphere_fast_radius ao/hemisphere_fast/ssao_hemisphere_fast.glsl '/hemisphere_fast/' 's|float R = P.radius;|float R = 0.95 * P.radius;|'
 # ssdo_fast's bounce a tenth weak.
-plant ssdo_bounce ssdo_fast_indirect.glsl '/ssdo_fast/' 's|area \* P.bounce_strength / PI|area * 0.9 * P.bounce_strength / PI|'
+plant ssdo_bounce passes/ssdo_fast_indirect/ssdo_fast_indirect.glsl '/ssdo_fast/' 's|area \* P.bounce_strength / PI|area * 0.9 * P.bounce_strength / PI|'
 wc -l < "$out/list.txt" | xargs echo "planted_defects: defects in $out/list.txt:"

@@ -10,7 +10,7 @@
 //   * the ground truth the kernels estimate: the cosine-weighted fraction of
 //     the normal's hemisphere from which a ray escapes every box within the
 //     reach R, exact up to the ray count (a Fibonacci lattice, as
-//     kernels/ground_truth.glsl uses), and
+//     kernels/ao/ground_truth/ground_truth.glsl uses), and
 //   * the best a single depth layer can do: the same rays marched finely
 //     through the G-buffer, each step blocked when it lies behind the
 //     recorded surface's plane (everything behind the first surface is taken

@@ -139,7 +139,7 @@ TEST_F(Cli, QualityMeasuresAnEditedKernel) {
     EXPECT_NEAR(e["rows"][0]["mae"].get<double>(), 1.0 - e["rows"][0]["mean_truth"].get<double>(), 1e-9);
     EXPECT_LT(p["rows"][0]["mean_ao"].get<double>(), 0.99);
     ASSERT_EQ(e["kernel_sources"].size(), 1u);
-    EXPECT_EQ(e["kernel_sources"][0]["name"], "ssao_alchemy_fast.glsl");
+    EXPECT_EQ(e["kernel_sources"][0]["name"], "ao/alchemy_fast/ssao_alchemy_fast.glsl");
     EXPECT_TRUE(p["kernel_sources"].empty());
 }
 

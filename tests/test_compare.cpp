@@ -569,7 +569,7 @@ TEST_F(Compare, AnEditedKernelOnOneSideIsMeasuredInItsPass) {
                            "    write_ao_key(pixel, vec4(1.0, texelFetch(in_zmip, pixel, 0).r, 0.0, 0.0));\n}\n";
     // A second edit, given with the flag once more: the composite with the
     // same loop before its own body.
-    std::ifstream stock(std::string(CAVITY_SOURCE_DIR) + "/kernels/composite.glsl");
+    std::ifstream stock(std::string(CAVITY_SOURCE_DIR) + "/kernels/passes/composite/composite.glsl");
     std::string composite((std::istreambuf_iterator<char>(stock)), std::istreambuf_iterator<char>());
     const std::string entry = "void cavity_main(ivec2 pixel) {\n";
     const size_t at = composite.find(entry);

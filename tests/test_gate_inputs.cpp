@@ -143,7 +143,7 @@ TEST_F(GateInputs, ExpectationsFolderThatIsNotOneIsBadInput) {
 // A shader edit gated in one step: `cavity gate --kernel-source`, with the
 // file and its digest in every report.
 TEST_F(GateInputs, KernelSourceEditFailsTheGateAndEveryReportNamesIt) {
-    std::ifstream in(fs::path(CAVITY_SOURCE_DIR) / "kernels/ssao_alchemy.glsl");
+    std::ifstream in(fs::path(CAVITY_SOURCE_DIR) / "kernels/ao/alchemy/ssao_alchemy.glsl");
     std::string text((std::istreambuf_iterator<char>(in)), {});
     const std::string find = "- P.bias";
     ASSERT_NE(text.find(find), std::string::npos);
@@ -156,7 +156,7 @@ TEST_F(GateInputs, KernelSourceEditFailsTheGateAndEveryReportNamesIt) {
     std::ifstream gj(out / "gate.json");
     const auto j = nlohmann::json::parse(gj);
     ASSERT_EQ(j["kernel_sources"].size(), 1u) << j["kernel_sources"];
-    EXPECT_EQ(j["kernel_sources"][0]["name"], "ssao_alchemy.glsl");
+    EXPECT_EQ(j["kernel_sources"][0]["name"], "ao/alchemy/ssao_alchemy.glsl");
     EXPECT_EQ(j["kernel_sources"][0]["file"], edit.string());
     const std::string digest = j["kernel_sources"][0]["digest"];
     EXPECT_EQ(digest.rfind("fnv1a64:", 0), 0u) << digest;
@@ -179,7 +179,7 @@ TEST_F(GateInputs, KernelSourceThatCannotApplyIsBadInput) {
     expectBad(gate("--kernel-source ssao_alchemy.glsl=" + glsl.string() + " --kernel-source ssao_alchemy.glsl=" + glsl.string()),
               "is already replaced (give each NAME once)");
     // The smoke matrix runs alchemy: SSDO's direct pass is never compiled.
-    expectBad(gate("--kernel-source ssdo_direct.glsl=" + glsl.string()), "no configuration of the selection compiles kernels/ssdo_direct.glsl");
+    expectBad(gate("--kernel-source ssdo_direct.glsl=" + glsl.string()), "no configuration of the selection compiles kernels/ao/ssdo/ssdo_direct.glsl");
 }
 
 // A compile error in a replacement names the file given, not kernels/NAME.
@@ -188,7 +188,7 @@ TEST_F(GateInputs, KernelSourceCompileErrorNamesTheFileGiven) {
     std::ofstream(broken) << "void cavity_main(ivec2 pixel) { this is not glsl; }\n";
     const Outcome o = gate("--retries 0 --kernel-source ssao_alchemy.glsl=" + broken.string());
     EXPECT_NE(o.code, 0) << o.output;
-    EXPECT_NE(o.output.find(broken.string() + " (replacing kernels/ssao_alchemy.glsl):1"), std::string::npos) << o.output;
+    EXPECT_NE(o.output.find(broken.string() + " (replacing kernels/ao/alchemy/ssao_alchemy.glsl):1"), std::string::npos) << o.output;
 }
 
 // Approvals (baselines/approvals.json): an approved digest of the device's
@@ -253,7 +253,7 @@ TEST_F(GateInputs, ToleranceJudgesAgainstTheClassReferenceElseTheDefault) {
     size_t objects = 0;
     for (const auto& e : fs::recursive_directory_iterator(st)) objects += e.is_regular_file();
     EXPECT_GE(objects, 3u) << approve.output;   // gl and vk may share an image
-    std::ifstream in(fs::path(CAVITY_SOURCE_DIR) / "kernels/ssao_alchemy.glsl");
+    std::ifstream in(fs::path(CAVITY_SOURCE_DIR) / "kernels/ao/alchemy/ssao_alchemy.glsl");
     std::string text((std::istreambuf_iterator<char>(in)), {});
     text.replace(text.find("- P.bias"), 8, "- 0.9 * P.bias");
     const fs::path edit = dir / "bias_scaled.glsl";

@@ -134,7 +134,7 @@ def bad_packages():
         ("output format", lambda d: w(d, "kernel.toml", sub(t, 'format = "R16F"', 'format = "RGB10A2"')),
          r"outputs\[0\]\.format = RGB10A2: no backend image of that format"),
         ("output name", lambda d: w(d, "kernel.toml", sub(t, 'name = "ao"', 'name = "occlusion"')),
-         r"outputs\[0\]\.name = occlusion: must be ao"),
+         r"outputs\[0\]\.name = occlusion: an AO kernel writes ao"),
         ("cost syntax", lambda d: w(d, "kernel.toml", sub(t, '"2 + samples"', '"2 + * samples"')),
          r"cost\.fetches = \"2 \+ \* samples\": column 5"),
         ("cost unknown name", lambda d: w(d, "kernel.toml", sub(t, '"2 + samples"', '"2 + taps"')),

@@ -445,7 +445,7 @@ TEST_P(KernelVsReference, InterleavedLayersShadeAsThePlainReferenceDoes) {
 // cannot tell: which invocation shades a pixel does not change its value.)
 TEST_P(KernelVsReference, InterleavedPassShadesEachLayerInItsOwnWorkgroups) {
     const std::map<std::string, std::string> workgroupIds = {
-        {"ssao_alchemy_fast.glsl",
+        {"ao/alchemy_fast/ssao_alchemy_fast.glsl",
          "#include \"include/common.glsl\"\n"
          "void cavity_main(ivec2 pixel) {\n"
          "    write_ao(pixel, vec4(float(gl_WorkGroupID.x), 0.0, 0.0, 0.0));\n"

@@ -302,11 +302,11 @@ TEST_F(TwoStep, APlantedBugFailsThroughTheSplit) {
     auto entries = plan::selectEntries(*matrix, 0, 1, "^corner/alchemy/n16/b4/full/160x90/vk/compute$");
     ASSERT_TRUE(entries && entries->size() == 1u);
     render::RenderOptions ro;
-    std::string broken = *kernels::sourceFile("ssao_alchemy.glsl");
+    std::string broken = *kernels::sourceFile("ao/alchemy/ssao_alchemy.glsl");
     const auto at = broken.find("- P.bias");
     ASSERT_NE(at, std::string::npos);
     broken.replace(at, 8, "+ P.bias");
-    ro.overrides["ssao_alchemy.glsl"] = broken;
+    ro.overrides["ao/alchemy/ssao_alchemy.glsl"] = broken;
     const fs::path dir = scratch("render"), out = scratch("judged");
     render::RenderManifest header;
     header.matrix = matrix->name;
@@ -504,7 +504,7 @@ INSTANTIATE_TEST_SUITE_P(Damages, BadRenderFolder, ::testing::Range<size_t>(0, d
 // A pass that writes NaN is exit 1 from every tool: the run finished and
 // the image is wrong (cavity run, cavity_render, cavity gate judge).
 TEST_F(TwoStep, ANaNImageIsExitOneInEveryTool) {
-    std::string broken = *kernels::sourceFile("ssao_alchemy.glsl");
+    std::string broken = *kernels::sourceFile("ao/alchemy/ssao_alchemy.glsl");
     const std::string find = "write_ao(pixel, vec4(A, 0.0, 0.0, 0.0));";
     ASSERT_NE(broken.find(find), std::string::npos);
     broken.replace(broken.find(find), find.size(),
@@ -564,7 +564,7 @@ TEST_F(TwoStep, ImagesJudgedWhereTheyAreRenderedTravelAsVerdicts) {
                              " --store " + st.string() + " --by tester --why 'references'");
     ASSERT_EQ(a.code, 0) << a.output;
     // A change the tolerances allow in the AO: slightly more occlusion.
-    std::ifstream in(fs::path(CAVITY_SOURCE_DIR) / "kernels/ssao_alchemy.glsl");
+    std::ifstream in(fs::path(CAVITY_SOURCE_DIR) / "kernels/ao/alchemy/ssao_alchemy.glsl");
     std::string text((std::istreambuf_iterator<char>(in)), {});
     const std::string find = "1.0 - P.scale * S";
     ASSERT_NE(text.find(find), std::string::npos);

@@ -229,7 +229,7 @@ def cases(work, http, https, ca, www):
 
     # The judge fetches the class reference over HTTP: a planted defect fails
     # by tolerance against it, the unchanged render passes by digest.
-    src = open(os.path.join(SOURCE, "kernels", "ssao_alchemy.glsl")).read()
+    src = open(os.path.join(SOURCE, "kernels", "ao", "alchemy", "ssao_alchemy.glsl")).read()
     edit = os.path.join(work, "planted.glsl")
     open(edit, "w").write(src.replace("dot(N, omega) - P.bias", "dot(N, omega) - 0.9 * P.bias"))
     p = run([RENDER, "--matrix", "ci", "--filter", CONFIG, "--baselines", base, "--out", planted,

@@ -145,11 +145,11 @@ TEST(ToolFlags, BadInputIsOneLineNamingTheFlagAndExitsTwo) {
 
 TEST(ToolFlags, RenderTakesKernelSourceMoreThanOnce) {
     // Repeatable: both are read (the second names no kernel source, and says so).
-    const std::string file = std::string(CAVITY_SOURCE_DIR) + "/kernels/ssao_alchemy.glsl";
+    const std::string file = std::string(CAVITY_SOURCE_DIR) + "/kernels/ao/alchemy/ssao_alchemy.glsl";
     const auto o = runBinary(CAVITY_RENDER_EXE,
                              "--matrix ci --out x --kernel-source ssao_alchemy.glsl=" + file + " --kernel-source nope.glsl=" + file);
     EXPECT_EQ(o.code, 2) << o.output;
-    EXPECT_EQ(o.output, "cavity_render: --kernel-source nope.glsl: no kernel source of that name (kernels/*.glsl)\n");
+    EXPECT_EQ(o.output, "cavity_render: --kernel-source nope.glsl: no kernel source of that name (a .glsl file under kernels/ or in a --kernels package)\n");
 }
 
 }  // namespace

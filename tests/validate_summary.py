@@ -80,7 +80,7 @@ def main():
     failures = []
     with tempfile.TemporaryDirectory() as tmp:
         edit = os.path.join(tmp, "bias_flipped.glsl")
-        text = open(os.path.join(SOURCE, "kernels", "ssao_alchemy.glsl")).read()
+        text = open(os.path.join(SOURCE, "kernels", "ao", "alchemy", "ssao_alchemy.glsl")).read()
         open(edit, "w").write(text.replace("- P.bias", "+ P.bias"))
         bad = os.path.join(tmp, "bad")
         r = gate(cavity, SOURCE, bad, ["--kernel-source", f"ssao_alchemy.glsl={edit}"])

@@ -11,7 +11,7 @@
 namespace cavity::kernels {
 
 // On failure the message names the kernel, the source file and line of every
-// diagnostic, e.g. "alchemy: kernels/ssao_alchemy.glsl:42: 'foo' : undeclared identifier".
+// diagnostic, e.g. "alchemy: kernels/ao/alchemy/ssao_alchemy.glsl:42: 'foo' : undeclared identifier".
 Result<std::vector<uint32_t>> compileToSpirv(const gpu::ShaderSource& source, gpu::Api target);
 
 // The uniforms the linked shader reads, by glslang's reflection: block

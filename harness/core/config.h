@@ -16,7 +16,7 @@
 namespace cavity::core {
 
 // A G-buffer made on the CPU and uploaded rather than rendered, in the
-// formats and conventions gbuffer_sdf writes (kernels/gbuffer_sdf.glsl):
+// formats and conventions gbuffer_sdf writes (kernels/passes/gbuffer_sdf/gbuffer_sdf.glsl):
 // position RGBA (view x, y, z, linear depth -z), normal RGBA (view-space unit
 // normal, 0), albedo RGBA (linear RGB, 1); all zero at background pixels.
 // The chain adds the linear depth image gbuffer_sdf writes beside them (the

@@ -1,7 +1,7 @@
 // An imported G-buffer: a capture from the user's own engine, read with
 // OpenImageIO from ONE multi-channel OpenEXR file (subimage 0, any pixel
 // type), turned into the images the ray-marched G-buffer pass would have
-// written (kernels/gbuffer_sdf.glsl), so every later pass reads it alike.
+// written (kernels/passes/gbuffer_sdf/gbuffer_sdf.glsl), so every later pass reads it alike.
 //
 // The camera is the harness's (harness/core/camera.h): view space right-handed,
 // looking down -Z, fovY 60 degrees, near 0.05, far 100, aspect = width /

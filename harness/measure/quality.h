@@ -1,5 +1,5 @@
 // Quality against the ground truth: every AO kernel's mean absolute error
-// against the ray-traced reference (kernels/ground_truth.glsl) on the same
+// against the ray-traced reference (kernels/ao/ground_truth/ground_truth.glsl) on the same
 // G-buffer, the measure the issues quote and `cavity quality` prints.
 //
 // The compared image is what the AO pipeline hands to the bilateral blur,

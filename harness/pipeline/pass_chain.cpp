@@ -259,7 +259,7 @@ PassChain::PassChain(gpu::Backend& gpu) : gpu_(gpu) {}
 
 Status PassChain::createConstant(const std::string& name, const kernels::ParamValues& params) {
     const auto* decl = kernels::findConstant(name);
-    if (!decl) return internal("no constant image '" + name + "' (kernels/decl_screen_space.cpp)");
+    if (!decl) return internal("no constant image '" + name + "' (kernels/constants.cpp)");
     const auto levels = decl->make(params);
     if (levels.empty()) return internal("constant image '" + name + "' has no levels");
     gpu::ImageDesc d{levels[0].width, levels[0].height, decl->format, int(levels.size()), "constant " + name, kUploaded};

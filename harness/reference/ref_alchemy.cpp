@@ -1,4 +1,4 @@
-// Reference of kernels/ssao_alchemy.glsl (McGuire et al., HPG 2011). The
+// Reference of kernels/ao/alchemy/ssao_alchemy.glsl (McGuire et al., HPG 2011). The
 // sample pixels come out identical to the GPU's: the spiral angle, the disc
 // scale and the sample position use only correctly rounded operations
 // (portable_math.h, noise.h). What remains, pow() and the sums, differs by

@@ -1,4 +1,4 @@
-// Reference of kernels/blur_bilateral.glsl (McGuire et al., HPG 2011).
+// Reference of kernels/passes/blur_bilateral/blur_bilateral.glsl (McGuire et al., HPG 2011).
 #include "reference/refs.h"
 #include "reference/vec.h"
 

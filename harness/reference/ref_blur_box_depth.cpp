@@ -1,4 +1,4 @@
-// Reference of kernels/blur_box_depth.glsl: seed 004's 4x4 box blur over
+// Reference of kernels/passes/blur_box_depth/blur_box_depth.glsl: seed 004's 4x4 box blur over
 // the texels of the centre's surface. Which texels count is decided with
 // the kernel's exact operations (positions rebuilt by viewFromDepth, the
 // plane distances in the same order), so both sides average the same set.

@@ -1,4 +1,4 @@
-// Reference of kernels/composite.glsl. Returns the float the GPU stores
+// Reference of kernels/passes/composite/composite.glsl. Returns the float the GPU stores
 // (dither included, clamped to [0, 1]); the 8-bit rounding of the target
 // happens in the test's quantize().
 #include "reference/noise.h"

@@ -1,4 +1,4 @@
-// Reference of kernels/depth_from_position_half.glsl: the half texel's
+// Reference of kernels/passes/depth_from_position_half/depth_from_position_half.glsl: the half texel's
 // centre ray met with its texel's tangent plane, then the hardware depth,
 // in the kernel's exact operations (the hemisphere kernel's verdicts
 // depend on every bit of it).

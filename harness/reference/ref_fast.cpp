@@ -1,4 +1,4 @@
-// References of the fast variants: kernels/depth_pyramid.glsl,
+// References of the fast variants: kernels/passes/depth_pyramid/depth_pyramid.glsl,
 // ssao_alchemy_fast.glsl, ssao_hemisphere_fast.glsl and the separable blur pair
 // (include/blur_separable.glsl). The pyramid's levels are rebuilt here from
 // level 0, which is all a pass's readback holds: each level keeps one real

@@ -1,4 +1,4 @@
-// Reference of kernels/gbuffer_sdf.glsl: the same sphere trace, step for
+// Reference of kernels/passes/gbuffer_sdf/gbuffer_sdf.glsl: the same sphere trace, step for
 // step. It cannot match the GPU bit for bit (length(), normalize() and the
 // scene's divisions are not exactly rounded on GPUs), so a ray grazing a
 // silhouette may hit on one side and miss on the other; interior pixels

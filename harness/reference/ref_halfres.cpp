@@ -1,4 +1,4 @@
-// References of kernels/downsample_depth.glsl, upsample_bilateral.glsl and
+// References of kernels/passes/downsample_depth/downsample_depth.glsl, upsample_bilateral.glsl and
 // upsample_composite.glsl (the two half-resolution tail passes fused).
 // The downsample only compares and copies, so it is exact. The upsample's
 // weights are continuous (exp), except where every weight vanishes and it

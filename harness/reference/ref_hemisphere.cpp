@@ -1,4 +1,4 @@
-// References of kernels/depth_from_position.glsl, ssao_hemisphere.glsl and
+// References of kernels/passes/depth_from_position/depth_from_position.glsl, ssao_hemisphere.glsl and
 // blur_box.glsl (the hemisphere SSAO lesson (docs/kernels.md)). Every value that picks a texel
 // or decides a depth test is computed with the kernels' exact operations,
 // so the verdicts agree sample for sample; what differs is only smoothstep,

@@ -1,4 +1,4 @@
-// The linear-depth pyramid on the CPU (kernels/depth_pyramid.glsl): its
+// The linear-depth pyramid on the CPU (kernels/passes/depth_pyramid/depth_pyramid.glsl): its
 // levels rebuilt from level 0, each texel's source pixel found by undoing
 // the picks, and the count of reads per level that the fast kernels'
 // references make through sourcePixel().

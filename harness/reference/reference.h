@@ -31,7 +31,7 @@ Result<std::vector<HostImage>> run(const Context& ctx);
 bool hasReference(const std::string& kernel);
 
 // The linear-depth pyramid's `levels` levels rebuilt from level 0, as
-// kernels/depth_pyramid.glsl builds them (ref_fast.cpp).
+// kernels/passes/depth_pyramid/depth_pyramid.glsl builds them (ref_fast.cpp).
 std::vector<HostImage> pyramidLevels(const HostImage& level0, int levels);
 
 }  // namespace cavity::reference

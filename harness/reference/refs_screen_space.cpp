@@ -52,12 +52,12 @@ std::vector<RefEntry> screenSpaceRefs() {
         {"blur_bilateral_ssdo", blurBilateralSsdo},
         {"ssdo_indirect", ssdoIndirect},
         {"composite_ssdo", compositeSsdo},
-        // decl_quality_variants.cpp: the same shaders, other defaults
+        // the fixed variants: the same shaders, other defaults
         {"ssdo_marched", ssdoDirect},
         {"ssdo_marched_indirect", ssdoIndirect},
         {"blur_box_depth", blurBoxDepth},
         {"depth_from_position_half", depthFromPositionHalf},
-        // registry.cpp's fast SSDO, on the depth pyramid (the separable pair is in ref_fast.cpp)
+        // the fast SSDO, on the depth pyramid (the separable pair is in ref_fast.cpp)
         {"ssdo_fast", ssdoFastDirect},
         {"ssdo_fast_indirect", ssdoFastIndirect},
     };

@@ -19,6 +19,9 @@ struct DeclarationInput {
     std::function<bool(const std::string&)> hasFile;
     // Whether a kernel of this name is registered already (a built-in or a package loaded before).
     std::function<bool(const std::string&)> nameTaken;
+    // One of the harness's own packages (kernels/ao/, kernels/passes/): it
+    // may declare a pass of the pipeline, not only an AO estimator.
+    bool builtIn = false;
 };
 
 // The declaration, with the parameters it adds declared (ParamDecl) only

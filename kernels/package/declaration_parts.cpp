@@ -6,6 +6,7 @@
 #include "package/expression.h"
 #include "screen_space_tables.h"
 
+#include <algorithm>
 #include <map>
 #include <memory>
 #include <regex>
@@ -73,12 +74,28 @@ Status readTop(const toml::table& root, const Ctx& c, KernelDecl& k) {
         for (auto&& v : *a) k.sources.push_back(*v.value<std::string>());
     }
     CAVITY_ASSIGN(const std::string role, text(c, root, "", "role", true));
-    if (role != "ao") return c.fail(root.get("role"), "role", role, "must be ao (an AO estimator)");
-    k.role = Role::Ao;
+    // A user's package is an AO estimator, which the harness builds its
+    // pipeline around; the passes around it are the harness's own packages
+    // (kernels/passes/), which the pipeline names.
+    static const std::map<std::string, Role> roles = {
+        {"ao", Role::Ao},           {"reference", Role::Reference}, {"gbuffer", Role::GBuffer},
+        {"pyramid", Role::Pyramid}, {"downsample", Role::Downsample}, {"upsample", Role::Upsample},
+        {"blur", Role::Blur},       {"indirect", Role::Indirect},   {"composite", Role::Composite}};
+    const auto r = roles.find(role);
+    if (!c.in.builtIn && role != "ao") return c.fail(root.get("role"), "role", role, "must be ao (an AO estimator)");
+    if (r == roles.end())
+        return c.fail(root.get("role"), "role", role,
+                      "must be ao, reference, gbuffer, pyramid, downsample, upsample, blur, indirect or composite");
+    k.role = r->second;
     CAVITY_ASSIGN(const std::string file, text(c, root, "", "file", true));
-    if (file.empty() || file.find("..") != std::string::npos || file[0] == '/' || !c.in.hasFile(file))
-        return c.fail(root.get("file"), "file", file, "no such file in the package's folder (the kernel's GLSL)");
-    k.file = c.in.keyPrefix + file;
+    // The package's own file, or as for an #include a source under kernels/
+    // that several kernels share (hemisphere_cosine runs hemisphere's body).
+    const bool shared = !c.in.hasFile(file) && sourceFile(file) && file.size() > 5 &&
+                        file.compare(file.size() - 5, 5, ".glsl") == 0;
+    if (file.empty() || file.find("..") != std::string::npos || file[0] == '/' || (!c.in.hasFile(file) && !shared))
+        return c.fail(root.get("file"), "file", file,
+                      "no such file in the package's folder (the kernel's GLSL) nor under kernels/");
+    k.file = shared ? file : c.in.keyPrefix + file;
     CAVITY_TRY(readWorkgroup(root, c, k));
     CAVITY_TRY(readFlag(root, c, "whole_workgroups", k.wholeWorkgroups));
     return readFlag(root, c, "interleaved", k.interleaved);
@@ -86,7 +103,13 @@ Status readTop(const toml::table& root, const Ctx& c, KernelDecl& k) {
 
 Status readInputs(const toml::table& root, const Ctx& c, KernelDecl& k) {
     CAVITY_ASSIGN(const toml::array* a, arrayOfTables(c, root, "inputs"));
-    if (!a || a->empty()) return c.fail(&root, "inputs", "", "missing; a kernel reads at least one image ([[inputs]])");
+    // An estimator reads what the pipeline makes before it; a pass of the
+    // pipeline reads what the pipeline hands it (harness/pipeline/pipelines.cpp),
+    // and the G-buffer pass nothing.
+    const bool estimator = k.role == Role::Ao || k.role == Role::Reference;
+    if ((!a || a->empty()) && estimator)
+        return c.fail(&root, "inputs", "", "missing; a kernel reads at least one image ([[inputs]])");
+    if (!a) return {};
     const auto provided = providedInputs();
     for (size_t i = 0; i < a->size(); ++i) {
         const toml::table& t = *a->get(i)->as_table();
@@ -94,7 +117,7 @@ Status readInputs(const toml::table& root, const Ctx& c, KernelDecl& k) {
         CAVITY_TRY(onlyKeys(c, t, where, {"name", "filter", "address", "mipmaps"}));
         InputDecl in;
         CAVITY_ASSIGN(in.name, text(c, t, where, "name", true));
-        if (!provided.count(in.name))
+        if (estimator && !provided.count(in.name))
             return c.fail(t.get("name"), where + "name", in.name, "no pass provides it; inputs are " + joined(provided));
         for (const auto& d : k.inputs)
             if (d.name == in.name) return c.fail(t.get("name"), where + "name", in.name, "read twice");
@@ -112,31 +135,64 @@ Status readInputs(const toml::table& root, const Ctx& c, KernelDecl& k) {
     return {};
 }
 
+namespace {
+
+// The outputs an estimator may write, in order: the pipeline's tail reads
+// "ao" (or SSDO's "visibility" and "radiance"), and the separable blur the
+// packed key beside it.
+const std::vector<std::vector<std::string>>& estimatorOutputs() {
+    static const std::vector<std::vector<std::string>> sets = {
+        {"ao"}, {"ao", "ao_key"}, {"visibility", "radiance"}, {"visibility", "radiance", "ao_key"}};
+    return sets;
+}
+
+}  // namespace
+
 Status readOutputs(const toml::table& root, const Ctx& c, KernelDecl& k) {
     CAVITY_ASSIGN(const toml::array* a, arrayOfTables(c, root, "outputs"));
     if (!a || a->empty()) return c.fail(&root, "outputs", "", "missing; an AO kernel writes ao ([[outputs]])");
     std::string formats;
     for (const auto& [name, f] : outputFormats()) formats += (formats.empty() ? "" : ", ") + name;
+    const bool estimator = k.role == Role::Ao || k.role == Role::Reference;
+    std::vector<std::string> names;
     for (size_t i = 0; i < a->size(); ++i) {
         const toml::table& t = *a->get(i)->as_table();
         const std::string where = "outputs[" + std::to_string(i) + "].";
-        CAVITY_TRY(onlyKeys(c, t, where, {"name", "format"}));
+        CAVITY_TRY(onlyKeys(c, t, where, estimator ? std::set<std::string>{"name", "format"}
+                                                   : std::set<std::string>{"name", "format", "mip_levels", "one_dispatch",
+                                                                           "layered"}));
         OutputDecl o;
         CAVITY_ASSIGN(o.name, text(c, t, where, "name", true));
-        // The tail reads "ao", and the separable blur the key beside it.
-        const char* expected = i == 0 ? "ao" : "ao_key";
-        if (i > 1 || o.name != expected)
-            return c.fail(t.get("name"), where + "name", o.name,
-                          i > 1 ? "an AO kernel writes ao, and at most ao_key beside it"
-                                : std::string("must be ") + expected + (i == 0 ? " (the AO the blur reads)"
-                                                                              : " (the separable blur's key)"));
+        names.push_back(o.name);
+        if (estimator) {
+            const bool fits = std::any_of(estimatorOutputs().begin(), estimatorOutputs().end(), [&](const auto& set) {
+                return set.size() >= names.size() && std::equal(names.begin(), names.end(), set.begin());
+            });
+            if (!fits)
+                return c.fail(t.get("name"), where + "name", o.name,
+                              "an AO kernel writes ao (then ao_key, the separable blur's key), or SSDO's visibility "
+                              "and radiance (then ao_key), in that order");
+        } else {
+            for (size_t j = 0; j + 1 < names.size(); ++j)
+                if (names[j] == o.name) return c.fail(t.get("name"), where + "name", o.name, "written twice");
+        }
         CAVITY_ASSIGN(const std::string format, text(c, t, where, "format", true));
         const auto f = outputFormats().find(format);
         if (f == outputFormats().end())
             return c.fail(t.get("format"), where + "format", format, "no backend image of that format; one of " + formats);
         o.format = f->second;
+        if (const toml::node* m = t.get("mip_levels")) {
+            if (!m->is_integer() || *m->value<int64_t>() < 1 || *m->value<int64_t>() > 16)
+                return c.fail(m, where + "mip_levels", show(*m), "must be 1 to 16");
+            o.mipLevels = int(*m->value<int64_t>());
+        }
+        CAVITY_TRY(readFlag(t, c, "one_dispatch", o.oneDispatch));
+        CAVITY_TRY(readFlag(t, c, "layered", o.layered));
         k.outputs.push_back(o);
     }
+    if (estimator && std::none_of(estimatorOutputs().begin(), estimatorOutputs().end(),
+                                  [&](const auto& set) { return set == names; }))
+        return c.fail(&root, "outputs", "", "an AO kernel writes ao, or SSDO's visibility and radiance");
     return {};
 }
 
@@ -145,7 +201,8 @@ Status readArrays(const toml::table& root, const Ctx& c, KernelDecl& k) {
     if (!a) return {};
     // The tables the CPU makes: each a function of the kernel's own parameters.
     const std::map<std::string, std::vector<std::string>> generators = {
-        {"gaussian_weights", {"blur"}}, {"hemisphere_kernel", {"samples"}}, {"cosine_kernel", {"samples", "steps"}}};
+        {"gaussian_weights", {"blur"}}, {"hemisphere_kernel", {"samples"}}, {"cosine_kernel", {"samples", "steps"}},
+        {"spiral", {}}, {"sky_sh", {}}};
     std::vector<std::pair<std::string, std::string>> derived;
     for (size_t i = 0; i < a->size(); ++i) {
         const toml::table& t = *a->get(i)->as_table();
@@ -160,7 +217,8 @@ Status readArrays(const toml::table& root, const Ctx& c, KernelDecl& k) {
         CAVITY_ASSIGN(const std::string gen, text(c, t, where, "derive", true));
         const auto g = generators.find(gen);
         if (g == generators.end())
-            return c.fail(t.get("derive"), where + "derive", gen, "must be gaussian_weights, hemisphere_kernel or cosine_kernel");
+            return c.fail(t.get("derive"), where + "derive", gen,
+                          "must be gaussian_weights, hemisphere_kernel, cosine_kernel, spiral or sky_sh");
         for (const auto& p : g->second)
             if (!declares(k, p))
                 return c.fail(t.get("derive"), where + "derive", gen, "reads the parameter " + p + ", which this kernel "
@@ -172,7 +230,9 @@ Status readArrays(const toml::table& root, const Ctx& c, KernelDecl& k) {
         for (const auto& [name, gen] : derived) {
             if (gen == "gaussian_weights") arrays[name] = gaussianWeights(intValue(v, "blur"));
             else if (gen == "hemisphere_kernel") arrays[name] = hemisphereKernel(intValue(v, "samples"));
-            else arrays[name] = cosineKernel(intValue(v, "samples"), intValue(v, "steps"));
+            else if (gen == "cosine_kernel") arrays[name] = cosineKernel(intValue(v, "samples"), intValue(v, "steps"));
+            else if (gen == "spiral") arrays[name] = spiralTable();
+            else arrays[name] = skySh();
         }
     };
     return {};
@@ -184,9 +244,54 @@ Status readCost(const toml::table& root, const Ctx& c, KernelDecl& k) {
     const toml::table* t = n->as_table();
     if (!t) return c.fail(n, "cost", show(*n), "must be a table ([cost])");
     const std::vector<std::string> keys = {"fetches", "bytes", "fetch_slots", "dram_bytes"};
-    CAVITY_TRY(onlyKeys(c, *t, "cost.", {keys.begin(), keys.end()}));
-    std::set<std::string> names;
+    std::set<std::string> allowedKeys(keys.begin(), keys.end());
+    allowedKeys.insert("let");
+    CAVITY_TRY(onlyKeys(c, *t, "cost.", allowedKeys));
+    // A formula reads the kernel's parameters, the pass's shape (a compute
+    // pass's workgroup may share a tile of its inputs) and the named terms
+    // of [cost.let], which may read each other but not in a circle.
+    std::set<std::string> names = {"compute", "workgroup_x", "workgroup_y"};
     for (const auto& p : k.params) names.insert(p.name());
+    std::vector<std::pair<std::string, Expression>> lets;
+    if (const toml::node* ln = t->get("let")) {
+        const toml::table* lt = ln->as_table();
+        if (!lt) return c.fail(ln, "cost.let", show(*ln), "must be a table of named formulas ([cost.let])");
+        static const std::regex ident("[a-z][a-z0-9_]{0,31}");
+        for (auto&& [key, v] : *lt) {
+            const std::string name(key.str());
+            if (!std::regex_match(name, ident) || names.count(name))
+                return c.fail(&v, "cost.let." + name, show(v),
+                              "a term's name is a-z, then a-z, 0-9 or _, and not a parameter's or compute, workgroup_x, "
+                              "workgroup_y");
+        }
+        std::set<std::string> all = names;
+        for (auto&& [key, v] : *lt) all.insert(std::string(key.str()));
+        std::map<std::string, Expression> pending;
+        for (auto&& [key, v] : *lt) {
+            const std::string name(key.str());
+            if (!v.is_string()) return c.fail(&v, "cost.let." + name, show(v), "must be a formula in quotes");
+            auto parsed = Expression::parse(*v.value<std::string>(), all);
+            if (!parsed) return c.fail(&v, "cost.let." + name, "\"" + *v.value<std::string>() + "\"", parsed.error().message);
+            pending.emplace(name, *parsed);
+        }
+        // In an order where each term follows the terms it reads.
+        std::set<std::string> known = names;
+        while (!pending.empty()) {
+            auto ready = std::find_if(pending.begin(), pending.end(), [&](const auto& e) {
+                const auto used = e.second.names();
+                return std::all_of(used.begin(), used.end(), [&](const std::string& u) {
+                    return known.count(u) || !pending.count(u);
+                });
+            });
+            if (ready == pending.end())
+                return c.fail(lt->get(pending.begin()->first), "cost.let." + pending.begin()->first,
+                              "\"" + pending.begin()->second.text() + "\"", "the terms read each other in a circle");
+            known.insert(ready->first);
+            lets.emplace_back(ready->first, ready->second);
+            pending.erase(ready);
+        }
+        names = std::move(known);
+    }
     std::vector<Expression> e;
     for (const auto& key : keys) {
         CAVITY_ASSIGN(const std::string formula, text(c, *t, "cost.", key, true));
@@ -194,7 +299,12 @@ Status readCost(const toml::table& root, const Ctx& c, KernelDecl& k) {
         if (!parsed) return c.fail(t->get(key), "cost." + key, "\"" + formula + "\"", parsed.error().message);
         e.push_back(*parsed);
     }
-    k.cost = [e](const ParamValues& v, const PassShape&) {
+    k.cost = [e, lets](const ParamValues& given, const PassShape& shape) {
+        ParamValues v = given;
+        v["compute"] = shape.compute ? 1 : 0;
+        v["workgroup_x"] = shape.workgroup.x;
+        v["workgroup_y"] = shape.workgroup.y;
+        for (const auto& [name, formula] : lets) v[name] = formula.evaluate(v);
         return Cost{e[0].evaluate(v), e[1].evaluate(v), e[2].evaluate(v), e[3].evaluate(v)};
     };
     return {};
@@ -210,7 +320,7 @@ Status readPipeline(const toml::table& root, const Ctx& c, const KernelDecl& k) 
     if (blur.empty()) return {};
     // The pipeline follows from the outputs and inputs (pipelines.cpp); a
     // stated blur must be the one they give.
-    const bool key = k.outputs.size() == 2, noise = std::any_of(k.inputs.begin(), k.inputs.end(), [](const auto& i) {
+    const bool key = k.outputs.back().name == "ao_key", noise = std::any_of(k.inputs.begin(), k.inputs.end(), [](const auto& i) {
         return i.name == "noise4x4";
     });
     const std::string follows = key ? "separable" : noise ? "box" : "bilateral";
@@ -232,8 +342,14 @@ Status readExpectations(const toml::table& root, const Ctx& c, KernelDecl& k) {
     for (const char* key : {"open_worst", "open_mean", "crease"}) {
         const toml::node* v = t->get(key);
         if (!v) continue;
+        // A seed kept as published departs from the truth at a crease.
+        if (std::string(key) == "crease" && v->is_string() && *v->value<std::string>() == "seed") {
+            k.expectations[key] = "seed";
+            continue;
+        }
         if (!v->is_number() || *v->value<double>() < 0 || *v->value<double>() > 1)
-            return c.fail(v, std::string("expectations.") + key, show(*v), "must be a number in 0..1");
+            return c.fail(v, std::string("expectations.") + key, show(*v),
+                          std::string("must be a number in 0..1") + (std::string(key) == "crease" ? ", or \"seed\"" : ""));
         k.expectations[key] = std::to_string(*v->value<double>());
     }
     CAVITY_ASSIGN(const std::string gap, text(c, *t, "expectations.", "narrow_gap", false));

@@ -32,8 +32,9 @@ const std::map<std::string, double>& formatBytes() {
 }
 
 const std::map<std::string, int>& functionArity() {
-    static const std::map<std::string, int> arity = {{"min", 2},   {"max", 2},  {"pow", 2},  {"sqrt", 1},
-                                                     {"floor", 1}, {"ceil", 1}, {"slots", 1}};
+    static const std::map<std::string, int> arity = {
+        {"min", 2},   {"max", 2},  {"pow", 2}, {"sqrt", 1}, {"floor", 1}, {"ceil", 1}, {"slots", 1}, {"mod", 2},
+        {"if", 3},    {"lt", 2},   {"le", 2},  {"gt", 2},   {"ge", 2},    {"eq", 2}};
     return arity;
 }
 
@@ -141,7 +142,8 @@ private:
         if (eat('(')) {
             const auto f = functionArity().find(name);
             if (f == functionArity().end())
-                return fail("no function '" + name + "' (min, max, pow, sqrt, floor, ceil, slots)");
+                return fail("no function '" + name + "' (min, max, pow, sqrt, floor, ceil, mod, slots, if, lt, le, gt, "
+                            "ge, eq)");
             return call(name, f->second);
         }
         if (!names_.count(name) && !formatBytes().count(name))
@@ -161,6 +163,13 @@ double applyFunction(const std::string& f, const std::vector<double>& a) {
     if (f == "sqrt") return std::sqrt(a[0]);
     if (f == "floor") return std::floor(a[0]);
     if (f == "ceil") return std::ceil(a[0]);
+    if (f == "mod") return std::fmod(a[0], a[1]);
+    if (f == "if") return a[0] != 0 ? a[1] : a[2];
+    if (f == "lt") return a[0] < a[1];
+    if (f == "le") return a[0] <= a[1];
+    if (f == "gt") return a[0] > a[1];
+    if (f == "ge") return a[0] >= a[1];
+    if (f == "eq") return a[0] == a[1];
     return fetchSlots(a[0]);   // slots
 }
 
@@ -202,5 +211,18 @@ Result<Expression> Expression::parse(const std::string& text, const std::set<std
 }
 
 double Expression::evaluate(const ParamValues& values) const { return root_ ? eval(*root_, values) : 0; }
+
+namespace {
+void collectNames(const Node& n, std::set<std::string>& out) {
+    if (n.kind == Node::Name) out.insert(n.name);
+    for (const auto& a : n.args) collectNames(*a, out);
+}
+}  // namespace
+
+std::set<std::string> Expression::names() const {
+    std::set<std::string> out;
+    if (root_) collectNames(*root_, out);
+    return out;
+}
 
 }  // namespace cavity::kernels

@@ -5,10 +5,12 @@
 // left to right, as C++ would group the same text.
 //
 // Grammar: numbers, names, + - * /, unary -, parentheses, and the functions
-// min(a, b), max(a, b), pow(a, b), sqrt(a), floor(a), ceil(a) and slots(b)
-// (the texture slots of a fetch of b bytes: kernels/kernel.h fetchSlots).
-// Names are the kernel's parameters and the bytes of a texel of each format
-// (R16F, R32F, RG32F, RGBA8, RGBA16F, RGBA32F).
+// min(a, b), max(a, b), pow(a, b), sqrt(a), floor(a), ceil(a), mod(a, b),
+// slots(b) (the texture slots of a fetch of b bytes: kernels/kernel.h
+// fetchSlots), the comparisons lt, le, gt, ge, eq (1 or 0) and if(c, a, b)
+// (a where c is not 0, else b). Names are those the caller allows (the
+// kernel's parameters, the pass's shape, named terms) and the bytes of a
+// texel of each format (R16F, R32F, RG32F, RGBA8, RGBA16F, RGBA32F).
 #pragma once
 
 #include "params.h"
@@ -27,6 +29,8 @@ public:
     static Result<Expression> parse(const std::string& text, const std::set<std::string>& names);
     double evaluate(const ParamValues& values) const;
     const std::string& text() const { return text_; }
+    // The names it reads (not the format constants' values: their names too).
+    std::set<std::string> names() const;
 
     struct Node;
 

@@ -64,10 +64,10 @@ Status loadFolder(const fs::path& folder, std::vector<KernelDecl>& registry) {
     }
     PackageInfo info;
     DeclarationInput in{text, decl.string(), "", [&](const std::string& f) { return glsl.count(f) > 0; },
-                        [&](const std::string& n) { return taken(registry, n); }};
+                        [&](const std::string& n) { return taken(registry, n); }, false};
     CAVITY_ASSIGN(KernelDecl k, readDeclaration(in, info));
     // Its files' keys start with its name, which no other kernel has.
-    k.file = k.name + "/" + k.file;
+    if (glsl.count(k.file)) k.file = k.name + "/" + k.file;
     info.folder = folder.string();
     for (auto& [path, body] : glsl) {
         const std::string key = k.name + "/" + path;
@@ -126,13 +126,15 @@ Status loadPackages(const std::string& dir) {
 void appendBuiltInPackages(std::vector<KernelDecl>& registry) {
     const auto& files = embeddedSources();
     for (const auto& [key, text] : files) {
-        // "ao/<name>/kernel.toml"
-        if (key.rfind("ao/", 0) != 0 || key.size() < 16 || key.compare(key.size() - 12, 12, "/kernel.toml") != 0) continue;
+        // "ao/<name>/kernel.toml" or "passes/<name>/kernel.toml"
+        if ((key.rfind("ao/", 0) != 0 && key.rfind("passes/", 0) != 0) || key.size() < 16 ||
+            key.compare(key.size() - 12, 12, "/kernel.toml") != 0)
+            continue;
         const std::string folder = key.substr(0, key.size() - 12);
         PackageInfo info;
         DeclarationInput in{text, "kernels/" + key, folder + "/",
                             [&](const std::string& f) { return files.count(folder + "/" + f) > 0; },
-                            [&](const std::string& n) { return taken(registry, n); }};
+                            [&](const std::string& n) { return taken(registry, n); }, true};
         auto k = readDeclaration(in, info);
         if (!k) throw std::logic_error("built-in kernel package: " + k.error().message);
         info.folder = "kernels/" + folder;

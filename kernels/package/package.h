@@ -3,7 +3,8 @@
 // that every program sees a package kernel exactly as a built-in one
 // (docs/kernels.md, "Your own kernel"; the format: docs/packages.md).
 //
-// Built-in packages live under kernels/ao/<name>/ and are embedded in the
+// Built-in packages live under kernels/ao/<name>/ (the AO estimators) and
+// kernels/passes/<name>/ (the passes around them), and are embedded in the
 // binary with the other kernel sources; a user's are found through
 // --kernels DIR (any program, repeatable) and CAVITY_KERNELS (folders
 // separated by ':'). DIR is a package folder or a folder of package folders.
@@ -53,7 +54,7 @@ struct PackageSource {
 const PackageSource* packageSource(const std::string& key);
 
 // Called by the registry once, after the C++ declarations: the embedded
-// built-in packages (kernels/ao/*/kernel.toml). A broken one is a build
+// built-in packages (kernels/ao/*/kernel.toml, kernels/passes/*/kernel.toml). A broken one is a build
 // mistake, thrown as std::logic_error.
 void appendBuiltInPackages(std::vector<KernelDecl>& registry);
 // True on the thread building the registry, while the built-in packages
