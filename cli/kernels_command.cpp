@@ -186,6 +186,14 @@ std::string oneLine(const std::string& message) {
 
 std::vector<std::string> checkOne(const kernels::KernelDecl& k) {
     std::vector<std::string> problems;
+    if (!k.reference.empty() && !reference::isReference(k.reference)) {
+        std::string names;
+        for (const auto& n : reference::referenceNames()) names += (names.empty() ? "" : ", ") + n;
+        const auto* pkg = kernels::findPackage(k.name);
+        problems.push_back((pkg ? pkg->declaration : k.name) + ": reference = " + k.reference +
+                           ": no CPU reference of that name; the registered ones are " + names +
+                           " (a package without one leaves the line out)");
+    }
     const auto values = kernels::withDefaults(k);
     for (const auto api : {gpu::Api::Vulkan, gpu::Api::OpenGL}) {
         for (const auto stage : {gpu::Stage::Compute, gpu::Stage::Fragment}) {

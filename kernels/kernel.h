@@ -183,6 +183,12 @@ struct KernelDecl {
     // ("layer" or "seed"). Empty for the C++ declarations, which
     // tests/test_analytic.cpp names itself.
     std::map<std::string, std::string> expectations;
+    // The CPU reference that mirrors this kernel (harness/reference/), by the
+    // name it is registered under there: its package's `reference` line.
+    // Kernels that run one shader with other defaults share one
+    // (hemisphere_cosine runs hemisphere's). Empty: none, and its images are
+    // gated by approvals alone.
+    std::string reference;
 };
 
 // The fixed uniform block every kernel sees at binding 0 (std140).

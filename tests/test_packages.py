@@ -212,6 +212,18 @@ def check_disagreement(cavity, root):
     return 0 if ok else 1
 
 
+def check_unknown_reference(cavity, root):
+    """A reference line naming no registered CPU reference: check names it."""
+    pkg = os.path.join(root, "unknown_reference")
+    make(pkg, toml=TOML.replace('file = "ring_ao.glsl"', 'file = "ring_ao.glsl"\nreference = "my_ao"', 1))
+    r = run([cavity, "kernels", "check", pkg])
+    line = [l for l in r.stderr.splitlines() if "reference = my_ao" in l]
+    ok = r.returncode == 2 and line and "kernel.toml" in line[0] and "no CPU reference of that name" in line[0]
+    if not ok:
+        print(f"FAIL check did not catch an unknown reference name: {r.returncode} {r.stderr!r}")
+    return 0 if ok else 1
+
+
 def main():
     source, build = (os.path.abspath(p) for p in sys.argv[1:3])
     cavity = os.path.join(build, "harness", "cavity")
@@ -268,6 +280,7 @@ def main():
         assert r.returncode == 0 and '"name": "' + one in r.stdout, r.stdout[-2000:] + r.stderr
 
         failures += check_disagreement(cavity, root)
+        failures += check_unknown_reference(cavity, root)
         failures += check_bad(cavity, root)
     print(f"packages: {'passed' if not failures else str(failures) + ' failed'}")
     sys.exit(1 if failures else 0)

@@ -62,9 +62,20 @@ std::vector<RefEntry> allRefs() {
 }  // namespace
 
 bool hasReference(const std::string& kernel) {
+    const auto* k = kernels::find(kernel);
+    return k && isReference(k->reference);
+}
+
+bool isReference(const std::string& name) {
     for (const auto& e : allRefs())
-        if (kernel == e.kernel) return true;
+        if (name == e.kernel) return true;
     return false;
+}
+
+std::vector<std::string> referenceNames() {
+    std::vector<std::string> names;
+    for (const auto& e : allRefs()) names.push_back(e.kernel);
+    return names;
 }
 
 Result<std::vector<HostImage>> run(const Context& ctx) {
@@ -80,13 +91,16 @@ Result<std::vector<HostImage>> run(const Context& ctx) {
             return internal("reference " + name + ": parameter '" + p.name() + "' has no value (use withDefaults)");
 
     for (const auto& entry : allRefs()) {
-        if (name != entry.kernel) continue;
+        if (ctx.kernel.reference.empty() || ctx.kernel.reference != entry.kernel) continue;
         CAVITY_ASSIGN(auto out, entry.fn(ctx));
         if (out.size() != ctx.kernel.outputs.size())
             return internal("reference " + name + " returned " + std::to_string(out.size()) + " images");
         return out;
     }
-    return internal("no CPU reference for kernel '" + name + "' (harness/reference/)");
+    return internal("no CPU reference for kernel '" + name + "'" +
+                    (ctx.kernel.reference.empty() ? std::string(" (its package names none)")
+                                                  : " (its package names '" + ctx.kernel.reference +
+                                                        "', which harness/reference/ does not register)"));
 }
 
 }  // namespace cavity::reference

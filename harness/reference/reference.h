@@ -26,9 +26,14 @@ struct Context {
 // frame.size[0] x frame.size[1] with channelCount(output format) channels.
 // Fails (Internal) when the kernel has no reference.
 Result<std::vector<HostImage>> run(const Context& ctx);
-// Whether a CPU reference is registered for the kernel. A kernel package may
-// have none: its images are then gated by approved digests alone.
+// Whether the kernel has a CPU reference: its package names one
+// (`reference = "NAME"`, KernelDecl::reference) that is registered here. A
+// kernel package may have none: its images are then gated by approved
+// digests alone.
 bool hasReference(const std::string& kernel);
+// Whether a reference of this name is registered, and every such name.
+bool isReference(const std::string& name);
+std::vector<std::string> referenceNames();
 
 // The linear-depth pyramid's `levels` levels rebuilt from level 0, as
 // kernels/passes/depth_pyramid/depth_pyramid.glsl builds them (ref_fast.cpp).
@@ -38,11 +43,13 @@ std::vector<HostImage> pyramidLevels(const HostImage& level0, int levels);
 
 namespace cavity::reference {
 
-// One reference function per kernel; each family's file (ref_*.cpp) returns
-// its table, and reference.cpp's run() looks kernels up in all of them.
+// One reference function per kernel shader, registered under a name that a
+// kernel package's `reference` line gives (the name of the kernel it was
+// written for); each family's file (ref_*.cpp) returns its table, and
+// reference.cpp's run() looks the kernel's reference up in all of them.
 using RefFn = Result<std::vector<HostImage>> (*)(const Context&);
 struct RefEntry {
-    const char* kernel;
+    const char* kernel;   // the reference's name
     RefFn fn;
 };
 std::vector<RefEntry> screenSpaceRefs();   // ref_hemisphere.cpp, ref_ssdo.cpp, ref_halfres.cpp (via refs_screen_space.cpp)

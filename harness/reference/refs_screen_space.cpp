@@ -40,7 +40,6 @@ std::vector<RefEntry> screenSpaceRefs() {
     return {
         {"depth_from_position", depthFromPosition},
         {"hemisphere", hemisphere},
-        {"hemisphere_cosine", hemisphere},   // the same shader, another kernel array
         {"blur_box", blurBox},
         {"downsample_depth", downsampleDepth},
         // The same texels, and the depth as the pyramid's level 0 (its other
@@ -52,9 +51,9 @@ std::vector<RefEntry> screenSpaceRefs() {
         {"blur_bilateral_ssdo", blurBilateralSsdo},
         {"ssdo_indirect", ssdoIndirect},
         {"composite_ssdo", compositeSsdo},
-        // the fixed variants: the same shaders, other defaults
-        {"ssdo_marched", ssdoDirect},
-        {"ssdo_marched_indirect", ssdoIndirect},
+        // The fixed variants that run the seeds' shaders with other defaults
+        // (ssdo_marched, ssdo_marched_indirect, hemisphere_cosine) name the
+        // seeds' references in their packages.
         {"blur_box_depth", blurBoxDepth},
         {"depth_from_position_half", depthFromPositionHalf},
         // the fast SSDO, on the depth pyramid (the separable pair is in ref_fast.cpp)

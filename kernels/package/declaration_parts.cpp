@@ -58,7 +58,7 @@ const std::map<std::string, gpu::Format>& outputFormats() {
 Status readTop(const toml::table& root, const Ctx& c, KernelDecl& k) {
     CAVITY_TRY(onlyKeys(c, root, "", {"name", "summary", "sources", "role", "file", "workgroup", "whole_workgroups",
                                       "interleaved", "params", "inputs", "outputs", "arrays", "cost", "pipeline",
-                                      "expectations"}));
+                                      "expectations", "reference"}));
     CAVITY_ASSIGN(k.name, text(c, root, "", "name", true));
     static const std::regex ident("[a-z][a-z0-9_]{0,39}");
     if (!std::regex_match(k.name, ident))
@@ -96,6 +96,10 @@ Status readTop(const toml::table& root, const Ctx& c, KernelDecl& k) {
         return c.fail(root.get("file"), "file", file,
                       "no such file in the package's folder (the kernel's GLSL) nor under kernels/");
     k.file = shared ? file : c.in.keyPrefix + file;
+    CAVITY_ASSIGN(k.reference, text(c, root, "", "reference", false));
+    if (!k.reference.empty() && !std::regex_match(k.reference, ident))
+        return c.fail(root.get("reference"), "reference", k.reference,
+                      "must name a CPU reference as harness/reference/ registers it (a-z, then a-z, 0-9 or _)");
     CAVITY_TRY(readWorkgroup(root, c, k));
     CAVITY_TRY(readFlag(root, c, "whole_workgroups", k.wholeWorkgroups));
     return readFlag(root, c, "interleaved", k.interleaved);
