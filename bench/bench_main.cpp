@@ -18,6 +18,7 @@
 
 #include "values.h"
 #include "flags.h"
+#include "version.h"
 
 #include <benchmark/benchmark.h>
 #include <nlohmann/json.hpp>
@@ -102,7 +103,8 @@ const cavity::flags::CommandSpec& benchSpec() {
             {"--device", "K", "device index (0..64; default 0)"},
         };
         c.footer = "\n" + cavity::flags::kernelHelp("Kernels (the sweep's AO pipelines; select by id with --benchmark_filter)") +
-                   "\nExit codes: 0 ok, 2 bad usage (or no benchmark matches the filter), 3 no backend, 4 GPU error.";
+                   "\nExit codes: 0 every benchmark measured, 2 bad usage (or no benchmark matches the filter, or a benchmark "
+                   "failed on what was given: a kernel source that does not compile), 3 no backend, 4 GPU error.";
         c.examples = {
             "cavity_bench --backend vk --benchmark_filter=/alchemy_fast/",
             "cavity_bench --sweep cpu --benchmark_repetitions=5 --benchmark_out=out/bench.json",
@@ -193,6 +195,10 @@ int main(int argc, char** argv) {
         std::cerr << "cavity_bench: " << loaded.error().message << "\n";
         return 2;
     }
+    if (argc > 1 && std::string(argv[1]) == "--version") {
+        std::cout << cavity::flags::versionLine("cavity_bench") << "\n";
+        return 0;
+    }
     std::vector<char*> rest;
     bool help = false;
     auto options = parse(argc, argv, rest, help);
@@ -260,6 +266,14 @@ int main(int argc, char** argv) {
     if (ran == 0) {
         std::cerr << "cavity_bench: no benchmark matches --benchmark_filter='" << filter << "'\n";
         return 2;
+    }
+    if (const auto& failed = cavity::bench::failures(); !failed.empty()) {
+        // The first failure's code: 2 for what the user gave (a kernel
+        // source that does not compile, a bad CAVITY_WORKGROUP), 3 or 4 for
+        // the backend.
+        std::cerr << "cavity_bench: " << failed.size() << " of " << ran << " benchmarks measured nothing; first, "
+                  << failed[0].id << ": " << failed[0].error.message << "\n";
+        return static_cast<int>(failed[0].error.code);
     }
     return 0;
 }

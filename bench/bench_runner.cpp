@@ -16,6 +16,7 @@
 #include <cmath>
 #include <iostream>
 #include <map>
+#include <mutex>
 #include <regex>
 #include <set>
 #include <memory>
@@ -143,6 +144,7 @@ void run(benchmark::State& state, const Bench& b) {
         c.params["view"] = view;
         auto chain = PassChain::create(gpu, c, b.overrides, b.plant);
         if (!chain) {
+            noteFailure(id, chain.error());
             state.SkipWithError(chain.error().message.c_str());
             return;
         }
@@ -157,6 +159,7 @@ void run(benchmark::State& state, const Bench& b) {
     for (auto _ : state) {
         auto m = measurePasses(gpu, views, options, GpuClocks::forDevice(gpu.info()));
         if (!m) {
+            noteFailure(id, m.error());
             state.SkipWithError(m.error().message.c_str());
             return;
         }
@@ -315,5 +318,20 @@ Result<int> registerSweep(const Options& o) {
 }
 
 void releaseBackends() { backends().clear(); }
+
+namespace {
+std::vector<Failure>& failureList() {
+    static std::vector<Failure> list;
+    return list;
+}
+}  // namespace
+
+void noteFailure(const std::string& id, const Error& error) {
+    static std::mutex m;
+    const std::lock_guard<std::mutex> lock(m);
+    failureList().push_back({id, error});
+}
+
+const std::vector<Failure>& failures() { return failureList(); }
 
 }  // namespace cavity::bench

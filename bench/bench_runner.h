@@ -8,8 +8,8 @@
 
 #include <map>
 #include <optional>
-
 #include <string>
+#include <vector>
 
 namespace cavity::bench {
 
@@ -35,5 +35,16 @@ struct Options {
 // (BackendUnavailable) only when no backend starts.
 Result<int> registerSweep(const Options& o);
 void releaseBackends();
+
+// The benchmarks that failed to measure (a kernel source that does not
+// compile, a GPU error): Google Benchmark reports them and carries on, so
+// main() turns them into its exit code, and a run that measured nothing, or
+// part of what it was asked, never exits 0.
+struct Failure {
+    std::string id;
+    Error error;
+};
+void noteFailure(const std::string& id, const Error& error);
+const std::vector<Failure>& failures();
 
 }  // namespace cavity::bench

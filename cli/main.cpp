@@ -5,6 +5,7 @@
 // server that cannot be reached or refuses the connection.
 #include "cli.h"
 #include "package/package.h"
+#include "version.h"
 
 #include <iostream>
 
@@ -28,7 +29,8 @@ constexpr const char* kUsage =
     "--kernels DIR (any command, repeatable) loads the kernel packages in DIR, as CAVITY_KERNELS does\n"
     "(folders separated by ':'); a package's kernel then works as a built-in one.\n"
     "`cavity COMMAND --help` lists a command's flags. `cavity` alone prints this and exits 2;\n"
-    "`cavity --help` prints it and exits 0.\n"
+    "`cavity --help` prints it and exits 0. `cavity --version` (cavity_render and cavity_bench too)\n"
+    "prints the git commit and the build type it was built from.\n"
     "\n"
     "Examples:\n"
     "  cavity run --kernel alchemy_fast --backend gl,vk --res 1920x1080\n"
@@ -45,6 +47,10 @@ int main(int argc, char** argv) {
     if (const auto loaded = cavity::kernels::loadPackagesFromCommandLine(args); !loaded) {
         std::cerr << "cavity: " << loaded.error().message << "\n";
         return 2;
+    }
+    if (!args.empty() && args[0] == "--version") {
+        std::cout << cavity::flags::versionLine("cavity") << "\n";
+        return 0;
     }
     if (args.empty() || args[0] == "--help" || args[0] == "-h") {
         std::cout << kUsage;

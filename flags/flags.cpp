@@ -183,7 +183,13 @@ Result<ParsedFlags> parseFlags(const CommandSpec& spec, const std::vector<std::s
         if (eq != std::string::npos) {
             value = w.substr(eq + 1);
         } else {
-            if (i + 1 >= argv.size() || (argv[i + 1].size() > 2 && argv[i + 1].rfind("--", 0) == 0))
+            // The next word is the value, whatever it starts with, unless it
+            // is one of this command's own flags: `--b-args '--frames 2'` is
+            // `--b-args='--frames 2'`, and `--out --filter x` lacks its value.
+            const auto isOwnFlag = [&](const std::string& next) {
+                return next == "--help" || next == "-h" || findFlag(spec, next.substr(0, next.find('='))) != nullptr;
+            };
+            if (i + 1 >= argv.size() || isOwnFlag(argv[i + 1]))
                 return badInput(name + ": missing value (" + name + " " + f->valueName + ")");
             value = argv[++i];
         }

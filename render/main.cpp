@@ -5,6 +5,7 @@
 #include "package/package.h"
 #include "quality_command.h"
 #include "values.h"
+#include "version.h"
 #include "render_command.h"
 
 #include <iostream>
@@ -18,6 +19,10 @@ int main(int argc, char** argv) {
     if (const auto loaded = cavity::kernels::loadPackagesFromCommandLine(args); !loaded) {
         std::cerr << "cavity_render: " << loaded.error().message << "\n";
         return 2;
+    }
+    if (!args.empty() && args[0] == "--version") {
+        std::cout << cavity::flags::versionLine("cavity_render") << "\n";
+        return 0;
     }
     if (!args.empty() && args[0] == "quality")
         return cavity::flags::qualityCommand({args.begin() + 1, args.end()}, "cavity_render quality");

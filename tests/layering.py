@@ -58,6 +58,10 @@ def read_codemodel(build):
     by_id, targets = {}, {}
     for t in config["targets"]:
         tj = json.load(open(os.path.join(reply, t["jsonFile"])))
+        # A build step with no code (the version stamp, the embedded
+        # kernels' generator) orders the build; it is no layer.
+        if tj["type"] == "UTILITY":
+            continue
         srcs = [s["path"] for s in tj.get("sources", []) if not s.get("isGenerated") and not os.path.isabs(s["path"])]
         includes = set()
         for g in tj.get("compileGroups", []):

@@ -582,7 +582,7 @@ TEST_F(Compare, AnEditedKernelOnOneSideIsMeasuredInItsPass) {
     const std::string out = (dir / "ab").string();
     const Outcome r = cavity(std::string("ab --a ") + CAVITY_BENCH_EXE + " --b " + CAVITY_BENCH_EXE +
                              " --rounds 4 --filter 'corner/alchemy_fast/n16/b4/full/320x180/vk/compute' "
-                             "--bench-args='--frames 2 --warmup 0' --b-args='--kernel-source ssao_alchemy_fast.glsl=" +
+                             "--bench-args='--frames 2 --warmup 0' --b-args '--kernel-source ssao_alchemy_fast.glsl=" +
                              slow.string() + " --kernel-source composite.glsl=" + slowComposite.string() + "' --out " + out);
     ASSERT_EQ(r.code, 0) << r.output;
     const json a = cavity::core::readJsonFile(out + "/a_0.json").value(), b = cavity::core::readJsonFile(out + "/b_0.json").value();

@@ -42,6 +42,26 @@ TEST(ToolFlags, HelpPrintsOnStdoutAndExitsZero) {
 // its lines at 100 columns, so a summary may span two of them.
 std::string oneLine(const std::string& text) { return std::regex_replace(text, std::regex(R"(\s+)"), " "); }
 
+// --version names the commit the binary was built from, as git names the
+// checkout's HEAD, so that a result or a report can name its binary.
+TEST(ToolFlags, VersionNamesTheCommitAndTheBuildType) {
+    const auto head = runBinary("git", std::string("-C ") + CAVITY_SOURCE_DIR + " rev-parse --short=12 HEAD", "",
+                                "2>/dev/null");
+    for (const auto& [name, path] : std::vector<std::pair<std::string, std::string>>{
+             {"cavity", CAVITY_EXE}, {"cavity_render", CAVITY_RENDER_EXE}, {"cavity_bench", CAVITY_BENCH_EXE}}) {
+        const auto o = runBinary(path, "--version");
+        EXPECT_EQ(o.code, 0) << name;
+        std::smatch m;
+        ASSERT_TRUE(std::regex_match(o.output, m, std::regex(name + " (\\S+) \\((.+)\\)\n"))) << o.output;
+        // Built from a git checkout (CI's clone is one): its HEAD, or its
+        // HEAD marked dirty; a source tree without git says so.
+        if (head.code == 0 && head.output.size() >= 12) {
+            EXPECT_EQ(m[1].str().substr(0, 12), head.output.substr(0, 12)) << o.output;
+        }
+        EXPECT_FALSE(m[2].str().empty());
+    }
+}
+
 TEST(ToolFlags, BenchHelpNamesEveryFlagAndEveryKernelWithItsSummary) {
     const auto o = runBinary(CAVITY_BENCH_EXE, "--help", "", "2>/dev/null");
     ASSERT_EQ(o.code, 0);

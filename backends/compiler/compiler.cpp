@@ -4,10 +4,12 @@
 #include <glslang/Public/ShaderLang.h>
 #include <glslang/SPIRV/GlslangToSpv.h>
 
+#include <algorithm>
 #include <map>
 #include <mutex>
 #include <tuple>
 #include <regex>
+#include <sstream>
 
 namespace cavity::kernels {
 
@@ -55,6 +57,22 @@ std::string nameSourceLines(const std::string& log, const std::vector<std::strin
 
 namespace {
 
+// glslang's log in one line, for a message that is one line: its errors
+// joined, without the closing counts ("2 compilation errors. No code
+// generated.", "compilation terminated").
+std::string oneLine(const std::string& log) {
+    std::string out, line;
+    std::istringstream in(log);
+    while (std::getline(in, line)) {
+        while (!line.empty() && (line.back() == ' ' || line.back() == '\r')) line.pop_back();
+        if (line.empty() || line.find("compilation terminated") != std::string::npos ||
+            line.find("compilation errors") != std::string::npos)
+            continue;
+        out += (out.empty() ? "" : " | ") + line;
+    }
+    return out;
+}
+
 Result<std::vector<uint32_t>> compileUncached(const gpu::ShaderSource& src, gpu::Api target);
 
 }  // namespace
@@ -98,12 +116,19 @@ Status parseAndLink(glslang::TShader& shader, glslang::TProgram& program, const 
     const auto messages = static_cast<EShMessages>(unsigned(EShMsgSpvRules) |
         (target == gpu::Api::Vulkan ? unsigned(EShMsgVulkanRules) : 0u));
     const std::string who = src.name + " (" + (target == gpu::Api::Vulkan ? "vk" : "gl") + ")";
+    // A shader of ours that does not compile is our bug; one that holds a
+    // file the user gave (a replacement, a package from disk: its label is
+    // not under kernels/) is the user's input.
+    const bool given = std::any_of(src.files.begin(), src.files.end(), [](const std::string& f) {
+        return !f.empty() && f[0] != '<' && f.rfind("kernels/", 0) != 0;
+    });
+    const auto fail = [&](const std::string& what) { return given ? badInput(what) : internal(what); };
     if (!shader.parse(GetDefaultResources(), 450, false, messages)) {
-        return internal("compile " + who + ": " + nameSourceLines(shader.getInfoLog(), src.files));
+        return fail("compile " + who + ": " + oneLine(nameSourceLines(shader.getInfoLog(), src.files)));
     }
     program.addShader(&shader);
     if (!program.link(messages)) {
-        return internal("link " + who + ": " + nameSourceLines(program.getInfoLog(), src.files));
+        return fail("link " + who + ": " + oneLine(nameSourceLines(program.getInfoLog(), src.files)));
     }
     return {};
 }
