@@ -186,6 +186,48 @@ std::string benchmarkFlag(const std::vector<char*>& args, const char* name) {
     return v;
 }
 
+// What Google Benchmark would find late or say in its own words: the
+// filter, compiled as a std::regex (extended; '-' first negates it), and an
+// unwritable --benchmark_out, found only after the whole sweep has run.
+cavity::Status checkBenchmarkFlags(const std::string& filter, const std::string& out) {
+    if (!filter.empty()) {
+        try {
+            std::regex(filter[0] == '-' ? filter.substr(1) : filter, std::regex_constants::extended);
+        } catch (const std::regex_error& e) {
+            return cavity::badInput("--benchmark_filter='" + filter + "': not a regular expression (" + e.what() + ")");
+        }
+    }
+    if (!out.empty()) {
+        namespace fs = std::filesystem;
+        std::error_code ec;
+        const fs::path parent = fs::path(out).has_parent_path() ? fs::path(out).parent_path() : fs::path(".");
+        const char* why = fs::is_directory(out, ec)        ? "is a folder"
+                          : !fs::is_directory(parent, ec)  ? "its folder does not exist"
+                          : ::access(parent.c_str(), W_OK) ? "its folder is not writable"
+                                                           : nullptr;
+        if (why) return cavity::badInput("--benchmark_out=" + out + ": cannot be written (" + why + ")");
+    }
+    return {};
+}
+
+// The exit code of a run of `ran` benchmarks: none run is a filter that
+// matched nothing; one that failed gives its code, so that a run that
+// measured nothing, or part of what it was asked, never exits 0.
+int runExitCode(size_t ran, const std::string& filter) {
+    if (ran == 0) {
+        std::cerr << "cavity_bench: no benchmark matches --benchmark_filter='" << filter << "'\n";
+        return 2;
+    }
+    if (const auto& failed = cavity::bench::failures(); !failed.empty()) {
+        // 2 for what the user gave (a kernel source that does not compile, a
+        // bad CAVITY_WORKGROUP), 3 or 4 for the backend.
+        std::cerr << "cavity_bench: " << failed.size() << " of " << ran << " benchmarks measured nothing; first, "
+                  << failed[0].id << ": " << failed[0].error.message << "\n";
+        return static_cast<int>(failed[0].error.code);
+    }
+    return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -211,31 +253,9 @@ int main(int argc, char** argv) {
     const std::string out = benchmarkFlag(rest, "benchmark_out"), format = benchmarkFlag(rest, "benchmark_out_format"),
                       filter = benchmarkFlag(rest, "benchmark_filter"),
                       consoleFormat = benchmarkFlag(rest, "benchmark_format");
-    // Google Benchmark compiles the filter as a std::regex (extended; '-'
-    // first negates it) and prints its own error before running nothing; ours
-    // is one line and exit 2.
-    if (!filter.empty()) {
-        try {
-            std::regex(filter[0] == '-' ? filter.substr(1) : filter, std::regex_constants::extended);
-        } catch (const std::regex_error& e) {
-            std::cerr << "cavity_bench: --benchmark_filter='" << filter << "': not a regular expression (" << e.what() << ")\n";
-            return 2;
-        }
-    }
-    // Google Benchmark finds an unwritable --benchmark_out only after the
-    // whole sweep has run, and then exits 1 with its own words.
-    if (!out.empty()) {
-        namespace fs = std::filesystem;
-        std::error_code ec;
-        const fs::path parent = fs::path(out).has_parent_path() ? fs::path(out).parent_path() : fs::path(".");
-        const char* why = fs::is_directory(out, ec)        ? "is a folder"
-                          : !fs::is_directory(parent, ec)  ? "its folder does not exist"
-                          : ::access(parent.c_str(), W_OK) ? "its folder is not writable"
-                                                           : nullptr;
-        if (why) {
-            std::cerr << "cavity_bench: --benchmark_out=" << out << ": cannot be written (" << why << ")\n";
-            return 2;
-        }
+    if (const auto checked = checkBenchmarkFlags(filter, out); !checked) {
+        std::cerr << "cavity_bench: " << checked.error().message << "\n";
+        return 2;
     }
     int n = int(rest.size());
     benchmark::Initialize(&n, rest.data());
@@ -263,17 +283,5 @@ int main(int argc, char** argv) {
     const size_t ran = benchmark::RunSpecifiedBenchmarks(console.get(), file.get());
     benchmark::Shutdown();
     cavity::bench::releaseBackends();
-    if (ran == 0) {
-        std::cerr << "cavity_bench: no benchmark matches --benchmark_filter='" << filter << "'\n";
-        return 2;
-    }
-    if (const auto& failed = cavity::bench::failures(); !failed.empty()) {
-        // The first failure's code: 2 for what the user gave (a kernel
-        // source that does not compile, a bad CAVITY_WORKGROUP), 3 or 4 for
-        // the backend.
-        std::cerr << "cavity_bench: " << failed.size() << " of " << ran << " benchmarks measured nothing; first, "
-                  << failed[0].id << ": " << failed[0].error.message << "\n";
-        return static_cast<int>(failed[0].error.code);
-    }
-    return 0;
+    return runExitCode(ran, filter);
 }

@@ -258,6 +258,14 @@ int check(const std::string& dir) {
 
 int kernelsCommand(const std::vector<std::string>& argv) {
     const std::vector<std::string> subs = {"list", "show", "check"};
+    if (!argv.empty() && (argv[0] == "--help" || argv[0] == "-h")) {
+        std::cout << "Usage: cavity kernels list|show NAME|check DIR [OPTIONS]\n"
+                     "  list         every kernel: role, package folder, CPU reference, summary\n"
+                     "  show NAME    one kernel's declaration, cost and passes\n"
+                     "  check DIR    a kernel package compiled on both APIs and stages, held to its shader\n"
+                     "`cavity kernels SUBCOMMAND --help` lists a subcommand's flags.\n";
+        return 0;
+    }
     if (argv.empty() || (argv[0] != "list" && argv[0] != "show" && argv[0] != "check")) {
         const std::string near = argv.empty() ? "" : nearest(argv[0], subs);
         std::cerr << "cavity kernels: " << (argv.empty() ? "needs a subcommand" : "unknown subcommand '" + argv[0] + "'")

@@ -192,7 +192,15 @@ Status writeResults(const Sweep& s, const RunOutcome& out, const std::vector<std
     std::error_code ec;
     std::filesystem::create_directories(s.out, ec);
     const std::string path = (std::filesystem::path(s.out) / "results.json").string();
-    CAVITY_TRY(writeJson(path, resultsDocument(out.runs, out.errors, command)));
+    auto doc = resultsDocument(out.runs, out.errors, command);
+    // What was measured in place of the kernels' own files (--kernel-source):
+    // a result of an edited kernel is never read as the kernel's.
+    if (!s.replaced.empty()) {
+        doc["kernel_sources"] = nlohmann::json::array();
+        for (const auto& r : s.replaced)
+            doc["kernel_sources"].push_back({{"name", r.name}, {"file", r.file}, {"digest", r.digest}});
+    }
+    CAVITY_TRY(writeJson(path, doc));
     std::printf("\nwrote %s\n", path.c_str());
     return {};
 }
@@ -216,6 +224,7 @@ int runCommand(const std::vector<std::string>& argv) {
     const auto apis = sweepApis(s);
     auto plan = planRuns(s, *configs, apis);
     if (!plan) return fail(plan.error());
+    if (auto st = pipeline::checkSourcesUsed(s.replaced, *plan); !st) return fail(st.error());
     if (s.list) {
         for (const auto& c : *plan) std::cout << configId(c) << "\n";
         return 0;

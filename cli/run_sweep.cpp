@@ -28,6 +28,9 @@ const CommandSpec& runSpec() {
             {"--gbuffer", "sdf|raster|import[,..]", "G-buffer source: ray-marched, rasterised meshes, or a capture (default sdf)", sweep},
             {"--gbuffer-file", "FILE.exr", "the capture for --gbuffer import (multi-channel OpenEXR)", sweep},
             {"--filter", "REGEX", "run only the configurations whose id matches (searched, as gate and cavity_bench do)", sweep},
+            {"--kernel-source", "NAME=FILE",
+             "run with kernels/NAME replaced by FILE's text (an edited kernel; NAME a path under kernels/ or a file "
+             "name one source has); repeatable; a configuration of the run must compile NAME", sweep, true},
             {"--frames", "N", "measured frames, at least (1..100000; default 50)", timing},
             {"--warmup", "N", "warm-up frames, at least (0..10000; default 5)", timing},
             {"--timing", "batch|drained", "batch: back-to-back frames; drained: wait for the GPU after each (default: the device's)", timing},
@@ -98,6 +101,8 @@ Result<bool> sweepFlag(Sweep& s, const std::string& flag, const std::string& v) 
     } else if (flag == "--filter") {
         CAVITY_ASSIGN(s.filter, parseFilter(flag, v));
         s.filterText = v;
+    } else if (flag == "--kernel-source") {
+        CAVITY_TRY(addKernelSource(v, s.options.overrides, s.replaced));
     } else {
         return false;
     }

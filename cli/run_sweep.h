@@ -37,6 +37,9 @@ struct Sweep {
     std::string out = "out";
     bool list = false, quiet = false;
     std::optional<std::regex> filter;   // --filter
+    // --kernel-source NAME=FILE: kernels/NAME replaced in every configuration
+    // (options.overrides holds the texts; this, what results.json records).
+    std::vector<pipeline::ReplacedSource> replaced;
     std::string filterText;
     std::string helpText;               // --help: print this, run nothing
 };

@@ -46,6 +46,12 @@ const CommandSpec& checkSpec() {
 
 int storeCommand(const std::vector<std::string>& argv) {
     const std::string program = "cavity store check";
+    if (!argv.empty() && (argv[0] == "--help" || argv[0] == "-h")) {
+        std::cout << "Usage: cavity store check [OPTIONS]\n"
+                     "  check   fetch every approved image from the image store and check its digest\n"
+                     "`cavity store check --help` lists its flags.\n";
+        return 0;
+    }
     if (argv.empty() || argv[0] != "check") {
         std::cerr << "cavity store: " << (argv.empty() ? "needs a subcommand" : "unknown subcommand '" + argv[0] + "'")
                   << " (check); see cavity store check --help\n";

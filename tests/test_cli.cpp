@@ -55,6 +55,18 @@ struct BadCase {
     std::string message;   // the one line expected on stderr
 };
 
+// Every command, and every command group before its subcommand, answers
+// --help on stdout with exit 0 (a group lists its subcommands).
+TEST_F(Cli, EveryCommandAndGroupAnswersHelp) {
+    for (const std::string c : {"run", "gate", "gate judge", "gate merge", "baselines", "baselines update",
+                                "baselines approve", "store", "store check", "compare", "ab", "quality", "history",
+                                "kernels", "kernels list", "kernels show", "kernels check"}) {
+        const Outcome o = cavity(c + " --help", "", "2>/dev/null");
+        EXPECT_EQ(o.code, 0) << c;
+        EXPECT_NE(o.output.find("sage: cavity " + c.substr(0, c.find(' '))), std::string::npos) << c << ": " << o.output;
+    }
+}
+
 TEST_F(Cli, BadInputExitsTwoWithOneLineAndWritesNothing) {
     const std::vector<BadCase> cases = {
         {"--backend metal", "cavity run: --backend metal: must be gl, vk or all"},

@@ -518,8 +518,17 @@ TEST_F(TwoStep, ANaNImageIsExitOneInEveryTool) {
     EXPECT_EQ(r.code, 1) << r.output;
     const Outcome j = judge(folder.string(), judged);
     EXPECT_EQ(j.code, 1) << j.output;
-    // cavity run has no --kernel-source: the same NaN through the gate in
-    // one step, which runs the configuration as cavity run does.
+    // cavity run, which records what it replaced in results.json.
+    const fs::path runOut = scratch("nan-run");
+    const Outcome run = cavity("run --kernel alchemy --backend vk --res 160x90 --frames 1 --warmup 0 --quiet --out " +
+                               runOut.string() + " --kernel-source ssao_alchemy.glsl=" + file.string());
+    EXPECT_EQ(run.code, 1) << run.output;
+    std::ifstream results(runOut / "results.json");
+    const auto doc = nlohmann::json::parse(results, nullptr, false);
+    ASSERT_TRUE(doc.is_object()) << run.output;
+    ASSERT_TRUE(doc.contains("kernel_sources")) << run.output;
+    EXPECT_EQ(doc["kernel_sources"][0]["name"], "ao/alchemy/ssao_alchemy.glsl");
+    // The same NaN through the gate in one step.
     const Outcome g = cavity("gate --matrix ci --baselines " + base.string() + only + " --retries 0 --out " +
                              scratch("nan-gate").string() + " --kernel-source ssao_alchemy.glsl=" + file.string());
     EXPECT_EQ(g.code, 1) << g.output;
