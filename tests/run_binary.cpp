@@ -1,6 +1,10 @@
 #include "run_binary.h"
 
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
 #include <array>
+#include <fstream>
 #include <cstdio>
 #include <sys/wait.h>
 
@@ -17,6 +21,17 @@ Outcome runBinary(const std::string& binary, const std::string& args, const std:
     const int status = pclose(p);
     o.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     return o;
+}
+
+void dropCpuApprovals(const std::string& baselines) {
+    const std::string path = baselines + "/approvals.json";
+    std::ifstream in(path);
+    auto doc = nlohmann::json::parse(in);
+    auto& list = doc["approvals"];
+    list.erase(std::remove_if(list.begin(), list.end(),
+                              [](const nlohmann::json& a) { return a.value("device_class", "") == "llvmpipe"; }),
+               list.end());
+    std::ofstream(path, std::ios::trunc) << doc.dump(2) << "\n";
 }
 
 }  // namespace cavity::test

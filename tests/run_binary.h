@@ -21,4 +21,10 @@ struct Outcome {
 Outcome runBinary(const std::string& binary, const std::string& args, const std::string& env = "",
                   const std::string& redirect = "2>&1");
 
+// Removes the CPU renderers' approvals (device class llvmpipe) from the
+// approvals.json of a copied baselines folder: a test about how the
+// tolerance route judges an image, or about the baseline files, needs its
+// images to take that route, which an approved digest would skip.
+void dropCpuApprovals(const std::string& baselines);
+
 }  // namespace cavity::test

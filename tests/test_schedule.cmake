@@ -10,6 +10,16 @@
 # the discovered GoogleTest tests; ctest passes over a name that is gone.
 foreach(entry
     "506|Gate.UnchangedBuildPassesTwiceOnBothApis"
+    "350|gpu_scripts"
+    "160|planted_defects"
+    "130|charts"
+    "100|history_postgres"
+    "85|packages"
+    "75|bundle"
+    "70|Compare.AnEditedKernelOnOneSideIsMeasuredInItsPass"
+    "50|Compare.InterleavedRunsAlternateAndKeepTheSidesApart"
+    "45|summary_and_status"
+    "43|GateInputs.ApprovedDigestsPassAtOnceAndKnownBadOnesFail"
     "296|GateInputs.KilledUpdatesLeaveTheOldSetOrTheNewSet"
     "169|bad_inputs"
     "161|Backends/KernelVsReference.Slats320x180/vk  # GetParam() = vk"

@@ -8,6 +8,7 @@
 #include "gate/gate_judge.h"
 #include "render/rendering.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -44,11 +45,16 @@ std::vector<std::string> ConfigResult::failureLines() const {
     return lines;
 }
 
+bool ConfigResult::changed() const {
+    return std::any_of(images.begin(), images.end(), [](const ImageCheck& i) { return i.changed(); });
+}
+
 std::string ConfigResult::verdict() const {
     if (!error.empty()) return "error";
     if (passed()) {
         if (attempts > 1) return "flaky";
-        return expected == "fail" ? "unexpected-pass" : "pass";
+        if (expected == "fail") return "unexpected-pass";
+        return changed() ? "changed" : "pass";
     }
     if (expected == "fail") return "expected-fail";
     if (expected == "flake") return "known-flake";

@@ -43,6 +43,11 @@ struct ImageCheck {
     Tolerance tolerance;
     std::vector<std::string> failures; // one line each: "rmse 0.0123 > 0.005"
     bool passed() const { return failures.empty(); }
+    // Judged by its metrics (no approved digest decided it), and some pixel
+    // differs from the reference: a change the tolerance allowed. It passes,
+    // and is reported as changed, never as unchanged: the CPU renderers are
+    // deterministic, so an image of an unchanged build is the reference's.
+    bool changed() const { return route == "tolerance" && metrics && metrics->maxAbs > 0; }
 };
 
 struct TimingCheck {
@@ -81,7 +86,10 @@ struct ConfigResult {
     bool imagesPassed() const;
     bool timingPassed() const;
     bool passed() const { return error.empty() && imagesPassed() && timingPassed(); }
-    // pass, fail, error, flaky (failed, then passed on a retry),
+    // Some image of it changed within its tolerance (ImageCheck::changed).
+    bool changed() const;
+    // pass, changed (passed with an image that changed within tolerance),
+    // fail, error, flaky (failed, then passed on a retry),
     // expected-fail, known-flake (listed as a flake and failed every
     // attempt) or unexpected-pass (listed as an expected failure, passed).
     std::string verdict() const;

@@ -164,7 +164,7 @@ Result<ImageCheck> fromRemote(ImageCheck& check, const RemoteCheck& k, const Con
 // render folder holds none for an approved digest).
 Result<ImageCheck> judgeImage(const CheckedImage& ci, const HostImage* now, const std::string& digest, const ConfigResult& r,
                               const Judge& j, const Tolerance& tol, const fs::path& dir, int& errorCode,
-                              const std::map<std::string, RemoteCheck>& judged) {
+                              const std::map<std::string, RemoteCheck>& judged, bool software) {
     ImageCheck check;
     check.image = ci.name;
     check.digest = digest;
@@ -195,15 +195,22 @@ Result<ImageCheck> judgeImage(const CheckedImage& ci, const HostImage* now, cons
     }
     if (const Approval* ref = classReference(j, r, ci.name)) {
         // Its own class's reference: the default tolerances, no device
-        // override (those allow for another device's rounding).
-        check.tolerance = j.manifest.forPipeline(r.config.kernel, "");
-        check.reference = ref->deviceClass + " " + ref->api + "/" + ref->stage;
-        check.referenceDigest = ref->digest;
-        check.approval = approvalText(*ref);
-        check.baseline = "store:" + ref->digest;
-        CAVITY_ASSIGN(const HostImage base, j.reference(ref->digest));
-        CAVITY_TRY(judgeAgainst(check, ci, *now, base, dir, !j.remote));
-        return check;
+        // override (those allow for another device's rounding). A software
+        // renderer's approvals mark its images unchanged by digest; where
+        // the image store does not hold their pixels (a clone has none), a
+        // change is judged against the stored baseline instead, which every
+        // clone has (docs/gate.md, "Changed is a state of its own").
+        auto base = j.reference(ref->digest);
+        if (base || !software || !cavity::store::isMissingObject(base.error())) {
+            check.tolerance = j.manifest.forPipeline(r.config.kernel, "");
+            check.reference = ref->deviceClass + " " + ref->api + "/" + ref->stage;
+            check.referenceDigest = ref->digest;
+            check.approval = approvalText(*ref);
+            check.baseline = "store:" + ref->digest;
+            CAVITY_ASSIGN(const HostImage image, std::move(base));
+            CAVITY_TRY(judgeAgainst(check, ci, *now, image, dir, !j.remote));
+            return check;
+        }
     }
     if (j.remote) {
         check.route = "unjudged";
@@ -247,7 +254,8 @@ Result<ConfigResult> judgeRendering(const render::Rendering& rend, const Judge& 
             }
         }
         const HostImage* now = pixels == rend.images.end() ? nullptr : &pixels->second;
-        CAVITY_ASSIGN(ImageCheck check, judgeImage(ci, now, digest, r, j, tol, dir, r.errorCode, rend.judged));
+        CAVITY_ASSIGN(ImageCheck check, judgeImage(ci, now, digest, r, j, tol, dir, r.errorCode, rend.judged,
+                                                   rend.device.softwareRenderer));
         r.images.push_back(std::move(check));
     }
     for (const auto& p : rend.timings) {

@@ -11,10 +11,14 @@ namespace fs = std::filesystem;
 
 nlohmann::json commitStatus(const GateRun& run, const std::string& reportUrl) {
     const int code = run.exitCode();
-    int failed = 0;
-    for (const auto& r : run.results) failed += r.fatal();
+    int failed = 0, changed = 0;
+    for (const auto& r : run.results) {
+        failed += r.fatal();
+        changed += !r.fatal() && r.changed();
+    }
     const std::string total = std::to_string(run.results.size());
-    std::string description = code == 0   ? "all " + total + " configurations passed"
+    std::string description = code == 0   ? "all " + total + " configurations passed" +
+                                              (changed ? ", " + std::to_string(changed) + " changed within tolerance" : "")
                               : code == 1 ? std::to_string(failed) + " of " + total + " configurations failed"
                                           : "the gate could not judge every configuration (exit " + std::to_string(code) + ")";
     description = "matrix " + run.matrix + ": " + description;

@@ -43,16 +43,29 @@ std::string verdictNote(const ConfigResult& r) {
     if (v == "known-flake")
         return "known flake, failed all " + std::to_string(r.attempts) + " attempts (" + r.expectedWhy + ")";
     if (v == "unexpected-pass") return "unexpected pass: listed as an expected failure (" + r.expectedWhy + "); remove the entry";
+    if (v == "changed") {
+        std::string s = "changed within tolerance:";
+        for (const auto& i : r.images)
+            if (i.changed())
+                s += " " + i.image + " max |d| " + num(i.metrics->maxAbs, 3) + ", " +
+                     num(100 * i.metrics->overThresholdShare, 3) + "% of pixels over " +
+                     num(i.tolerance.pixelThreshold, 3) + ";";
+        s.pop_back();
+        return s + " (to make it the reference: cavity baselines update --filter '^" + r.id + "$')";
+    }
     return "";
 }
 
 std::string countsText(const GateRun& run) {
     const auto c = run.counts();
     std::string s;
-    for (const char* v : {"fail", "error", "unexpected-pass", "flaky", "known-flake", "expected-fail", "pass"}) {
+    for (const char* v : {"fail", "error", "unexpected-pass", "flaky", "known-flake", "expected-fail", "changed", "pass"}) {
         const auto it = c.find(v);
         if (it == c.end()) continue;
-        const std::string word = std::string(v) == "pass" ? "passed" : std::string(v) == "fail" ? "failed" : v;
+        const std::string word = std::string(v) == "pass"      ? "passed unchanged"
+                                 : std::string(v) == "fail"    ? "failed"
+                                 : std::string(v) == "changed" ? "changed within tolerance"
+                                                               : v;
         s += (s.empty() ? "" : ", ") + std::to_string(it->second) + " " + word;
     }
     return s;

@@ -113,4 +113,8 @@ Result<std::string> putImage(ImageStore& s, const HostImage& image) {
     return digest;
 }
 
+bool isMissingObject(const Error& e) {
+    return e.code == ErrorCode::Unreachable && e.message.find(": no object ") != std::string::npos;
+}
+
 }  // namespace cavity::store

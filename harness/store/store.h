@@ -71,6 +71,10 @@ std::string defaultLocation(const std::string& baselines);
 Result<HostImage> decodeObject(const std::string& bytes, const std::string& digest, const std::string& label);
 // The image filed under `digest`, decoded and checked (decodeObject).
 Result<HostImage> getImage(ImageStore& s, const std::string& digest);
+// Whether `e` says the store answered and holds no object of the digest (a
+// folder without the file, HTTP 404), as against a store that could not be
+// reached or sent a corrupt object.
+bool isMissingObject(const Error& e);
 // Encodes and stores `image` under its own digest; returns the digest.
 Result<std::string> putImage(ImageStore& s, const HostImage& image);
 
