@@ -149,7 +149,9 @@
     const div = el('div', {id: 'cfg' + k, class: 'cfg ' + kind, 'data-id': r.id, 'data-repetition': String(r.repetition), 'data-verdict': r.verdict},
                    el('h2', {}, v.label, el('span', {class: 'badge'}, r.verdict === 'fail' ? 'FAIL' : r.verdict)));
     if (r.error) div.append(el('p', {class: 'bad'}, r.error));
-    if (v.note) div.append(el('p', {class: 'bad'}, v.note));
+    // A note of a verdict that did not fail (changed, flaky, expected) is
+    // drawn in the reported colour, not the failures'.
+    if (v.note) div.append(el('p', {class: r.fatal ? 'bad' : 'note'}, v.note));
     if (!r.deterministic) div.append(el('p', {class: 'bad'}, 'not bit-identical across two frames on this device'));
     if (r.passed) div.append(thumbnails(r));
     else for (const i of r.images) {
