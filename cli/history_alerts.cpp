@@ -22,14 +22,17 @@ const CommandSpec& alertsSpec() {
         s.program = "cavity history alerts";
         s.description =
             "Lists the change points of every (configuration, pass, device) series: E-divisive means over each "
-            "commit's median, each step kept when Student's t test between the segments either side gives p < --alpha "
-            "and the change reaches --min-change. Each with the first commit after the step and the last before it.";
+            "commit's median, each step kept when the t test between the segments either side (the series' own noise, "
+            "p adjusted for the splits tried) gives p < --alpha and the change reaches --min-change. Each with the first "
+            "commit after the step, the last before it, the commits either side and how sure it is; one with fewer than "
+            "3 commits after it is provisional and held to alpha / 10.";
         s.flags = {historyDbFlag()};
         for (auto& f : historyFilterFlags(false)) s.flags.push_back(f);
         for (auto& f : historyDetectorFlags()) s.flags.push_back(f);
         s.flags.push_back({"--json", "FILE", "also write the alerts as JSON (cavity.history.alerts/1)"});
         s.flags.push_back({"--bisect", "", "print the scripts/bisect.sh command of each slowdown's commit range"});
-        s.flags.push_back({"--fail-on-slower", "", "exit 1 when any change point is a slowdown (a CI job's gate)"});
+        s.flags.push_back({"--fail-on-slower", "",
+                           "exit 1 when a series' newest change point is a slowdown: slower now (a CI job's gate)"});
         s.footer = "\n--since keeps the change points from that date or commit on; the series before it are still "
                    "read to find them.\nExit codes: 0 listed (alerts or none), 1 a slowdown with --fail-on-slower, 2 bad input (a flag, no such database, a "
                    "filter that matches nothing, a database from a newer cavity), 5 the database server cannot be "
@@ -47,10 +50,21 @@ std::string pText(double p) {
     return buf;
 }
 
+// How sure: the adjusted p as odds a reader can weigh, and why an alert
+// may still move (its last commits).
+std::string sureText(const history::Alert& a) {
+    std::string out = a.pValue < 1e-6 ? "certain" : a.pValue < 1e-4 ? "very likely" : "likely";
+    if (a.provisional)
+        out += ", provisional: " + std::to_string(a.commitsAfter) + " commit" + (a.commitsAfter == 1 ? "" : "s") + " after it";
+    return out;
+}
+
 json alertJson(const history::Alert& a) {
     return {{"id", a.configId}, {"pass", a.pass}, {"device", a.device}, {"clock", a.clock}, {"commit", a.commit},
             {"previous_commit", a.previousCommit}, {"date", a.date}, {"change_pct", a.changePct}, {"p_value", a.pValue},
-            {"direction", a.slower() ? "slower" : "faster"}, {"before_ms", a.before}, {"after_ms", a.after}};
+            {"direction", a.slower() ? "slower" : "faster"}, {"before_ms", a.before}, {"after_ms", a.after},
+            {"commits_before", a.commitsBefore}, {"commits_after", a.commitsAfter}, {"provisional", a.provisional},
+            {"newest", a.newest}, {"sure", sureText(a)}};
 }
 
 // scripts/bisect.sh's --pass mode judges with `cavity compare` on
@@ -79,13 +93,16 @@ int historyAlerts(const std::vector<std::string>& argv) {
     if (!series) return fail(spec.program, series.error());
     const auto alerts = history::findAlerts(*series, q->detector, q->since);
     TextTable t({{"configuration"}, {"pass"}, {"device"}, {"commit"}, {"after"}, {"change", TextTable::Align::Right},
-                 {"p", TextTable::Align::Right}, {"before ms", TextTable::Align::Right}, {"after ms", TextTable::Align::Right}});
+                 {"p", TextTable::Align::Right}, {"before ms", TextTable::Align::Right}, {"after ms", TextTable::Align::Right},
+                 {"commits", TextTable::Align::Right}, {"sure"}});
     json out = json::array();
     for (const auto& a : alerts) {
         char change[32];
         std::snprintf(change, sizeof change, "%+.1f%%", a.changePct);
         t.add({a.configId, a.pass, a.device, a.commit.substr(0, 12), a.previousCommit.substr(0, 12), change, pText(a.pValue),
-               TextTable::number(a.before, 4), TextTable::number(a.after, 4)}, a.slower() ? " slower" : " faster");
+               TextTable::number(a.before, 4), TextTable::number(a.after, 4),
+               std::to_string(a.commitsBefore) + "|" + std::to_string(a.commitsAfter), sureText(a)},
+              a.slower() ? " slower" : " faster");
         out.push_back(alertJson(a));
     }
     if (!alerts.empty()) std::cout << t.str();
@@ -101,8 +118,7 @@ int historyAlerts(const std::vector<std::string>& argv) {
         const Status w = writeFileAtomically(path, doc.dump(2) + "\n");
         if (!w) return fail(spec.program, w.error());
     }
-    const bool anySlower = std::any_of(alerts.begin(), alerts.end(), [](const auto& a) { return a.slower(); });
-    return parsed->has("--fail-on-slower") && anySlower ? 1 : 0;
+    return parsed->has("--fail-on-slower") && history::slowerNow(alerts) ? 1 : 0;
 }
 
 }  // namespace cavity::cli

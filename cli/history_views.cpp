@@ -31,8 +31,8 @@ std::vector<FlagSpec> historyFilterFlags(bool until) {
 
 std::vector<FlagSpec> historyDetectorFlags() {
     return {
-        {"--alpha", "A", "the t test's level a change point must reach (default 0.001; (0, 0.5])", "Change points"},
-        {"--min-change", "PCT", "the smallest change reported, in percent of the mean before (default 2; 0..1000)",
+        {"--alpha", "A", "the adjusted p a change point must reach (default 0.001; (0, 0.5])", "Change points"},
+        {"--min-change", "PCT", "the smallest change reported, in percent of the mean before (default 1; 0..1000)",
          "Change points"},
     };
 }

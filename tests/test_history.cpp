@@ -39,12 +39,12 @@ std::string commitOf(int i) {
 
 // cavity_bench JSON of commit i: 5 repetitions of two configurations, the
 // AO pass of kId a tenth slower from commit `stepAt` on, with deterministic noise far smaller.
-json benchDoc(int i, int stepAt) {
+json benchDoc(int i, int stepAt, int revertAt = 1 << 30) {
     json benchmarks = json::array();
     for (const auto& id : {kId, kOther})
         for (int r = 0; r < 5; ++r) {
             const double wobble = 1 + 0.005 * std::sin(double(i * 7 + r * 3 + (id == kId ? 0 : 11)));
-            const double ao = 0.2 * wobble * (id == kId && i >= stepAt ? 1.10 : 1.0), blur = 0.3 * wobble;
+            const double ao = 0.2 * wobble * (id == kId && i >= stepAt && i < revertAt ? 1.10 : 1.0), blur = 0.3 * wobble;
             benchmarks.push_back({{"name", id + "/iterations:20/manual_time"}, {"run_name", id + "/iterations:20/manual_time"},
                                   {"run_type", "iteration"}, {"repetitions", 5}, {"repetition_index", r},
                                   {"real_time", ao + blur}, {"time_unit", "ms"}, {"pass_ao_ms", ao}, {"pass_blur_ms", blur},
@@ -74,7 +74,9 @@ protected:
         std::ofstream(path) << text;
         return path;
     }
-    std::string bench(int i, int stepAt = 8) { return write("bench_" + std::to_string(i) + ".json", benchDoc(i, stepAt).dump()); }
+    std::string bench(int i, int stepAt = 8, int revertAt = 1 << 30) {
+        return write("bench_" + std::to_string(i) + ".json", benchDoc(i, stepAt, revertAt).dump());
+    }
     // Commits 0..n-1, one file each.
     void history(int n, int stepAt = 8) {
         for (int i = 0; i < n; ++i) {
@@ -274,6 +276,76 @@ TEST_F(History, AlertsFindThePlantedStep) {
     // A CI job's gate: exit 1 on the slowdown, 0 where none is left.
     EXPECT_EQ(cavity("history alerts --db " + db_ + " --fail-on-slower").code, 1);
     EXPECT_EQ(cavity("history alerts --db " + db_ + " --since " + commitOf(9) + " --fail-on-slower").code, 0);
+}
+
+// Every run on one date, ingested in a shuffled order: the parents put the
+// commits in order, and the step is named at its commit.
+TEST_F(History, CommitsAreOrderedByTheirParents) {
+    const int n = 16;
+    std::vector<int> shuffled;
+    for (int i = 0; i < n; ++i) shuffled.push_back((i * 7) % n);
+    for (int i : shuffled) {
+        std::string args = "history ingest --db " + db_ + " --commit " + commitOf(i) + " --date 2026-11-20T10:00:00Z";
+        if (i > 0) args += " --parent " + commitOf(i - 1);
+        const Outcome o = cavity(args + " " + bench(i, 8));
+        ASSERT_EQ(o.code, 0) << o.output;
+    }
+    const std::string out = (dir_ / "alerts.json").string();
+    ASSERT_EQ(cavity("history alerts --db " + db_ + " --pass ao --json " + out).code, 0);
+    std::ifstream f(out);
+    const json j = json::parse(f);
+    ASSERT_EQ(j["alerts"].size(), 1u) << j.dump(2);
+    EXPECT_EQ(j["alerts"][0]["commit"], commitOf(8));
+    EXPECT_EQ(j["alerts"][0]["previous_commit"], commitOf(7));
+}
+
+// A 12-digit id is the commit whose full id it begins; a prefix of two is refused.
+TEST_F(History, AShortIdIsTheSameCommit) {
+    history(10, 20);
+    const std::string shortId = commitOf(4).substr(0, 12);
+    const Outcome o = cavity("history ingest --db " + db_ + " --commit " + shortId + " " +
+                             write("again.json", benchDoc(4, 20).dump(1)));
+    ASSERT_EQ(o.code, 0) << o.output;
+    const std::string out = (dir_ / "show.json").string();
+    ASSERT_EQ(cavity("history show --db " + db_ + " --id '" + kId + "' --pass ao --json " + out).code, 0);
+    std::ifstream f(out);
+    const json j = json::parse(f);
+    const auto& points = j["series"][0]["points"];
+    ASSERT_EQ(points.size(), 10u) << "the short id is not a commit of its own";
+    EXPECT_EQ(points[4]["commit"], commitOf(4));
+    EXPECT_EQ(points[4]["runs"], 2);
+    // commitOf(i) all begin "abc000": a prefix of ten commits.
+    refused("history ingest --db " + db_ + " --commit abc000 " + bench(11), "--commit abc000: begins 10 commits");
+}
+
+// --fail-on-slower asks whether a series is slower now: a slowdown that was
+// reverted is listed, with its revert, and does not fail the job.
+TEST_F(History, ARevertedSlowdownIsFoundAndDoesNotFailTheJob) {
+    for (int i = 0; i < 20; ++i) {
+        const Outcome o = cavity("history ingest --db " + db_ + " --commit " + commitOf(i) + " " + bench(i, 6, 9));
+        ASSERT_EQ(o.code, 0) << o.output;
+    }
+    const std::string out = (dir_ / "alerts.json").string();
+    const Outcome o = cavity("history alerts --db " + db_ + " --pass ao --fail-on-slower --json " + out);
+    EXPECT_EQ(o.code, 0) << o.output;
+    std::ifstream f(out);
+    const json j = json::parse(f);
+    ASSERT_EQ(j["alerts"].size(), 2u) << j.dump(2);
+    EXPECT_EQ(j["alerts"][0]["commit"], commitOf(6));
+    EXPECT_EQ(j["alerts"][0]["direction"], "slower");
+    EXPECT_EQ(j["alerts"][0]["commits_after"], 3);
+    EXPECT_EQ(j["alerts"][1]["commit"], commitOf(9));
+    EXPECT_EQ(j["alerts"][1]["direction"], "faster");
+    EXPECT_TRUE(j["alerts"][1]["newest"].get<bool>());
+    // Before the revert was measured, the same job fails.
+    const std::string early = (dir_ / "early.sqlite").string();
+    for (int i = 0; i < 9; ++i) {
+        const Outcome in = cavity("history ingest --db " + early + " --commit " + commitOf(i) + " " + bench(i, 6, 9));
+        ASSERT_EQ(in.code, 0) << in.output;
+    }
+    const Outcome now = cavity("history alerts --db " + early + " --pass ao --fail-on-slower");
+    EXPECT_EQ(now.code, 1) << now.output;
+    EXPECT_NE(now.output.find(" slower"), std::string::npos) << now.output;
 }
 
 TEST_F(History, ChartPageIsSelfContained) {

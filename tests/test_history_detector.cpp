@@ -1,10 +1,14 @@
 // The change-point detector (harness/history/edivisive.h) and its t test
 // against hand-made series: a clean step at the right index with the right
 // change, no point in flat noise at the default alpha, two steps, a step
-// under --min-change left out, and the same answer every time.
+// under --min-change left out, a regression reverted a few commits later,
+// two small steps in a row, the newest commits held to more evidence, and
+// the same answer every time.
 #include "history/edivisive.h"
 #include "history/series.h"
 #include "history/t_test.h"
+
+#include "history_synthetic.h"
 
 #include <gtest/gtest.h>
 
@@ -16,40 +20,8 @@ namespace {
 
 using namespace cavity::history;
 
-// Normal noise from a fixed generator (splitmix64 and Box-Muller): the
-// standard library's distributions may differ between library versions.
-struct Gauss {
-    uint64_t state;
-    double uniform() {
-        uint64_t z = (state += 0x9e3779b97f4a7c15ull);
-        z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-        z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-        return (double((z ^ (z >> 31)) >> 11) + 0.5) / 9007199254740992.0;
-    }
-    double next() { return std::sqrt(-2 * std::log(uniform())) * std::cos(6.283185307179586 * uniform()); }
-};
-
-// `levels[i]` for `lengths[i]` points each, times (1 + cv * noise).
-std::vector<double> series(const std::vector<double>& levels, const std::vector<size_t>& lengths, double cv, uint64_t seed) {
-    Gauss g{seed};
-    std::vector<double> out;
-    for (size_t i = 0; i < levels.size(); ++i)
-        for (size_t j = 0; j < lengths[i]; ++j) out.push_back(levels[i] * (1 + cv * g.next()));
-    return out;
-}
-
-TEST(HistoryTTest, MatchesStudentsDistribution) {
-    // scipy.stats.t.sf(2.0, 10) * 2 = 0.073388; for df = 3 the closed form
-    // 1 - (2 / pi) (atan(u) + u / (1 + u^2)), u = t / sqrt(3): 0.028008456 at t = 4.
-    EXPECT_NEAR(twoSidedP(2.0, 10), 0.0733880, 1e-6);
-    EXPECT_NEAR(twoSidedP(-4.0, 3), 0.0280084560, 1e-8);
-    EXPECT_NEAR(twoSidedP(0.0, 7), 1.0, 1e-12);
-    const double a[] = {1, 2, 3, 4}, b[] = {3, 4, 5, 6};
-    const TTest t = studentT(a, 4, b, 4);   // scipy.stats.ttest_ind: t = 2.19089, p = 0.070988
-    EXPECT_NEAR(t.t, 2.190890, 1e-5);
-    EXPECT_NEAR(t.p, 0.070988, 1e-5);
-    EXPECT_EQ(t.df, 6);
-}
+using cavity::synthetic::series;
+using cavity::synthetic::stepped;
 
 TEST(HistoryDetector, CleanStepAtTheRightIndexWithTheRightChange) {
     const auto x = series({1.0, 1.10}, {15, 15}, 0.01, 1);
@@ -98,7 +70,69 @@ TEST(HistoryDetector, ChangeUnderMinChangeIsNotReported) {
     const auto seen = detectChangePoints(x, one);
     ASSERT_EQ(seen.size(), 1u) << "a 1.5% step in 0.1% noise is significant";
     EXPECT_EQ(seen[0].index, 20u);
-    EXPECT_TRUE(detectChangePoints(x).empty()) << "under the default --min-change 2%";
+    DetectorOptions two;
+    two.minChange = 0.02;
+    EXPECT_TRUE(detectChangePoints(x, two).empty()) << "under --min-change 2%";
+}
+
+// A +5% regression that lasted three commits and was then fixed, early in
+// the series: the rest of the series must not dilute it.
+TEST(HistoryDetector, RevertedRegressionIsFoundWithItsRevert) {
+    for (uint64_t seed = 1; seed <= 20; ++seed) {
+        const auto x = stepped(30, 8, 0.05, 0.003, seed, 11);
+        const auto cps = detectChangePoints(x);
+        ASSERT_EQ(cps.size(), 2u) << "seed " << seed;
+        EXPECT_EQ(cps[0].index, 8u);
+        EXPECT_NEAR(cps[0].change(), 0.05, 0.01);
+        EXPECT_EQ(cps[1].index, 11u);
+        EXPECT_LT(cps[1].change(), 0);
+    }
+    // At 1% noise too, most of the time.
+    int found = 0;
+    for (uint64_t seed = 1; seed <= 40; ++seed)
+        for (const auto& c : detectChangePoints(stepped(30, 10, 0.05, 0.01, seed, 13))) found += c.index == 10 && c.change() > 0;
+    EXPECT_GE(found, 36) << "of 40";
+}
+
+// Two +1.5% steps ten commits apart: each named at its own commit, not one
+// +3% step at the second.
+TEST(HistoryDetector, TwoSmallStepsInARowAreEachNamed) {
+    for (uint64_t seed = 1; seed <= 20; ++seed) {
+        auto x = stepped(30, 8, 0.015, 0.003, seed);
+        for (size_t i = 18; i < x.size(); ++i) x[i] *= 1.015;
+        const auto cps = detectChangePoints(x);
+        ASSERT_EQ(cps.size(), 2u) << "seed " << seed;
+        EXPECT_EQ(cps[0].index, 8u);
+        EXPECT_EQ(cps[1].index, 18u);
+        EXPECT_NEAR(cps[0].change(), 0.015, 0.004);
+        EXPECT_NEAR(cps[1].change(), 0.015, 0.004);
+    }
+}
+
+// A step at the last commit is found when it is clear, and marked
+// provisional; a weaker one waits for more commits.
+TEST(HistoryDetector, NewestCommitsNeedMoreEvidence) {
+    const auto clear = detectChangePoints(stepped(30, 29, 0.05, 0.003, 3));
+    ASSERT_EQ(clear.size(), 1u);
+    EXPECT_EQ(clear[0].index, 29u);
+    EXPECT_TRUE(clear[0].provisional);
+    EXPECT_EQ(clear[0].pointsAfter, 1u);
+    // At 1% noise a 4% step is clear enough with four commits after it, not with one.
+    int oneAfter = 0, fourAfter = 0;
+    for (uint64_t seed = 1; seed <= 40; ++seed) {
+        oneAfter += !detectChangePoints(stepped(30, 29, 0.04, 0.01, seed)).empty();
+        for (const auto& c : detectChangePoints(stepped(30, 26, 0.04, 0.01, seed))) fourAfter += c.index == 26 && !c.provisional;
+    }
+    EXPECT_LE(oneAfter, 12) << "of 40 alerts on one commit";
+    EXPECT_GE(fourAfter, 30) << "of 40 found with four after";
+}
+
+// The splits near the ends of a flat series are the most extreme by chance;
+// judged as the maximum they are, they raise no alarm.
+TEST(HistoryDetector, FlatSeriesAtOnePercentNoiseRaiseAlmostNone) {
+    int alerts = 0;
+    for (uint64_t seed = 1; seed <= 400; ++seed) alerts += !detectChangePoints(stepped(30, 0, 0, 0.01, seed * 104729)).empty();
+    EXPECT_LE(alerts, 2) << "of 400 flat series";
 }
 
 TEST(HistoryDetector, SameInputSameOutput) {
@@ -127,6 +161,10 @@ TEST(HistoryDetector, TooShortOrConstantSeries) {
 TEST(HistoryDetector, EnergySplitPicksTheStep) {
     const std::vector<double> x = {1, 1, 1, 1, 5, 5, 5};
     EXPECT_EQ(bestSplit(x, 0, x.size()).index, 4u);
+    EXPECT_EQ(bestSplit(x, 0, x.size()).end, x.size());
+    const std::vector<double> excursion = {1, 1, 1, 1, 5, 5, 1, 1, 1, 1};
+    EXPECT_EQ(bestSplit(excursion, 0, excursion.size()).index, 4u);
+    EXPECT_EQ(bestSplit(excursion, 0, excursion.size()).end, 6u);
     EXPECT_EQ(bestSplit(x, 0, 1).index, 1u);   // nothing to split
 }
 

@@ -6,7 +6,8 @@ std::vector<Alert> seriesAlerts(const Series& s, const DetectorOptions& options)
     std::vector<double> medians;
     for (const auto& p : s.points) medians.push_back(p.median);
     std::vector<Alert> out;
-    for (const auto& c : detectChangePoints(medians, options)) {
+    const auto points = detectChangePoints(medians, options);
+    for (const auto& c : points) {
         Alert a;
         a.configId = s.configId;
         a.pass = s.pass;
@@ -20,6 +21,10 @@ std::vector<Alert> seriesAlerts(const Series& s, const DetectorOptions& options)
         a.pValue = c.pValue;
         a.before = c.meanBefore;
         a.after = c.meanAfter;
+        a.commitsBefore = c.pointsBefore;
+        a.commitsAfter = c.pointsAfter;
+        a.provisional = c.provisional;
+        a.newest = &c == &points.back();
         out.push_back(std::move(a));
     }
     return out;
@@ -31,6 +36,12 @@ std::vector<Alert> findAlerts(const std::vector<Series>& series, const DetectorO
         for (auto& a : seriesAlerts(s, options))
             if (since.empty() || a.date >= since) out.push_back(std::move(a));
     return out;
+}
+
+bool slowerNow(const std::vector<Alert>& alerts) {
+    for (const auto& a : alerts)
+        if (a.newest && a.slower()) return true;
+    return false;
 }
 
 }  // namespace cavity::history

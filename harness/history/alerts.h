@@ -18,8 +18,11 @@ struct Alert {
     std::string configId, pass, device, clock;
     std::string commit, previousCommit, date;   // the first commit after the step, the last before; its date
     size_t index = 0;                           // of `commit` in its series' points
-    double changePct = 0, pValue = 1;
+    double changePct = 0, pValue = 1;           // p adjusted for the splits its segment offered
     double before = 0, after = 0;               // mean of the per-commit medians of the segments either side
+    size_t commitsBefore = 0, commitsAfter = 0; // the segments' lengths
+    bool provisional = false;                   // too few commits after it yet: held to alpha / 10
+    bool newest = false;                        // the series' newest change point: its "after" is the current state
     bool slower() const { return changePct > 0; }
 };
 
@@ -27,6 +30,11 @@ struct Alert {
 // is dated before `since` (normalized, "" none) is left out, the series
 // before it still being read to find it.
 std::vector<Alert> findAlerts(const std::vector<Series>& series, const DetectorOptions& options, const std::string& since = "");
+
+// --fail-on-slower's question: is any series slower now than before its
+// newest change point? A slowdown that a later change point undid (a
+// revert, a fix) is history, not the current state.
+bool slowerNow(const std::vector<Alert>& alerts);
 
 // Change points of one series (the chart marks them).
 std::vector<Alert> seriesAlerts(const Series& s, const DetectorOptions& options);

@@ -12,6 +12,7 @@
 #include "result.h"
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -37,6 +38,10 @@ public:
     virtual const std::string& where() const = 0;
     virtual Status exec(const std::string& sql, const std::vector<Param>& params = {}) = 0;
     virtual Result<std::vector<Row>> query(const std::string& sql, const std::vector<Param>& params = {}) = 0;
+    // The rows one at a time, none kept: a long history is read in bounded
+    // memory. An error the callback returns stops the query and is returned.
+    using RowCallback = std::function<Status(const Row&)>;
+    virtual Status forEach(const std::string& sql, const std::vector<Param>& params, const RowCallback& each) = 0;
     // A transaction that writes: SQLite takes its write lock at once (BEGIN
     // IMMEDIATE), so two writers wait for each other instead of failing at commit.
     virtual Status begin() = 0;

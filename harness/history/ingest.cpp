@@ -61,6 +61,19 @@ Result<int64_t> insertRun(Database& db, const RunFile& file, const RunInfo& info
     return firstInt(rows, "run");
 }
 
+// A short id (under 40 digits) that begins exactly one longer commit the
+// database holds is that commit: the same commit is never stored twice under
+// two names. A prefix of several is refused.
+Result<std::string> storedForm(Database& db, const std::string& flag, const std::string& sha) {
+    if (sha.empty() || sha.size() >= 40) return sha;
+    CAVITY_ASSIGN(const auto rows, db.query("SELECT DISTINCT commit_sha FROM runs WHERE commit_sha LIKE ? AND length(commit_sha) > ?",
+                                            {sha + "%", int64_t(sha.size())}));
+    if (rows.size() > 1)
+        return badInput(flag + " " + sha + ": begins " + std::to_string(rows.size()) + " commits in " + db.where() +
+                        " (give the full 40-digit id)");
+    return rows.empty() ? sha : *rows[0][0];
+}
+
 }  // namespace
 
 bool isCommit(const std::string& s) {
@@ -72,10 +85,13 @@ Result<Ingested> ingest(Database& db, const RunFile& file, const RunInfo& info) 
     Ingested out;
     Transaction t(db);
     CAVITY_TRY(t.begin());
-    CAVITY_ASSIGN(out.runId, insertRun(db, file, info));
+    RunInfo resolved = info;
+    CAVITY_ASSIGN(resolved.commit, storedForm(db, "--commit", info.commit));
+    CAVITY_ASSIGN(resolved.parent, storedForm(db, "--parent", info.parent));
+    CAVITY_ASSIGN(out.runId, insertRun(db, file, resolved));
     if (out.runId == 0) {
         CAVITY_ASSIGN(const auto seen, db.query("SELECT id FROM runs WHERE file_digest = ? AND commit_sha = ?",
-                                                {file.digest, info.commit}));
+                                                {file.digest, resolved.commit}));
         out.alreadyThere = true;
         CAVITY_ASSIGN(out.runId, firstInt(seen, "run"));
         return out;   // the transaction rolls back: it wrote nothing

@@ -53,9 +53,37 @@ public:
         return run(sql, params);
     }
 
+    // libpq's single-row mode: the server's rows arrive one result at a time.
+    Status forEach(const std::string& sql, const std::vector<Param>& params, const RowCallback& each) override {
+        std::vector<std::string> text;
+        const auto values = paramValues(params, text);
+        if (!PQsendQueryParams(conn_, numbered(sql).c_str(), int(params.size()), nullptr, values.data(), nullptr, nullptr, 0))
+            return failure(sql);
+        PQsetSingleRowMode(conn_);
+        Status out;
+        bool failed = false;
+        // Every result is read, even after an error: the connection is
+        // ready for the next query only once the last one is.
+        while (PGresult* res = PQgetResult(conn_)) {
+            std::unique_ptr<PGresult, void (*)(PGresult*)> guard(res, PQclear);
+            const auto status = PQresultStatus(res);
+            if (status == PGRES_SINGLE_TUPLE) {
+                if (!out) continue;
+                Row row;
+                for (int c = 0; c < PQnfields(res); ++c)
+                    row.push_back(PQgetisnull(res, 0, c) ? std::nullopt : std::optional<std::string>(PQgetvalue(res, 0, c)));
+                out = each(row);
+            } else if (status != PGRES_TUPLES_OK && status != PGRES_COMMAND_OK && !failed) {
+                failed = true;
+                out = failure(sql);
+            }
+        }
+        return out;
+    }
+
 private:
-    Result<std::vector<Row>> run(const std::string& sql, const std::vector<Param>& params) {
-        std::vector<std::string> text(params.size());
+    static std::vector<const char*> paramValues(const std::vector<Param>& params, std::vector<std::string>& text) {
+        text.assign(params.size(), "");
         std::vector<const char*> values(params.size(), nullptr);
         for (size_t i = 0; i < params.size(); ++i) {
             if (std::holds_alternative<std::monostate>(params[i])) continue;
@@ -64,16 +92,24 @@ private:
             else text[i] = std::get<std::string>(params[i]);
             values[i] = text[i].c_str();
         }
+        return values;
+    }
+
+    Error failure(const std::string& sql) const {
+        const std::string what = where_ + ": " + firstLine(PQerrorMessage(conn_));
+        // A server that went away mid-way is unavailable, not our bug.
+        if (PQstatus(conn_) == CONNECTION_BAD) return unreachable(what);
+        return internal(what + " in: " + sql.substr(0, 80));
+    }
+
+    Result<std::vector<Row>> run(const std::string& sql, const std::vector<Param>& params) {
+        std::vector<std::string> text;
+        const auto values = paramValues(params, text);
         PGresult* res = PQexecParams(conn_, numbered(sql).c_str(), int(params.size()), nullptr, values.data(), nullptr,
                                      nullptr, 0);
         std::unique_ptr<PGresult, void (*)(PGresult*)> guard(res, PQclear);
         const auto status = PQresultStatus(res);
-        if (status != PGRES_COMMAND_OK && status != PGRES_TUPLES_OK) {
-            const std::string what = where_ + ": " + firstLine(PQerrorMessage(conn_));
-            // A server that went away mid-way is unavailable, not our bug.
-            if (PQstatus(conn_) == CONNECTION_BAD) return unreachable(what);
-            return internal(what + " in: " + sql.substr(0, 80));
-        }
+        if (status != PGRES_COMMAND_OK && status != PGRES_TUPLES_OK) return failure(sql);
         std::vector<Row> rows;
         for (int r = 0; r < PQntuples(res); ++r) {
             Row row;

@@ -6,6 +6,9 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <set>
+#include <tuple>
+#include <unordered_map>
 
 namespace cavity::history {
 
@@ -49,39 +52,193 @@ void finish(Point& p) {
 
 }  // namespace
 
-Result<std::vector<Series>> loadSeries(Database& db, const SeriesFilter& f) {
-    std::string sql =
-        "SELECT c.config_id, p.pass, p.device, p.clock, p.software_renderer, r.commit_sha, r.run_date, r.id, s.ms "
-        "FROM samples s JOIN passes p ON s.pass_id = p.id JOIN runs r ON p.run_id = r.id "
-        "JOIN configurations c ON p.configuration_id = c.id WHERE 1 = 1";
-    std::vector<Param> params;
-    if (!f.pass.empty()) sql += " AND p.pass = ?", params.push_back(f.pass);
-    if (!f.since.empty()) sql += " AND r.run_date >= ?", params.push_back(f.since);
-    if (!f.until.empty()) sql += " AND r.run_date <= ?", params.push_back(f.until);
-    sql += " ORDER BY c.config_id, p.pass, p.device, p.clock, r.run_date, r.id, s.repetition";
-    CAVITY_ASSIGN(const auto rows, db.query(sql, params));
-    std::map<Key, Series> byKey;
-    std::map<std::pair<Key, std::string>, size_t> pointOf;   // (series, commit) -> index of its point
-    std::map<std::pair<Key, std::string>, std::string> lastRun;
-    for (const auto& r : rows) {
-        const Key k{*r[0], *r[1], *r[2], *r[3]};
-        if (f.id && !std::regex_search(k.config, *f.id)) continue;
-        if (!f.device.empty() && k.device.find(f.device) == std::string::npos) continue;
-        Series& s = byKey[k];
-        if (s.configId.empty()) s = {k.config, k.pass, k.device, k.clock, *r[4] != "0", {}};
-        const std::string& commit = *r[5];
-        auto [it, fresh] = pointOf.emplace(std::make_pair(k, commit), s.points.size());
-        if (fresh) s.points.push_back({commit, *r[6], {}, 0});
-        Point& p = s.points[it->second];
-        if (std::exchange(lastRun[{k, commit}], *r[7]) != *r[7]) ++p.runs;
-        p.ms.push_back(std::stod(*r[8]));
-    }
-    std::vector<Series> out;
-    for (auto& [k, s] : byKey) {
-        for (auto& p : s.points) finish(p);
-        out.push_back(std::move(s));
+namespace {
+
+struct CommitRow {
+    std::string parent, date;
+    int64_t firstRun = 0;
+};
+
+// A commit stored by a prefix (a short id) stands for the one longer
+// commit it begins, where there is exactly one.
+std::map<std::string, std::string> canonicalCommits(const std::map<std::string, CommitRow>& commits) {
+    std::map<std::string, std::string> out;
+    for (auto it = commits.begin(); it != commits.end(); ++it) {
+        const std::string& c = it->first;
+        std::string longer;
+        int count = 0;
+        for (auto next = std::next(it); next != commits.end() && next->first.compare(0, c.size(), c) == 0; ++next)
+            if (next->first.size() > c.size()) longer = next->first, ++count;
+        out[c] = count == 1 ? longer : c;
     }
     return out;
+}
+
+}  // namespace
+
+Result<std::vector<std::string>> commitOrder(Database& db) {
+    CAVITY_ASSIGN(const auto rows, db.query("SELECT commit_sha, parent_sha, min(run_date), min(id) FROM runs "
+                                            "GROUP BY commit_sha, parent_sha"));
+    std::map<std::string, CommitRow> commits;
+    for (const auto& r : rows) {
+        CommitRow& c = commits[*r[0]];
+        const int64_t id = std::stoll(*r[3]);
+        if (c.date.empty() || *r[2] < c.date) c.date = *r[2];
+        if (c.firstRun == 0 || id < c.firstRun) c.firstRun = id;
+        if (r[1] && c.parent.empty()) c.parent = *r[1];
+    }
+    const auto canonical = canonicalCommits(commits);
+    std::map<std::string, CommitRow> merged;
+    for (const auto& [sha, row] : commits) {
+        CommitRow& m = merged[canonical.at(sha)];
+        if (m.date.empty() || row.date < m.date) m.date = row.date;
+        if (m.firstRun == 0 || row.firstRun < m.firstRun) m.firstRun = row.firstRun;
+        if (m.parent.empty() && !row.parent.empty()) m.parent = row.parent;
+    }
+    // Kahn's algorithm over the parent edges the database knows; among the
+    // commits whose parent is placed, the earliest first run goes first
+    // (date, then ingest order), which is also the whole order when no run
+    // names a parent.
+    std::map<std::string, std::vector<std::string>> children;
+    std::map<std::string, int> waiting;
+    const auto resolve = [&](const std::string& parent) -> std::string {
+        if (merged.count(parent)) return parent;
+        auto it = merged.lower_bound(parent);
+        if (it != merged.end() && it->first.compare(0, parent.size(), parent) == 0 && std::next(it) != merged.end() &&
+            std::next(it)->first.compare(0, parent.size(), parent) == 0)
+            return "";   // a prefix of two commits: no edge
+        return it != merged.end() && it->first.compare(0, parent.size(), parent) == 0 ? it->first : "";
+    };
+    for (const auto& [sha, row] : merged) {
+        const std::string parent = row.parent.empty() ? "" : resolve(row.parent);
+        if (!parent.empty() && parent != sha) children[parent].push_back(sha), ++waiting[sha];
+    }
+    using Ready = std::tuple<std::string, int64_t, std::string>;
+    std::set<Ready> ready;
+    for (const auto& [sha, row] : merged)
+        if (!waiting[sha]) ready.insert({row.date, row.firstRun, sha});
+    std::vector<std::string> order;
+    while (order.size() < merged.size()) {
+        if (ready.empty()) {
+            // A cycle of parents (a database fed wrong ids): the rest by date.
+            for (const auto& [sha, row] : merged)
+                if (waiting[sha] > 0) ready.insert({row.date, row.firstRun, sha}), waiting[sha] = 0;
+        }
+        const auto [date, id, sha] = *ready.begin();
+        ready.erase(ready.begin());
+        if (waiting[sha] < 0) continue;
+        waiting[sha] = -1;   // placed
+        order.push_back(sha);
+        for (const auto& child : children[sha])
+            if (waiting[child] > 0 && --waiting[child] == 0) ready.insert({merged[child].date, merged[child].firstRun, child});
+    }
+    return order;
+}
+
+Result<std::vector<Series>> loadSeries(Database& db, const SeriesFilter& f) {
+    // Four reads, each streamed: the series (few), the runs (one a file),
+    // the passes (one a run and series) and the samples. Only what the
+    // series are made of is kept: a median per commit needs its samples,
+    // but no row is held, so memory follows the samples' count, not the
+    // rows' text. One scan of the samples in storage order, rather than
+    // a query per series, reads each page of the database once.
+    std::string keys =
+        "SELECT DISTINCT p.configuration_id, c.config_id, p.pass, p.device, p.clock FROM passes p "
+        "JOIN configurations c ON p.configuration_id = c.id";
+    std::vector<Param> keyParams;
+    if (!f.pass.empty()) keys += " WHERE p.pass = ?", keyParams.push_back(f.pass);
+    CAVITY_ASSIGN(const auto keyRows, db.query(keys, keyParams));
+    std::vector<Series> out;
+    std::map<std::tuple<std::string, std::string, std::string, std::string>, size_t> seriesOf;   // (configuration id, pass, device, clock)
+    {
+        std::vector<std::pair<Key, std::string>> wanted;
+        for (const auto& r : keyRows) {
+            const Key k{*r[1], *r[2], *r[3], *r[4]};
+            if (f.id && !std::regex_search(k.config, *f.id)) continue;
+            if (!f.device.empty() && k.device.find(f.device) == std::string::npos) continue;
+            wanted.push_back({k, *r[0]});
+        }
+        std::sort(wanted.begin(), wanted.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+        for (const auto& [k, configurationId] : wanted) {
+            seriesOf[{configurationId, k.pass, k.device, k.clock}] = out.size();
+            out.push_back({k.config, k.pass, k.device, k.clock, false, {}});
+        }
+    }
+    if (out.empty()) return out;
+    CAVITY_ASSIGN(const auto order, commitOrder(db));
+    std::map<std::string, size_t> rank;
+    for (size_t i = 0; i < order.size(); ++i) rank[order[i]] = i;
+    // Each stored form of a commit (a short id beside its full one) to its canonical form's rank.
+    const auto rankOf = [&](const std::string& sha) -> size_t {
+        auto it = rank.lower_bound(sha);
+        return it != rank.end() && it->first.compare(0, sha.size(), sha) == 0 ? it->second : order.size();
+    };
+    struct Run {
+        size_t commit;
+        std::string date;
+    };
+    std::unordered_map<int64_t, Run> runs;
+    {
+        std::string sql = "SELECT id, commit_sha, run_date FROM runs WHERE 1 = 1";
+        std::vector<Param> params;
+        if (!f.since.empty()) sql += " AND run_date >= ?", params.push_back(f.since);
+        if (!f.until.empty()) sql += " AND run_date <= ?", params.push_back(f.until);
+        CAVITY_TRY(db.forEach(sql, params, [&](const Row& r) -> Status {
+            runs[std::stoll(*r[0])] = {rankOf(*r[1]), *r[2]};
+            return {};
+        }));
+    }
+    // A pass row to its series and run; a point per (series, commit).
+    struct PassOf {
+        uint32_t series;
+        int64_t run;
+    };
+    std::unordered_map<int64_t, PassOf> passes;
+    {
+        std::string sql = "SELECT id, configuration_id, pass, device, clock, software_renderer, run_id FROM passes";
+        std::vector<Param> params;
+        if (!f.pass.empty()) sql += " WHERE pass = ?", params.push_back(f.pass);
+        CAVITY_TRY(db.forEach(sql, params, [&](const Row& r) -> Status {
+            const auto it = seriesOf.find({*r[1], *r[2], *r[3], *r[4]});
+            if (it == seriesOf.end()) return {};
+            const int64_t run = std::stoll(*r[6]);
+            if (!runs.count(run)) return {};   // outside --since / --until
+            if (*r[5] != "0") out[it->second].softwareRenderer = true;
+            passes[std::stoll(*r[0])] = {uint32_t(it->second), run};
+            return {};
+        }));
+    }
+    std::vector<std::unordered_map<size_t, size_t>> pointOf(out.size());   // per series: commit rank -> point
+    std::vector<std::unordered_map<size_t, int64_t>> lastRun(out.size());
+    CAVITY_TRY(db.forEach("SELECT pass_id, ms FROM samples", {}, [&](const Row& r) -> Status {
+        const auto it = passes.find(std::stoll(*r[0]));
+        if (it == passes.end()) return {};
+        Series& s = out[it->second.series];
+        const Run& run = runs.at(it->second.run);
+        auto [at, fresh] = pointOf[it->second.series].emplace(run.commit, s.points.size());
+        if (fresh) s.points.push_back({run.commit < order.size() ? order[run.commit] : "", run.date, {}, 0});
+        Point& p = s.points[at->second];
+        if (run.date < p.date) p.date = run.date;   // the commit's first run
+        auto& last = lastRun[it->second.series][run.commit];
+        if (last != it->second.run) ++p.runs, last = it->second.run;
+        p.ms.push_back(std::stod(*r[1]));
+        return {};
+    }));
+    std::vector<Series> kept;
+    for (size_t i = 0; i < out.size(); ++i) {
+        Series& s = out[i];
+        if (s.points.empty()) continue;
+        for (auto& p : s.points) finish(p);
+        std::vector<std::pair<size_t, size_t>> byRank;   // (commit rank, point)
+        for (const auto& [commit, point] : pointOf[i]) byRank.push_back({commit, point});
+        std::sort(byRank.begin(), byRank.end());
+        std::vector<Point> ordered;
+        ordered.reserve(s.points.size());
+        for (const auto& [commit, point] : byRank) ordered.push_back(std::move(s.points[point]));
+        s.points = std::move(ordered);
+        kept.push_back(std::move(s));
+    }
+    return kept;
 }
 
 Result<std::string> resolveBound(Database& db, const std::string& flag, const std::string& value, bool since) {

@@ -32,11 +32,18 @@ struct Point {
 struct Series {
     std::string configId, pass, device, clock;
     bool softwareRenderer = false;
-    std::vector<Point> points;   // in date order
+    std::vector<Point> points;   // in commit order (commitOrder)
     std::string key() const { return configId + " " + pass + " " + device; }
 };
 
 Result<std::vector<Series>> loadSeries(Database& db, const SeriesFilter& filter);
+
+// Every commit of the database, oldest first: by the git graph where runs
+// name their parent (`ingest --parent`), a commit after its parent, and
+// otherwise by its first run's date, then ingest order. A commit stored by
+// a short id beside the one full id it begins is one commit, under the
+// full id.
+Result<std::vector<std::string>> commitOrder(Database& db);
 
 // --since / --until: a date (normalizeDate's forms) or a commit (4..40 hex
 // digits, a prefix of one run's commit) whose first (since) or last (until)

@@ -29,6 +29,11 @@ public:
     Result<std::vector<Row>> query(const std::string& sql, const std::vector<Param>& params) override {
         return run(sql, params, true);
     }
+    Status forEach(const std::string& sql, const std::vector<Param>& params, const RowCallback& each) override {
+        auto rows = run(sql, params, false, &each);
+        if (!rows) return rows.error();
+        return {};
+    }
 
 private:
     // What a failed call means to the user: a file that is no database (or a
@@ -72,18 +77,21 @@ private:
         }
     }
 
-    Result<std::vector<Row>> run(const std::string& sql, const std::vector<Param>& params, bool collect) {
+    Result<std::vector<Row>> run(const std::string& sql, const std::vector<Param>& params, bool collect,
+                                 const RowCallback* each = nullptr) {
         sqlite3_stmt* st = nullptr;
         int rc = sqlite3_prepare_v2(db_, sql.c_str(), int(sql.size()), &st, nullptr);
         if (rc != SQLITE_OK) return error(rc, sql);
         std::unique_ptr<sqlite3_stmt, int (*)(sqlite3_stmt*)> guard(st, sqlite3_finalize);
         CAVITY_TRY(bind(st, params));
         std::vector<Row> rows;
+        Row row;
         while ((rc = sqlite3_step(st)) == SQLITE_ROW) {
-            if (!collect) continue;
-            Row row;
+            if (!collect && !each) continue;
+            row.clear();
             for (int c = 0; c < sqlite3_column_count(st); ++c) row.push_back(column(st, c));
-            rows.push_back(std::move(row));
+            if (each) CAVITY_TRY((*each)(row));
+            else rows.push_back(row);
         }
         if (rc != SQLITE_DONE) return error(rc, sql);
         return rows;
