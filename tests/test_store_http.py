@@ -44,7 +44,7 @@ def free_port():
 def run(args, env=None, **kw):
     e = dict(os.environ)
     for k in ("CAVITY_STORE", "CAVITY_STORE_TOKEN", "CAVITY_STORE_USER", "CAVITY_STORE_PASSWORD", "CAVITY_STORE_CA",
-              "CAVITY_STORE_NETRC", "CAVITY_STORE_TIMEOUT"):
+              "CAVITY_STORE_NETRC", "CAVITY_STORE_TIMEOUT", "CAVITY_STORE_STALL"):
         e.pop(k, None)
     e["CAVITY_STORE_CACHE"] = CACHE
     e.update(env or {})
@@ -63,6 +63,37 @@ def cache_files():
     for base, _, names in os.walk(CACHE):
         out += [os.path.join(base, n) for n in names]
     return sorted(out)
+
+
+def stalling_server(reply):
+    """A TCP server on a free port that accepts, sends `reply` and then
+    nothing, holding the connection open. Returns (port, stop)."""
+    import threading
+    srv = socket.socket()
+    srv.bind(("127.0.0.1", 0))
+    srv.listen(8)
+    held, done = [], threading.Event()
+
+    def serve():
+        srv.settimeout(0.2)
+        while not done.is_set():
+            try:
+                conn, _ = srv.accept()
+            except OSError:
+                continue
+            conn.recv(65536)
+            if reply:
+                conn.sendall(reply)
+            held.append(conn)
+
+    threading.Thread(target=serve, daemon=True).start()
+
+    def stop():
+        done.set()
+        for c in held:
+            c.close()
+        srv.close()
+    return srv.getsockname()[1], stop
 
 
 def htpasswd(path, users):
@@ -266,6 +297,25 @@ def cases(work, http, https, ca, www):
     one_line(p, 5, "half download", "CAVITY_STORE_TIMEOUT")
     leftovers = [f for f in cache_files()]
     check(leftovers == [], f"half download: nothing in the cache {leftovers}")
+
+    # Servers that stall: one accepts and never answers, one sends 16 bytes
+    # of a response and stops. Each is cut off after CAVITY_STORE_STALL
+    # seconds (here 2), not the whole request's limit (600 s).
+    for name, reply in (("silent", b""), ("stops after 16 bytes", b"HTTP/1.1 200 OK\r\n")):
+        port, stop = stalling_server(reply[:16])
+        t0 = time.monotonic()
+        p = run([CAVITY, "store", "check", "--baselines", base, "--store", f"http://127.0.0.1:{port}/cavity"],
+                {"CAVITY_STORE_STALL": "2"}, timeout=60)
+        took = time.monotonic() - t0
+        stop()
+        one_line(p, 5, f"stalled server, {name}", "stalled", "CAVITY_STORE_STALL")
+        check(took < 20, f"stalled server, {name}: cut off in {took:.1f} s (CAVITY_STORE_STALL=2)")
+        check(cache_files() == [], f"stalled server, {name}: nothing cached")
+    # Limits that are not whole seconds in range: bad input, naming the variable.
+    for var, value in (("CAVITY_STORE_TIMEOUT", "abc"), ("CAVITY_STORE_TIMEOUT", "-5"), ("CAVITY_STORE_STALL", "0"),
+                       ("CAVITY_STORE_STALL", "1.5")):
+        p = run([CAVITY, "store", "check", "--baselines", base, "--store", url], dict(reader, **{var: value}))
+        one_line(p, 2, f"{var}={value} refused", f"{var}={value}", "whole seconds")
 
     # TLS: refused with no CA given (no way to turn verification off), accepted with it.
     tls = f"https://localhost:{https}/cavity"

@@ -12,6 +12,7 @@
 #include <curl/curl.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -127,6 +128,31 @@ void globalInit() {
     std::call_once(once, [] { curl_global_init(CURL_GLOBAL_DEFAULT); });
 }
 
+struct Limits {
+    long total = 600;   // CAVITY_STORE_TIMEOUT: seconds a request may take
+    long stall = 30;    // CAVITY_STORE_STALL: seconds a transfer may stay under 1 KiB/s
+};
+
+// The time limits from the environment, each whole seconds in its range, or
+// bad input naming the variable.
+Result<Limits> limits() {
+    Limits out;
+    const auto read = [](const char* name, long lo, long hi, long& into) -> Status {
+        const std::string v = env(name);
+        if (v.empty()) return {};
+        char* end = nullptr;
+        errno = 0;
+        const long n = std::strtol(v.c_str(), &end, 10);
+        if (errno || end == v.c_str() || *end || n < lo || n > hi)
+            return badInput(std::string(name) + "=" + v + ": must be whole seconds, " + std::to_string(lo) + ".." + std::to_string(hi));
+        into = n;
+        return {};
+    };
+    CAVITY_TRY(read("CAVITY_STORE_TIMEOUT", 1, 86400, out.total));
+    CAVITY_TRY(read("CAVITY_STORE_STALL", 1, 3600, out.stall));
+    return out;
+}
+
 // Credentials, CA and time limits from the environment; nothing of them is
 // ever put into a message.
 void configure(CURL* h, curl_slist*& headers) {
@@ -143,10 +169,15 @@ void configure(CURL* h, curl_slist*& headers) {
             curl_easy_setopt(h, CURLOPT_NETRC_FILE, netrc.c_str());
     }
     if (const std::string ca = env("CAVITY_STORE_CA"); !ca.empty()) curl_easy_setopt(h, CURLOPT_CAINFO, ca.c_str());
-    long seconds = 600;
-    if (const std::string t = env("CAVITY_STORE_TIMEOUT"); !t.empty()) seconds = std::max(1L, std::atol(t.c_str()));
-    curl_easy_setopt(h, CURLOPT_TIMEOUT, seconds);
-    curl_easy_setopt(h, CURLOPT_CONNECTTIMEOUT, std::min(seconds, 20L));
+    // Checked when the store was opened (limits()).
+    const Limits l = limits().value();
+    curl_easy_setopt(h, CURLOPT_TIMEOUT, l.total);
+    curl_easy_setopt(h, CURLOPT_CONNECTTIMEOUT, std::min(l.total, 20L));
+    // A server that accepts and never answers, or a transfer that stops
+    // halfway, is below 1 KiB/s from then on: cut off after `stall` seconds,
+    // long before the whole request's limit.
+    curl_easy_setopt(h, CURLOPT_LOW_SPEED_LIMIT, 1024L);
+    curl_easy_setopt(h, CURLOPT_LOW_SPEED_TIME, l.stall);
     curl_easy_setopt(h, CURLOPT_NOSIGNAL, 1L);
     curl_easy_setopt(h, CURLOPT_PROTOCOLS_STR, "http,https");
     curl_easy_setopt(h, CURLOPT_FOLLOWLOCATION, 0L);   // credentials go to this host only
@@ -156,6 +187,8 @@ std::string failureText(CURLcode c, const char* detail) {
     std::string why = detail[0] ? detail : curl_easy_strerror(c);
     if (c == CURLE_PEER_FAILED_VERIFICATION || c == CURLE_SSL_CACERT_BADFILE || c == CURLE_SSL_CONNECT_ERROR)
         return "TLS: " + why + " (certificates are always verified; give the server's CA with CAVITY_STORE_CA)";
+    if (c == CURLE_OPERATION_TIMEDOUT && why.find("too slow") != std::string::npos)
+        return "stalled: " + why + " (CAVITY_STORE_STALL sets how long, in seconds)";
     if (c == CURLE_OPERATION_TIMEDOUT) return why + " (CAVITY_STORE_TIMEOUT sets the limit in seconds)";
     if (c == CURLE_PARTIAL_FILE || c == CURLE_RECV_ERROR) return "the transfer broke off: " + why;
     return why;
@@ -202,6 +235,7 @@ Result<std::unique_ptr<ImageStore>> httpStore(const std::string& url, const std:
         return badInput("--store: credentials in the URL are refused (they would be printed with it); give them in "
                         "CAVITY_STORE_TOKEN, CAVITY_STORE_USER and CAVITY_STORE_PASSWORD, or a netrc file");
     if (host >= url.size() || url[host] == '/') return badInput("--store " + url + ": no host in the URL");
+    if (const auto l = limits(); !l) return l.error();
     return std::unique_ptr<ImageStore>(std::make_unique<HttpStore>(url, cacheFolder(cacheDir)));
 }
 
