@@ -185,7 +185,8 @@ Result<size_t> addRenderApprovals(plan::Approvals& a, const std::string& dir, co
 // after all of them are there.
 Result<size_t> putImages(const std::vector<Pixels>& pixels, const ApproveFlags& f) {
     store::StoreOptions so;
-    so.location = f.store.empty() ? store::defaultLocation(f.root) : f.store;
+    so.location = f.store;
+    store::fillDefault(so, f.root);
     CAVITY_ASSIGN(auto target, store::openStore(so));
     std::set<std::string> done;
     for (const auto& p : pixels) {

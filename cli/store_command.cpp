@@ -84,7 +84,7 @@ int storeCommand(const std::vector<std::string>& argv) {
     }
     auto approvals = plan::loadApprovals((fs::path(root) / "approvals.json").string());
     if (!approvals) return fail(program, approvals.error());
-    if (so.location.empty()) so.location = store::defaultLocation(root);
+    store::fillDefault(so, root);
     auto s = store::openStore(so);
     if (!s) return fail(program, s.error());
     std::set<std::string> digests;

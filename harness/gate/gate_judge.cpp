@@ -75,7 +75,7 @@ Result<Judge> prepareJudge(const std::string& baselines, const std::vector<RunCo
         for (const auto& img : checkedImages())
             if (!remote) CAVITY_TRY(checkBaseline((root / "images" / baselineKey(c) / (img.name + img.extension)).string(), c, img.name));
     store::StoreOptions so = storeOptions;
-    if (so.location.empty()) so.location = store::defaultLocation(baselines);
+    store::fillDefault(so, baselines);
     CAVITY_ASSIGN(std::unique_ptr<store::ImageStore> s, store::openStore(so));
     j.store = std::move(s);
     CAVITY_TRY(checkWritableDir("--out", out));

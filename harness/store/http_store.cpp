@@ -228,13 +228,13 @@ Result<Response> HttpStore::request(const std::string& method, const std::string
 
 }  // namespace
 
-Result<std::unique_ptr<ImageStore>> httpStore(const std::string& url, const std::string& cacheDir) {
+Result<std::unique_ptr<ImageStore>> httpStore(const std::string& url, const std::string& cacheDir, const std::string& source) {
     const size_t host = url.find("://") + 3;
     const size_t slash = url.find('/', host);
     if (url.substr(host, slash == std::string::npos ? std::string::npos : slash - host).find('@') != std::string::npos)
-        return badInput("--store: credentials in the URL are refused (they would be printed with it); give them in "
+        return badInput(source + ": credentials in the URL are refused (they would be printed with it); give them in "
                         "CAVITY_STORE_TOKEN, CAVITY_STORE_USER and CAVITY_STORE_PASSWORD, or a netrc file");
-    if (host >= url.size() || url[host] == '/') return badInput("--store " + url + ": no host in the URL");
+    if (host >= url.size() || url[host] == '/') return badInput(source + " " + url + ": no host in the URL");
     if (const auto l = limits(); !l) return l.error();
     return std::unique_ptr<ImageStore>(std::make_unique<HttpStore>(url, cacheFolder(cacheDir)));
 }

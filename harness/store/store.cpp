@@ -79,10 +79,17 @@ std::string defaultLocation(const std::string& baselines) {
 
 std::unique_ptr<ImageStore> folderStore(const std::string& root) { return std::make_unique<FolderStore>(root); }
 
-Result<std::unique_ptr<ImageStore>> openStore(const StoreOptions& o, const std::string& flag) {
+void fillDefault(StoreOptions& o, const std::string& baselines) {
+    if (!o.location.empty()) return;
+    o.location = defaultLocation(baselines);
+    if (!env("CAVITY_STORE").empty()) o.source = "CAVITY_STORE";
+}
+
+Result<std::unique_ptr<ImageStore>> openStore(const StoreOptions& o) {
     const std::string& at = o.location;
+    const std::string& flag = o.source;
     if (at.empty()) return badInput(flag + ": empty (a folder, or an http:// or https:// URL)");
-    if (at.rfind("http://", 0) == 0 || at.rfind("https://", 0) == 0) return httpStore(at, o.cache);
+    if (at.rfind("http://", 0) == 0 || at.rfind("https://", 0) == 0) return httpStore(at, o.cache, flag);
     std::string root = at;
     if (root.rfind("file://", 0) == 0) root = root.substr(7);
     else if (root.find("://") != std::string::npos)

@@ -55,15 +55,20 @@ struct StoreOptions {
     // Where an HTTP store's objects are cached; empty: $CAVITY_STORE_CACHE,
     // else $XDG_CACHE_HOME/cavity/store, else ~/.cache/cavity/store.
     std::string cache;
+    // What the location came from, for messages: the flag, or CAVITY_STORE.
+    std::string source = "--store";
 };
 
 // The store of `--store`, checked for what can be checked without a
 // request (the folder is a folder, the URL has no credentials in it).
 // `flag` names the flag in messages.
-Result<std::unique_ptr<ImageStore>> openStore(const StoreOptions& o, const std::string& flag = "--store");
+Result<std::unique_ptr<ImageStore>> openStore(const StoreOptions& o);
 
 // The default location: $CAVITY_STORE, else <baselines>/store.
 std::string defaultLocation(const std::string& baselines);
+// Fills an empty o.location from defaultLocation, naming CAVITY_STORE as its
+// source when the variable gave it.
+void fillDefault(StoreOptions& o, const std::string& baselines);
 
 // Bytes of an object decoded and checked against the digest they are filed
 // under (`label` names them in messages): anything else is
@@ -82,6 +87,7 @@ Result<std::string> putImage(ImageStore& s, const HostImage& image);
 std::unique_ptr<ImageStore> folderStore(const std::string& root);
 // An HTTP store read through a cache folder (http_store.cpp). Refuses a URL
 // with credentials in it.
-Result<std::unique_ptr<ImageStore>> httpStore(const std::string& url, const std::string& cacheDir);
+Result<std::unique_ptr<ImageStore>> httpStore(const std::string& url, const std::string& cacheDir,
+                                              const std::string& source = "--store");
 
 }  // namespace cavity::store
