@@ -100,6 +100,7 @@ const CommandSpec& judgeSpec() {
             {"--out", "DIR", "report folder (default out/gate)"},
             kReportUrlFlag,
             {"--enforce-cpu-budgets", "", kEnforceHelp},
+            {"--shards", "I[,J...]/N", "the shards the folders hold, when not all N (default: every shard must be there)"},
             storeFlag(),
             storeCacheFlag(),
             {"--quiet", "", "no progress lines on stderr"},
@@ -110,6 +111,7 @@ const CommandSpec& judgeSpec() {
         {
             "cavity gate judge out/render",
             "cavity gate judge --out out/gate out/render-gl out/render-vk",
+            "cavity gate judge --shards 1/4 --out out/gate-1 out/render-1",
         },
     };
     return spec;
@@ -219,7 +221,8 @@ int judge(const std::vector<std::string>& argv) {
     const std::vector<std::string> dirs = p.positionals;
     const std::map<std::string, std::string*> into{{"--out", &o.out}, {"--baselines", &baselines},
                                                    {"--report-url", &reportUrl}, {"--expectations", &expectationsDir},
-                                                   {"--store", &o.store.location}, {"--store-cache", &o.store.cache}};
+                                                   {"--store", &o.store.location}, {"--store-cache", &o.store.cache},
+                                                   {"--shards", &o.shards}};
     for (const auto& [flag, v] : p.values) *into.at(flag) = v;
     o.quiet = p.has("--quiet");
     o.enforceCpuBudgets = p.has("--enforce-cpu-budgets");

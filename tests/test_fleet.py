@@ -226,6 +226,26 @@ class ShardProtocols(Base):
         one_line_error(self, p, "cavity_render: conflicting shards")
         self.assertFalse(os.path.exists(os.path.join(self.tmp, "r", "manifest.json")))
 
+    def test_judge_refuses_a_lost_shard_unless_told(self):
+        # Shard 1 of 2 alone is half a verdict: refused, nothing written;
+        # named with --shards it is judged; a wrong name is refused.
+        render = os.path.join(BUILD, "render", "cavity_render")
+        folder = os.path.join(self.tmp, "r1")
+        p = run([render, "--matrix", "ci", "--filter", FILTER, "--shard", "1/2", "--out", folder])
+        self.assertEqual(p.returncode, 0, p.stderr)
+        out = os.path.join(self.tmp, "judged")
+        p = run([CAVITY, "gate", "judge", folder, "--out", out, "--quiet"])
+        one_line_error(self, p, "shards 1/2", "0/2 are missing", "--shards 1/2")
+        self.assertFalse(os.path.exists(out), "nothing written")
+        p = run([CAVITY, "gate", "judge", folder, "--shards", "0/2", "--out", out, "--quiet"])
+        one_line_error(self, p, "--shards 0/2 names 0/2")
+        p = run([CAVITY, "gate", "judge", folder, "--shards", "1/3", "--out", out, "--quiet"])
+        one_line_error(self, p, "--shards 1/3: must be")
+        self.assertFalse(os.path.exists(out), "nothing written")
+        p = run([CAVITY, "gate", "judge", folder, "--shards", "1/2", "--out", out, "--quiet"])
+        self.assertEqual(p.returncode, 0, p.stderr)
+        self.assertEqual(load(os.path.join(out, "gate.json"))["shard"], [1, 2])
+
 
 class Flaky(Base):
     def test_planted_flake_is_reported_flaky_everywhere(self):

@@ -18,7 +18,10 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <iterator>
 #include <map>
+#include <set>
+#include <sstream>
 
 namespace cavity::gate {
 
@@ -273,12 +276,60 @@ Result<std::vector<std::vector<ConfigResult>>> judgeItems(const std::vector<Item
     return out;
 }
 
+// The folders hold every shard of their count, or exactly the ones --shards
+// names: judging half a fleet's folders is not a verdict on the matrix.
+Status checkShards(const std::vector<Folder>& folders, const std::string& told) {
+    const int count = folders.front().m.shardCount;
+    std::set<int> have;
+    for (const auto& f : folders) {
+        if (f.m.shardCount != count)
+            return badInput(f.path + ": shard " + std::to_string(f.m.shardIndex) + "/" + std::to_string(f.m.shardCount) +
+                            ", but " + folders.front().path + " is of " + std::to_string(count) + " shards");
+        have.insert(f.m.shardIndex);
+    }
+    std::set<int> want;
+    const std::string form = "--shards " + told + ": must be I[,J...]/N, shards of the folders' count " + std::to_string(count) +
+                             " (e.g. 1/" + std::to_string(count) + ")";
+    if (told.empty()) {
+        for (int i = 0; i < count; ++i) want.insert(i);
+    } else {
+        const auto slash = told.find('/');
+        if (slash == std::string::npos || told.substr(slash + 1) != std::to_string(count)) return badInput(form);
+        std::stringstream list(told.substr(0, slash));
+        for (std::string item; std::getline(list, item, ',');) {
+            if (item.empty() || item.size() > 6 || item.find_first_not_of("0123456789") != std::string::npos) return badInput(form);
+            const int i = std::stoi(item);
+            if (i >= count) return badInput(form);
+            want.insert(i);
+        }
+    }
+    const auto text = [&](const std::set<int>& s) {
+        std::string out;
+        for (int i : s) {
+            if (!out.empty()) out += ',';
+            out += std::to_string(i);
+        }
+        out += '/';
+        out += std::to_string(count);
+        return out;
+    };
+    if (have == want) return {};
+    std::set<int> missing, extra;
+    std::set_difference(want.begin(), want.end(), have.begin(), have.end(), std::inserter(missing, missing.end()));
+    std::set_difference(have.begin(), have.end(), want.begin(), want.end(), std::inserter(extra, extra.end()));
+    if (!missing.empty() && told.empty())
+        return badInput("the folders hold shards " + text(have) + "; shards " + text(missing) + " are missing (judge every " +
+                        "shard's folder, or name the ones judged: --shards " + text(have) + ")");
+    return badInput("the folders hold shards " + text(have) + ", --shards " + told + " names " + text(want));
+}
+
 }  // namespace
 
 Result<GateRun> judgeFolders(const std::vector<std::string>& dirs, const JudgeOptions& o) {
     const std::string& baselines = o.baselines;
     const auto start = std::chrono::steady_clock::now();
     CAVITY_ASSIGN(const auto folders, readFolders(dirs));
+    CAVITY_TRY(checkShards(folders, o.shards));
     CAVITY_ASSIGN(const Matrix matrix, renderedMatrix(folders, baselines));
     const auto all = matrix.expand();
     std::map<std::string, std::string> owner;

@@ -23,6 +23,9 @@ struct JudgeOptions {
     bool quiet = false;
     bool enforceCpuBudgets = false;   // GateOptions::enforceCpuBudgets
     cavity::store::StoreOptions store;        // GateOptions::store
+    // --shards I[,J...]/N: the shards the folders are meant to hold. Empty:
+    // all N of them, so that a lost shard is refused, not judged as a pass.
+    std::string shards;
 };
 
 Result<GateRun> judgeFolders(const std::vector<std::string>& dirs, const JudgeOptions& o);
