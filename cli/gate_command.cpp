@@ -211,6 +211,19 @@ int merge(const std::vector<std::string>& argv) {
     return merged.exitCode();
 }
 
+// The run's exit code; a store that failed it (5, 6) is also said on
+// stderr in one line, as every other failure is, beside the whole report.
+int finished(const std::string& program, const gate::GateRun& run) {
+    const int code = run.exitCode();
+    if (code == 5 || code == 6)
+        for (const auto& r : run.results)
+            if (r.errorCode == code) {
+                std::cerr << program << ": " << r.error << "\n";
+                break;
+            }
+    return code;
+}
+
 // Nothing is written unless every folder is whole (judge_folders.h).
 int judge(const std::vector<std::string>& argv) {
     std::string expectationsDir, reportUrl;
@@ -242,7 +255,7 @@ int judge(const std::vector<std::string>& argv) {
     if (auto st = report::writeReports(*run, o.out, reportUrl); !st) return fail("cavity gate judge", st.error());
     std::cout << report::summaryMarkdown(*run, reportUrl.empty() ? "index.html" : reportUrl);
     std::cout << "\nreport: " << (fs::path(o.out) / "index.html").string() << "\n";
-    return run->exitCode();
+    return finished("cavity gate judge", *run);
 }
 
 struct GateFlags {
@@ -328,7 +341,7 @@ int gateCommand(const std::vector<std::string>& argv) {
     if (auto st = report::writeReports(*run, o.out, parsed->reportUrl); !st) return fail("cavity gate", st.error());
     std::cout << report::summaryMarkdown(*run, parsed->reportUrl.empty() ? "index.html" : parsed->reportUrl);
     std::cout << "\nreport: " << (fs::path(o.out) / "index.html").string() << "\n";
-    return run->exitCode();
+    return finished("cavity gate", *run);
 }
 
 int baselinesCommand(const std::vector<std::string>& argv) {

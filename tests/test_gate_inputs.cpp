@@ -296,7 +296,8 @@ TEST_F(GateInputs, ToleranceJudgesAgainstTheClassReferenceElseTheDefault) {
     for (auto& a : doc["approvals"])
         if (a["by"] == "tester") a["device_class"] = "llvmpipe";
     std::ofstream(base / "approvals.json", std::ios::trunc) << doc.dump(2);
-    // Another image filed under the reference's digest: exit 6, one line.
+    // Another image filed under the reference's digest: exit 6, one line on
+    // stderr, and a whole report whose configurations say so.
     std::vector<fs::path> files;
     for (const auto& e : fs::recursive_directory_iterator(st))
         if (e.is_regular_file()) files.push_back(e.path());
@@ -304,10 +305,20 @@ TEST_F(GateInputs, ToleranceJudgesAgainstTheClassReferenceElseTheDefault) {
     std::vector<std::string> kept;
     for (const auto& f : files) kept.push_back(checksum(f));
     for (const auto& f : files) fs::copy_file(files[0] == f ? files[1] : files[0], f, fs::copy_options::overwrite_existing);
-    const Outcome corrupt = gate(planted);
+    const Outcome corrupt = ::cavity::test::runBinary(CAVITY_EXE, "gate --matrix smoke --baselines " + base.string() +
+                                                      " --out " + (dir / "out").string() + " " + planted, "", "2>&1 >/dev/null");
     EXPECT_EQ(corrupt.code, 6) << corrupt.output;
     EXPECT_NE(corrupt.output.find("corrupt: its pixels have digest"), std::string::npos) << corrupt.output;
     EXPECT_EQ(std::count(corrupt.output.begin(), corrupt.output.end(), '\n'), 1) << corrupt.output;
+    {
+        std::ifstream f(dir / "out" / "gate.json");
+        const auto g = nlohmann::json::parse(f);
+        ASSERT_FALSE(g["results"].empty());
+        for (const auto& r : g["results"]) {
+            EXPECT_EQ(r["verdict"], "error") << r;
+            EXPECT_NE(r["error"].get<std::string>().find("corrupt"), std::string::npos) << r;
+        }
+    }
     // A store without the reference: exit 5, one line naming the digest.
     // A store without the reference. A software renderer's approvals are
     // digests (a clone has no store): the stored baseline judges instead,

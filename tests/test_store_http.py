@@ -289,6 +289,21 @@ def cases(work, http, https, ca, www):
              planted], reader)
     one_line(p, 6, "digest mismatch", ao, "corrupt")
     check(not any(ao.split(":")[1] in f for f in cache_files()), "mismatch: not cached")
+    whole = lambda d: json.load(open(os.path.join(d, "gate.json"))) if os.path.exists(os.path.join(d, "gate.json")) else {}
+    g = whole(os.path.join(work, "j2"))
+    check(any(r.get("verdict") == "error" and "corrupt" in r.get("error", "") for r in g.get("results", [])),
+          "digest mismatch: a whole gate.json says the store's object is corrupt")
+    # The store down during the judge: exit 5, one line, and a whole report
+    # that says so (no half-written images without a gate.json).
+    down = f"http://127.0.0.1:{free_port()}/cavity"
+    shutil.rmtree(CACHE, ignore_errors=True)
+    p = run([CAVITY, "gate", "judge", "--baselines", base, "--store", down, "--out", os.path.join(work, "j3"), "--quiet",
+             planted], reader)
+    one_line(p, 5, "store down during the judge", "127.0.0.1")
+    g = whole(os.path.join(work, "j3"))
+    check(g.get("results") and all(r.get("verdict") == "error" for r in g["results"]) and
+          all(os.path.exists(os.path.join(work, "j3", n)) for n in ("summary.md", "index.html", "junit.xml")),
+          "store down: a whole report, every configuration an error")
     open(obj(ao), "wb").write(saved)
 
     # A half download: the transfer stops after a second at 4 KiB/s.

@@ -67,13 +67,17 @@ bool ConfigResult::fatal() const {
 }
 
 int GateRun::exitCode() const {
-    bool bad = false, backend = !backendErrors.empty(), regression = false;
+    bool bad = false, backend = !backendErrors.empty(), regression = false, unreachable = false, corrupt = false;
     for (const auto& r : results) {
         bad |= r.errorCode == 2;
         backend |= r.errorCode == 3;
+        unreachable |= r.errorCode == 5;
+        corrupt |= r.errorCode == 6;
         regression |= r.fatal();
     }
-    return bad ? 2 : backend ? 3 : regression ? 1 : 0;
+    // A verdict the store could not back is no verdict: its code before a
+    // backend's or a regression's.
+    return bad ? 2 : corrupt ? 6 : unreachable ? 5 : backend ? 3 : regression ? 1 : 0;
 }
 
 std::map<std::string, int> GateRun::counts() const {

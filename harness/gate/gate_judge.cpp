@@ -57,8 +57,14 @@ Result<HostImage> Judge::reference(const std::string& digest) const {
     std::lock_guard<std::mutex> hold(*fetchLock);
     if (const auto at = fetched->find(digest); at != fetched->end()) return at->second;
     if (!store) return internal("no image store to fetch " + digest + " from");
-    CAVITY_ASSIGN(HostImage image, cavity::store::getImage(*store, digest));
-    return fetched->emplace(digest, std::move(image)).first->second;
+    if (*storeDown) return **storeDown;
+    auto image = cavity::store::getImage(*store, digest);
+    if (!image) {
+        if (image.error().code == ErrorCode::Unreachable && !cavity::store::isMissingObject(image.error()))
+            *storeDown = image.error();
+        return image.error();
+    }
+    return fetched->emplace(digest, std::move(*image)).first->second;
 }
 
 Result<Judge> prepareJudge(const std::string& baselines, const std::vector<RunConfig>& configs, const std::string& out,
@@ -254,9 +260,17 @@ Result<ConfigResult> judgeRendering(const render::Rendering& rend, const Judge& 
             }
         }
         const HostImage* now = pixels == rend.images.end() ? nullptr : &pixels->second;
-        CAVITY_ASSIGN(ImageCheck check, judgeImage(ci, now, digest, r, j, tol, dir, r.errorCode, rend.judged,
-                                                   rend.device.softwareRenderer));
-        r.images.push_back(std::move(check));
+        auto check = judgeImage(ci, now, digest, r, j, tol, dir, r.errorCode, rend.judged, rend.device.softwareRenderer);
+        // The store failing (5) or holding a damaged object (6) is this
+        // configuration's error, not the run's end: the report is written
+        // whole and says so, and the run exits with the store's code.
+        if (!check && (check.error().code == ErrorCode::Unreachable || check.error().code == ErrorCode::Corrupt)) {
+            r.error = check.error().message;
+            r.errorCode = int(check.error().code);
+            return r;
+        }
+        if (!check) return check.error();
+        r.images.push_back(std::move(*check));
     }
     for (const auto& p : rend.timings) {
         TimingCheck t;

@@ -14,6 +14,7 @@
 
 #include <map>
 #include <memory>
+#include <optional>
 #include <mutex>
 
 #include <string>
@@ -40,6 +41,10 @@ struct Judge {
     // and stages usually share one).
     std::shared_ptr<std::map<std::string, HostImage>> fetched = std::make_shared<std::map<std::string, HostImage>>();
     std::shared_ptr<std::mutex> fetchLock = std::make_shared<std::mutex>();
+    // The store's first failure to answer (unreachable, stalled, refused):
+    // every later fetch fails with it at once, so a dead store costs one
+    // time-out a run, not one a configuration.
+    std::shared_ptr<std::optional<Error>> storeDown = std::make_shared<std::optional<Error>>();
     // The approved reference with this digest, from the store (once).
     Result<HostImage> reference(const std::string& digest) const;
 };
