@@ -1,5 +1,7 @@
 #include "backend.h"
+#include "workgroup_env.h"
 
+#include <cstdio>
 #include <algorithm>
 #include <cctype>
 #include <cstdlib>
@@ -71,6 +73,9 @@ const char* formatName(Format f) {
 
 Result<BackendOptions> withEnvironment(const BackendOptions& options) {
     BackendOptions o = options;
+    // Checked here, where every command that renders checks its environment
+    // before it writes anything; the kernels apply it (kernels/kernel.h).
+    if (auto wg = workgroupOverride(); !wg) return wg.error();
     // Each variable is 0 or 1 (unset: 0); a value that is neither is an
     // error, so that a typo never runs the ordinary barriers unnoticed.
     for (const auto& [name, flag] : {std::pair{"CAVITY_FULL_BARRIERS", &o.fullBarriers},

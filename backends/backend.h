@@ -272,8 +272,9 @@ public:
 
 // `options` with what the environment adds: CAVITY_FULL_BARRIERS=1 and
 // CAVITY_NO_BARRIERS=1, each 0 or 1 (unset: 0) and not both; anything else
-// fails with ErrorCode::BadInput naming the variable. A command checks it
-// before it writes anything; createBackend applies it.
+// fails with ErrorCode::BadInput naming the variable, as does a bad
+// CAVITY_WORKGROUP. A command checks it before it writes anything;
+// createBackend applies it.
 Result<BackendOptions> withEnvironment(const BackendOptions& options);
 
 // Backends, by name ("gl", "vk"). Fails with ErrorCode::BackendUnavailable

@@ -5,6 +5,8 @@
 #include "kernel.h"
 #include "package/package.h"
 
+#include "workgroup_env.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -251,15 +253,9 @@ std::string entryPoint(gpu::Stage stage, const KernelDecl& k, bool interleaved, 
 }  // namespace
 
 Result<Workgroup> workgroupSize(const KernelDecl& k) {
-    const char* v = std::getenv("CAVITY_WORKGROUP");
-    if (!v || !*v) return k.workgroup;   // unset or empty: the kernel's own
-    const std::string text = v;
-    auto pow2 = [](unsigned long n) { return n > 0 && (n & (n - 1)) == 0; };
-    unsigned long x = 0, y = 0;
-    char extra = 0;
-    if (std::sscanf(text.c_str(), "%lux%lu%c", &x, &y, &extra) != 2 || !pow2(x) || !pow2(y) || x * y < 32 || x * y > 1024)
-        return badInput("CAVITY_WORKGROUP=" + text + ": must be WxH, W and H powers of two, W x H from 32 to 1024 (unset: each kernel's own, mostly 16x16)");
-    return Workgroup{uint32_t(x), uint32_t(y)};
+    CAVITY_ASSIGN(const auto shape, gpu::workgroupOverride());
+    if (!shape) return k.workgroup;
+    return Workgroup{shape->first, shape->second};
 }
 
 namespace {

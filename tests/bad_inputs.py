@@ -37,6 +37,16 @@ class Case:
         self.setup, self.env = setup, env or {}
 
 
+def render_shard(shard):
+    """A setup that renders one shard of a tiny filter of the ci matrix into r/."""
+    def setup(tmp):
+        render = os.path.join(os.path.dirname(os.path.abspath(sys.argv[1])), "..", "render", "cavity_render")
+        subprocess.run([render, "--matrix", "ci", "--baselines", "baselines", "--shard", shard, "--out", "r",
+                        "--filter", "^corner/alchemy/n16/b4/full/160x90/(gl|vk)/compute$"], cwd=tmp, check=True,
+                       capture_output=True)
+    return setup
+
+
 def edit_json(rel, change):
     """A setup that loads baselines/REL, applies change(doc) and writes it back as text."""
     def setup(tmp):
@@ -187,6 +197,12 @@ CASES = [
     Case("bench-workgroup-env", "cavity_bench",
          ["--frames", "1", "--warmup", "0", "--benchmark_filter=^corner/alchemy_fast/n16/b4/full/320x180/vk/compute"],
          ["CAVITY_WORKGROUP", "abc"], env={"CAVITY_WORKGROUP": "abc"}),
+    Case("run-workgroup-env", "cavity", ["run", "--kernel", "alchemy", "--frames", "1", "--out", "out"],
+         ["cavity run: CAVITY_WORKGROUP=abc", "powers of two"], env={"CAVITY_WORKGROUP": "abc"}),
+    Case("gate-workgroup-env", "cavity", ["gate", "--matrix", "smoke", "--baselines", "baselines", "--out", "out"],
+         ["cavity gate: CAVITY_WORKGROUP=7x9"], env={"CAVITY_WORKGROUP": "7x9"}),
+    Case("gate-judge-one-shard-of-two", "cavity", ["gate", "judge", "r", "--baselines", "baselines", "--out", "out"],
+         ["shards 1/2", "0/2 are missing", "--shards 1/2"], setup=render_shard("1/2")),
     Case("bench-out-no-folder", "cavity_bench", ["--benchmark_out=nosuch/x.json"], ["--benchmark_out=nosuch/x.json", "does not exist"]),
     Case("bench-out-folder", "cavity_bench", ["--benchmark_out=prev"], ["--benchmark_out=prev", "is a folder"],
          setup=replace_with_folder("prev")),
