@@ -57,6 +57,10 @@ Result<HistoryQuery> historyQuery(const ParsedFlags& parsed) {
         }
     }
     if (db.empty()) return badInput("--db: missing (an SQLite file or a postgresql:// URL)");
+    // An output file that cannot be written is found before the database is
+    // read or a table printed.
+    for (const auto& [flag, v] : parsed.values)
+        if (flag == "--json") CAVITY_TRY(checkWritableFile(flag, v));
     CAVITY_ASSIGN(q.db, history::openDatabase(db, false));
     if (!since.empty()) {
         CAVITY_ASSIGN(q.since, history::resolveBound(*q.db, "--since", since, true));

@@ -47,6 +47,22 @@ def render_shard(shard):
     return setup
 
 
+def results_with_null(name):
+    """A setup that runs a one-configuration `cavity run` and writes its
+    results.json as NAME with one frame time null (a NaN)."""
+    def setup(tmp):
+        cavity = os.path.abspath(sys.argv[1])
+        subprocess.run([cavity, "run", "--kernel", "alchemy", "--frames", "3", "--warmup", "0", "--res", "64x36",
+                        "--backend", "vk", "--out", "run"], cwd=tmp, check=True, capture_output=True)
+        with open(os.path.join(tmp, "run", "results.json")) as f:
+            doc = json.load(f)
+        doc["runs"][0]["frame"]["samples_ms"][1] = None
+        with open(os.path.join(tmp, name), "w") as f:
+            json.dump(doc, f)
+        shutil.rmtree(os.path.join(tmp, "run"))
+    return setup
+
+
 def edit_json(rel, change):
     """A setup that loads baselines/REL, applies change(doc) and writes it back as text."""
     def setup(tmp):
@@ -203,6 +219,8 @@ CASES = [
          ["cavity gate: CAVITY_WORKGROUP=7x9"], env={"CAVITY_WORKGROUP": "7x9"}),
     Case("gate-judge-one-shard-of-two", "cavity", ["gate", "judge", "r", "--baselines", "baselines", "--out", "out"],
          ["shards 1/2", "0/2 are missing", "--shards 1/2"], setup=render_shard("1/2")),
+    Case("history-ingest-null-sample", "cavity", ["history", "ingest", "--db", "h.sqlite", "--commit", "abcd1234", "bad.json"],
+         ["bad.json", "samples_ms", "null"], setup=results_with_null("bad.json")),
     Case("bench-out-no-folder", "cavity_bench", ["--benchmark_out=nosuch/x.json"], ["--benchmark_out=nosuch/x.json", "does not exist"]),
     Case("bench-out-folder", "cavity_bench", ["--benchmark_out=prev"], ["--benchmark_out=prev", "is a folder"],
          setup=replace_with_folder("prev")),

@@ -207,7 +207,17 @@ TEST_F(History, BadInputsAreOneLineAndWriteNothing) {
     refused("history ingest --db ''" + commit + good, "--db");
     EXPECT_FALSE(fs::exists(db_));
     refused("history show --db " + db_, "no such database");
+    const std::string empty = write("empty.sqlite", "");
+    refused("history show --db " + empty, "is empty, not a database");
+    EXPECT_EQ(fs::file_size(empty), 0u) << "no schema written into it";
+    // A typo in a PostgreSQL URL is bad input, not a server that cannot be reached.
+    refused("history show --db postgresql://localhost:abc/db", "port abc: must be a number");
+    refused("history show --db 'postgresql://u:pw@[::1/db'", "matching \"]\"");
+    refused("history show --db 'postgresql://localhost/db?sslmode=sure'", "sslmode=sure: must be");
+    refused("history show --db 'postgresql://localhost/db?connect_timeout=x'", "connect_timeout=x");
     history(1);
+    refused("history show --db " + db_ + " --json " + dir_.string(), "--json " + dir_.string() + ": is a folder");
+    refused("history show --db " + db_ + " --json " + (dir_ / "no/such/x.json").string(), "does not exist");
     refused("history show --db " + db_ + " --id '('", "--id (: not a regular expression");
     refused("history show --db " + db_ + " --pass nosuch", "matches --pass nosuch");
     refused("history show --db " + db_ + " --since deadbeef", "--since deadbeef: no run of that commit");

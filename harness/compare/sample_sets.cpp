@@ -47,8 +47,8 @@ namespace {
 // Numbers only: results.json writes a sample that was NaN as null, and a
 // sample that was never a time tells nothing about the change. A series with
 // no time at all would compare as a fall to nothing, so it is bad input.
-Status addSamples(SampleSet& s, const JsonObject& owner, const std::string& clock, double smMhz) {
-    CAVITY_ASSIGN(const auto samples, owner.numbers("samples_ms", 0, 1e12, true));
+Status addSamples(SampleSet& s, const JsonObject& owner, const std::string& clock, double smMhz, bool everySample) {
+    CAVITY_ASSIGN(const auto samples, owner.numbers("samples_ms", 0, 1e12, !everySample));
     size_t added = 0;
     for (double v : samples)
         if (std::isfinite(v)) {
@@ -61,7 +61,7 @@ Status addSamples(SampleSet& s, const JsonObject& owner, const std::string& cloc
 
 }  // namespace
 
-Result<SampleSets> readResultsJson(const json& doc, const std::string& path) {
+Result<SampleSets> readResultsJson(const json& doc, const std::string& path, bool everySample) {
     SampleSets out;
     out.path = path;
     out.format = "cavity-results";
@@ -80,11 +80,11 @@ Result<SampleSets> readResultsJson(const json& doc, const std::string& path) {
             smMhz = clocks["sm_mhz"]["median"].get<double>();
         // The frame first, as a table reads best whole before parts.
         CAVITY_ASSIGN(const JsonObject frame, r.object("frame"));
-        CAVITY_TRY(addSamples(out.at(id, kFramePass), frame, clock, smMhz));
+        CAVITY_TRY(addSamples(out.at(id, kFramePass), frame, clock, smMhz, everySample));
         CAVITY_ASSIGN(const auto passes, r.objects("passes"));
         for (const auto& p : passes) {
             CAVITY_ASSIGN(const std::string name, p.str("name"));
-            CAVITY_TRY(addSamples(out.at(id, name), p, clock, smMhz));
+            CAVITY_TRY(addSamples(out.at(id, name), p, clock, smMhz, everySample));
         }
     }
     return out;

@@ -63,7 +63,10 @@ constexpr const char* kPipelinePass = "pipeline";
 Result<SampleSets> loadSampleSets(const std::string& path);
 
 // The two readers, given the parsed document.
-Result<SampleSets> readResultsJson(const nlohmann::json& doc, const std::string& path);
+// `everySample`: a sample that is not a time (null, written for a NaN) is bad
+// input rather than left out: history stores every repetition, and a run
+// with a hole in it is not the run that was measured.
+Result<SampleSets> readResultsJson(const nlohmann::json& doc, const std::string& path, bool everySample = false);
 Result<SampleSets> readBenchmarkJson(const nlohmann::json& doc, const std::string& path);
 
 // The configuration id in a Google Benchmark run name: the name without the

@@ -7,6 +7,8 @@
 #include <libpq-fe.h>
 
 #include <cstdlib>
+#include <set>
+#include <sstream>
 
 namespace cavity::history {
 
@@ -141,8 +143,53 @@ std::string redactUrl(const std::string& url) {
     return url.substr(0, colon + 1) + "***" + url.substr(at);
 }
 
+namespace {
+
+// The URL's syntax and the values libpq would only reject once connecting
+// (a port, an sslmode, a time-out that is no number): a typo is bad input
+// (2), never a server that "cannot be reached" (5), which a CI job would
+// read as an outage.
+Status checkUrl(const std::string& url, const std::string& where) {
+    char* err = nullptr;
+    PQconninfoOption* opts = PQconninfoParse(url.c_str(), &err);
+    if (!opts) {
+        std::string why = err ? firstLine(err) : "not a connection URL";
+        PQfreemem(err);
+        // libpq quotes the URL; the password stays out of the message.
+        for (size_t at; !url.empty() && (at = why.find(url)) != std::string::npos;) why.replace(at, url.size(), where);
+        return badInput("--db " + where + ": " + why);
+    }
+    std::unique_ptr<PQconninfoOption, void (*)(PQconninfoOption*)> guard(opts, PQconninfoFree);
+    const auto whole = [](const std::string& v, long lo, long hi) {
+        if (v.empty() || v.size() > 9 || v.find_first_not_of("0123456789") != std::string::npos) return false;
+        const long n = std::stol(v);
+        return n >= lo && n <= hi;
+    };
+    for (const PQconninfoOption* o = opts; o->keyword; ++o) {
+        if (!o->val) continue;
+        const std::string key = o->keyword, v = o->val;
+        if (key == "port") {
+            std::stringstream list(v);
+            for (std::string p; std::getline(list, p, ',');)
+                if (!p.empty() && !whole(p, 1, 65535))
+                    return badInput("--db " + where + ": port " + p + ": must be a number, 1..65535");
+        } else if (key == "sslmode") {
+            static const std::set<std::string> modes = {"disable", "allow", "prefer", "require", "verify-ca", "verify-full"};
+            if (!modes.count(v))
+                return badInput("--db " + where + ": sslmode=" + v +
+                                ": must be disable, allow, prefer, require, verify-ca or verify-full");
+        } else if (key == "connect_timeout") {
+            if (!whole(v, 0, 86400)) return badInput("--db " + where + ": connect_timeout=" + v + ": must be whole seconds, 0..86400");
+        }
+    }
+    return {};
+}
+
+}  // namespace
+
 Result<std::unique_ptr<Database>> openPostgres(const std::string& url) {
     const std::string where = redactUrl(url);
+    CAVITY_TRY(checkUrl(url, where));
     // A server that does not answer fails after the connect_timeout below unless the
     // URL or PGCONNECT_TIMEOUT says otherwise (the URL's own setting wins: it is expanded after).
     const char* timeout = std::getenv("PGCONNECT_TIMEOUT");
@@ -155,7 +202,7 @@ Result<std::unique_ptr<Database>> openPostgres(const std::string& url) {
         PQfinish(conn);
         // A URL libpq cannot parse is the user's; every other failure (down,
         // refused, wrong password, no such database) is the server's answer.
-        if (why.find("invalid") != std::string::npos && why.find("URI") != std::string::npos)
+        if (why.rfind("invalid ", 0) == 0 || (why.find("invalid") != std::string::npos && why.find("URI") != std::string::npos))
             return badInput("--db " + where + ": " + why);
         return unreachable("--db " + where + ": cannot connect: " + why);
     }

@@ -105,7 +105,7 @@ Status readBenchmark(const json& doc, RunFile& out) {
 }
 
 Status readResults(const json& doc, RunFile& out) {
-    CAVITY_ASSIGN(const auto sets, compare::readResultsJson(doc, out.path));
+    CAVITY_ASSIGN(const auto sets, compare::readResultsJson(doc, out.path, true));
     out.format = "cavity-results";
     out.date = text(doc, "created_utc");
     out.cavityVersion = text(doc, "git_commit");

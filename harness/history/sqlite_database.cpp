@@ -122,6 +122,10 @@ Result<std::unique_ptr<Database>> openSqlite(const std::string& path, bool creat
             return badInput(given + ": folder " + parent.string() + " does not exist");
     } else if (!fs::is_regular_file(status)) {
         return badInput(given + ": not a regular file (an SQLite file or a postgresql:// URL is expected)");
+    } else if (!create && fs::file_size(path, ec) == 0 && !ec) {
+        // SQLite would take an empty file for an empty database, and the
+        // schema would be written into it by a command that only reads.
+        return badInput(given + ": is empty, not a database (cavity history ingest creates one)");
     }
     sqlite3* db = nullptr;
     const int flags = SQLITE_OPEN_READWRITE | (create ? SQLITE_OPEN_CREATE : 0) | SQLITE_OPEN_NOMUTEX;

@@ -46,6 +46,22 @@ Status checkWritableDir(const std::string& flag, const std::string& dir, size_t 
     return {};
 }
 
+Status checkWritableFile(const std::string& flag, const std::string& file) {
+    if (file.empty()) return badInput(flag + " '': empty value (name an output file)");
+    std::error_code ec;
+    const fs::path p = fs::absolute(file, ec);
+    if (ec) return badInput(flag + " " + file + ": not a usable path (" + ec.message() + ")");
+    if (fs::is_directory(p, ec)) return badInput(flag + " " + file + ": is a folder (a file is expected)");
+    if (fs::exists(p, ec) && !fs::is_regular_file(p, ec)) return badInput(flag + " " + file + ": exists and is not a file");
+    const fs::path parent = p.parent_path();
+    if (!fs::is_directory(parent, ec)) return badInput(flag + " " + file + ": folder " + parent.string() + " does not exist");
+    std::string probe = (parent / ".cavity-probe-XXXXXX").string();
+    if (::mkdtemp(probe.data()) == nullptr)
+        return badInput(flag + " " + file + ": cannot be written (" + parent.string() + ": " + std::strerror(errno) + ")");
+    ::rmdir(probe.c_str());
+    return {};
+}
+
 TimingOptions timingOptions(const gpu::DeviceInfo& device, const RunOptions& o) {
     TimingOptions t = defaultTimingOptions(device);
     t.warmup = o.warmup;

@@ -42,5 +42,8 @@ Result<RunRecord> runConfig(gpu::Backend& gpu, const RunConfig& c, const RunOpti
 // room for paths of `longestInside` characters under it (a configuration id
 // and an image name); a probe folder is made and removed, nothing else.
 Status checkWritableDir(const std::string& flag, const std::string& dir, size_t longestInside = 160);
+// FILE can be written: not a folder, in a folder that exists and takes a
+// new entry. Checked before a command prints or writes anything.
+Status checkWritableFile(const std::string& flag, const std::string& file);
 
 }  // namespace cavity::measure
