@@ -84,7 +84,10 @@ Result<ApproveFlags> parseApprove(const ParsedFlags& p) {
             CAVITY_ASSIGN(f.filter, parseFilter(flag, v));
         }
     }
-    if (f.why.empty()) return badInput("--why: required (what makes these images right, or with --negative wrong)");
+    if (f.why.find_first_not_of(" \t\r\n") == std::string::npos)
+        return badInput(f.why.empty() ? std::string("--why: required (what makes these images right, or with --negative wrong)")
+                                      : "--why '" + f.why + "': blanks only (say what makes these images right, or with "
+                                                            "--negative wrong)");
     for (const char* var : {"USER", "LOGNAME"})
         if (f.by.empty() && std::getenv(var) && *std::getenv(var)) f.by = std::getenv(var);
     if (f.by.empty()) f.by = "unknown";
@@ -103,11 +106,17 @@ struct Pixels {
     render::StoredImage stored;
 };
 
-size_t addApprovals(plan::Approvals& a, const gate::GateRun& run, const ApproveFlags& f, std::vector<Pixels>& pixels) {
+Result<size_t> addApprovals(plan::Approvals& a, const gate::GateRun& run, const ApproveFlags& f, std::vector<Pixels>& pixels,
+                           size_t& selected) {
     const std::string when = utcTimestamp();
     size_t added = 0;
     for (const auto& r : run.results) {
-        if (!r.error.empty() || (f.filter && !std::regex_search(r.id, *f.filter))) continue;
+        if (f.filter && !std::regex_search(r.id, *f.filter)) continue;
+        ++selected;
+        if (!r.error.empty()) continue;
+        if (r.device.empty())
+            return badInput(f.from + "/gate.json: " + r.id + ": no device recorded (a digest is approved for the device "
+                            "class it was rendered on)");
         const auto parts = r.id.substr(r.key.size() + 1);   // "vk/compute"
         const std::string api = parts.substr(0, parts.find('/')), stage = parts.substr(parts.find('/') + 1);
         for (const auto& i : r.images) {
@@ -139,7 +148,7 @@ size_t addApprovals(plan::Approvals& a, const gate::GateRun& run, const ApproveF
 // the device each configuration rendered on. A configuration whose
 // repetitions disagree is left out (a digest approves one image exactly).
 Result<size_t> addRenderApprovals(plan::Approvals& a, const std::string& dir, const ApproveFlags& f, size_t& skipped,
-                                  std::vector<Pixels>& pixels) {
+                                  std::vector<Pixels>& pixels, size_t& selected) {
     const std::string path = (fs::path(dir) / "manifest.json").string();
     CAVITY_ASSIGN(const auto j, readJsonFile(path));
     CAVITY_ASSIGN(const render::RenderManifest m, render::parseManifest(j, path));
@@ -147,6 +156,10 @@ Result<size_t> addRenderApprovals(plan::Approvals& a, const std::string& dir, co
     size_t added = 0;
     for (const auto& c : m.configs) {
         if (f.filter && !std::regex_search(c.id, *f.filter)) continue;
+        ++selected;
+        if (c.device.empty())
+            return badInput(path + ": " + c.id + ": no device recorded (a digest is approved for the device class it was "
+                            "rendered on)");
         std::map<std::string, std::set<std::string>> digests;   // image -> digests over the repetitions
         bool failed = false;
         std::map<std::string, Pixels> files;   // image -> its file, where the folder holds one
@@ -183,31 +196,44 @@ Result<size_t> addRenderApprovals(plan::Approvals& a, const std::string& dir, co
 // Every approved image this run holds, put into the store under its digest
 // (each checked to be the image approved); approvals.json is written only
 // after all of them are there.
+// The pixels of one approved image, as the run holds them.
+Result<HostImage> readPixels(const Pixels& p) {
+    if (p.stored.digest.empty() && fs::path(p.path).extension() == ".f32z") {
+        std::ifstream f(p.path, std::ios::binary);
+        const std::string bytes((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+        return render::decodeImage(bytes, p.path);
+    }
+    if (p.stored.digest.empty()) return readImage(p.path);
+    return render::readImageFile(p.path, p.stored);
+}
+
+// Every approved image this run holds, put into the store under its digest.
+// Each is checked to be the image approved before the first is put, so that
+// a refusal leaves the store as it was; approvals.json is written only after
+// all of them are there.
 Result<size_t> putImages(const std::vector<Pixels>& pixels, const ApproveFlags& f) {
     store::StoreOptions so;
     so.location = f.store;
     store::fillDefault(so, f.root);
     CAVITY_ASSIGN(auto target, store::openStore(so));
-    std::set<std::string> done;
-    for (const auto& p : pixels) {
-        if (!done.insert(p.digest).second) continue;
-        CAVITY_ASSIGN(const bool there, target->has(p.digest));
-        if (there) continue;
-        HostImage image;
-        if (p.stored.digest.empty() && fs::path(p.path).extension() == ".f32z") {
-            std::ifstream f(p.path, std::ios::binary);
-            const std::string bytes((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
-            CAVITY_ASSIGN(image, render::decodeImage(bytes, p.path));
-        } else if (p.stored.digest.empty()) {
-            CAVITY_ASSIGN(image, readImage(p.path));
-        } else {
-            CAVITY_ASSIGN(image, render::readImageFile(p.path, p.stored));
-        }
-        CAVITY_ASSIGN(const std::string digest, store::putImage(*target, image));
-        if (digest != p.digest)
-            return badInput(p.path + ": its pixels have digest " + digest + ", the run recorded " + p.digest);
+    std::vector<const Pixels*> unique;
+    std::set<std::string> seen;
+    for (const auto& p : pixels)
+        if (seen.insert(p.digest).second) unique.push_back(&p);
+    for (const Pixels* p : unique) {
+        CAVITY_ASSIGN(const HostImage image, readPixels(*p));
+        if (const std::string digest = store::imageDigest(image); digest != p->digest)
+            return badInput(p->path + ": its pixels have digest " + digest + ", the run recorded " + p->digest);
     }
-    return done.size();
+    for (const Pixels* p : unique) {
+        CAVITY_ASSIGN(const bool there, target->has(p->digest));
+        if (there) continue;
+        CAVITY_ASSIGN(const HostImage image, readPixels(*p));
+        CAVITY_ASSIGN(const std::string digest, store::putImage(*target, image));
+        if (digest != p->digest)
+            return badInput(p->path + ": its pixels have digest " + digest + ", the run recorded " + p->digest);
+    }
+    return unique.size();
 }
 
 }  // namespace
@@ -225,17 +251,25 @@ int approveCommand(const std::vector<std::string>& argv) {
     const std::string path = (fs::path(f->root) / "approvals.json").string();
     auto approvals = plan::loadApprovals(path);
     if (!approvals) return fail(program, approvals.error());
-    size_t added = 0, skipped = 0;
+    size_t added = 0, skipped = 0, selected = 0;
     std::vector<Pixels> pixels;
     std::error_code ec;
     if (!fs::exists(fs::path(f->from) / "gate.json", ec) && fs::exists(fs::path(f->from) / "manifest.json", ec)) {
-        auto n = addRenderApprovals(*approvals, f->from, *f, skipped, pixels);
+        auto n = addRenderApprovals(*approvals, f->from, *f, skipped, pixels, selected);
         if (!n) return fail(program, n.error());
         added = *n;
     } else {
         auto run = loadGateJson(f->from);
         if (!run) return fail(program, run.error());
-        added = addApprovals(*approvals, *run, *f, pixels);
+        auto n = addApprovals(*approvals, *run, *f, pixels, selected);
+        if (!n) return fail(program, n.error());
+        added = *n;
+    }
+    if (selected == 0) {
+        std::string what = "--from " + f->from + ": no configuration";
+        for (const auto& [flag, v] : parsed->values)
+            if (flag == "--filter") what = "--filter " + v + ": matches no configuration of " + f->from;
+        return fail(program, badInput(what + " (nothing approved, approvals.json left as it was)"));
     }
     auto stored = putImages(pixels, *f);
     if (!stored) return fail(program, stored.error());

@@ -201,9 +201,36 @@ TEST_F(GateInputs, ApprovedDigestsPassAtOnceAndKnownBadOnesFail) {
     const Outcome noWhy = run("baselines approve --from " + out.string() + " --baselines " + base.string());
     EXPECT_EQ(noWhy.code, 2) << noWhy.output;
     EXPECT_NE(noWhy.output.find("--why: required"), std::string::npos) << noWhy.output;
+    // Refusals write nothing: neither approvals.json nor the store.
+    const std::string before = checksum(base / "approvals.json");
+    const auto storeFiles = [&] {
+        size_t n = 0;
+        std::error_code ec;
+        for (fs::recursive_directory_iterator it(base / "store", ec), end; !ec && it != end; it.increment(ec)) n += it->is_regular_file();
+        return n;
+    };
+    const size_t stored = storeFiles();
+    const std::string approve0 = "baselines approve --from " + out.string() + " --baselines " + base.string() + " ";
+    for (const auto& [args, needle] : std::vector<std::pair<std::string, std::string>>{
+             {"--why '   '", "--why '   ': blanks only"},
+             {"--why x --filter '^nosuch/'", "--filter ^nosuch/: matches no configuration"}}) {
+        const Outcome o = run(approve0 + args);
+        EXPECT_EQ(o.code, 2) << args << "\n" << o.output;
+        EXPECT_NE(o.output.find(needle), std::string::npos) << o.output;
+        EXPECT_EQ(std::count(o.output.begin(), o.output.end(), '\n'), 1) << o.output;
+        EXPECT_EQ(checksum(base / "approvals.json"), before) << args;
+        EXPECT_EQ(storeFiles(), stored) << args;
+    }
+    // What a kill -9 left (a process id that no longer runs) goes with the next write.
+    fs::create_directories(base / "store" / "fnv1a64");
+    const fs::path staleJson = base / "approvals.json.tmp-999999999", staleObject = base / "store/fnv1a64/0123456789abcdef.f32z.tmp-999999999";
+    std::ofstream(staleJson) << "{";
+    std::ofstream(staleObject) << "half";
     const Outcome approve = run("baselines approve --from " + out.string() + " --baselines " + base.string() +
                                 " --by tester --why 'the CPU references'");
     ASSERT_EQ(approve.code, 0) << approve.output;
+    EXPECT_FALSE(fs::exists(staleJson));
+    EXPECT_FALSE(fs::exists(staleObject));
     EXPECT_NE(approve.output.find("6 image digests approved"), std::string::npos) << approve.output;
     auto routes = [&] {
         std::ifstream f(out / "gate.json");

@@ -2,6 +2,10 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
+#include <csignal>
+#include <mutex>
+#include <set>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -101,9 +105,35 @@ Result<nlohmann::json> readJsonFile(const std::string& path) {
     }
 }
 
+void removeStaleTemps(const std::string& dir) {
+    static std::mutex lock;
+    static std::set<std::string> done;
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    const std::string key = fs::absolute(dir.empty() ? "." : dir, ec).lexically_normal().string();
+    {
+        std::lock_guard<std::mutex> hold(lock);
+        if (!done.insert(key).second) return;
+    }
+    for (fs::directory_iterator it(key, ec), last; !ec && it != last; it.increment(ec)) {
+        const std::string name = it->path().filename().string();
+        const size_t at = name.rfind(".tmp-");
+        if (at == std::string::npos || at == 0) continue;
+        size_t end = at + 5;
+        while (end < name.size() && std::isdigit(static_cast<unsigned char>(name[end]))) ++end;
+        if (end == at + 5 || end - at - 5 > 9 || (end < name.size() && name[end] != '.')) continue;
+        const long pid = std::stol(name.substr(at + 5, end - at - 5));
+        if (pid == long(::getpid()) || pid <= 0) continue;
+        if (::kill(pid_t(pid), 0) == 0 || errno != ESRCH) continue;   // alive, or not ours to judge
+        std::error_code rm;
+        if (it->is_regular_file(rm)) fs::remove(it->path(), rm);
+    }
+}
+
 Status writeFileAtomically(const std::string& path, const std::string& text) {
     std::error_code ec;
     if (std::filesystem::is_directory(path, ec)) return badInput(path + ": is a folder (a file is written here)");
+    removeStaleTemps(std::filesystem::path(path).parent_path().string());
     const std::string tmp = path + ".tmp-" + std::to_string(::getpid());
     {
         std::ofstream f(tmp);

@@ -26,6 +26,12 @@ Result<nlohmann::json> readJsonFile(const std::string& path);
 // Writes `text` to a temporary file beside `path` and renames it into place,
 // so a reader (or a kill halfway) sees the old file or the new one, never a
 // part. Every report and JSON file we write goes through here.
+// Removes from `dir` what a killed writer left: every "NAME.tmp-PID" or
+// "STEM.tmp-PID.EXT" whose process PID no longer runs. Once per folder and
+// process; the atomic writers call it before they write, so the next
+// command cleans up after a kill -9.
+void removeStaleTemps(const std::string& dir);
+
 Status writeFileAtomically(const std::string& path, const std::string& text);
 
 }  // namespace cavity::core

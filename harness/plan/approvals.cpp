@@ -71,6 +71,14 @@ Result<Approvals> loadApprovals(const std::string& path) {
         if (x.digest.size() != 24 || x.digest.rfind("fnv1a64:", 0) != 0 ||
             x.digest.find_first_not_of("0123456789abcdef", 8) != std::string::npos)
             return e.bad("digest", "must be fnv1a64: and 16 lower-case hex digits");
+        // Classes, APIs and stages that a render can produce, and no other:
+        // an entry no render can match is a typo that approves nothing.
+        if (x.deviceClass.empty() || x.deviceClass == "unknown" || deviceClass(x.deviceClass) != x.deviceClass)
+            return e.bad("device_class", "must be a device class as cavity names one (lower case, words joined by '-', "
+                                         "e.g. nvidia-h200, llvmpipe)");
+        if (x.api != "gl" && x.api != "vk") return e.bad("api", "must be gl or vk");
+        if (x.stage != "compute" && x.stage != "fragment") return e.bad("stage", "must be compute or fragment");
+        if (x.key.empty()) return e.bad("key", "must name a baseline (e.g. corner/alchemy/n16/b4/full/160x90)");
         x.positive = verdict == "positive";
         a.entries.push_back(std::move(x));
     }

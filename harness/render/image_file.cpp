@@ -1,6 +1,7 @@
 #include "render/image_file.h"
 
 #include "core/digest.h"
+#include "core/json_file.h"
 #include "texels/texels.h"
 
 #include <zlib.h>
@@ -165,6 +166,7 @@ std::string encodeImage(const HostImage& image, int level) {
 
 Result<uint64_t> writeImageFile(const std::string& path, const HostImage& image, int level) {
     const std::string bytes = encodeImage(image, level);
+    core::removeStaleTemps(fs::path(path).parent_path().string());
     const std::string tmp = path + ".tmp-" + std::to_string(::getpid());
     {
         std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
