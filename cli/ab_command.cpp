@@ -87,6 +87,45 @@ Status runBench(const std::string& exe, const std::vector<std::string>& args, co
     return {};
 }
 
+// The benchmarks a side would run (cavity_bench --benchmark_list_tests with
+// the same flags), asked before anything is written: a filter that matches
+// nothing, or a flag that side refuses, is bad input, not a failed run.
+Status checkSide(const std::string& exe, const std::string& flag, std::vector<std::string> args) {
+    args.insert(args.begin(), "--benchmark_list_tests=true");
+    std::vector<char*> argv{const_cast<char*>(exe.c_str())};
+    for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    int pipe[2];
+    if (::pipe(pipe) != 0) return internal("pipe failed");
+    const pid_t pid = ::fork();
+    if (pid < 0) return internal("fork failed");
+    if (pid == 0) {
+        ::dup2(pipe[1], 1);
+        ::dup2(pipe[1], 2);
+        ::close(pipe[0]);
+        ::close(pipe[1]);
+        const std::string lib = (fs::path(exe).parent_path() / "lib").string();
+        if (fs::is_directory(lib)) ::setenv("LD_LIBRARY_PATH", lib.c_str(), 1);
+        ::execv(exe.c_str(), argv.data());
+        std::_Exit(127);
+    }
+    ::close(pipe[1]);
+    std::string out;
+    char buf[4096];
+    for (ssize_t n; (n = ::read(pipe[0], buf, sizeof buf)) > 0;) out.append(buf, size_t(n));
+    ::close(pipe[0]);
+    int status = 0;
+    ::waitpid(pid, &status, 0);
+    const int code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    if (code == 0) return {};
+    std::string last;
+    std::istringstream lines(out);
+    for (std::string l; std::getline(lines, l);)
+        if (!l.empty()) last = l;
+    const std::string why = flag + " " + exe + ": " + (last.empty() ? "exit " + std::to_string(code) : last);
+    return code == 2 ? Status(badInput(why)) : Status(internal(why));
+}
+
 // The iteration entries of every round's file, each round one repetition.
 Result<json> mergeRounds(const std::vector<std::string>& files) {
     json merged = {{"benchmarks", json::array()}};
@@ -157,6 +196,13 @@ int abCommand(const std::vector<std::string>& argv) {
     auto f = parseAb(*parsed);
     if (!f) return fail(program, f.error());
     if (auto st = checkWritableDir("--out", f->out); !st) return fail(program, st.error());
+    for (int side = 0; side < 2; ++side) {
+        std::vector<std::string> args;
+        if (!f->filter.empty()) args.push_back("--benchmark_filter=" + f->filter);
+        args.insert(args.end(), f->benchArgs.begin(), f->benchArgs.end());
+        args.insert(args.end(), f->sideArgs[side].begin(), f->sideArgs[side].end());
+        if (auto st = checkSide(side == 0 ? f->a : f->b, side == 0 ? "--a" : "--b", args); !st) return fail(program, st.error());
+    }
     std::error_code ec;
     fs::create_directories(f->out, ec);
     if (ec) return fail(program, badInput("--out " + f->out + ": cannot be created: " + ec.message()));

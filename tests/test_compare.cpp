@@ -516,6 +516,20 @@ TEST_F(Compare, IdenticalRunsOnASoftwareRendererAreNeverSlower) {
     }
 }
 
+// A filter that matches nothing, or a side flag cavity_bench refuses, is
+// bad input found before anything runs or is written.
+TEST_F(Compare, AbRefusesASideThatWouldMeasureNothing) {
+    const std::string out = (dir / "ab-none").string(), ab = std::string("ab --a ") + CAVITY_BENCH_EXE + " --b " + CAVITY_BENCH_EXE;
+    const Outcome none = cavity(ab + " --filter '^nosuch/' --out " + out);
+    EXPECT_EQ(none.code, 2) << none.output;
+    EXPECT_NE(none.output.find("no benchmark matches --benchmark_filter='^nosuch/'"), std::string::npos) << none.output;
+    EXPECT_EQ(std::count(none.output.begin(), none.output.end(), '\n'), 1) << none.output;
+    const Outcome bad = cavity(ab + " --filter /alchemy_fast/ --b-args '--frames 0' --out " + out);
+    EXPECT_EQ(bad.code, 2) << bad.output;
+    EXPECT_NE(bad.output.find("--b "), std::string::npos) << bad.output;
+    EXPECT_FALSE(fs::exists(out));
+}
+
 // cavity ab alternates the two builds (A B, then B A), merges each side's
 // rounds into one run of repetitions, and never mixes A's with B's.
 TEST_F(Compare, InterleavedRunsAlternateAndKeepTheSidesApart) {
