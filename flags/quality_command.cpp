@@ -321,16 +321,17 @@ int qualityCommand(const std::vector<std::string>& argv, const std::string& prog
     if (auto o = gpu::withEnvironment(q->backend); !o) return failed(o.error());
     if (!q->out.empty())
         if (auto st = checkWritableDir("--out", q->out); !st) return failed(st.error());
-    auto gpu = gpu::createBackend(q->api, q->backend);
-    if (!gpu) return failed(gpu.error());
-    const std::string device = (*gpu)->info().deviceName;
-    std::cerr << program << ": " << gpu::apiName(q->api) << ": " << device << "\n";
+    // The cost file is the user's input: read before the backend starts.
     std::map<std::pair<std::string, int>, double> costs;
     if (!q->cost.empty()) {
         auto c = loadCosts(q->cost, q->options.half);
         if (!c) return failed(c.error());
         costs = std::move(*c);
     }
+    auto gpu = gpu::createBackend(q->api, q->backend);
+    if (!gpu) return failed(gpu.error());
+    const std::string device = (*gpu)->info().deviceName;
+    std::cerr << program << ": " << gpu::apiName(q->api) << ": " << device << "\n";
     auto rows = runQuality(**gpu, *steps, parsed->has("--quiet"));
     if (!rows) return failed(rows.error());
     printQuality(q->options, *rows, costs);
