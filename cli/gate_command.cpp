@@ -3,6 +3,7 @@
 #include "gate_outputs.h"
 #include "pipeline/config_id.h"
 #include "gate/expectations.h"
+#include "core/digest.h"
 #include "core/json_file.h"
 #include "report/gate_report.h"
 #include "images/image_io.h"
@@ -142,6 +143,8 @@ const CommandSpec& updateSpec() {
             {"--from", "DIR", "a gate output folder with gate.json (default out/gate)"},
             {"--filter", "REGEX", "take the configurations whose id matches"},
             {"--baselines", "DIR", kBaselinesHelp},
+            {"--with-kernel-source", "", "the run replaced kernel sources (--kernel-source): also copy each file over its "
+                                         "kernels/NAME, so that the tree renders what the baselines show"},
         },
         "",
         "",
@@ -149,6 +152,7 @@ const CommandSpec& updateSpec() {
         {
             "cavity baselines update --from out/gate",
             "cavity baselines update --from out/gate --filter '^corner/alchemy/'",
+            "cavity baselines update --from out/gate --with-kernel-source",
         },
     };
     return spec;
@@ -168,6 +172,40 @@ std::string budgetOnlyHint(const gate::GateRun& run, bool filtered, const std::s
     return std::to_string(budgetOnly) + " configurations failed on time budgets only (every image passed): budgets are " +
            "not images; update them with `python3 scripts/update_budgets.py " + (fs::path(from) / "gate.json").string() +
            " --pattern '" + device + "'` (docs/gate.md, \"Time budgets\")";
+}
+
+// The files a run rendered in place of kernels/ (--kernel-source), each
+// read and checked to be what was rendered, with where it goes in the tree
+// beside `root`. A run with replaced sources is refused without
+// --with-kernel-source: its images are not what kernels/ renders, and
+// accepting them alone would leave tree and baselines disagreeing.
+Result<std::map<fs::path, std::pair<std::string, std::string>>> kernelSourceCopies(const gate::GateRun& run,
+                                                                                  const std::string& root,
+                                                                                  const std::string& from, bool take) {
+    std::map<fs::path, std::pair<std::string, std::string>> out;   // target -> (file, text)
+    if (run.replaced.empty()) return out;
+    std::string names;
+    for (const auto& r : run.replaced) names += (names.empty() ? "kernels/" : ", kernels/") + r.name;
+    if (!take)
+        return badInput("--from " + from + ": rendered with " + names + " replaced (--kernel-source): its images are "
+                        "not what kernels/ renders; pass --with-kernel-source to copy the edits into kernels/ with the "
+                        "baselines, or copy them yourself and run the gate again");
+    std::error_code ec;
+    const fs::path tree = fs::absolute(root, ec).lexically_normal().parent_path() / "kernels";
+    for (const auto& r : run.replaced) {
+        const fs::path target = tree / r.name;
+        if (!fs::is_regular_file(target, ec))
+            return badInput("--with-kernel-source: kernels/" + r.name + " is not a file of " + tree.string() +
+                            " (a kernel package outside the tree is updated where it lives)");
+        std::ifstream in(r.file, std::ios::binary);
+        if (!in) return badInput("--with-kernel-source: " + r.file + " (for kernels/" + r.name + "): cannot be read");
+        std::string text((std::istreambuf_iterator<char>(in)), {});
+        if (const std::string digest = core::digestText(core::fnv1a64(text.data(), text.size())); digest != r.digest)
+            return badInput("--with-kernel-source: " + r.file + " changed since the run (digest " + digest +
+                            ", the run rendered " + r.digest + "): run the gate again");
+        out[target] = {r.file, std::move(text)};
+    }
+    return out;
 }
 
 // --help prints and ends the command (exit 0); an error ends it (exit 2).
@@ -375,6 +413,8 @@ int baselinesCommand(const std::vector<std::string>& argv) {
     if (auto st = gate::recoverBaselineUpdate(root); !st) return fail("cavity baselines update", st.error());
     auto run = loadGateJson(from);
     if (!run) return fail("cavity baselines update", run.error());
+    auto sources = kernelSourceCopies(*run, root, from, p.has("--with-kernel-source"));
+    if (!sources) return fail("cavity baselines update", sources.error());
     // One baseline key is shared by every API and stage: take the first
     // selected configuration of each key.
     std::set<std::string> done;
@@ -404,6 +444,13 @@ int baselinesCommand(const std::vector<std::string>& argv) {
     // All or nothing (harness/gate/baseline_update.h).
     if (auto st = gate::applyBaselineUpdate(root, writes); !st) return fail("cavity baselines update", st.error());
     for (const auto& line : said) std::cout << line << "\n";
+    for (const auto& [target, copy] : *sources) {
+        if (auto st = writeFileAtomically(target.string(), copy.second); !st) return fail("cavity baselines update", st.error());
+        std::cout << "copied " << copy.first << " over " << target.string() << "\n";
+    }
+    if (!sources->empty())
+        std::cout << "kernels/ now holds the edits the baselines show; rebuild cavity (built-in kernels are compiled in) "
+                     "and commit both\n";
     const size_t changed = writes.size();
     std::cout << changed << " baseline files updated\n";
     if (const std::string hint = budgetOnlyHint(*run, filter.has_value(), from); !hint.empty()) std::cout << hint << "\n";

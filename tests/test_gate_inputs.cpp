@@ -420,6 +420,45 @@ TEST_F(GateInputs, UpdateRewritesOnlyTheSelectedEntries) {
         EXPECT_EQ(e.path().filename().string().find(".tmp-"), std::string::npos) << e.path();
 }
 
+// A run with a kernel source replaced: its images are not what kernels/
+// renders. The update refuses them alone; with --with-kernel-source it takes
+// the edit into kernels/ too, so tree and baselines agree. status.json says
+// the run was not of the tree.
+TEST_F(GateInputs, UpdateFromAnEditedKernelTakesTheEditOrNothing) {
+    const fs::path stock = fs::path(CAVITY_SOURCE_DIR) / "kernels/ao/alchemy/ssao_alchemy.glsl";
+    std::ifstream in(stock);
+    std::string text((std::istreambuf_iterator<char>(in)), {});
+    const std::string from = "dot(N, omega) - P.bias";
+    ASSERT_NE(text.find(from), std::string::npos);
+    const std::string edited = text.substr(0, text.find(from)) + "dot(N, omega) - 0.9 * P.bias" + text.substr(text.find(from) + from.size());
+    const fs::path edit = dir / "edit.glsl";
+    std::ofstream(edit) << edited;
+    const Outcome g = gate("--kernel-source ssao_alchemy.glsl=" + edit.string());
+    ASSERT_EQ(g.code, 1) << g.output;
+    {
+        std::ifstream f(dir / "out" / "status.json");
+        const auto status = nlohmann::json::parse(f);
+        EXPECT_NE(status["description"].get<std::string>().find("kernel source replaced (ao/alchemy/ssao_alchemy.glsl)"),
+                  std::string::npos) << status.dump();
+    }
+    const auto before = checksums(base);
+    const std::string update = "baselines update --from " + (dir / "out").string() + " --baselines " + base.string();
+    const Outcome refused = run(update);
+    EXPECT_EQ(refused.code, 2) << refused.output;
+    EXPECT_NE(refused.output.find("--with-kernel-source"), std::string::npos) << refused.output;
+    EXPECT_EQ(checksums(base), before);
+    // The tree beside these baselines: its kernels/ takes the edit.
+    const fs::path tree = dir / "kernels/ao/alchemy/ssao_alchemy.glsl";
+    fs::create_directories(tree.parent_path());
+    fs::copy_file(stock, tree);
+    const Outcome took = run(update + " --with-kernel-source");
+    ASSERT_EQ(took.code, 0) << took.output;
+    EXPECT_NE(checksums(base), before);
+    std::ifstream now(tree);
+    EXPECT_EQ(std::string((std::istreambuf_iterator<char>(now)), {}), edited);
+    EXPECT_NE(took.output.find("copied " + edit.string() + " over " + tree.string()), std::string::npos) << took.output;
+}
+
 TEST_F(GateInputs, InterruptedUpdateLeavesTheOldFileWhole) {
     const fs::path victim = image("ao_blur.exr");
     fs::copy_file(base / "images/slats/alchemy/n16/b4/full/160x90/ao_blur.exr", victim,

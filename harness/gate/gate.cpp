@@ -99,6 +99,14 @@ void perturbForTest(render::Rendering& r) {
     if (ao == r.images.end()) return;
     for (float& v : ao->second.pixels) v = 1.0f - v;
     r.digests["ao"] = imageDigest(ao->second);
+    r.deterministic = false;   // what it stands for: a render that differs from run to run
+}
+
+// A failure another render could change: a time (noisy), or images from a
+// render whose frames differed. Images of a deterministic render that
+// failed fail again, bit for bit: retrying them only costs time.
+bool worthRetrying(const ConfigResult& r) {
+    return !r.passed() && r.error.empty() && r.errorCode == 0 && (r.imagesPassed() || !r.deterministic);
 }
 
 }  // namespace
@@ -139,7 +147,7 @@ Result<GateRun> runGate(const GateOptions& o) {
         if (attempt == 0 && flaky && std::regex_search(rendering.id, *flaky)) perturbForTest(rendering);
         CAVITY_ASSIGN(ConfigResult r, judgeRendering(rendering, judge));
         if (attempt == 0) {
-            const bool retry = !r.passed() && r.errorCode == 0 && o.retries > 0;
+            const bool retry = worthRetrying(r) && o.retries > 0;
             progress.done(r.id + " " + (r.passed() ? "pass" : retry ? "FAIL (retrying)" : "FAIL"), r.error.empty());
             where[r.id] = run.results.size();
             run.results.push_back(std::move(r));
@@ -160,15 +168,16 @@ Result<GateRun> runGate(const GateOptions& o) {
     for (const auto& f : failures) run.backendErrors.push_back(f.message);
     // A failing configuration is rendered again, up to o.retries times, and
     // one that then passes is flaky: reported as such, never as a plain
-    // pass. A configuration that did not run or lacks a baseline is not
-    // retried: another render cannot change that.
+    // pass. A configuration that did not run, lacks a baseline, or whose
+    // deterministic render failed on images is not retried: another render
+    // cannot change that.
     for (attempt = 1; attempt <= o.retries; ++attempt) {
         std::vector<plan::MatrixEntry> again;
         for (const auto& e : entries) {
             const auto at = where.find(configId(e.config));
             if (at == where.end()) continue;
             const ConfigResult& r = run.results[at->second];
-            if (!r.passed() && r.error.empty() && r.errorCode == 0) again.push_back(e);
+            if (worthRetrying(r)) again.push_back(e);
         }
         if (again.empty()) break;
         CAVITY_TRY(render::renderEntries(matrix, again, ro, sink, nullptr));

@@ -21,7 +21,11 @@ nlohmann::json commitStatus(const GateRun& run, const std::string& reportUrl) {
                                               (changed ? ", " + std::to_string(changed) + " changed within tolerance" : "")
                               : code == 1 ? std::to_string(failed) + " of " + total + " configurations failed"
                                           : "the gate could not judge every configuration (exit " + std::to_string(code) + ")";
-    description = "matrix " + run.matrix + ": " + description;
+    // A substituted kernel comes first, so that a cut description keeps it:
+    // a pass with kernels/ replaced is not a pass of the tree.
+    std::string replaced;
+    for (const auto& r : run.replaced) replaced += (replaced.empty() ? "" : ", ") + r.name;
+    description = "matrix " + run.matrix + (replaced.empty() ? "" : ", kernel source replaced (" + replaced + ")") + ": " + description;
     if (description.size() > kStatusDescriptionMax) description.resize(kStatusDescriptionMax);
     return {{"state", code == 0 ? "success" : code == 1 ? "failure" : "error"},
             {"description", description},
