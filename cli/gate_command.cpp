@@ -69,6 +69,7 @@ const CommandSpec& gateSpec() {
             {"--expectations", "DIR", "folder of expectation files (default <baselines>/expectations)"},
             {"--validation", "", "enable the Vulkan validation layers and the GL debug output"},
             {"--enforce-cpu-budgets", "", kEnforceHelp},
+            {"--strict", "", "fail a configuration that changed in any pixel, within tolerance or not (digests must match)"},
             storeFlag(),
             storeCacheFlag(),
             {"--kernel-source", "NAME=FILE",
@@ -101,6 +102,7 @@ const CommandSpec& judgeSpec() {
             {"--out", "DIR", "report folder (default out/gate)"},
             kReportUrlFlag,
             {"--enforce-cpu-budgets", "", kEnforceHelp},
+            {"--strict", "", "fail a configuration that changed in any pixel, within tolerance or not (digests must match)"},
             {"--shards", "I[,J...]/N", "the shards the folders hold, when not all N (default: every shard must be there)"},
             storeFlag(),
             storeCacheFlag(),
@@ -277,6 +279,7 @@ int judge(const std::vector<std::string>& argv) {
     for (const auto& [flag, v] : p.values) *into.at(flag) = v;
     o.quiet = p.has("--quiet");
     o.enforceCpuBudgets = p.has("--enforce-cpu-budgets");
+    const bool strict = p.has("--strict");
     if (auto st = checkExpectationsFlag(expectationsDir); !st) return fail("cavity gate judge", st.error());
     if (baselines.empty()) {
         auto found = defaultBaselines();
@@ -289,6 +292,7 @@ int judge(const std::vector<std::string>& argv) {
     if (!expectations) return fail("cavity gate judge", expectations.error());
     auto run = gate::judgeFolders(dirs, o);
     if (!run) return fail("cavity gate judge", run.error());
+    run->strict = strict;
     gate::applyExpectations(*run, *expectations);
     if (auto st = report::writeReports(*run, o.out, reportUrl); !st) return fail("cavity gate judge", st.error());
     std::cout << report::summaryMarkdown(*run, reportUrl.empty() ? "index.html" : reportUrl);
@@ -316,6 +320,7 @@ Result<GateFlags> parseGate(const std::vector<std::string>& argv) {
     o.validation = p.has("--validation");
     o.quiet = p.has("--quiet");
     o.enforceCpuBudgets = p.has("--enforce-cpu-budgets");
+    o.strict = p.has("--strict");
     o.baselines.clear();
     for (const auto& [flag, v] : p.values) {
         if (flag == "--matrix") o.matrix = v;

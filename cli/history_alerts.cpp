@@ -54,6 +54,7 @@ std::string pText(double p) {
 // may still move (its last commits).
 std::string sureText(const history::Alert& a) {
     std::string out = a.pValue < 1e-6 ? "certain" : a.pValue < 1e-4 ? "very likely" : "likely";
+    if (a.hostClock) out += ", host clock";
     if (a.provisional)
         out += ", provisional: " + std::to_string(a.commitsAfter) + " commit" + (a.commitsAfter == 1 ? "" : "s") + " after it";
     return out;
@@ -64,7 +65,7 @@ json alertJson(const history::Alert& a) {
             {"previous_commit", a.previousCommit}, {"date", a.date}, {"change_pct", a.changePct}, {"p_value", a.pValue},
             {"direction", a.slower() ? "slower" : "faster"}, {"before_ms", a.before}, {"after_ms", a.after},
             {"commits_before", a.commitsBefore}, {"commits_after", a.commitsAfter}, {"provisional", a.provisional},
-            {"newest", a.newest}, {"sure", sureText(a)}};
+            {"newest", a.newest}, {"host_clock", a.hostClock}, {"sure", sureText(a)}};
 }
 
 // scripts/bisect.sh's --pass mode judges with `cavity compare` on
@@ -106,6 +107,10 @@ int historyAlerts(const std::vector<std::string>& argv) {
         out.push_back(alertJson(a));
     }
     if (!alerts.empty()) std::cout << t.str();
+    if (const auto host = std::count_if(alerts.begin(), alerts.end(), [](const auto& a) { return a.hostClock; }); host > 0)
+        std::cout << host << " of these change points are a software renderer's: its times are the host CPU's wall "
+                     "clock, which every other process on the machine shares; read them as leads, not as a GPU's "
+                     "regressions\n";
     std::cout << alerts.size() << " change points in " << series->size() << " series (alpha " << q->detector.alpha
               << ", min change " << q->detector.minChange * 100 << "%)\n";
     if (parsed->has("--bisect"))

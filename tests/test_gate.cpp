@@ -273,6 +273,17 @@ TEST(Gate, AChangeWithinToleranceIsReportedAsChanged) {
     EXPECT_NE(summary.find("changed within tolerance"), std::string::npos) << summary;
     EXPECT_NE(report::commitStatus(run, "")["description"].get<std::string>().find("1 changed within tolerance"),
               std::string::npos);
+    // --strict: the same change fails the run (Mesa's trace-checksum policy),
+    // and survives gate.json.
+    gate::GateRun strict = run;
+    strict.strict = true;
+    EXPECT_EQ(strict.exitCode(), 1);
+    EXPECT_EQ(report::commitStatus(strict, "")["state"], "failure");
+    EXPECT_NE(report::commitStatus(strict, "")["description"].get<std::string>().find("1 of 1 configurations changed (--strict)"),
+              std::string::npos) << report::commitStatus(strict, "").dump();
+    const auto back = gate::fromJson(gate::toJson(strict), "gate.json");
+    ASSERT_TRUE(back.ok());
+    EXPECT_EQ(back->exitCode(), 1);
     fs::remove_all(o.out);
 }
 

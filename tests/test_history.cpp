@@ -358,6 +358,26 @@ TEST_F(History, ARevertedSlowdownIsFoundAndDoesNotFailTheJob) {
     EXPECT_NE(now.output.find(" slower"), std::string::npos) << now.output;
 }
 
+// A software renderer's series is the host's wall clock: its alerts say so.
+TEST_F(History, ACpuRenderersAlertsSayTheClockIsTheHosts) {
+    for (int i = 0; i < 14; ++i) {
+        json doc = benchDoc(i, 8);
+        doc["context"]["cavity_software_renderer"] = "true";
+        doc["context"]["cavity_device"] = "gl: llvmpipe (LLVM 15.0.6, 256 bits); vk: llvmpipe (LLVM 15.0.6, 256 bits)";
+        const Outcome o = cavity("history ingest --db " + db_ + " --commit " + commitOf(i) + " " +
+                                 write("cpu_" + std::to_string(i) + ".json", doc.dump()));
+        ASSERT_EQ(o.code, 0) << o.output;
+    }
+    const std::string out = (dir_ / "alerts.json").string();
+    const Outcome o = cavity("history alerts --db " + db_ + " --pass ao --json " + out);
+    ASSERT_EQ(o.code, 0) << o.output;
+    EXPECT_NE(o.output.find("host CPU's wall clock"), std::string::npos) << o.output;
+    std::ifstream f(out);
+    const json j = json::parse(f);
+    ASSERT_FALSE(j["alerts"].empty());
+    EXPECT_TRUE(j["alerts"][0]["host_clock"].get<bool>());
+}
+
 TEST_F(History, ChartPageIsSelfContained) {
     history(10, 6);
     const Outcome o = cavity("history chart --db " + db_ + " --pass ao --out " + (dir_ / "chart").string());

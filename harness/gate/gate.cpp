@@ -73,7 +73,7 @@ int GateRun::exitCode() const {
         backend |= r.errorCode == 3;
         unreachable |= r.errorCode == 5;
         corrupt |= r.errorCode == 6;
-        regression |= r.fatal();
+        regression |= r.fatal() || (strict && r.verdict() == "changed");
     }
     // A verdict the store could not back is no verdict: its code before a
     // backend's or a regression's.
@@ -134,6 +134,7 @@ Result<GateRun> runGate(const GateOptions& o) {
     GateRun run;
     run.matrix = o.matrix;
     run.replaced = o.replaced;
+    run.strict = o.strict;
     run.shardIndex = o.shardIndex;
     run.shardCount = o.shardCount;
     render::RenderOptions ro;

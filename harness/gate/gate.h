@@ -113,6 +113,7 @@ struct GateOptions {
     int retries = 2;                       // renders of a failing configuration after the first
     std::string expectations;              // folder of expectation files; empty: <baselines>/expectations
     bool enforceCpuBudgets = false;        // a software renderer's budget overrun fails too (TimingCheck::advisory)
+    bool strict = false;                   // GateRun::strict
     cavity::store::StoreOptions store;             // --store, --store-cache: where class references are
     SourceOverrides overrides;             // --kernel-source: kernels/ files replaced
     std::vector<ReplacedSource> replaced;  // ... and where each came from, for the reports
@@ -130,6 +131,9 @@ struct GateRun {
     std::vector<ReplacedSource> replaced;     // kernel sources replaced (--kernel-source)
     double seconds = 0;           // the whole gate: rendering and judging
     double renderSeconds = 0;     // of which rendering in cavity_render (gate judge); 0: rendered in this process
+    // --strict: a configuration that changed (any pixel, within tolerance
+    // or not) fails the run, as Mesa's trace checksums do.
+    bool strict = false;
     // 0 all pass (flaky, expected-fail and known-flake included), 1 a
     // regression or an unexpected pass, 2 bad input (a baseline missing or
     // unreadable), 3 a backend could not start.

@@ -56,7 +56,7 @@ json toJson(const GateRun& run) {
                            {"deterministic", r.deterministic}, {"error", r.error},
                            {"error_code", r.errorCode}, {"images", images}, {"timings", timings}});
     }
-    return {{"schema", "cavity.gate/1"}, {"matrix", run.matrix}, {"shard", {run.shardIndex, run.shardCount}},
+    return {{"schema", "cavity.gate/1"}, {"matrix", run.matrix}, {"shard", {run.shardIndex, run.shardCount}}, {"strict", run.strict},
             {"seconds", run.seconds}, {"render_seconds", run.renderSeconds}, {"exit_code", run.exitCode()}, {"counts", run.counts()},
             {"backend_errors", run.backendErrors}, {"kernel_sources", render::replacedJson(run.replaced)},
             {"results", results}};
@@ -188,6 +188,9 @@ Result<GateRun> fromJson(const json& j, const std::string& path) {
     if (shard.size() != 2 || shard[1] < 1 || shard[0] >= shard[1]) return top.bad("shard", "must be [I, N] with 0 <= I < N");
     run.shardIndex = shard[0];
     run.shardCount = shard[1];
+    if (top.has("strict")) {   // absent before --strict existed: tolerance-based
+        CAVITY_ASSIGN(run.strict, top.boolean("strict"));
+    }
     CAVITY_ASSIGN(run.seconds, top.number("seconds", 0, kAny));
     CAVITY_ASSIGN(run.renderSeconds, top.number("render_seconds", 0, kAny, 0.0));
     CAVITY_ASSIGN(run.backendErrors, top.strings("backend_errors"));

@@ -25,6 +25,7 @@ std::vector<Alert> seriesAlerts(const Series& s, const DetectorOptions& options)
         a.commitsAfter = c.pointsAfter;
         a.provisional = c.provisional;
         a.newest = &c == &points.back();
+        a.hostClock = s.softwareRenderer || s.clock == "wall";
         out.push_back(std::move(a));
     }
     return out;

@@ -23,6 +23,7 @@ struct Alert {
     size_t commitsBefore = 0, commitsAfter = 0; // the segments' lengths
     bool provisional = false;                   // too few commits after it yet: held to alpha / 10
     bool newest = false;                        // the series' newest change point: its "after" is the current state
+    bool hostClock = false;                     // a software renderer's series: wall time on the host's CPU
     bool slower() const { return changePct > 0; }
 };
 

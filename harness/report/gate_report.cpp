@@ -19,6 +19,7 @@ nlohmann::json commitStatus(const GateRun& run, const std::string& reportUrl) {
     const std::string total = std::to_string(run.results.size());
     std::string description = code == 0   ? "all " + total + " configurations passed" +
                                               (changed ? ", " + std::to_string(changed) + " changed within tolerance" : "")
+                              : code == 1 && failed == 0 ? std::to_string(changed) + " of " + total + " configurations changed (--strict)"
                               : code == 1 ? std::to_string(failed) + " of " + total + " configurations failed"
                                           : "the gate could not judge every configuration (exit " + std::to_string(code) + ")";
     // A substituted kernel comes first, so that a cut description keeps it:
