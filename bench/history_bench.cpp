@@ -1,10 +1,10 @@
 // cavity_history_bench: what `cavity history alerts` costs on a long
 // history, in time and in memory. It generates an SQLite database once
-// (COMMITS commits of 16 configurations, 5 passes each, 12 repetitions a
-// pass, one +5% step planted in one AO series), then times reading every
-// series back and finding its change points, the work of `alerts`. The
-// peak resident memory of that work is a counter, so memory is checked
-// where speed is: in a benchmark, not a timed test.
+// (COMMITS commits of kConfigs configurations, kPasses passes each,
+// kRepetitions repetitions a pass, one step planted in one AO series), then
+// times reading every series back and finding its change points, the work
+// of `alerts`. The peak resident memory of that work is a counter, so
+// memory is checked where speed is: in a benchmark, not a timed test.
 //   cavity_history_bench [--benchmark_filter=...]   (the database is kept in
 //   $CAVITY_HISTORY_BENCH_DIR, default the temp folder, and reused)
 #include "history/alerts.h"
@@ -21,7 +21,8 @@
 namespace {
 
 namespace fs = std::filesystem;
-using namespace cavity;
+namespace history = cavity::history;
+using cavity::Status;
 
 constexpr int kConfigs = 16, kPasses = 5, kRepetitions = 12;
 
@@ -70,7 +71,7 @@ std::string database(int commits) {
                     "(4, 'pipeline')) INSERT INTO passes (id, run_id, configuration_id, pass, device, clock, software_renderer) "
                     "SELECT ((r.id - 1) * " + std::to_string(kConfigs) + " + (c.id - 1)) * " + std::to_string(kPasses) +
                     " + p.k + 1, r.id, c.id, p.name, 'NVIDIA H200', 'gpu-timestamp', 0 FROM runs r, configurations c, p"));
-        // 0.1 ms x (1 + 1% noise), +5% from the middle commit on in the first configuration's AO pass.
+        // A flat time with noise, and a step up from the middle commit on in the first configuration's AO pass.
         must(d.exec("WITH RECURSIVE rep(j) AS (SELECT 0 UNION ALL SELECT j + 1 FROM rep WHERE j < " +
                     std::to_string(kRepetitions) + " - 1) INSERT INTO samples (pass_id, repetition, ms) "
                     "SELECT ps.id, rep.j, 0.1 * (1 + 0.01 * ((abs(random()) % 2001) - 1000) / 1000.0) * "

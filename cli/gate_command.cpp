@@ -1,4 +1,4 @@
-// `cavity gate`, `cavity gate judge`, `cavity gate merge` and `cavity baselines update`.
+// `cavity gate`, `cavity gate judge` and `cavity gate merge`.
 #include "gate/baseline_update.h"
 #include "gate_outputs.h"
 #include "pipeline/config_id.h"
@@ -29,10 +29,6 @@ namespace cavity::cli {
 namespace fs = std::filesystem;
 
 namespace {
-
-const std::string kBaselinesHelp =
-    "folder with matrices.json, manifest.json, budgets.json, images/ (default: baselines/ of the checkout found "
-    "from the working directory up, else of the source tree this binary was built from)";
 
 const FlagSpec kReportUrlFlag{"--report-url", "URL",
                                "where index.html will be published (a CI artifact): summary.md links it and status.json "
@@ -134,80 +130,6 @@ const CommandSpec& mergeSpec() {
         },
     };
     return spec;
-}
-
-const CommandSpec& updateSpec() {
-    static const CommandSpec spec{
-        "cavity baselines update",
-        "Accepts a gate run's new images as baselines: without --filter the configurations that failed, with it "
-        "every image of the configurations it selects. All or nothing.",
-        {
-            {"--from", "DIR", "a gate output folder with gate.json (default out/gate)"},
-            {"--filter", "REGEX", "take the configurations whose id matches"},
-            {"--baselines", "DIR", kBaselinesHelp},
-            {"--with-kernel-source", "", "the run replaced kernel sources (--kernel-source): also copy each file over its "
-                                         "kernels/NAME, so that the tree renders what the baselines show"},
-        },
-        "",
-        "",
-        "",
-        {
-            "cavity baselines update --from out/gate",
-            "cavity baselines update --from out/gate --filter '^corner/alchemy/'",
-            "cavity baselines update --from out/gate --with-kernel-source",
-        },
-    };
-    return spec;
-}
-
-// What to do when configurations failed on time budgets alone: images are
-// not what a baseline update changes.
-std::string budgetOnlyHint(const gate::GateRun& run, bool filtered, const std::string& from) {
-    int budgetOnly = 0;
-    std::string device;
-    for (const auto& r : run.results)
-        if (r.error.empty() && r.imagesPassed() && !r.timingPassed()) {
-            ++budgetOnly;
-            device = r.device;
-        }
-    if (budgetOnly == 0 || filtered) return "";
-    return std::to_string(budgetOnly) + " configurations failed on time budgets only (every image passed): budgets are " +
-           "not images; update them with `python3 scripts/update_budgets.py " + (fs::path(from) / "gate.json").string() +
-           " --pattern '" + device + "'` (docs/gate.md, \"Time budgets\")";
-}
-
-// The files a run rendered in place of kernels/ (--kernel-source), each
-// read and checked to be what was rendered, with where it goes in the tree
-// beside `root`. A run with replaced sources is refused without
-// --with-kernel-source: its images are not what kernels/ renders, and
-// accepting them alone would leave tree and baselines disagreeing.
-Result<std::map<fs::path, std::pair<std::string, std::string>>> kernelSourceCopies(const gate::GateRun& run,
-                                                                                  const std::string& root,
-                                                                                  const std::string& from, bool take) {
-    std::map<fs::path, std::pair<std::string, std::string>> out;   // target -> (file, text)
-    if (run.replaced.empty()) return out;
-    std::string names;
-    for (const auto& r : run.replaced) names += (names.empty() ? "kernels/" : ", kernels/") + r.name;
-    if (!take)
-        return badInput("--from " + from + ": rendered with " + names + " replaced (--kernel-source): its images are "
-                        "not what kernels/ renders; pass --with-kernel-source to copy the edits into kernels/ with the "
-                        "baselines, or copy them yourself and run the gate again");
-    std::error_code ec;
-    const fs::path tree = fs::absolute(root, ec).lexically_normal().parent_path() / "kernels";
-    for (const auto& r : run.replaced) {
-        const fs::path target = tree / r.name;
-        if (!fs::is_regular_file(target, ec))
-            return badInput("--with-kernel-source: kernels/" + r.name + " is not a file of " + tree.string() +
-                            " (a kernel package outside the tree is updated where it lives)");
-        std::ifstream in(r.file, std::ios::binary);
-        if (!in) return badInput("--with-kernel-source: " + r.file + " (for kernels/" + r.name + "): cannot be read");
-        std::string text((std::istreambuf_iterator<char>(in)), {});
-        if (const std::string digest = core::digestText(core::fnv1a64(text.data(), text.size())); digest != r.digest)
-            return badInput("--with-kernel-source: " + r.file + " changed since the run (digest " + digest +
-                            ", the run rendered " + r.digest + "): run the gate again");
-        out[target] = {r.file, std::move(text)};
-    }
-    return out;
 }
 
 // --help prints and ends the command (exit 0); an error ends it (exit 2).
@@ -385,81 +307,6 @@ int gateCommand(const std::vector<std::string>& argv) {
     std::cout << report::summaryMarkdown(*run, parsed->reportUrl.empty() ? "index.html" : parsed->reportUrl);
     std::cout << "\nreport: " << (fs::path(o.out) / "index.html").string() << "\n";
     return finished("cavity gate", *run);
-}
-
-int baselinesCommand(const std::vector<std::string>& argv) {
-    if (!argv.empty() && (argv[0] == "--help" || argv[0] == "-h")) {
-        std::cout << "usage: cavity baselines update|approve [flags]   (see cavity baselines update --help, "
-                     "cavity baselines approve --help)\n";
-        return 0;
-    }
-    if (!argv.empty() && argv[0] == "approve") return approveCommand({argv.begin() + 1, argv.end()});
-    if (argv.empty() || argv[0] != "update")
-        return fail("cavity baselines", badInput("'" + (argv.empty() ? std::string() : argv[0]) +
-                                                 "': usage: cavity baselines update|approve [flags]"));
-    std::string from = "out/gate", filterText, root;
-    CAVITY_PARSE(p, updateSpec(), std::vector<std::string>(argv.begin() + 1, argv.end()));
-    for (const auto& [flag, v] : p.values) {
-        if (flag == "--from") from = v;
-        else if (flag == "--filter") filterText = v;
-        else if (flag == "--baselines") root = v;
-    }
-    if (root.empty()) {
-        auto found = defaultBaselines();
-        if (!found) return fail("cavity baselines update", found.error());
-        root = *found;
-    }
-    std::optional<std::regex> filter;
-    if (!filterText.empty()) {
-        auto r = parseFilter("--filter", filterText);
-        if (!r) return fail("cavity baselines update", r.error());
-        filter = std::move(*r);
-    }
-    if (auto st = gate::recoverBaselineUpdate(root); !st) return fail("cavity baselines update", st.error());
-    auto run = loadGateJson(from);
-    if (!run) return fail("cavity baselines update", run.error());
-    auto sources = kernelSourceCopies(*run, root, from, p.has("--with-kernel-source"));
-    if (!sources) return fail("cavity baselines update", sources.error());
-    // One baseline key is shared by every API and stage: take the first
-    // selected configuration of each key.
-    std::set<std::string> done;
-    std::vector<gate::BaselineWrite> writes;
-    std::vector<std::string> said;
-    for (const auto& r : run->results) {
-        // Without a filter, what failed the gate: an expected failure or a
-        // known flake is not accepted as the new baseline by default.
-        const bool selected = filter ? std::regex_search(r.id, *filter) : r.verdict() == "fail";
-        if (!selected || !r.error.empty() || done.count(r.key)) continue;
-        done.insert(r.key);
-        for (const auto& i : r.images) {
-            // A selected configuration rewrites the images that failed (all of
-            // them when chosen by --filter): passing ones keep their bytes.
-            if (!filter && i.passed()) continue;
-            const fs::path target = fs::path("images") / r.key / fs::path(i.baseline).filename();
-            writes.push_back({i.newExact, target});
-            std::ostringstream line;
-            line << "updated " << (fs::path(root) / target).string() << "  (from " << r.id;
-            if (i.metrics)
-                line << ": max abs " << i.metrics->maxAbs << ", RMSE " << i.metrics->rmse << ", SSIM " << i.metrics->ssim;
-            else
-                line << ": new baseline";
-            said.push_back(line.str() + ")");
-        }
-    }
-    // All or nothing (harness/gate/baseline_update.h).
-    if (auto st = gate::applyBaselineUpdate(root, writes); !st) return fail("cavity baselines update", st.error());
-    for (const auto& line : said) std::cout << line << "\n";
-    for (const auto& [target, copy] : *sources) {
-        if (auto st = writeFileAtomically(target.string(), copy.second); !st) return fail("cavity baselines update", st.error());
-        std::cout << "copied " << copy.first << " over " << target.string() << "\n";
-    }
-    if (!sources->empty())
-        std::cout << "kernels/ now holds the edits the baselines show; rebuild cavity (built-in kernels are compiled in) "
-                     "and commit both\n";
-    const size_t changed = writes.size();
-    std::cout << changed << " baseline files updated\n";
-    if (const std::string hint = budgetOnlyHint(*run, filter.has_value(), from); !hint.empty()) std::cout << hint << "\n";
-    return 0;
 }
 
 }  // namespace cavity::cli

@@ -21,6 +21,9 @@ import sys
 import tarfile
 import tempfile
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from baselines_copy import drop_cpu_approvals  # noqa: E402
+
 # One small configuration: a screen-space kernel at the ci matrix's size.
 ONE = "^corner/alchemy/n8/b0/full/160x90/vk/"
 
@@ -42,19 +45,6 @@ def fresh_out(root, name):
     out = os.path.join(root, "out", name)
     os.makedirs(out)
     return out
-
-
-def drop_cpu_approvals(base):
-    """The CPU renderers' approved digests out of a copied baselines folder:
-    this test's images must take the tolerance route (a planted defect in a
-    baseline file, or new digests to approve), which an approved digest
-    would skip (docs/gate.md, "Changed is a state of its own")."""
-    path = os.path.join(base, "approvals.json")
-    with open(path) as f:
-        doc = json.load(f)
-    doc["approvals"] = [a for a in doc["approvals"] if a.get("device_class") != "llvmpipe"]
-    with open(path, "w") as f:
-        json.dump(doc, f, indent=2)
 
 
 def main():

@@ -75,8 +75,8 @@ TEST(HistoryDetector, ChangeUnderMinChangeIsNotReported) {
     EXPECT_TRUE(detectChangePoints(x, two).empty()) << "under --min-change 2%";
 }
 
-// A +5% regression that lasted three commits and was then fixed, early in
-// the series: the rest of the series must not dilute it.
+// A regression that lasted three commits and was then fixed, early in the
+// series: the rest of the series must not dilute it.
 TEST(HistoryDetector, RevertedRegressionIsFoundWithItsRevert) {
     for (uint64_t seed = 1; seed <= 20; ++seed) {
         const auto x = stepped(30, 8, 0.05, 0.003, seed, 11);
@@ -87,15 +87,15 @@ TEST(HistoryDetector, RevertedRegressionIsFoundWithItsRevert) {
         EXPECT_EQ(cps[1].index, 11u);
         EXPECT_LT(cps[1].change(), 0);
     }
-    // At 1% noise too, most of the time.
+    // At the noisier level too, most of the time.
     int found = 0;
     for (uint64_t seed = 1; seed <= 40; ++seed)
         for (const auto& c : detectChangePoints(stepped(30, 10, 0.05, 0.01, seed, 13))) found += c.index == 10 && c.change() > 0;
     EXPECT_GE(found, 36) << "of 40";
 }
 
-// Two +1.5% steps ten commits apart: each named at its own commit, not one
-// +3% step at the second.
+// Two small steps ten commits apart: each named at its own commit, not one
+// step of both at the second.
 TEST(HistoryDetector, TwoSmallStepsInARowAreEachNamed) {
     for (uint64_t seed = 1; seed <= 20; ++seed) {
         auto x = stepped(30, 8, 0.015, 0.003, seed);
@@ -117,7 +117,7 @@ TEST(HistoryDetector, NewestCommitsNeedMoreEvidence) {
     EXPECT_EQ(clear[0].index, 29u);
     EXPECT_TRUE(clear[0].provisional);
     EXPECT_EQ(clear[0].pointsAfter, 1u);
-    // At 1% noise a 4% step is clear enough with four commits after it, not with one.
+    // In more noise, a smaller step is clear with four commits after it, not with one.
     int oneAfter = 0, fourAfter = 0;
     for (uint64_t seed = 1; seed <= 40; ++seed) {
         oneAfter += !detectChangePoints(stepped(30, 29, 0.04, 0.01, seed)).empty();

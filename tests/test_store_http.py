@@ -315,7 +315,7 @@ def cases(work, http, https, ca, www):
 
     # Servers that stall: one accepts and never answers, one sends 16 bytes
     # of a response and stops. Each is cut off after CAVITY_STORE_STALL
-    # seconds (here 2), not the whole request's limit (600 s).
+    # seconds, not the whole request's limit.
     for name, reply in (("silent", b""), ("stops after 16 bytes", b"HTTP/1.1 200 OK\r\n")):
         port, stop = stalling_server(reply[:16])
         t0 = time.monotonic()

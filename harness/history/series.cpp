@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <map>
 #include <set>
 #include <tuple>
@@ -135,6 +136,71 @@ Result<std::vector<std::string>> commitOrder(Database& db) {
     return order;
 }
 
+namespace {
+
+// The series the filter selects, in key order, each empty, with
+// (configuration row id, pass, device, clock) -> its index.
+using SeriesIndex = std::map<std::tuple<std::string, std::string, std::string, std::string>, size_t>;
+Result<std::vector<Series>> selectedSeries(Database& db, const SeriesFilter& f, SeriesIndex& seriesOf) {
+    std::string keys =
+        "SELECT DISTINCT p.configuration_id, c.config_id, p.pass, p.device, p.clock FROM passes p "
+        "JOIN configurations c ON p.configuration_id = c.id";
+    std::vector<Param> keyParams;
+    if (!f.pass.empty()) keys += " WHERE p.pass = ?", keyParams.push_back(f.pass);
+    CAVITY_ASSIGN(const auto keyRows, db.query(keys, keyParams));
+    std::vector<std::pair<Key, std::string>> wanted;
+    for (const auto& r : keyRows) {
+        const Key k{*r[1], *r[2], *r[3], *r[4]};
+        if (f.id && !std::regex_search(k.config, *f.id)) continue;
+        if (!f.device.empty() && k.device.find(f.device) == std::string::npos) continue;
+        wanted.push_back({k, *r[0]});
+    }
+    std::sort(wanted.begin(), wanted.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    std::vector<Series> out;
+    for (const auto& [k, configurationId] : wanted) {
+        seriesOf[{configurationId, k.pass, k.device, k.clock}] = out.size();
+        out.push_back({k.config, k.pass, k.device, k.clock, false, {}});
+    }
+    return out;
+}
+
+struct RunRow {
+    size_t commit;      // its commit's rank in commitOrder
+    std::string date;
+};
+
+// The runs within --since / --until, by row id.
+Result<std::unordered_map<int64_t, RunRow>> selectedRuns(Database& db, const SeriesFilter& f,
+                                                         const std::function<size_t(const std::string&)>& rankOf) {
+    std::unordered_map<int64_t, RunRow> runs;
+    std::string sql = "SELECT id, commit_sha, run_date FROM runs WHERE 1 = 1";
+    std::vector<Param> params;
+    if (!f.since.empty()) sql += " AND run_date >= ?", params.push_back(f.since);
+    if (!f.until.empty()) sql += " AND run_date <= ?", params.push_back(f.until);
+    CAVITY_TRY(db.forEach(sql, params, [&](const Row& r) -> Status {
+        runs[std::stoll(*r[0])] = {rankOf(*r[1]), *r[2]};
+        return {};
+    }));
+    return runs;
+}
+
+// Each series' points in commit order.
+void orderPoints(std::vector<Series>& series, const std::vector<std::unordered_map<size_t, size_t>>& pointOf) {
+    for (size_t i = 0; i < series.size(); ++i) {
+        Series& s = series[i];
+        for (auto& p : s.points) finish(p);
+        std::vector<std::pair<size_t, size_t>> byRank(pointOf[i].begin(), pointOf[i].end());   // (commit rank, point)
+        std::sort(byRank.begin(), byRank.end());
+        std::vector<Point> ordered;
+        ordered.reserve(s.points.size());
+        for (const auto& [commit, point] : byRank) ordered.push_back(std::move(s.points[point]));
+        s.points = std::move(ordered);
+    }
+    series.erase(std::remove_if(series.begin(), series.end(), [](const Series& s) { return s.points.empty(); }), series.end());
+}
+
+}  // namespace
+
 Result<std::vector<Series>> loadSeries(Database& db, const SeriesFilter& f) {
     // Four reads, each streamed: the series (few), the runs (one a file),
     // the passes (one a run and series) and the samples. Only what the
@@ -142,28 +208,8 @@ Result<std::vector<Series>> loadSeries(Database& db, const SeriesFilter& f) {
     // but no row is held, so memory follows the samples' count, not the
     // rows' text. One scan of the samples in storage order, rather than
     // a query per series, reads each page of the database once.
-    std::string keys =
-        "SELECT DISTINCT p.configuration_id, c.config_id, p.pass, p.device, p.clock FROM passes p "
-        "JOIN configurations c ON p.configuration_id = c.id";
-    std::vector<Param> keyParams;
-    if (!f.pass.empty()) keys += " WHERE p.pass = ?", keyParams.push_back(f.pass);
-    CAVITY_ASSIGN(const auto keyRows, db.query(keys, keyParams));
-    std::vector<Series> out;
-    std::map<std::tuple<std::string, std::string, std::string, std::string>, size_t> seriesOf;   // (configuration id, pass, device, clock)
-    {
-        std::vector<std::pair<Key, std::string>> wanted;
-        for (const auto& r : keyRows) {
-            const Key k{*r[1], *r[2], *r[3], *r[4]};
-            if (f.id && !std::regex_search(k.config, *f.id)) continue;
-            if (!f.device.empty() && k.device.find(f.device) == std::string::npos) continue;
-            wanted.push_back({k, *r[0]});
-        }
-        std::sort(wanted.begin(), wanted.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-        for (const auto& [k, configurationId] : wanted) {
-            seriesOf[{configurationId, k.pass, k.device, k.clock}] = out.size();
-            out.push_back({k.config, k.pass, k.device, k.clock, false, {}});
-        }
-    }
+    SeriesIndex seriesOf;
+    CAVITY_ASSIGN(std::vector<Series> out, selectedSeries(db, f, seriesOf));
     if (out.empty()) return out;
     CAVITY_ASSIGN(const auto order, commitOrder(db));
     std::map<std::string, size_t> rank;
@@ -173,72 +219,39 @@ Result<std::vector<Series>> loadSeries(Database& db, const SeriesFilter& f) {
         auto it = rank.lower_bound(sha);
         return it != rank.end() && it->first.compare(0, sha.size(), sha) == 0 ? it->second : order.size();
     };
-    struct Run {
-        size_t commit;
-        std::string date;
-    };
-    std::unordered_map<int64_t, Run> runs;
-    {
-        std::string sql = "SELECT id, commit_sha, run_date FROM runs WHERE 1 = 1";
-        std::vector<Param> params;
-        if (!f.since.empty()) sql += " AND run_date >= ?", params.push_back(f.since);
-        if (!f.until.empty()) sql += " AND run_date <= ?", params.push_back(f.until);
-        CAVITY_TRY(db.forEach(sql, params, [&](const Row& r) -> Status {
-            runs[std::stoll(*r[0])] = {rankOf(*r[1]), *r[2]};
-            return {};
-        }));
-    }
-    // A pass row to its series and run; a point per (series, commit).
-    struct PassOf {
-        uint32_t series;
-        int64_t run;
-    };
-    std::unordered_map<int64_t, PassOf> passes;
-    {
-        std::string sql = "SELECT id, configuration_id, pass, device, clock, software_renderer, run_id FROM passes";
-        std::vector<Param> params;
-        if (!f.pass.empty()) sql += " WHERE pass = ?", params.push_back(f.pass);
-        CAVITY_TRY(db.forEach(sql, params, [&](const Row& r) -> Status {
-            const auto it = seriesOf.find({*r[1], *r[2], *r[3], *r[4]});
-            if (it == seriesOf.end()) return {};
-            const int64_t run = std::stoll(*r[6]);
-            if (!runs.count(run)) return {};   // outside --since / --until
-            if (*r[5] != "0") out[it->second].softwareRenderer = true;
-            passes[std::stoll(*r[0])] = {uint32_t(it->second), run};
-            return {};
-        }));
-    }
+    CAVITY_ASSIGN(const auto runs, selectedRuns(db, f, rankOf));
+    // A pass row to its series and run.
+    std::unordered_map<int64_t, std::pair<uint32_t, int64_t>> passes;
+    std::string sql = "SELECT id, configuration_id, pass, device, clock, software_renderer, run_id FROM passes";
+    std::vector<Param> params;
+    if (!f.pass.empty()) sql += " WHERE pass = ?", params.push_back(f.pass);
+    CAVITY_TRY(db.forEach(sql, params, [&](const Row& r) -> Status {
+        const auto it = seriesOf.find({*r[1], *r[2], *r[3], *r[4]});
+        const int64_t run = std::stoll(*r[6]);
+        if (it == seriesOf.end() || !runs.count(run)) return {};   // another series, or outside --since / --until
+        if (*r[5] != "0") out[it->second].softwareRenderer = true;
+        passes[std::stoll(*r[0])] = {uint32_t(it->second), run};
+        return {};
+    }));
     std::vector<std::unordered_map<size_t, size_t>> pointOf(out.size());   // per series: commit rank -> point
     std::vector<std::unordered_map<size_t, int64_t>> lastRun(out.size());
     CAVITY_TRY(db.forEach("SELECT pass_id, ms FROM samples", {}, [&](const Row& r) -> Status {
         const auto it = passes.find(std::stoll(*r[0]));
         if (it == passes.end()) return {};
-        Series& s = out[it->second.series];
-        const Run& run = runs.at(it->second.run);
-        auto [at, fresh] = pointOf[it->second.series].emplace(run.commit, s.points.size());
+        const auto [series, runId] = it->second;
+        Series& s = out[series];
+        const RunRow& run = runs.at(runId);
+        auto [at, fresh] = pointOf[series].emplace(run.commit, s.points.size());
         if (fresh) s.points.push_back({run.commit < order.size() ? order[run.commit] : "", run.date, {}, 0});
         Point& p = s.points[at->second];
         if (run.date < p.date) p.date = run.date;   // the commit's first run
-        auto& last = lastRun[it->second.series][run.commit];
-        if (last != it->second.run) ++p.runs, last = it->second.run;
+        auto& last = lastRun[series][run.commit];
+        if (last != runId) ++p.runs, last = runId;
         p.ms.push_back(std::stod(*r[1]));
         return {};
     }));
-    std::vector<Series> kept;
-    for (size_t i = 0; i < out.size(); ++i) {
-        Series& s = out[i];
-        if (s.points.empty()) continue;
-        for (auto& p : s.points) finish(p);
-        std::vector<std::pair<size_t, size_t>> byRank;   // (commit rank, point)
-        for (const auto& [commit, point] : pointOf[i]) byRank.push_back({commit, point});
-        std::sort(byRank.begin(), byRank.end());
-        std::vector<Point> ordered;
-        ordered.reserve(s.points.size());
-        for (const auto& [commit, point] : byRank) ordered.push_back(std::move(s.points[point]));
-        s.points = std::move(ordered);
-        kept.push_back(std::move(s));
-    }
-    return kept;
+    orderPoints(out, pointOf);
+    return out;
 }
 
 Result<std::string> resolveBound(Database& db, const std::string& flag, const std::string& value, bool since) {
