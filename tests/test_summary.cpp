@@ -3,6 +3,7 @@
 // OpenGL and Vulkan counted once when both fail the same way.
 #include "harness_names.h"
 #include "report/gate_report.h"
+#include "report/verdict_text.h"
 
 #include <gtest/gtest.h>
 
@@ -67,6 +68,15 @@ TEST(Summary, GroupsByKernelAndCheckWorstFirstWithTheApisMerged) {
     EXPECT_LT(hemiRmse, alchemyMax) << s;
     EXPECT_LT(alchemyMax, alchemyRmse) << s;
     EXPECT_NE(s.find("[Full report](https://ci.example.org/r/index.html)"), std::string::npos) << s;
+}
+
+// A failing card prints the commands that accept its configuration alone.
+TEST(Summary, AFailureNamesTheCommandThatAcceptsItAlone) {
+    const ConfigResult r = failingResult("alchemy", 16, "vk", 0.02);
+    ASSERT_EQ(r.verdict(), "fail");
+    const std::string note = report::verdictNote(r);
+    EXPECT_NE(note.find("cavity baselines update --filter '^" + r.id + "$'"), std::string::npos) << note;
+    EXPECT_NE(note.find("cavity baselines approve --filter '^" + r.id + "$'"), std::string::npos) << note;
 }
 
 }  // namespace

@@ -43,6 +43,12 @@ std::string verdictNote(const ConfigResult& r) {
     if (v == "known-flake")
         return "known flake, failed all " + std::to_string(r.attempts) + " attempts (" + r.expectedWhy + ")";
     if (v == "unexpected-pass") return "unexpected pass: listed as an expected failure (" + r.expectedWhy + "); remove the entry";
+    // A failure that is the intended result of a change is accepted one
+    // configuration at a time, by the command the card prints.
+    if (v == "fail" && r.error.empty())
+        return "to accept this configuration alone: cavity baselines update --filter '^" + r.id +
+               "$' (its images become the baselines), or cavity baselines approve --filter '^" + r.id +
+               "$' --why '...' (its digests approved for this device class)";
     if (v == "changed") {
         std::string s = "changed within tolerance:";
         for (const auto& i : r.images)

@@ -19,7 +19,8 @@ std::string num(double x, int digits = 4);
 std::vector<const ConfigResult*> ordered(const GateRun& run);
 // Lines joined with "; ".
 std::string joined(const std::vector<std::string>& lines);
-// One line for a verdict that is not a plain pass or fail; empty otherwise.
+// One line for a verdict that is not a plain pass (a failure: the command
+// that accepts its configuration alone); empty otherwise.
 std::string verdictNote(const ConfigResult& r);
 // "3 passed, 1 flaky, ...": every verdict that occurred, in a fixed order.
 std::string countsText(const GateRun& run);
