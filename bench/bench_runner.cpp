@@ -154,7 +154,6 @@ void run(benchmark::State& state, const Bench& b) {
     TimingOptions options = b.timing;
     auto& clocks = configurationClocks();
     if (auto it = clocks.find(id); it != clocks.end()) options.clock = it->second;
-    const auto& passes = chains[0]->passes();
     Timing t;
     for (auto _ : state) {
         auto m = measurePasses(gpu, views, options, GpuClocks::forDevice(gpu.info()));
@@ -166,11 +165,7 @@ void run(benchmark::State& state, const Bench& b) {
         t = std::move(*m);
         clocks.emplace(id, t.clock);
         // The benchmark's time: the AO pipeline, every pass but the G-buffer, per frame.
-        std::vector<double> pipeline(t.frame.ms.size(), 0.0);
-        for (size_t i = 0; i < passes.size(); ++i)
-            if (passes[i].name != "gbuffer")
-                for (size_t f = 0; f < pipeline.size(); ++f) pipeline[f] += t.passes[i].ms[f];
-        state.SetIterationTime(summarize(pipeline).median / 1000.0);
+        state.SetIterationTime(t.pipeline.stats.median / 1000.0);
     }
     const RunConfig& c = b.config;
     setFloorCounters(state, gpu, *chains[0], c, t);

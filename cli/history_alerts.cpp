@@ -68,9 +68,9 @@ json alertJson(const history::Alert& a) {
             {"newest", a.newest}, {"host_clock", a.hostClock}, {"sure", sureText(a)}};
 }
 
-// scripts/bisect.sh's --pass mode judges with `cavity compare` on
-// results.json, whose whole-configuration series is "frame"; cavity_bench's
-// "pipeline" (the AO passes without the G-buffer) has no twin there.
+// scripts/bisect.sh's --pass mode judges with `cavity compare` on the
+// results.json that each commit's `cavity run` writes; that of a commit older
+// than results.json's "pipeline" series has only "frame", which every commit has.
 std::string bisectLine(const history::Alert& a) {
     const std::string pass = a.pass == "pipeline" ? "frame" : a.pass;
     std::string line = "scripts/bisect.sh " + a.previousCommit + " " + a.commit + " --id " + a.configId + " --pass " + pass;

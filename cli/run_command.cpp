@@ -1,6 +1,8 @@
 // `cavity run`: a sweep of configurations on one or both backends, with
 // images, results.json and a timing table on stdout.
 #include "run_sweep.h"
+#include "run_summary.h"
+#include "report/run_page.h"
 #include "pipeline/config_id.h"
 #include "images/gbuffer_import.h"
 #include "core/progress.h"
@@ -19,64 +21,6 @@
 namespace cavity::cli {
 
 namespace {
-
-// A CV above this is flagged in the table: the timing was noisy enough that
-// the median may move by more than a kernel change one wants to see.
-constexpr double kNoisyCv = 0.10;
-
-void printTable(const std::vector<RunRecord>& runs) {
-    auto clockOf = [](const RunRecord& r) { return r.timing.clock + "/" + timingModeName(r.timing.mode); };
-    // The clock most configurations used is said once; each that differs is named.
-    std::map<std::string, int> clockCount;
-    for (const auto& r : runs) ++clockCount[clockOf(r)];
-    std::string clock;
-    int most = 0;
-    for (const auto& [c, n] : clockCount)
-        if (n > most) most = n, clock = c;
-    std::printf("\nclock: %s%s\n", clock.c_str(), clockCount.size() == 1 ? " (every configuration)" : " (except as noted below)");
-    using A = TextTable::Align;
-    TextTable table({{"configuration", A::Left}, {"pass", A::Left}, {"median ms", A::Right}, {"min ms", A::Right},
-                     {"p90 ms", A::Right}, {"CV", A::Right}},
-                    "  ");
-    std::vector<std::string> noisy;
-    for (const auto& r : runs) {
-        const std::string id = configId(r.config);
-        auto row = [&](const std::string& name, const Stats& st) {
-            const bool flag = st.cv > kNoisyCv;
-            table.add({id, name, TextTable::number(st.median, 3), TextTable::number(st.min, 3), TextTable::number(st.p90, 3),
-                       TextTable::number(100.0 * st.cv, 1) + "%"},
-                      flag ? " !" : "");
-            if (flag) noisy.push_back(id + " " + name);
-        };
-        for (const auto& p : r.timing.passes) row(p.name, p.stats);
-        row("frame", r.timing.frame.stats);
-    }
-    table.print();
-    for (const auto& r : runs)
-        if (clockOf(r) != clock)
-            std::printf("note: %s: clock %s (not %s)\n", configId(r.config).c_str(), clockOf(r).c_str(), clock.c_str());
-    if (!noisy.empty())
-        std::printf("note: ! marks a CV over %.0f%%: the median is uncertain (%zu rows; more --frames or a quieter machine)\n",
-                    100 * kNoisyCv, noisy.size());
-    for (const auto& r : runs) {
-        const auto& t = r.timing;
-        const std::string id = configId(r.config);
-        if (t.rejectedFrames)
-            std::printf("note: %s: %d frames failed the clock check and were left out (%s)\n", id.c_str(),
-                        t.rejectedFrames, t.rejectedNote.c_str());
-        if (t.steadyChecked && !t.steady)
-            std::printf("note: %s: the frame time was not steady after %.1f s of warm-up\n", id.c_str(),
-                        t.warmupSeconds);
-        if (!t.clocks.source.empty())
-            std::printf("clocks: %s: SM %.0f MHz (%.0f..%.0f), memory %.0f MHz%s\n", id.c_str(), t.clocks.smMedian,
-                        t.clocks.smMin, t.clocks.smMax, t.clocks.memMedian,
-                        t.clocks.moved() ? ": the SM clock moved during the measurement" : "");
-    }
-    for (const auto& r : runs)
-        if (!r.timing.clockNote.empty())
-            std::printf("note: %s: %s %s: %s\n", configId(r.config).c_str(), gpu::apiName(r.config.api),
-                        r.device.deviceName.c_str(), r.timing.clockNote.c_str());
-}
 
 // Imported G-buffers by size, each read once, before anything runs or is written.
 using Captures = std::map<std::pair<int, int>, std::shared_ptr<const GBufferImages>>;
@@ -186,12 +130,14 @@ RunOutcome runPlan(const Sweep& s, const std::vector<gpu::Api>& apis, const std:
     return out;
 }
 
+// results.json, table.txt and index.html, then the summary that names them.
 Status writeResults(const Sweep& s, const RunOutcome& out, const std::vector<std::string>& argv) {
     std::string command = "cavity run";
     for (const auto& a : argv) command += " " + a;
     std::error_code ec;
     std::filesystem::create_directories(s.out, ec);
-    const std::string path = (std::filesystem::path(s.out) / "results.json").string();
+    const std::filesystem::path dir(s.out);
+    const std::string results = (dir / "results.json").string();
     auto doc = resultsDocument(out.runs, out.errors, command);
     // What was measured in place of the kernels' own files (--kernel-source):
     // a result of an edited kernel is never read as the kernel's.
@@ -200,8 +146,19 @@ Status writeResults(const Sweep& s, const RunOutcome& out, const std::vector<std
         for (const auto& r : s.replaced)
             doc["kernel_sources"].push_back({{"name", r.name}, {"file", r.file}, {"digest", r.digest}});
     }
-    CAVITY_TRY(writeJson(path, doc));
-    std::printf("\nwrote %s\n", path.c_str());
+    CAVITY_TRY(writeJson(results, doc));
+    if (out.runs.empty()) {
+        std::printf("wrote %s (no configuration ran)\n", results.c_str());
+        return {};
+    }
+    const std::string table = (dir / "table.txt").string(), page = (dir / "index.html").string();
+    const std::string tableText = runTable(out.runs);
+    CAVITY_TRY(writeFileAtomically(table, tableText));
+    CAVITY_TRY(report::writeRunPage(s.out, out.runs, command));
+    if (s.table) std::printf("\n%s", tableText.c_str());
+    std::printf("%s", runSummary(out.runs, {"wrote " + results + " and " + table + " (every pass, its clock, the notes)",
+                                            "open " + page})
+                          .c_str());
     return {};
 }
 
@@ -232,7 +189,6 @@ int runCommand(const std::vector<std::string>& argv) {
     if (auto o = gpu::withEnvironment(s.backend); !o) return fail(o.error());
     if (auto st = checkWritableDir("--out", s.out); !st) return fail(st.error());
     const RunOutcome out = runPlan(s, apis, *plan);
-    if (!out.runs.empty()) printTable(out.runs);
     // --max-time bounds a run whatever --frames asks: say where it cut one short.
     for (const auto& r : out.runs)
         if (r.timing.stop == "time" && r.timing.frame.ms.size() < size_t(r.timingOptions.frames))

@@ -14,7 +14,8 @@ const CommandSpec& runSpec() {
         c.program = "cavity run";
         c.description =
             "Runs a sweep of kernel configurations on one or both backends: images under --out/<id>/, "
-            "results.json, a timing table on stdout, progress on stderr. Every list flag takes "
+            "results.json, table.txt (every pass, its clock) and index.html (every image, a chart per kernel); "
+            "a summary per kernel on stdout, progress on stderr. Every list flag takes "
             "VALUE[,VALUE..] and the sweep is the product of all lists.";
         const std::string sweep = "Sweep", timing = "Timing", output = "Device and output";
         const std::string scenes = kernels::findParam("scene")->help;
@@ -43,6 +44,7 @@ const CommandSpec& runSpec() {
             {"--out", "DIR", "output folder (default out)", output},
             {"--list", "", "print the configuration ids this run would measure, one a line, and run nothing", output},
             {"--quiet", "", "no progress lines on stderr", output},
+            {"--table", "", "print table.txt's table (every pass of every configuration) before the summary", output},
         };
         for (auto& f : kernelParamFlags({"scene"})) c.flags.push_back(std::move(f));
         c.footer = "\n" + kernelHelp() +
@@ -175,6 +177,7 @@ Result<Sweep> parseSweep(const std::vector<std::string>& argv) {
     s.backend.validation = parsed.has("--validation");
     s.list = parsed.has("--list");
     s.quiet = parsed.has("--quiet");
+    s.table = parsed.has("--table");
     for (const auto& [flag, v] : parsed.values) {
         CAVITY_ASSIGN(const bool done, sweepFlag(s, flag, v));
         if (done) continue;

@@ -35,7 +35,7 @@ struct Sweep {
     RunOptions options;
     gpu::BackendOptions backend;
     std::string out = "out";
-    bool list = false, quiet = false;
+    bool list = false, quiet = false, table = false;
     std::optional<std::regex> filter;   // --filter
     // --kernel-source NAME=FILE: kernels/NAME replaced in every configuration
     // (options.overrides holds the texts; this, what results.json records).

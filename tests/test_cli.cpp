@@ -198,7 +198,13 @@ TEST_F(Cli, RunWritesImagesAndResults) {
         EXPECT_EQ(r["frame"]["samples_ms"].size(), 3u);
         for (const auto& p : r["passes"]) EXPECT_GT(p["stats"]["median_ms"].get<double>(), 0.0);
     }
-    EXPECT_NE(o.output.find("median ms"), std::string::npos);
+    // The summary names both APIs' kernel row; the long table is in table.txt.
+    EXPECT_NE(o.output.find("alchemy"), std::string::npos) << o.output;
+    EXPECT_NE(o.output.find("open " + (dir / "index.html").string()), std::string::npos) << o.output;
+    std::ifstream table(dir / "table.txt");
+    const std::string tableText{std::istreambuf_iterator<char>(table), std::istreambuf_iterator<char>()};
+    EXPECT_NE(tableText.find("median ms"), std::string::npos);
+    EXPECT_NE(tableText.find("pipeline"), std::string::npos);
 }
 
 // --max-time bounds a run whatever --frames asks for, and says so.

@@ -5,6 +5,7 @@
 #include "gate/gate.h"
 #include "report/gate_report.h"
 #include "gpu_fixture.h"
+#include "chromium.h"
 #include "run_binary.h"
 
 #include <gtest/gtest.h>
@@ -331,25 +332,6 @@ TEST(Gate, ShardsPartitionTheMatrix) {
                 EXPECT_TRUE(seen.insert(i).second) << i;
             }
     EXPECT_EQ(seen.size(), 20u);
-}
-
-// The report is a page whose script builds it from the data inlined in it:
-// what a reviewer sees is what headless Chromium has in its document after
-// the script ran. Not installed: a failure in CI (scripts/setup.sh installs
-// it), a skip elsewhere.
-#define REQUIRE_CHROMIUM()                                                                \
-    if (runBinary("command", "-v chromium", "", ">/dev/null 2>&1").code != 0) {          \
-        if (inCI()) FAIL() << "chromium is not installed (scripts/setup.sh installs it)"; \
-        GTEST_SKIP() << "chromium is not installed";                                     \
-    }
-
-const std::string kChromium = "120 chromium --headless=new --no-sandbox --disable-gpu --hide-scrollbars --window-size=1400,1000 ";
-
-// The document of the page at `html` once its script has run, as Chromium serialises it.
-std::string renderedDom(const fs::path& html) {
-    const Outcome o = runBinary("timeout", kChromium + "--dump-dom file://" + html.string(), "", "2>/dev/null");
-    EXPECT_EQ(o.code, 0) << html;
-    return o.output;
 }
 
 std::string slurp(const fs::path& p) {

@@ -81,6 +81,11 @@ Result<SampleSets> readResultsJson(const json& doc, const std::string& path, boo
         // The frame first, as a table reads best whole before parts.
         CAVITY_ASSIGN(const JsonObject frame, r.object("frame"));
         CAVITY_TRY(addSamples(out.at(id, kFramePass), frame, clock, smMhz, everySample));
+        // The AO pipeline, cavity_bench's total (results.json of older runs has none).
+        if (r.raw().contains(kPipelinePass)) {
+            CAVITY_ASSIGN(const JsonObject pipeline, r.object(kPipelinePass));
+            CAVITY_TRY(addSamples(out.at(id, kPipelinePass), pipeline, clock, smMhz, everySample));
+        }
         CAVITY_ASSIGN(const auto passes, r.objects("passes"));
         for (const auto& p : passes) {
             CAVITY_ASSIGN(const std::string name, p.str("name"));

@@ -53,8 +53,9 @@ struct SampleSets {
     SampleSet& at(const std::string& id, const std::string& pass);
 };
 
-// The series' name for the whole of a configuration: results.json times the
-// frame; cavity_bench's own time (real_time) is the AO pipeline, G-buffer left out.
+// The series' names for the whole of a configuration: results.json times the
+// frame (G-buffer included) and the AO pipeline (G-buffer left out);
+// cavity_bench's own time (real_time) is the AO pipeline.
 constexpr const char* kFramePass = "frame";
 constexpr const char* kPipelinePass = "pipeline";
 

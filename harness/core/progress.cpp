@@ -33,6 +33,10 @@ void Progress::print(size_t count, const std::string& label, size_t finished, bo
 void Progress::start(const std::string& id) {
     if (quiet_) return;
     ++begun_;
+    // A log (no terminal) keeps a line per tenth of the steps, the first and
+    // the last: a long run's log stays readable and still shows it moving.
+    const bool tenth = begun_ == 1 || begun_ == total_ || begun_ * 10 / total_ != (begun_ - 1) * 10 / total_;
+    if (!terminal_ && !tenth) return;
     print(begun_, id, begun_ - 1, terminal_);
     open_ = terminal_;
 }

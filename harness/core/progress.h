@@ -2,9 +2,10 @@
 // one progress line of every command:
 //     [3/12] corner/alchemy/n16/b4/full/320x180/vk/compute  elapsed E s  ETA R s
 // (E the seconds since the start, R the seconds the ETA expects still), one
-// line rewritten in place (\r) when stderr is a terminal, a plain line
-// per step otherwise (a pipe, a CI log); --quiet gives a Progress that says
-// nothing. The ETA is the mean time per finished step times the steps left.
+// line rewritten in place (\r) when stderr is a terminal, otherwise (a pipe,
+// a CI log) a plain line for the first step, the last, and one a tenth of
+// the way in between; --quiet gives a Progress that says nothing. The ETA
+// is the mean time per finished step times the steps left.
 #pragma once
 
 #include <chrono>

@@ -185,12 +185,20 @@ json toJson(const RunRecord& r) {
         {"clock_note", r.timing.clockNote},
         {"passes", passes},
         {"frame", series(r.timing.frame)},
+        {"pipeline", series(r.timing.pipeline)},
         {"frame_wall", series(r.timing.frameWall)},
         {"frame_gpu_timestamps", series(r.timing.frameGpu)},
         {"images", r.images},
         {"debug_messages", r.debugMessages},
         {"non_finite", nonFiniteJson(r.nonFinite)},
     };
+}
+
+std::string clockDescription(const RunRecord& r) {
+    const std::string host = r.device.softwareRenderer ? "host " : "";
+    if (r.timing.clock == "gpu-timestamp") return r.device.softwareRenderer ? "host timestamps" : "GPU timestamps";
+    if (r.timing.clock == "wall") return host + "wall clock";
+    return host + r.timing.clock;
 }
 
 json resultsDocument(const std::vector<RunRecord>& runs, const std::vector<RunError>& errors,

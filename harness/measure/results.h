@@ -48,6 +48,11 @@ struct RunError {
     std::string message;
 };
 
+// The clock a configuration was timed on, as a reader needs it: "GPU
+// timestamps", "wall clock", or on a software renderer "host timestamps" and
+// "host wall clock" (both the CPU's time, not a GPU's).
+std::string clockDescription(const RunRecord& r);
+
 nlohmann::json toJson(const Stats& s);
 nlohmann::json toJson(const RunRecord& r);
 // A pipeline's driver statistics as results.json and a render manifest

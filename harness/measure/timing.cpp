@@ -166,6 +166,7 @@ public:
         t_.passes.assign(first.passCount(), {});
         for (size_t i = 0; i < first.passCount(); ++i) t_.passes[i].name = first.passes()[i].name;
         t_.frame.name = t_.frameWall.name = t_.frameGpu.name = "frame";
+        t_.pipeline.name = "pipeline";
         const auto t0 = Clock::now();
         sampleClock();
         while (!stopRule(secondsSince(t0))) {
@@ -243,7 +244,12 @@ private:
                 continue;
             }
             ++accepted_;
-            for (size_t i = 0; i < t_.passes.size(); ++i) t_.passes[i].ms.push_back(g.passMs[f][i]);
+            double pipeline = 0;
+            for (size_t i = 0; i < t_.passes.size(); ++i) {
+                t_.passes[i].ms.push_back(g.passMs[f][i]);
+                if (t_.passes[i].name != "gbuffer") pipeline += g.passMs[f][i];
+            }
+            t_.pipeline.ms.push_back(pipeline);
             t_.frame.ms.push_back(g.frameMs[f]);
             t_.frameWall.ms.push_back(g.frameWall[f]);
             t_.frameGpu.ms.push_back(g.frameGpu[f]);
@@ -277,6 +283,7 @@ Result<Timing> measurePasses(gpu::Backend& gpu, std::span<PassChain* const> chai
     CAVITY_TRY(m.measure(*chains[0]));
     for (auto& s : t.passes) finalize(s);
     finalize(t.frame);
+    finalize(t.pipeline);
     finalize(t.frameWall);
     finalize(t.frameGpu);
     if (clocks) t.clocks = summarizeClocks(m.clockSamples(), clocks->source(), clocks->device());

@@ -79,6 +79,10 @@ struct Timing {
     int batchFrames = 1;         // frames per submission
     std::vector<Series> passes;  // in pass order, on `clock`
     Series frame;                // the whole frame, on `clock`
+    // The AO pipeline: every pass but the G-buffer, per frame, on `clock`.
+    // cavity_bench's time and `cavity run`'s summary are this series, so the
+    // two formats name the same total the same way.
+    Series pipeline;
     Series frameWall;            // wall time per frame (batch mode: the batch's wall time over its frames)
     Series frameGpu;             // sum of the pass timestamps of each frame
     // How the measurement went.
