@@ -96,16 +96,27 @@ Result<std::map<fs::path, std::pair<std::string, std::string>>> kernelSourceCopi
 
 }  // namespace
 
+namespace {
+int updateCommand(const std::vector<std::string>& argv);
+}  // namespace
+
 int baselinesCommand(const std::vector<std::string>& argv) {
     if (!argv.empty() && (argv[0] == "--help" || argv[0] == "-h")) {
-        std::cout << "usage: cavity baselines update|approve [flags]   (see cavity baselines update --help, "
-                     "cavity baselines approve --help)\n";
+        std::cout << "usage: cavity baselines update|approve|migrate-digests [flags]   (see cavity baselines update "
+                     "--help, cavity baselines approve --help, cavity baselines migrate-digests --help)\n";
         return 0;
     }
     if (!argv.empty() && argv[0] == "approve") return approveCommand({argv.begin() + 1, argv.end()});
+    if (!argv.empty() && argv[0] == "migrate-digests") return migrateCommand({argv.begin() + 1, argv.end()});
     if (argv.empty() || argv[0] != "update")
         return fail("cavity baselines", badInput("'" + (argv.empty() ? std::string() : argv[0]) +
-                                                 "': usage: cavity baselines update|approve [flags]"));
+                                                 "': usage: cavity baselines update|approve|migrate-digests [flags]"));
+    return updateCommand(argv);
+}
+
+namespace {
+
+int updateCommand(const std::vector<std::string>& argv) {
     std::string from = "out/gate", filterText, root;
     auto parsed = parseFlags(updateSpec(), std::vector<std::string>(argv.begin() + 1, argv.end()));
     if (!parsed) return fail("cavity baselines update", parsed.error());
@@ -176,5 +187,7 @@ int baselinesCommand(const std::vector<std::string>& argv) {
     if (const std::string hint = budgetOnlyHint(*run, filter.has_value(), from); !hint.empty()) std::cout << hint << "\n";
     return 0;
 }
+
+}  // namespace
 
 }  // namespace cavity::cli

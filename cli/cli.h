@@ -48,6 +48,7 @@ int runCommand(const std::vector<std::string>& args);
 int gateCommand(const std::vector<std::string>& args);
 int baselinesCommand(const std::vector<std::string>& args);
 int approveCommand(const std::vector<std::string>& args);   // cavity baselines approve
+int migrateCommand(const std::vector<std::string>& args);   // cavity baselines migrate-digests
 int compareCommand(const std::vector<std::string>& args);
 int storeCommand(const std::vector<std::string>& args);     // cavity store check
 int abCommand(const std::vector<std::string>& args);        // cavity ab

@@ -20,6 +20,7 @@ constexpr const char* kUsage =
     "  gate merge join shard outputs into one verdict\n"
     "  baselines update   accept new images as baselines\n"
     "  baselines approve  approve (or mark known bad) a run's image digests for their device class\n"
+    "  baselines migrate-digests  rewrite approvals' FNV-1a digests as SHA-256\n"
     "  store check        fetch every approved image from the image store and check its digest\n"
     "  ab         two builds measured interleaved on one GPU, then compared pass by pass\n"
     "  compare    two runs (results.json or cavity_bench JSON) pass by pass: change, interval, verdict\n"

@@ -22,6 +22,7 @@ packages=(
   zlib1g-dev                                                    # render folders (cavity_render)
   xz-utils                                                      # scripts/bundle.sh: the GPU bundle, compressed (tests/test_bundle.py)
   libcurl4-openssl-dev                                          # the HTTP image store (harness/store)
+  libssl-dev                                                    # SHA-256 image digests (OpenSSL's libcrypto; harness/core/digest.cpp)
   nginx-light openssl                                           # tests/test_store_http.py: a real WebDAV store, with TLS
   python3 python3-matplotlib python3-jsonschema                 # scripts/charts/charts.py; tests/validate_results.py
   python3-xmlschema python3-junitparser                         # tests/validate_junit.py: junit.xml as CI readers take it

@@ -40,7 +40,7 @@ GOOGLE_BENCHMARK_FLAGS = {
 # Subcommands: program -> {subcommand words: ()}; () is the program itself.
 SUBCOMMANDS = {
     "cavity": [("run",), ("quality",), ("compare",), ("gate", "judge"), ("gate", "merge"), ("gate",),
-               ("baselines", "update"), ("baselines", "approve"), ("store", "check"), ("ab",),
+               ("baselines", "update"), ("baselines", "approve"), ("baselines", "migrate-digests"), ("store", "check"), ("ab",),
                ("history", "ingest"), ("history", "show"), ("history", "chart"), ("history", "alerts"),
                ("history",), ("kernels", "list"), ("kernels", "show"), ("kernels", "check")],
     "cavity_render": [("quality",)],

@@ -57,6 +57,7 @@ protected:
         fs::create_directories(dir);
         base = dir / "baselines";
         fs::copy(fs::path(CAVITY_SOURCE_DIR) / "baselines", base, fs::copy_options::recursive);
+        fs::remove_all(base / "store");   // a checkout's own store (ignored by git) is not a clone's
         ::cavity::test::dropCpuApprovals(base.string());
     }
     void TearDown() override { fs::remove_all(dir); }
@@ -222,8 +223,9 @@ TEST_F(GateInputs, ApprovedDigestsPassAtOnceAndKnownBadOnesFail) {
         EXPECT_EQ(storeFiles(), stored) << args;
     }
     // What a kill -9 left (a process id that no longer runs) goes with the next write.
-    fs::create_directories(base / "store" / "fnv1a64");
-    const fs::path staleJson = base / "approvals.json.tmp-999999999", staleObject = base / "store/fnv1a64/0123456789abcdef.f32z.tmp-999999999";
+    fs::create_directories(base / "store" / "sha256");
+    const fs::path staleJson = base / "approvals.json.tmp-999999999",
+                   staleObject = base / "store/sha256" / (std::string(64, 'a') + ".f32z.tmp-999999999");
     std::ofstream(staleJson) << "{";
     std::ofstream(staleObject) << "half";
     const Outcome approve = run("baselines approve --from " + out.string() + " --baselines " + base.string() +
@@ -303,7 +305,7 @@ TEST_F(GateInputs, ToleranceJudgesAgainstTheClassReferenceElseTheDefault) {
         EXPECT_EQ(i["route"], "tolerance") << i;
         const std::string ref = i["reference"];
         EXPECT_TRUE(ref == "llvmpipe gl/compute" || ref == "llvmpipe vk/compute") << ref;
-        EXPECT_EQ(i["baseline"].get<std::string>().rfind("store:fnv1a64:", 0), 0u) << i;
+        EXPECT_EQ(i["baseline"].get<std::string>().rfind("store:sha256:", 0), 0u) << i;
         EXPECT_NE(i["approval"].get<std::string>().find("llvmpipe references"), std::string::npos) << i;
         failed += !i["passed"].get<bool>();
     }

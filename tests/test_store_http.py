@@ -233,7 +233,7 @@ def cases(work, http, https, ca, www):
     p = run([CAVITY, "baselines", "approve", "--from", good, "--baselines", base, "--store", url, "--why", "t"], writer)
     check(p.returncode == 0 and "3 images in the store" in p.stdout, f"writer approves: {p.stdout.strip()} {p.stderr.strip()}")
     digests = [a["digest"] for a in json.load(open(approvals))["approvals"]]
-    on_server = sorted(os.listdir(os.path.join(www, "cavity", "fnv1a64")))
+    on_server = sorted(os.listdir(os.path.join(www, "cavity", "sha256")))
     check(sorted(d.split(":")[1] + ".f32z" for d in digests) == on_server, f"objects on the server: {on_server}")
 
     # Reading needs credentials too (any user).
@@ -280,7 +280,7 @@ def cases(work, http, https, ca, www):
     # A digest mismatch on the server: the object of one digest holds another
     # image. The judge refuses (exit 6) and caches nothing.
     shutil.rmtree(CACHE)
-    obj = lambda d: os.path.join(www, "cavity", "fnv1a64", d.split(":")[1] + ".f32z")
+    obj = lambda d: os.path.join(www, "cavity", "sha256", d.split(":")[1] + ".f32z")
     ao = next(a["digest"] for a in json.load(open(approvals))["approvals"] if a["image"] == "ao")
     other = next(d for d in digests if d != ao)
     saved = open(obj(ao), "rb").read()

@@ -5,8 +5,10 @@
 #include "images/image_io.h"
 #include "measure/runner.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
+#include <set>
 
 namespace cavity::gate {
 
@@ -76,6 +78,19 @@ Result<Judge> prepareJudge(const std::string& baselines, const std::vector<RunCo
     CAVITY_ASSIGN(j.manifest, loadManifest((root / "manifest.json").string()));
     CAVITY_ASSIGN(j.budgets, loadBudgets((root / "budgets.json").string()));
     CAVITY_ASSIGN(j.approvals, loadApprovals((root / "approvals.json").string()));
+    // Said once, where an approval of this run's configurations is one.
+    std::set<std::string> keys;
+    for (const auto& c : configs) keys.insert(baselineKey(c));
+    const auto legacy = std::count_if(j.approvals.entries.begin(), j.approvals.entries.end(), [&](const Approval& a) {
+        return keys.count(a.key) && core::isLegacyDigest(a.digest);
+    });
+    if (legacy > 0) {
+        std::lock_guard<std::mutex> hold(core::stderrLock());
+        std::fprintf(stderr, "cavity: %s: %ld approvals of these configurations name their image by an FNV-1a digest, "
+                             "which a forged image can be made to match; `cavity baselines migrate-digests --baselines %s` "
+                             "makes them SHA-256\n",
+                     (root / "approvals.json").c_str(), long(legacy), baselines.c_str());
+    }
     j.remote = remote;
     for (const auto& c : configs)
         for (const auto& img : checkedImages())
@@ -189,7 +204,11 @@ Result<ImageCheck> judgeImage(const CheckedImage& ci, const HostImage* now, cons
         // driver's readback gave (GL and Vulkan convert differently).
         if (auto bits = render::writeImageFile((dir / (ci.name + ".new.f32z")).string(), *now, 1); !bits) return bits.error();
     }
-    if (const Approval* a = j.approvals.find(r.key, ci.name, digest, deviceClass(r.device))) {
+    const Approval* a = j.approvals.find(r.key, ci.name, digest, deviceClass(r.device));
+    // An approval made before SHA-256 names the image by its FNV-1a digest.
+    if (!a && now && j.approvals.legacy > 0)
+        a = j.approvals.find(r.key, ci.name, core::legacyImageDigest(*now), deviceClass(r.device));
+    if (a) {
         check.route = a->positive ? "digest" : "negative";
         check.approval = approvalText(*a);
         if (!a->positive) check.failures.push_back("digest " + digest + " is known bad: " + check.approval);

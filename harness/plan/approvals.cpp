@@ -1,5 +1,6 @@
 #include "plan/approvals.h"
 
+#include "core/digest.h"
 #include "core/json_file.h"
 #include "core/json_input.h"
 
@@ -68,9 +69,9 @@ Result<Approvals> loadApprovals(const std::string& path) {
             CAVITY_ASSIGN(*out, e.str(field));
         }
         if (verdict != "positive" && verdict != "negative") return e.bad("verdict", "must be positive or negative");
-        if (x.digest.size() != 24 || x.digest.rfind("fnv1a64:", 0) != 0 ||
-            x.digest.find_first_not_of("0123456789abcdef", 8) != std::string::npos)
-            return e.bad("digest", "must be fnv1a64: and 16 lower-case hex digits");
+        if (!core::isImageDigest(x.digest))
+            return e.bad("digest", "must be sha256: and 64 lower-case hex digits (or, approved before SHA-256, "
+                                   "fnv1a64: and 16)");
         // Classes, APIs and stages that a render can produce, and no other:
         // an entry no render can match is a typo that approves nothing.
         if (x.deviceClass.empty() || x.deviceClass == "unknown" || deviceClass(x.deviceClass) != x.deviceClass)
@@ -80,6 +81,7 @@ Result<Approvals> loadApprovals(const std::string& path) {
         if (x.stage != "compute" && x.stage != "fragment") return e.bad("stage", "must be compute or fragment");
         if (x.key.empty()) return e.bad("key", "must name a baseline (e.g. corner/alchemy/n16/b4/full/160x90)");
         x.positive = verdict == "positive";
+        a.legacy += core::isLegacyDigest(x.digest);
         a.entries.push_back(std::move(x));
     }
     return a;

@@ -26,6 +26,9 @@ struct Approval {
 
 struct Approvals {
     std::vector<Approval> entries;
+    // Entries whose digest is an older FNV-1a 64 (core/digest.h): still
+    // matched, by that digest of the image, until migrated.
+    int legacy = 0;
     // The entry for this key, image and digest: a negative on any class
     // (known bad anywhere), else a positive on `deviceClass`; null if none.
     const Approval* find(const std::string& key, const std::string& image, const std::string& digest,

@@ -1,4 +1,4 @@
-// The HTTP store: objects at <URL>/fnv1a64/<hex>.f32z, read with GET (after
+// The HTTP store: objects at <URL>/sha256/<hex>.f32z, read with GET (after
 // a look in the local cache), probed with HEAD, written with PUT. Plain HTTP
 // rather than S3's signed requests: every WebDAV server (nginx's dav module,
 // Apache's mod_dav), an S3 or GCS bucket behind an HTTP gateway, Artifactory

@@ -15,9 +15,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr const char* kAlgorithm = "fnv1a64:";
-constexpr size_t kHexDigits = 16;
-
 class FolderStore final : public ImageStore {
 public:
     explicit FolderStore(std::string root) : root_(std::move(root)) {}
@@ -57,19 +54,11 @@ std::string env(const char* name) {
 
 }  // namespace
 
-bool validDigest(const std::string& digest) {
-    const std::string prefix = kAlgorithm;
-    if (digest.size() != prefix.size() + kHexDigits || digest.compare(0, prefix.size(), prefix) != 0) return false;
-    for (size_t i = prefix.size(); i < digest.size(); ++i) {
-        const char c = digest[i];
-        if (!((c >= '0' && c <= '9') || (c >= 'a' && c <= 'f'))) return false;
-    }
-    return true;
-}
+bool validDigest(const std::string& digest) { return core::isImageDigest(digest); }
 
 std::string objectPath(const std::string& digest) {
-    const std::string prefix = kAlgorithm;
-    return "fnv1a64/" + digest.substr(prefix.size()) + ".f32z";
+    const size_t colon = digest.find(':');
+    return digest.substr(0, colon) + "/" + digest.substr(colon + 1) + ".f32z";
 }
 
 std::string defaultLocation(const std::string& baselines) {
@@ -101,7 +90,8 @@ Result<std::unique_ptr<ImageStore>> openStore(const StoreOptions& o) {
 }
 
 Result<HostImage> getImage(ImageStore& s, const std::string& digest) {
-    if (!validDigest(digest)) return badInput("digest '" + digest + "': not fnv1a64: and 16 hex digits");
+    if (!validDigest(digest))
+        return badInput("digest '" + digest + "': not sha256: and 64 hex digits (nor an older fnv1a64: and 16)");
     CAVITY_ASSIGN(const std::string bytes, s.getBytes(digest));
     return decodeObject(bytes, digest, s.where() + "/" + objectPath(digest));
 }
@@ -109,7 +99,7 @@ Result<HostImage> getImage(ImageStore& s, const std::string& digest) {
 Result<HostImage> decodeObject(const std::string& bytes, const std::string& digest, const std::string& label) {
     auto image = render::decodeImage(bytes, label);
     if (!image) return corrupt(image.error().message);
-    if (const std::string actual = imageDigest(*image); actual != digest)
+    if (const std::string actual = core::imageDigestLike(*image, digest); actual != digest)
         return corrupt(label + ": corrupt: its pixels have digest " + actual + ", not " + digest);
     return image;
 }

@@ -6,7 +6,10 @@
 // "cavity.f32z/1": the exact float32 pixels, zlib, readable with no
 // OpenImageIO), named by the digest of its pixels:
 //
-//   <store>/fnv1a64/<16 hex digits>.f32z
+//   <store>/sha256/<64 hex digits>.f32z
+//
+// (and <store>/fnv1a64/<16 hex digits>.f32z for images approved before
+// SHA-256, read until they are migrated: core/digest.h).
 //
 // Every read decodes the object and checks that its pixels have the digest
 // they are filed under, so a damaged or substituted object is never judged
@@ -30,10 +33,11 @@
 
 namespace cavity::store {
 
-// Is `digest` a digest objects can be filed under ("fnv1a64:" and 16
-// lower-case hex digits)? Anything else could name a path outside the store.
+// Is `digest` a digest objects can be filed under ("sha256:" and 64
+// lower-case hex digits, or an older "fnv1a64:" and 16)? Anything else could
+// name a path outside the store.
 bool validDigest(const std::string& digest);
-// "fnv1a64/0123456789abcdef.f32z"
+// "sha256/<64 hex digits>.f32z" (or "fnv1a64/<16 hex digits>.f32z")
 std::string objectPath(const std::string& digest);
 
 class ImageStore {
