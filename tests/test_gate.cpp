@@ -4,6 +4,7 @@
 #include "blur_weights.h"
 #include "gate/gate.h"
 #include "report/gate_report.h"
+#include "pipeline/config_id.h"
 #include "gpu_fixture.h"
 #include "chromium.h"
 #include "run_binary.h"
@@ -367,6 +368,50 @@ TEST(Gate, HtmlReportInlinesGateJsonThatNoMessageBreaksOutOf) {
     EXPECT_NE(dom.find("<p class=\"bad\">&lt;/script&gt;&lt;!--&lt;script&gt; a &amp; b &lt;/SCRIPT&gt;</p>"), std::string::npos)
         << dom;
     EXPECT_NE(dom.find("<title>Cavity gate ci: 1 failed</title>"), std::string::npos);
+    fs::remove_all(out);
+}
+
+// A failing result of `maxAbs` on one image against a tolerance of 0.02.
+gate::ConfigResult failingResult(gpu::Api api, int samples, double maxAbs) {
+    gate::ConfigResult r;
+    r.config.api = api;
+    r.config.params["samples"] = samples;
+    r.id = pipeline::configId(r.config);
+    gate::ImageCheck i;
+    i.image = "ao";
+    metrics::Report m{};
+    m.maxAbs = maxAbs;
+    m.ssim = 1;
+    m.psnr = 60;
+    i.metrics = m;
+    i.failures = {"max abs error " + std::to_string(maxAbs) + " > 0.02"};
+    r.images.push_back(i);
+    return r;
+}
+
+// The page lists failures worst first (by how far past its tolerance each
+// is), and a failure that is the same on both APIs is one card naming both.
+TEST(Gate, HtmlReportPutsTheWorstFailureFirstAndSharesEqualCards) {
+    gate::GateRun run;
+    run.matrix = "ci";
+    run.results.push_back(failingResult(gpu::Api::OpenGL, 16, 0.03));
+    run.results.push_back(failingResult(gpu::Api::Vulkan, 16, 0.03));
+    run.results.push_back(failingResult(gpu::Api::Vulkan, 32, 0.5));
+    run.results.push_back(failingResult(gpu::Api::OpenGL, 32, 0.25));
+    const auto data = report::reportData(run, "");
+    EXPECT_EQ(data["view"]["order"], nlohmann::json::array({2, 3, 0})) << data["view"]["order"];
+    EXPECT_EQ(data["view"]["results"][1]["card"], 0);
+    EXPECT_EQ(data["view"]["results"][0]["same"], nlohmann::json::array({run.results[1].label()}));
+    EXPECT_EQ(data["view"]["results"][3]["same"], nlohmann::json::array());
+    REQUIRE_CHROMIUM();
+    const fs::path out = tempDir("shared-cards");
+    ASSERT_TRUE(report::writeReports(run, out.string()).ok());
+    const std::string dom = renderedDom(out / "index.html");
+    const std::string text = dom.substr(0, dom.find("<script"));
+    EXPECT_EQ(text.find("data-id=\"" + run.results[1].id + "\""), std::string::npos) << "shown in the OpenGL card";
+    EXPECT_NE(text.find("every metric within 1%, on <code>" + run.results[1].label() + "</code>"), std::string::npos);
+    EXPECT_LT(text.find("data-id=\"" + run.results[2].id + "\""), text.find("data-id=\"" + run.results[3].id + "\""));
+    EXPECT_LT(text.find("data-id=\"" + run.results[3].id + "\""), text.find("data-id=\"" + run.results[0].id + "\""));
     fs::remove_all(out);
 }
 

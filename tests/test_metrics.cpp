@@ -213,49 +213,67 @@ TEST(Metrics, SsimOfConstantImagesIsTheLuminanceTerm) {
 
 // ---- heat-map ----
 
-TEST(Heatmap, RgbWithFirstColourForNoError) {
+TEST(Heatmap, SignedAndSaturatingAtTheScale) {
     HostImage a(10, 6, 1, 0.5f), b = a;
-    b.at(7, 2) = 0.6f;   // error 0.1 = scale: top of the map
-    b.at(1, 4) = 0.55f;  // half the scale
+    b.at(7, 2) = 0.6f;   // lighter by the scale: top of the lighter side
+    b.at(1, 4) = 0.55f;  // lighter by half the scale
+    b.at(3, 3) = 0.4f;   // darker by the scale
+    b.at(4, 3) = 0.1f;   // darker by four times the scale: clamped
     const HostImage h = metrics::heatmap(a, b, 0.1);
     ASSERT_EQ(h.width, 10);
     ASSERT_EQ(h.height, 6);
     ASSERT_EQ(h.channels, 3);
-    const auto first = metrics::heatColor(0), top = metrics::heatColor(1);
+    const auto none = metrics::diffColor(0), lighter = metrics::diffColor(1), darker = metrics::diffColor(-1);
     for (int c = 0; c < 3; ++c) {
-        EXPECT_EQ(h.at(0, 0, c), first[c]);
-        EXPECT_EQ(h.at(9, 5, c), first[c]);
-        EXPECT_NEAR(h.at(7, 2, c), top[c], 1e-5);
+        EXPECT_EQ(h.at(0, 0, c), none[c]);
+        EXPECT_EQ(h.at(9, 5, c), none[c]);
+        EXPECT_NEAR(h.at(7, 2, c), lighter[c], 1e-5);
+        EXPECT_NEAR(h.at(3, 3, c), darker[c], 1e-5);
+        EXPECT_NEAR(h.at(4, 3, c), darker[c], 1e-5);
     }
-    // More error, brighter.
+    // More change, lighter; lighter pixels lean red, darker ones blue.
     auto luma = [&](int x, int y) { return 0.2126 * h.at(x, y, 0) + 0.7152 * h.at(x, y, 1) + 0.0722 * h.at(x, y, 2); };
     EXPECT_LT(luma(0, 0), luma(1, 4));
     EXPECT_LT(luma(1, 4), luma(7, 2));
+    EXPECT_GT(h.at(7, 2, 0), h.at(7, 2, 2));
+    EXPECT_GT(h.at(3, 3, 2), h.at(3, 3, 0));
 }
 
-TEST(Heatmap, ColourMapRisesInLightness) {
-    double previous = -1;
-    for (int i = 0; i <= 64; ++i) {
-        const auto c = metrics::heatColor(i / 64.0);
-        for (float v : c) {
-            EXPECT_GE(v, 0.0f);
-            EXPECT_LE(v, 1.0f);
+TEST(Heatmap, TakesTheSignOfTheChannelThatMovedMost) {
+    HostImage a(2, 1, 3, 0.5f), b = a;
+    b.at(0, 0, 0) = 0.52f;
+    b.at(0, 0, 2) = 0.45f;   // the larger move, darker
+    const HostImage h = metrics::heatmap(a, b, 0.1);
+    const auto want = metrics::diffColor(-0.5);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(h.at(0, 0, c), want[c], 1e-5);
+}
+
+TEST(Heatmap, ColourMapRisesInLightnessOnBothSides) {
+    for (const double sign : {-1.0, 1.0}) {
+        double previous = -1;
+        for (int i = 0; i <= 64; ++i) {
+            const auto c = metrics::diffColor(sign * i / 64.0);
+            for (float v : c) {
+                EXPECT_GE(v, 0.0f);
+                EXPECT_LE(v, 1.0f);
+            }
+            const double luma = 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2];
+            EXPECT_GT(luma, previous) << "at " << sign * i / 64.0;
+            previous = luma;
         }
-        const double luma = 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2];
-        EXPECT_GT(luma, previous) << "at " << i / 64.0;
-        previous = luma;
     }
-    EXPECT_EQ(metrics::heatColor(-3)[0], metrics::heatColor(0)[0]);
-    EXPECT_EQ(metrics::heatColor(7)[1], metrics::heatColor(1)[1]);
+    EXPECT_EQ(metrics::diffColor(-3)[2], metrics::diffColor(-1)[2]);
+    EXPECT_EQ(metrics::diffColor(7)[1], metrics::diffColor(1)[1]);
 }
 
-TEST(Heatmap, NanIsTopColourUnlessInBoth) {
+TEST(Heatmap, NanIsMagentaUnlessInBoth) {
     HostImage a(3, 3, 1, 0.5f), b = a;
     b.at(1, 1) = std::numeric_limits<float>::quiet_NaN();
     b.at(2, 2) = a.at(2, 2) = std::numeric_limits<float>::quiet_NaN();   // NaN in both: equal, as compare() counts it
     const HostImage h = metrics::heatmap(a, b, 0.5);
-    EXPECT_EQ(h.at(1, 1, 1), metrics::heatColor(1)[1]);
-    EXPECT_EQ(h.at(2, 2, 1), metrics::heatColor(0)[1]);
+    EXPECT_EQ(h.at(1, 1, 0), 1.0f);
+    EXPECT_EQ(h.at(1, 1, 1), 0.0f);
+    EXPECT_EQ(h.at(2, 2, 1), metrics::diffColor(0)[1]);
 }
 
 }  // namespace

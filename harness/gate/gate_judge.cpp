@@ -128,7 +128,7 @@ Status judgeAgainst(ImageCheck& check, const CheckedImage& ci, const HostImage& 
     check.baselinePng = (dir / (ci.name + ".baseline.png")).string();
     check.diffPng = (dir / (ci.name + ".diff.png")).string();
     CAVITY_TRY(writeImage(check.baselinePng, base, Encoding::Preview));
-    CAVITY_TRY(writeImage(check.diffPng, metrics::heatmap(base, now, 2 * tol.pixelThreshold), Encoding::Preview));
+    CAVITY_TRY(writeImage(check.diffPng, metrics::heatmap(base, now, tol.pixelThreshold), Encoding::Preview));
     return {};
 }
 

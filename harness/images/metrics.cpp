@@ -319,21 +319,22 @@ Result<Report> compare(const HostImage& baselineIn, const HostImage& candidateIn
     return r;
 }
 
-// Stops of a magma-like map (after matplotlib's magma, van der Walt & Smith
-// 2015): dark to bright with CIE L* rising about evenly (0, 10, 21, 30, 39,
-// 48, 60, 73, 98), so brighter always reads as "more error", in grey too.
-std::array<float, 3> heatColor(double t) {
-    static constexpr float stops[][3] = {
-        {0.001462f, 0.000466f, 0.013866f}, {0.113094f, 0.065492f, 0.276784f}, {0.271305f, 0.069022f, 0.485810f},
-        {0.445163f, 0.122724f, 0.506901f}, {0.616293f, 0.180653f, 0.497912f}, {0.784779f, 0.238928f, 0.465089f},
-        {0.944006f, 0.377643f, 0.365136f}, {0.995131f, 0.608815f, 0.413293f}, {0.987053f, 0.991438f, 0.749504f},
-    };
-    constexpr int last = int(std::size(stops)) - 1;
-    if (!(t > 0)) return {stops[0][0], stops[0][1], stops[0][2]};
-    if (!(t < 1)) return {stops[last][0], stops[last][1], stops[last][2]};
-    const double f = t * last;
-    const int i = std::min(int(f), last - 1);
-    const float u = float(f - i);
+// A diverging map with a dark centre: no change is near black, and the
+// colour gets lighter with the size of the change, blue where the new image
+// is darker and orange where it is lighter, so a change's size reads as
+// lightness in grey too and its sign as hue. The stops rise in CIE L* about
+// evenly on each side.
+std::array<float, 3> diffColor(double s) {
+    static constexpr float darker[][3] = {
+        {0.060f, 0.060f, 0.070f}, {0.090f, 0.200f, 0.420f}, {0.160f, 0.420f, 0.780f}, {0.560f, 0.780f, 1.000f}};
+    static constexpr float lighter[][3] = {
+        {0.060f, 0.060f, 0.070f}, {0.420f, 0.160f, 0.060f}, {0.820f, 0.400f, 0.100f}, {1.000f, 0.800f, 0.540f}};
+    if (std::isnan(s)) return {1.0f, 0.0f, 1.0f};
+    const auto& stops = s < 0 ? darker : lighter;
+    constexpr int last = int(std::size(darker)) - 1;
+    const double t = std::min(std::fabs(s), 1.0) * last;
+    const int i = std::min(int(t), last - 1);
+    const float u = float(t - i);
     std::array<float, 3> c{};
     for (int k = 0; k < 3; ++k) c[k] = stops[i][k] + u * (stops[i + 1][k] - stops[i][k]);
     return c;
@@ -344,18 +345,22 @@ HostImage heatmap(const HostImage& baseline, const HostImage& candidate, double 
     const int ch = std::min(baseline.channels, candidate.channels);
     for (int y = 0; y < candidate.height; ++y)
         for (int x = 0; x < candidate.width; ++x) {
-            double err = kInf;
+            double signedErr = NAN;
             if (x < baseline.width && y < baseline.height && ch > 0) {
-                err = 0;
+                signedErr = 0;
                 for (int c = 0; c < ch; ++c) {
                     const float a = baseline.at(x, y, c), b = candidate.at(x, y, c);
                     if (sameNonFinite(a, b)) continue;   // as compare() counts them
-                    const double d = std::fabs(double(a) - b);
-                    err = std::isnan(d) ? kInf : std::max(err, d);
+                    const double d = double(b) - a;
+                    if (std::isnan(d)) {
+                        signedErr = NAN;
+                        break;
+                    }
+                    if (std::fabs(d) > std::fabs(signedErr)) signedErr = d;
                 }
             }
-            const double t = err == 0 ? 0.0 : scale > 0 ? err / scale : 1.0;
-            const auto col = heatColor(t);
+            const double s = std::isnan(signedErr) ? NAN : signedErr == 0 ? 0.0 : scale > 0 ? signedErr / scale : signedErr;
+            const auto col = diffColor(s);
             for (int c = 0; c < 3; ++c) out.at(x, y, c) = col[c];
         }
     return out;

@@ -54,13 +54,16 @@ Result<Report> compare(const HostImage& baseline, const HostImage& candidate, co
 // Both images must have the same shape; non-finite values must be removed first.
 double ssim(const HostImage& a, const HostImage& b);
 
-// |a-b| per pixel (max over channels) through heatColor(|a-b| / scale), as an
-// RGB image for the report's diff heat-map. Non-finite errors, and pixels the
-// baseline lacks when the shapes differ, take the top colour.
+// new - baseline per pixel (of the channel that moved most, with its sign)
+// through diffColor((new - baseline) / scale), as an RGB image for the
+// report's diff heat-map: the gate passes the tolerance's per-pixel
+// threshold as the scale, so full colour is a pixel over it. Non-finite
+// errors, and pixels the baseline lacks when the shapes differ, are magenta.
 HostImage heatmap(const HostImage& baseline, const HostImage& candidate, double scale);
 
-// The heat-map's colour map: t in [0,1] (clamped) to display (sRGB-encoded)
-// RGB in [0,1], the values writeImage stores in a PNG as they are.
-std::array<float, 3> heatColor(double t);
+// The heat-map's colour map: s in [-1,1] (clamped; below 0 the new image is
+// darker) to display (sRGB-encoded) RGB in [0,1], the values writeImage
+// stores in a PNG as they are; NaN is magenta.
+std::array<float, 3> diffColor(double s);
 
 }  // namespace cavity::images::metrics

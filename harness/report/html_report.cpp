@@ -3,8 +3,10 @@
 #include "report/gate_report.h"
 
 #include "report/verdict_text.h"
+#include "pipeline/config_id.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -52,8 +54,8 @@ std::string dataUri(const std::string& png) {
 // The heat-map's colour scale as a CSS gradient, from the colours it is drawn with.
 std::string heatScaleCss() {
     std::string g = "linear-gradient(to right";
-    for (int k = 0; k <= 8; ++k) {
-        const auto c = metrics::heatColor(k / 8.0);
+    for (int k = -8; k <= 8; ++k) {
+        const auto c = metrics::diffColor(k / 8.0);
         char b[48];
         std::snprintf(b, sizeof b, ",rgb(%d,%d,%d)", int(255 * c[0] + 0.5f), int(255 * c[1] + 0.5f), int(255 * c[2] + 0.5f));
         g += b;
@@ -121,12 +123,73 @@ Status fill(std::string& page, const std::string& marker, const std::string& tex
     return {};
 }
 
+// Whether two measured values are the same within kSameShare of the larger:
+// GL and Vulkan builds of one kernel round a few blurred or composited
+// pixels differently, which moves a metric in its last printed digit.
+constexpr double kSameShare = 0.01;
+bool near(double a, double b) {
+    if (a == b) return true;
+    if (!std::isfinite(a) || !std::isfinite(b)) return false;
+    return std::fabs(a - b) <= kSameShare * std::max(std::fabs(a), std::fabs(b));
+}
+
+// The same failure: every image failed the same checks with its metrics
+// near() each other's, and every time has the same verdict.
+bool sameFailure(const ConfigResult& a, const ConfigResult& b) {
+    if (a.images.size() != b.images.size() || a.timings.size() != b.timings.size()) return false;
+    for (size_t k = 0; k < a.images.size(); ++k) {
+        const auto &i = a.images[k], &j = b.images[k];
+        if (i.image != j.image || i.route != j.route || i.failures.size() != j.failures.size()) return false;
+        if (i.metrics.has_value() != j.metrics.has_value()) return false;
+        if (!i.metrics) {
+            if (i.failures != j.failures) return false;
+            continue;
+        }
+        const auto &m = *i.metrics, &n = *j.metrics;
+        if (!(near(m.maxAbs, n.maxAbs) && near(m.meanAbs, n.meanAbs) && near(m.rmse, n.rmse) && near(m.psnr, n.psnr) &&
+              near(m.overThresholdShare, n.overThresholdShare) && near(1 - m.ssim, 1 - n.ssim) &&
+              near(m.differingShare, n.differingShare) && m.nonFinite == n.nonFinite))
+            return false;
+    }
+    for (size_t k = 0; k < a.timings.size(); ++k)
+        if (a.timings[k].passed() != b.timings[k].passed()) return false;
+    return true;
+}
+
+// Failures that are the same on both APIs get one card: for each result
+// shown inside another's card, the index of that card. Two results are the
+// same when only their API differs and sameFailure holds.
+std::map<size_t, size_t> sharedCards(const GateRun& run, const std::vector<const ConfigResult*>& order) {
+    std::map<std::string, size_t> first;
+    std::map<size_t, size_t> shown;
+    for (const auto* r : order) {
+        if (r->passed() || !r->error.empty()) continue;
+        core::RunConfig other = r->config;
+        other.api = gpu::Api::Vulkan;
+        const std::string key = pipeline::configId(other) + "#" + std::to_string(r->repetition) + "#" + r->verdict();
+        const size_t k = size_t(r - run.results.data());
+        const auto [at, fresh] = first.emplace(key, k);
+        if (!fresh && run.results[at->second].config.api != r->config.api && sameFailure(run.results[at->second], *r))
+            shown[k] = at->second;
+    }
+    return shown;
+}
+
 }  // namespace
 
 nlohmann::json reportData(const GateRun& run, const std::string& chartsDir) {
     nlohmann::json order = nlohmann::json::array(), results = nlohmann::json::array();
-    for (const auto* r : ordered(run)) order.push_back(r - run.results.data());
-    for (const auto& r : run.results) results.push_back({{"label", r.label()}, {"note", verdictNote(r)}});
+    const auto sorted = ordered(run);
+    const auto shared = sharedCards(run, sorted);
+    for (const auto* r : sorted)
+        if (!shared.count(size_t(r - run.results.data()))) order.push_back(r - run.results.data());
+    for (size_t k = 0; k < run.results.size(); ++k) {
+        const auto& r = run.results[k];
+        nlohmann::json v = {{"label", r.label()}, {"note", verdictNote(r)}, {"card", k}, {"same", nlohmann::json::array()}};
+        if (const auto at = shared.find(k); at != shared.end()) v["card"] = at->second;
+        results.push_back(std::move(v));
+    }
+    for (const auto& [k, card] : shared) results[card]["same"].push_back(run.results[k].label());
     return {{"gate", toJson(run)},
             {"view",
              {{"counts", countsText(run)},

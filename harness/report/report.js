@@ -85,7 +85,7 @@
     return table;
   }
 
-  // Baseline, new, the heat-map of |new - baseline| with its scale, a slider
+  // Baseline, new, the heat-map of new - baseline with its scale, a slider
   // between baseline and new, and the metrics against their tolerances.
   function comparison(i) {
     const row = el('div', {class: 'row'});
@@ -96,11 +96,13 @@
     row.append(el('figure', {class: 'zoomable'}, el('figcaption', {}, i.image + ' baseline' + ref), image(i.baseline_png, 'z')));
     row.append(el('figure', {class: 'zoomable'}, el('figcaption', {}, 'new'), image(i.new_png, 'z')));
     const threshold = i.tolerance.pixel_threshold;
-    row.append(el('figure', {class: 'zoomable'}, el('figcaption', {}, '|new - baseline|'),
+    // Signed, saturating at the per-pixel threshold: full colour is a
+    // pixel counted over it; blue went darker, orange lighter.
+    row.append(el('figure', {class: 'zoomable'}, el('figcaption', {}, 'new - baseline'),
                   view.images[i.diff_png] ? image(i.diff_png, 'z') : null,
                   el('div', {class: 'scale', style: 'background:' + view.heat_scale}),
-                  el('div', {class: 'scalelabels'}, el('span', {}, '0'), el('span', {}, num(threshold)),
-                     el('span', {}, '≥ ' + num(2 * threshold)))));
+                  el('div', {class: 'scalelabels'}, el('span', {}, '≤ -' + num(threshold) + ' darker'), el('span', {}, '0'),
+                     el('span', {}, '≥ +' + num(threshold) + ' lighter'))));
     if (baseline) {
       const top = el('div', {class: 'top'}, image(i.baseline_png, 'z'));
       const slider = el('input', {type: 'range', min: '0', max: '100', value: '50'});
@@ -136,7 +138,7 @@
     const grid = el('div', {class: 'grid'});
     gate.results.forEach((r, k) => {
       const kind = r.error ? 'error' : kindOf(r);
-      grid.append(el('a', {class: 'cell ' + kind, href: '#cfg' + k, title: view.results[k].label + ': ' + r.verdict}));
+      grid.append(el('a', {class: 'cell ' + kind, href: '#cfg' + view.results[k].card, title: view.results[k].label + ': ' + r.verdict}));
     });
     const legend = el('div', {class: 'legend'}, 'Overview, one cell a configuration:');
     for (const [kind, text] of [['pass', 'pass'], ['fail', 'fail'], ['noted', 'reported'], ['error', 'error']])
@@ -149,6 +151,8 @@
     const div = el('div', {id: 'cfg' + k, class: 'cfg ' + kind, 'data-id': r.id, 'data-repetition': String(r.repetition), 'data-verdict': r.verdict},
                    el('h2', {}, v.label, el('span', {class: 'badge'}, r.verdict === 'fail' ? 'FAIL' : r.verdict)));
     if (r.error) div.append(el('p', {class: 'bad'}, r.error));
+    // The other API failed with the same numbers: one card for both.
+    for (const same of v.same) div.append(el('p', {class: 'same'}, 'the same failure, every metric within 1%, on ', el('code', {}, same)));
     // A note of a verdict that did not fail (changed, flaky, expected) is
     // drawn in the reported colour, not the failures'.
     if (v.note) div.append(el('p', {class: r.fatal ? 'bad' : 'note'}, v.note));

@@ -8,7 +8,14 @@ namespace cavity::report {
 
 namespace {
 
+constexpr double kWorst = 1e300;
+
 int rank(const ConfigResult& r) { return r.fatal() ? 0 : r.verdict() != "pass" ? 1 : 2; }
+
+// How far past a limit `value` is: value / limit for an upper limit, and the
+// same for a lower one through its complement (1 - SSIM against 1 - the
+// least SSIM allowed, PSNR's limit over the value).
+double over(double value, double limit) { return limit > 0 ? value / limit : value > 0 ? kWorst : 0; }
 
 }  // namespace
 
@@ -19,11 +26,33 @@ std::string num(double x, int digits) {
     return b;
 }
 
+double severity(const ConfigResult& r) {
+    if (!r.error.empty()) return kWorst;
+    double worst = 0;
+    for (const auto& i : r.images) {
+        if (i.route == "negative") return kWorst;
+        if (!i.metrics) continue;
+        const auto& m = *i.metrics;
+        const auto& t = i.tolerance;
+        if (m.nonFinite > 0) return kWorst;
+        worst = std::max({worst, over(m.maxAbs, t.maxAbs), over(m.meanAbs, t.meanAbs), over(m.rmse, t.rmse),
+                          over(m.overThresholdShare, t.overThresholdShare), over(1 - m.ssim, 1 - t.ssimMin),
+                          std::isfinite(m.psnr) && m.psnr > 0 ? t.psnrMin / m.psnr : 0.0});
+    }
+    for (const auto& t : r.timings)
+        if (!t.advisory && t.budgetMs) worst = std::max(worst, over(t.medianMs, *t.budgetMs));
+    return worst;
+}
+
 std::vector<const ConfigResult*> ordered(const GateRun& run) {
     std::vector<const ConfigResult*> v;
     for (const auto& r : run.results) v.push_back(&r);
-    std::stable_sort(v.begin(), v.end(), [](auto* a, auto* b) {
+    std::vector<double> worst(run.results.size());
+    for (size_t k = 0; k < worst.size(); ++k) worst[k] = severity(run.results[k]);
+    const auto at = [&](const ConfigResult* r) { return worst[size_t(r - run.results.data())]; };
+    std::stable_sort(v.begin(), v.end(), [&](auto* a, auto* b) {
         if (rank(*a) != rank(*b)) return rank(*a) < rank(*b);
+        if (rank(*a) < 2 && at(a) != at(b)) return at(a) > at(b);
         return a->id < b->id;
     });
     return v;

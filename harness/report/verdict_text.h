@@ -14,8 +14,13 @@ namespace cavity::report {
 // A number in `digits` significant digits; "inf" for infinity and the
 // sentinel of "no finite value".
 std::string num(double x, int digits = 4);
+// How far a result is past its limits: the largest ratio of a metric to its
+// tolerance (or of a pass's median to its budget) over its images; 1e300
+// for an error, a non-finite pixel or a known-bad digest.
+double severity(const ConfigResult& r);
 // The results, failures first (what fails the gate, then what is reported
-// but not fatal: flaky, expected failures, known flakes), by id within.
+// but not fatal: flaky, expected failures, known flakes, changes), the worst
+// first within each (severity), then by id.
 std::vector<const ConfigResult*> ordered(const GateRun& run);
 // Lines joined with "; ".
 std::string joined(const std::vector<std::string>& lines);
