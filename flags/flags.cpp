@@ -136,11 +136,13 @@ std::string helpText(const CommandSpec& spec) {
     }
     text += "\n";
     if (!spec.footer.empty()) text += spec.footer + (spec.footer.back() == '\n' ? "" : "\n");
+    text = wrapText(text);
+    // Examples are never wrapped: each is one line to copy and paste.
     if (!spec.examples.empty()) {
         text += "\nExamples:\n";
         for (const auto& e : spec.examples) text += "  " + e + "\n";
     }
-    return wrapText(text);
+    return text;
 }
 
 Result<ParsedFlags> parseFlags(const CommandSpec& spec, const std::vector<std::string>& argv) {
