@@ -4,16 +4,15 @@
 #include "pipeline/pipeline.h"
 
 #include <algorithm>
-#include <set>
 #include <cmath>
+#include <set>
 
 namespace cavity::pipeline {
 
 namespace {
 
-// Each image asks for what the chain does with it (ImageDesc::usage): the use
-// of the pass that writes it, sampling when a later pass reads it, and
-// transfers for uploads and readbacks (read, findNonFinite, the tests).
+// Each image asks for what the chain does with it (ImageDesc::usage): its writer's use, sampling
+// when a later pass reads it, transfers for uploads and readbacks (read, findNonFinite, the tests).
 uint32_t outputUsage(const std::vector<PassSpec>& specs, const std::string& image, uint32_t written) {
     uint32_t usage = written | gpu::ImageTransfer;
     for (const auto& spec : specs)
@@ -43,6 +42,7 @@ struct PassChain::Pass {
     gpu::Image depth;                    // raster
     int vertexCount = 3;
     int width = 0, height = 0;
+    int layers = 1;   // interleaved layers per axis: dispatched over their atlas (recordPass)
     kernels::Workgroup workgroup;        // compute stage
     std::vector<Level> levels;           // levels 1.. of a mip-chain pass
 };
@@ -92,10 +92,8 @@ Status PassChain::createRaster(const PassSpec& spec, const RunConfig& c) {
     return {};
 }
 
-// The imported G-buffer (harness/images/gbuffer_import.h): the three images
-// uploaded in the formats gbuffer_sdf writes, and the linear depth it writes
-// beside them (the position's w), so every later pass reads them as it
-// reads a rendered G-buffer.
+// The imported G-buffer (harness/images/gbuffer_import.h): its three images and
+// the linear depth (the position's w) in gbuffer_sdf's formats, read as a rendered one.
 Status PassChain::uploadGBuffer(const RunConfig& c) {
     if (!c.gbufferImages) return internal("imported G-buffer " + c.gbufferFile + " was not loaded");
     const auto* decl = kernels::find("gbuffer_sdf");
@@ -110,10 +108,9 @@ Status PassChain::uploadGBuffer(const RunConfig& c) {
         const HostImage& img = *src[o];
         if (img.width != c.width || img.height != c.height || img.channels != gpu::channelCount(out.format) ||
             img.pixels.size() != size_t(img.width) * img.height * img.channels)
-            return badInput("--gbuffer-file " + c.gbufferFile + ": " + out.name + " is " + std::to_string(img.width) +
-                            "x" + std::to_string(img.height) + "x" + std::to_string(img.channels) + ": must be " +
-                            std::to_string(c.width) + "x" + std::to_string(c.height) + "x" +
-                            std::to_string(gpu::channelCount(out.format)));
+            return badInput("--gbuffer-file " + c.gbufferFile + ": " + out.name + " is " + std::to_string(img.width) + "x" +
+                            std::to_string(img.height) + "x" + std::to_string(img.channels) + ": must be " +
+                            std::to_string(c.width) + "x" + std::to_string(c.height) + "x" + std::to_string(gpu::channelCount(out.format)));
         CAVITY_ASSIGN(gpu::Image image, gpu_.createImage({c.width, c.height, out.format, 1, out.name, kUploaded}));
         images_[out.name] = {image, c.width, c.height, out.format};
         CAVITY_TRY(gpu_.uploadImage(image, 0, img.pixels));
@@ -154,6 +151,7 @@ Status PassChain::createPass(const PassSpec& spec, const RunConfig& c, const Sou
     pass->stage = mipLevels > 1 || interleaved ? gpu::Stage::Compute : c.stage;
     pass->width = spec.half ? (c.width + 1) / 2 : c.width;
     pass->height = spec.half ? (c.height + 1) / 2 : c.height;
+    pass->layers = interleaved ? interleaveOf(c) : 1;
     CAVITY_TRY(createOutputs(*pass, spec, c));
     CAVITY_TRY(createUniforms(*pass, spec, c));
     CAVITY_TRY(bindInputs(*pass, spec, c));
@@ -286,7 +284,9 @@ void PassChain::recordPass(size_t i) {
     auto& p = *passes_[i];
     gpu_.beginScope(specs_[i].name);
     if (p.stage == gpu::Stage::Compute) {
-        gpu_.dispatch(p.pipeline, p.binds, p.workgroup.groupsX(p.width), p.workgroup.groupsY(p.height));
+        // Interleaved layers: the atlas, whole layers, reaches the last pixels where k does not divide the size.
+        const auto atlas = [&](int size) { return (size + p.layers - 1) / p.layers * p.layers; };
+        gpu_.dispatch(p.pipeline, p.binds, p.workgroup.groupsX(atlas(p.width)), p.workgroup.groupsY(atlas(p.height)));
         // A mip chain's level l reads level l - 1: one scope, a barrier apart.
         for (const auto& l : p.levels) {
             gpu_.barrier();
