@@ -53,6 +53,7 @@ int compareCommand(const std::vector<std::string>& args);
 int storeCommand(const std::vector<std::string>& args);     // cavity store check
 int abCommand(const std::vector<std::string>& args);        // cavity ab
 int historyCommand(const std::vector<std::string>& args);   // cavity history ingest|show|chart|alerts
-int kernelsCommand(const std::vector<std::string>& args);   // cavity kernels list|show|check
+int kernelsCommand(const std::vector<std::string>& args);   // cavity kernels list|show|check|coverage
+int coverageCommand(const std::vector<std::string>& args);  // cavity kernels coverage
 
 }  // namespace cavity::cli

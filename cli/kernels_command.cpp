@@ -257,19 +257,21 @@ int check(const std::string& dir) {
 }  // namespace
 
 int kernelsCommand(const std::vector<std::string>& argv) {
-    const std::vector<std::string> subs = {"list", "show", "check"};
+    const std::vector<std::string> subs = {"list", "show", "check", "coverage"};
     if (!argv.empty() && (argv[0] == "--help" || argv[0] == "-h")) {
-        std::cout << "Usage: cavity kernels list|show NAME|check DIR [OPTIONS]\n"
+        std::cout << "Usage: cavity kernels list|show NAME|check DIR|coverage [OPTIONS]\n"
                      "  list         every kernel: role, package folder, CPU reference, summary\n"
                      "  show NAME    one kernel's declaration, cost and passes\n"
                      "  check DIR    a kernel package compiled on both APIs and stages, held to its shader\n"
+                     "  coverage     every code path of every kernel reached by a stored gate matrix\n"
                      "`cavity kernels SUBCOMMAND --help` lists a subcommand's flags.\n";
         return 0;
     }
+    if (!argv.empty() && argv[0] == "coverage") return coverageCommand({argv.begin() + 1, argv.end()});
     if (argv.empty() || (argv[0] != "list" && argv[0] != "show" && argv[0] != "check")) {
         const std::string near = argv.empty() ? "" : nearest(argv[0], subs);
         std::cerr << "cavity kernels: " << (argv.empty() ? "needs a subcommand" : "unknown subcommand '" + argv[0] + "'")
-                  << " (list, show NAME, check DIR)" << (near.empty() ? "" : "; did you mean " + near + "?") << "\n";
+                  << " (list, show NAME, check DIR, coverage)" << (near.empty() ? "" : "; did you mean " + near + "?") << "\n";
         return 2;
     }
     const std::string program = "cavity kernels " + argv[0];

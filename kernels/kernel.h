@@ -141,6 +141,21 @@ struct PassShape {
     Workgroup workgroup;
 };
 
+// A code path of a kernel that a parameter selects without being an option
+// of its own (a loop's remainder, a table past a size, the smallest levels),
+// as its package's [[paths]] declares it: the gate's coverage check asks
+// that some stored matrix compiles and judges a configuration where `when`
+// holds (harness/plan/coverage.h).
+struct PathDecl {
+    std::string name;       // "remainder"
+    std::string whenText;   // the condition as written: "gt(mod(samples, steps), 0)"
+    std::string note;       // what runs there
+    // Of the kernel's parameter values and "compute" (1 on the compute
+    // stage), "width", "height" (the pass's output) and "half" (1 when the
+    // configuration runs at half resolution).
+    std::function<bool(const ParamValues&)> when;
+};
+
 struct KernelDecl {
     std::string name;                   // "alchemy"
     std::string file;                   // "ssao_alchemy.glsl", relative to kernels/
@@ -189,6 +204,7 @@ struct KernelDecl {
     // (hemisphere_cosine runs hemisphere's). Empty: none, and its images are
     // gated by approvals alone.
     std::string reference;
+    std::vector<PathDecl> paths;        // its package's [[paths]]
 };
 
 // The fixed uniform block every kernel sees at binding 0 (std140).

@@ -151,6 +151,7 @@ Result<KernelDecl> readDeclaration(const DeclarationInput& in, PackageInfo& info
     CAVITY_TRY(readCost(root, c, k));
     CAVITY_TRY(readPipeline(root, c, k));
     CAVITY_TRY(readExpectations(root, c, k));
+    CAVITY_TRY(readPaths(root, c, k));
     // Good: the new parameters join the harness's, and the kernel points at them.
     for (auto& p : k.params) {
         for (const auto& a : params.added)

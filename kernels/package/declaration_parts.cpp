@@ -58,7 +58,7 @@ const std::map<std::string, gpu::Format>& outputFormats() {
 Status readTop(const toml::table& root, const Ctx& c, KernelDecl& k) {
     CAVITY_TRY(onlyKeys(c, root, "", {"name", "summary", "sources", "role", "file", "workgroup", "whole_workgroups",
                                       "interleaved", "params", "inputs", "outputs", "arrays", "cost", "pipeline",
-                                      "expectations", "reference"}));
+                                      "expectations", "reference", "paths"}));
     CAVITY_ASSIGN(k.name, text(c, root, "", "name", true));
     static const std::regex ident("[a-z][a-z0-9_]{0,39}");
     if (!std::regex_match(k.name, ident))

@@ -75,5 +75,6 @@ Status readArrays(const toml::table& root, const Ctx& c, KernelDecl& k);
 Status readCost(const toml::table& root, const Ctx& c, KernelDecl& k);
 Status readPipeline(const toml::table& root, const Ctx& c, const KernelDecl& k);
 Status readExpectations(const toml::table& root, const Ctx& c, KernelDecl& k);
+Status readPaths(const toml::table& root, const Ctx& c, KernelDecl& k);   // declaration_paths.cpp
 
 }  // namespace cavity::kernels::toml_read

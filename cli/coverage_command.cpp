@@ -1,0 +1,102 @@
+// `cavity kernels coverage`: every code path the kernel packages declare
+// (harness/plan/coverage.h), checked against the configurations of the
+// stored matrices. A path no matrix compiles and judges is a place where a
+// defect changes no image the gate looks at.
+#include "cli.h"
+#include "core/json_file.h"
+#include "plan/coverage.h"
+
+#include <filesystem>
+#include <iostream>
+
+namespace cavity::cli {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+const CommandSpec& coverageSpec() {
+    static const CommandSpec spec{
+        "cavity kernels coverage",
+        "Checks that every code path of every kernel, built-in and loaded from packages, is compiled and judged by some "
+        "configuration of the stored gate matrices: each stage a kernel can run on, each value of each bool or enum "
+        "parameter it reads, and each path its package declares under [[paths]] (a remainder, a table size, the "
+        "smallest levels). Prints the count, or one line listing every path no configuration reaches.",
+        {{"--matrix", "NAMES", "the matrices to count (comma-separated; default: every matrix in matrices.json)"},
+         {"--baselines", "DIR", "folder holding matrices.json (default: baselines/ of the repository)"}},
+        "",
+        "",
+        "\nExit codes: 0 every path is reached, 1 some path is not (listed on one line), 2 bad input.",
+        {"cavity kernels coverage", "cavity kernels coverage --matrix ci,gpu-cpu",
+         "cavity --kernels my_kernels/ kernels coverage"}};
+    return spec;
+}
+
+}  // namespace
+
+int coverageCommand(const std::vector<std::string>& argv) {
+    const std::string program = "cavity kernels coverage";
+    auto parsed = parseFlags(coverageSpec(), argv);
+    if (!parsed) return fail(program, parsed.error());
+    if (parsed->help) {
+        std::cout << parsed->helpText;
+        return 0;
+    }
+    std::string root, names;
+    for (const auto& [flag, value] : parsed->values) {
+        if (flag == "--baselines") root = value;
+        else if (flag == "--matrix") names = value;
+    }
+    if (root.empty()) {
+        auto found = defaultBaselines();
+        if (!found) return fail(program, found.error());
+        root = *found;
+    }
+    const std::string path = (fs::path(root) / "matrices.json").string();
+    std::vector<std::string> wanted;
+    if (names.empty()) {
+        auto doc = core::readJsonFile(path);
+        if (!doc) return fail(program, doc.error());
+        if (!doc->is_object()) return fail(program, badInput(path + ": must be an object of matrices by name"));
+        for (const auto& [name, m] : doc->items()) wanted.push_back(name);
+    } else {
+        std::string item;
+        for (size_t i = 0; i <= names.size(); ++i) {
+            if (i < names.size() && names[i] != ',') {
+                item += names[i];
+                continue;
+            }
+            if (item.empty()) return fail(program, badInput("--matrix " + names + ": an empty name in the list"));
+            wanted.push_back(item);
+            item.clear();
+        }
+    }
+    std::vector<plan::Matrix> matrices;
+    size_t configs = 0;
+    std::string list;
+    for (const auto& name : wanted) {
+        auto m = plan::loadMatrix(path, name);
+        if (!m) return fail(program, m.error());
+        configs += m->expand().size();
+        list += (list.empty() ? "" : ", ") + name;
+        matrices.push_back(std::move(*m));
+    }
+    size_t declared = 0;
+    for (const auto& k : kernels::all()) declared += plan::declaredPaths(k).size();
+    const auto missing = plan::uncovered(matrices);
+    if (missing.empty()) {
+        std::cout << program << ": all " << declared << " paths of " << kernels::all().size()
+                  << " kernels are compiled and judged by " << list << " (" << configs << " configurations)\n";
+        return 0;
+    }
+    std::string line;
+    for (const auto& p : missing)
+        line += (line.empty() ? "" : ", ") + p.text() + (p.why == "stage" || p.why.find("parameter") != std::string::npos
+                                                              ? ""
+                                                              : " (" + p.why + ")");
+    std::cerr << program << ": " << missing.size() << " of " << declared << " paths no configuration of " << list
+              << " compiles and judges: " << line << "\n";
+    return 1;
+}
+
+}  // namespace cavity::cli
