@@ -37,6 +37,8 @@ double severity(const ConfigResult& r) {
         if (m.nonFinite > 0) return kWorst;
         worst = std::max({worst, over(m.maxAbs, t.maxAbs), over(m.meanAbs, t.meanAbs), over(m.rmse, t.rmse),
                           over(m.overThresholdShare, t.overThresholdShare), over(1 - m.ssim, 1 - t.ssimMin),
+                          m.flipMean >= 0 ? over(m.flipMean, t.flipMeanMax) : 0.0,
+                          m.flipMean >= 0 ? over(m.differingShare, t.differingShareMax) : 0.0,
                           std::isfinite(m.psnr) && m.psnr > 0 ? t.psnrMin / m.psnr : 0.0});
     }
     for (const auto& t : r.timings)
