@@ -38,6 +38,9 @@ const CommandSpec& migrateSpec() {
             {"--from", "DIR", "a render folder or gate run that holds images the store lacks (a fresh render of the "
                               "approved configurations); repeatable", "Options", true},
             {"--keep-unmigrated", "", "migrate what is found and keep the rest as FNV-1a (still read, with a warning)"},
+            {"--drop-superseded", "", "drop an FNV-1a approval whose pixels are found nowhere when its slot (key, image, "
+                                      "device class, API, stage) has a SHA-256 approval: an older image of it, which "
+                                      "no render makes any more"},
         },
         "",
         "",
@@ -47,6 +50,7 @@ const CommandSpec& migrateSpec() {
             "cavity baselines migrate-digests",
             "cavity baselines migrate-digests --store https://store.example/refs",
             "cavity baselines migrate-digests --from out/render --keep-unmigrated",
+            "cavity baselines migrate-digests --from out/render --drop-superseded",
         },
     };
     return spec;
@@ -96,12 +100,13 @@ struct MigrateFlags {
     std::string root;
     store::StoreOptions store;
     std::vector<std::string> from;
-    bool keep = false;
+    bool keep = false, dropSuperseded = false;
 };
 
 Result<MigrateFlags> parseMigrate(const ParsedFlags& p) {
     MigrateFlags f;
     f.keep = p.has("--keep-unmigrated");
+    f.dropSuperseded = p.has("--drop-superseded");
     for (const auto& [flag, v] : p.values) {
         if (flag == "--baselines") f.root = v;
         else if (flag == "--store") f.store.location = v;
@@ -147,6 +152,25 @@ Result<std::map<std::string, Found>> findPixels(const plan::Approvals& approvals
     return found;
 }
 
+// Drops each FNV-1a approval whose pixels were found nowhere and whose slot
+// has a positive SHA-256 approval (or one that migrates): an older image of that configuration on
+// that device, which no current render makes, so nothing can migrate it.
+int dropSuperseded(plan::Approvals& approvals, const std::map<std::string, Found>& found) {
+    auto slot = [](const plan::Approval& a) {
+        return a.key + "\n" + a.image + "\n" + a.deviceClass + "\n" + a.api + "\n" + a.stage;
+    };
+    std::set<std::string> current;
+    for (const auto& a : approvals.entries)
+        if (a.positive && (!core::isLegacyDigest(a.digest) || found.count(a.digest))) current.insert(slot(a));
+    const size_t before = approvals.entries.size();
+    std::erase_if(approvals.entries, [&](const plan::Approval& a) {
+        return core::isLegacyDigest(a.digest) && !found.count(a.digest) && current.count(slot(a));
+    });
+    const int dropped = int(before - approvals.entries.size());
+    approvals.legacy -= dropped;
+    return dropped;
+}
+
 }  // namespace
 
 int migrateCommand(const std::vector<std::string>& argv) {
@@ -170,6 +194,7 @@ int migrateCommand(const std::vector<std::string>& argv) {
     if (!s) return fail(program, s.error());
     auto found = findPixels(*approvals, *f, **s);
     if (!found) return fail(program, found.error());
+    const int dropped = f->dropSuperseded ? dropSuperseded(*approvals, *found) : 0;
     int missing = 0;
     std::string first;
     for (const auto& a : approvals->entries)
@@ -203,6 +228,7 @@ int migrateCommand(const std::vector<std::string>& argv) {
     if (auto st = plan::saveApprovals(path, *approvals); !st) return fail(program, st.error());
     std::cout << "migrated " << migrated << " approvals (" << found->size() << " images) to SHA-256 in " << path
               << "; the store " << (*s)->where() << " holds each under its new digest\n";
+    if (dropped) std::cout << "dropped " << dropped << " FNV-1a approvals superseded by a SHA-256 approval of their slot\n";
     if (missing) std::cout << missing << " approvals kept their FNV-1a digest: their pixels were found nowhere\n";
     return 0;
 }

@@ -42,7 +42,7 @@ SUBCOMMANDS = {
     "cavity": [("run",), ("quality",), ("compare",), ("gate", "judge"), ("gate", "merge"), ("gate",),
                ("baselines", "update"), ("baselines", "approve"), ("baselines", "migrate-digests"), ("store", "check"), ("ab",),
                ("history", "ingest"), ("history", "show"), ("history", "chart"), ("history", "alerts"),
-               ("history",), ("kernels", "list"), ("kernels", "show"), ("kernels", "check")],
+               ("history",), ("kernels", "list"), ("kernels", "show"), ("kernels", "check"), ("kernels", "coverage")],
     "cavity_render": [("quality",)],
     "cavity_bench": [],
 }

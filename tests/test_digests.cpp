@@ -156,6 +156,42 @@ TEST_F(Digests, MigrationRefusesWholeWhenAnImageIsMissing) {
     EXPECT_FALSE(fs::exists(store / "sha256"));
 }
 
+// An older approval of a slot whose image no render makes any more, beside
+// the slot's current one: --drop-superseded drops it, and only it; without
+// the flag the migration refuses as above.
+TEST_F(Digests, SupersededApprovalsWhosePixelsAreGoneAreDropped) {
+    const fs::path base = dir / "baselines", store = dir / "store";
+    makeOldBaselines(base, store);
+    if (HasFatalFailure()) return;
+    auto approvals = plan::loadApprovals((base / "approvals.json").string());
+    ASSERT_TRUE(approvals.ok());
+    plan::Approval stale = approvals->entries.front();
+    stale.digest = "fnv1a64:0123456789abcdef";   // pixels nowhere
+    stale.when = "2026-01-01T00:00:00Z";
+    plan::Approval orphan = stale;               // a slot with no other approval
+    orphan.key = "corner/alchemy/n8/b4/full/160x90";
+    orphan.digest = "fnv1a64:fedcba9876543210";
+    approvals->entries.push_back(stale);
+    approvals->entries.push_back(orphan);
+    ASSERT_TRUE(plan::saveApprovals((base / "approvals.json").string(), *approvals).ok());
+    const std::string flags = " --baselines " + base.string() + " --store " + store.string();
+    EXPECT_EQ(runBinary(CAVITY_EXE, "baselines migrate-digests" + flags).code, 5);
+    // The orphan is no one's older image: it still refuses, and writes nothing.
+    const std::string before = slurp(base / "approvals.json");
+    EXPECT_EQ(runBinary(CAVITY_EXE, "baselines migrate-digests --drop-superseded" + flags).code, 5);
+    EXPECT_EQ(slurp(base / "approvals.json"), before);
+    approvals->entries.pop_back();
+    ASSERT_TRUE(plan::saveApprovals((base / "approvals.json").string(), *approvals).ok());
+    const Outcome m = runBinary(CAVITY_EXE, "baselines migrate-digests --drop-superseded" + flags);
+    ASSERT_EQ(m.code, 0) << m.output;
+    EXPECT_NE(m.output.find("migrated 6 approvals"), std::string::npos) << m.output;
+    EXPECT_NE(m.output.find("dropped 1 FNV-1a approvals"), std::string::npos) << m.output;
+    auto after = plan::loadApprovals((base / "approvals.json").string());
+    ASSERT_TRUE(after.ok());
+    EXPECT_EQ(after->entries.size(), 6u);
+    EXPECT_EQ(after->legacy, 0);
+}
+
 // Killed at any moment, the migration leaves approvals.json old or new,
 // never between, and the gate passes either by digest.
 TEST_F(Digests, MigrationKilledAnywhereLeavesAllOrNothing) {
