@@ -472,6 +472,62 @@ class Spread(unittest.TestCase):
             self.assertTrue(all(p["q25"] is None for s in entry["points"].values() for p in s))
 
 
+def png_width(path):
+    with open(path, "rb") as f:
+        head = f.read(24)
+    return int.from_bytes(head[16:20], "big")
+
+
+class Crowded(unittest.TestCase):
+    """A sweep of 12 kernels on both APIs: at most 8 series a chart, no chart
+    wider than 2,000 px, and --filter picks which configurations are drawn."""
+
+    KERNELS = [f"k{i:02d}" for i in range(12)]
+
+    def doc(self):
+        times = {}
+        for i, k in enumerate(self.KERNELS):
+            for api in ("vk", "gl"):
+                for n in (8, 16, 32):
+                    for res in ("full", "half"):
+                        ms = (0.1 + 0.01 * i) * n / 16 * (0.4 if res == "half" else 1)
+                        times[f"corner/{k}/n{n}/b4/{res}/1920x1080/{api}/compute"] = [
+                            (ms * (1 + 0.01 * r), {"ao": ms * 0.8}) for r in range(5)]
+        return bench_doc(times)
+
+    def test_at_most_eight_series_and_2000_px(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            path = write_json(tmp, "bench.json", self.doc())
+            out = os.path.join(tmp, "charts")
+            r = run_charts(path, "--out", out)
+            self.assertEqual(r.returncode, 0, r.stderr)
+            index = index_of(out)
+            self.assertEqual(len(index["time_vs_samples"]["points"]), 8)
+            self.assertEqual(len(index["full_vs_half"]["labels"]), 8)
+            with open(os.path.join(out, "time_vs_samples.svg")) as f:
+                self.assertTrue("the first 8 of 24 series" in f.read(), "the subtitle says what was left out")
+            for c in index.values():
+                self.assertLessEqual(png_width(os.path.join(out, c["png"])), 2000, c["name"])
+
+    def test_filter_picks_the_configurations(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            path = write_json(tmp, "bench.json", self.doc())
+            out = os.path.join(tmp, "charts")
+            r = run_charts(path, "--out", out, "--filter", "/k0[0-2]/")
+            self.assertEqual(r.returncode, 0, r.stderr)
+            index = index_of(out)
+            self.assertEqual(sorted(index["time_vs_samples"]["points"]),
+                             sorted(f"k0{i} · {api}" for i in range(3) for api in ("Vulkan", "OpenGL")))
+            with open(os.path.join(out, "time_vs_samples.svg")) as f:
+                self.assertFalse("series (--filter" in f.read(), "nothing left out")
+            for bad, says in (("/nothing/", "matches no configuration"), ("(", "not a regular expression")):
+                r = run_charts(path, "--out", os.path.join(tmp, "x"), "--filter", bad)
+                self.assertEqual(r.returncode, 2, r.stderr)
+                self.assertEqual(len(r.stderr.strip().splitlines()), 1, r.stderr)
+                self.assertIn(says, r.stderr)
+                self.assertFalse(os.path.exists(os.path.join(tmp, "x")))
+
+
 class Clock(unittest.TestCase):
     """The time axis and subtitle name the clock: GPU timestamps, a CPU renderer's wall clock, or mixed."""
 

@@ -21,7 +21,7 @@ CHART_NAMES = tuple(m.NAME for m in CHARTS)
 # Subcommands: the first argument picks one; anything else is the main command.
 SUBCOMMANDS = {"quality-cost": quality_cost, "floor": floor}
 SCRIPT = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "charts.py")
-USAGE = "charts.py RESULT.json [MORE.json ...] --out DIR [--title TEXT]"
+USAGE = "charts.py RESULT.json [MORE.json ...] --out DIR [--title TEXT] [--filter REGEX]"
 
 
 def summary(module):
@@ -64,7 +64,23 @@ def parse_args(argv):
     p.add_argument("results", nargs="+", metavar="RESULT.json")
     p.add_argument("--out", required=True, metavar="DIR")
     p.add_argument("--title", default="", metavar="TEXT", help="prefix for every chart title")
+    p.add_argument("--filter", default="", metavar="REGEX",
+                   help="only the configurations whose id this regex finds (a chart shows at most 8 series)")
     return p.parse_args(argv)
+
+
+def keep_only(files, pattern):
+    """Every file's records narrowed to the ids `pattern` finds; BadInput when
+    it is no regular expression or the last file (the one charted) keeps none."""
+    import re
+    try:
+        keep = re.compile(pattern)
+    except re.error as e:
+        raise BadInput(f"charts: --filter {pattern!r}: not a regular expression ({e})")
+    for f in files:
+        f["records"] = {k: r for k, r in f["records"].items() if keep.search(r["id"])}
+    if not files[-1]["records"]:
+        raise BadInput(f"charts: --filter {pattern!r} matches no configuration of {files[-1]['path']}")
 
 
 def run_with_system_python(argv):
@@ -89,6 +105,8 @@ def main(argv=None):
     # Validate every input before writing anything.
     try:
         files = [load_results(p) for p in args.results]
+        if args.filter:
+            keep_only(files, args.filter)
         if os.path.exists(args.out) and not os.path.isdir(args.out):
             raise BadInput(f"charts: {args.out}: --out exists and is not a folder")
     except BadInput as e:

@@ -63,6 +63,9 @@ def fixed_line(fixed):
         elif d == "stage": out.append(f"{v} stage")
         elif d == "scene": out.append(f"scene {v}")
         else: out.append(str(v))
+    if "left_out" in fixed:
+        left, total = fixed["left_out"]
+        out.append(f"the first {total - left} of {total} series (--filter picks others)")
     return "  ·  ".join(out)
 
 

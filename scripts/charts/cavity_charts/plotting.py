@@ -14,6 +14,11 @@ from .labels import API_NAMES, clock_text, device_line, format_ratio, series_lab
 
 DPI = 150
 LEGEND_MAX = 12
+# A chart shows at most this many series (lines, or pairs of bars): past it
+# colours repeat and lines cannot be told apart; --filter picks which.
+MAX_SERIES = 8
+# No chart is wider than this: a wider one is unreadable on a screen.
+MAX_WIDTH_PX = 2000
 
 
 def setup_matplotlib():
@@ -65,7 +70,12 @@ def pick_slice(records, vary, series=("kernel", "api"), need=2, prefer=None):
         return None, {}
     fixed = dict(zip(fixed_dims, best))
     by_series = {s: dict(sorted(p.items())) for s, p in slices[best].items() if len(p) >= need}
-    return fixed, dict(sorted(by_series.items(), key=lambda kv: series_sort_key(kv[0])))
+    ordered = sorted(by_series.items(), key=lambda kv: series_sort_key(kv[0]))
+    if len(ordered) > MAX_SERIES:
+        # fixed_line says how many were left out (not a dimension: no chart reads it as one)
+        fixed["left_out"] = (len(ordered) - MAX_SERIES, len(ordered))
+        ordered = ordered[:MAX_SERIES]
+    return fixed, dict(ordered)
 
 
 def series_sort_key(key):
@@ -119,7 +129,7 @@ class Canvas:
                     markersize=6, linewidth=2)
 
     def figure(self, width=8.5, height=5.2):
-        fig, ax = self.plt.subplots(figsize=(width, height))
+        fig, ax = self.plt.subplots(figsize=(min(width, MAX_WIDTH_PX / DPI), height))
         return fig, ax
 
     def title(self, text):
@@ -157,6 +167,8 @@ class Canvas:
                 if len(handles) > LEGEND_MAX:
                     kw.update(ncol=3, fontsize=7.5)
                 ax.legend(handles, labels, **kw)
+        if fig.get_figwidth() * DPI > MAX_WIDTH_PX:
+            fig.set_figwidth(MAX_WIDTH_PX / DPI)
         fig.tight_layout(rect=(0, 0, 1, 1 - header / height))
         png = os.path.join(self.outdir, name + ".png")
         svg = os.path.join(self.outdir, name + ".svg")
