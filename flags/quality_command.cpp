@@ -2,7 +2,9 @@
 // truth, as a table on stdout and quality.json.
 #include "values.h"
 #include "quality_command.h"
+#include "quality_page.h"
 #include "quality_recommend.h"
+#include "core/json_file.h"
 #include "pipeline/config_id.h"
 #include "pipeline/pipeline.h"
 #include "core/progress.h"
@@ -16,6 +18,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <numeric>
 #include <optional>
 #include <regex>
 
@@ -51,7 +54,8 @@ CommandSpec qualitySpec(const std::string& program) {
         {"--kernel-source", "NAME=FILE", "measure with kernels/NAME replaced by FILE's text (an edited kernel's "
                                           "accuracy); repeatable", "Options", true},
         {"--device", "K", "device index (0..64)"},
-        {"--out", "DIR", "also write DIR/quality.json"},
+        {"--out", "DIR", "also write DIR/quality.json and DIR/quality.html (each kernel's AO and signed error map "
+                         "beside the truth)"},
         {"--filter", "REGEX", "only the configurations whose id matches (searched; ids as --list prints them)"},
         {"--list", "", "print the configuration ids this would measure, one a line, and measure nothing"},
         {"--quiet", "", "no progress lines on stderr"},
@@ -220,6 +224,12 @@ Result<std::vector<QualityRow>> runQuality(gpu::Backend& gpu, const std::vector<
     return rows;
 }
 
+// The two rows' MAEs, of one scene, differ by an amount whose 95% interval holds 0.
+bool cannotTellApart(const QualityRow& better, const QualityRow& worse) {
+    const auto [low, high] = measure::maeDifference(better, worse);
+    return low <= 0 && high >= 0;
+}
+
 nlohmann::json qualityJson(const QualityRequest& q, const std::string& device, const std::vector<QualityRow>& rows) {
     const auto& o = q.options;
     nlohmann::json doc = {{"schema", "cavity.quality/1"},
@@ -236,15 +246,32 @@ nlohmann::json qualityJson(const QualityRequest& q, const std::string& device, c
                           {"kernel_sources", nlohmann::json::array()},
                           {"rows", nlohmann::json::array()}};
     for (const auto& r : q.replaced) doc["kernel_sources"].push_back({{"name", r.name}, {"file", r.file}, {"digest", r.digest}});
-    for (const auto& r : rows)
+    // Each row's better neighbour in its scene's ranking, when the two cannot be told apart.
+    std::vector<size_t> order(rows.size());
+    std::iota(order.begin(), order.end(), size_t(0));
+    std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+        return rows[a].scene != rows[b].scene ? rows[a].scene < rows[b].scene : rows[a].meanAbsError < rows[b].meanAbsError;
+    });
+    std::map<size_t, std::string> tied;
+    for (size_t i = 1; i < order.size(); ++i) {
+        const auto &better = rows[order[i - 1]], &worse = rows[order[i]];
+        if (better.scene == worse.scene && cannotTellApart(better, worse))
+            tied[order[i]] = better.kernel + "/n" + std::to_string(better.samples);
+    }
+    for (size_t k = 0; k < rows.size(); ++k) {
+        const auto& r = rows[k];
         doc["rows"].push_back({{"scene", r.scene},
                                {"kernel", r.kernel},
                                {"samples", r.samples},
                                {"mae", r.meanAbsError},
+                               {"mae_low", r.maeLow},
+                               {"mae_high", r.maeHigh},
                                {"max_abs", r.maxAbsError},
                                {"mean_ao", r.meanAo},
                                {"mean_truth", r.meanTruth},
-                               {"pixels", r.pixels}});
+                               {"pixels", r.pixels},
+                               {"tied_with", tied.count(k) ? nlohmann::json(tied[k]) : nlohmann::json(nullptr)}});
+    }
     return doc;
 }
 
@@ -259,15 +286,24 @@ void printQuality(const QualityOptions& o, std::vector<QualityRow> rows,
     std::stable_sort(rows.begin(), rows.end(), [](const QualityRow& a, const QualityRow& b) {
         return a.scene != b.scene ? a.scene < b.scene : a.meanAbsError < b.meanAbsError;
     });
-    TextTable table({{"scene", A::Left}, {"kernel", A::Left}, {"samples", A::Right}, {"MAE", A::Right}, {"max", A::Right},
-                     {"mean AO", A::Right}, {"truth", A::Right}, {"cost ms", A::Right}});
-    for (const auto& r : rows) {
+    TextTable table({{"scene", A::Left}, {"kernel", A::Left}, {"samples", A::Right}, {"MAE", A::Right},
+                     {"95% interval", A::Right}, {"", A::Left}, {"max", A::Right}, {"mean AO", A::Right},
+                     {"truth", A::Right}, {"cost ms", A::Right}});
+    int ties = 0;
+    for (size_t i = 0; i < rows.size(); ++i) {
+        const auto& r = rows[i];
         const auto c = costs.find({r.kernel, r.samples});
+        const bool tie = i > 0 && rows[i - 1].scene == r.scene && cannotTellApart(rows[i - 1], r);
+        ties += tie;
         table.add({r.scene, r.kernel, std::to_string(r.samples), TextTable::number(r.meanAbsError, 4),
+                   TextTable::number(r.maeLow, 4) + "-" + TextTable::number(r.maeHigh, 4), tie ? "~" : "",
                    TextTable::number(r.maxAbsError, 4), TextTable::number(r.meanAo, 4), TextTable::number(r.meanTruth, 4),
                    c == costs.end() ? "-" : TextTable::number(c->second, 4)});
     }
     table.print();
+    if (ties)
+        std::printf("~: the 95%% interval of its MAE's difference from the row above's (a paired bootstrap over %d px "
+                    "tiles) holds 0: the two cannot be told apart at this size\n", measure::kTileSide);
 }
 
 // The screen-space Pareto front and the best within --budget-ms, printed
@@ -332,6 +368,8 @@ int qualityCommand(const std::vector<std::string>& argv, const std::string& prog
     if (!gpu) return failed(gpu.error());
     const std::string device = (*gpu)->info().deviceName;
     std::cerr << program << ": " << gpu::apiName(q->api) << ": " << device << "\n";
+    // The images travel to quality.html's error maps.
+    for (auto& step : *steps) step.options.keepImages = !q->out.empty();
     auto rows = runQuality(**gpu, *steps, parsed->has("--quiet"));
     if (!rows) return failed(rows.error());
     printQuality(q->options, *rows, costs);
@@ -342,7 +380,9 @@ int qualityCommand(const std::vector<std::string>& argv, const std::string& prog
     std::filesystem::create_directories(q->out, ec);
     const std::string path = (std::filesystem::path(q->out) / "quality.json").string();
     if (auto st = writeJson(path, doc); !st) return failed(st.error());
-    std::printf("\nwrote %s\n", path.c_str());
+    const std::string page = (std::filesystem::path(q->out) / "quality.html").string();
+    if (auto st = core::writeFileAtomically(page, qualityPage(doc, *rows)); !st) return failed(st.error());
+    std::printf("\nwrote %s and %s (every kernel's AO and error map beside the truth)\n", path.c_str(), page.c_str());
     return 0;
 }
 

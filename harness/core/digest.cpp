@@ -2,6 +2,7 @@
 
 #include <openssl/evp.h>
 
+#include <algorithm>
 #include <bit>
 #include <cstdio>
 
@@ -67,5 +68,13 @@ std::string imageDigestLike(const HostImage& image, const std::string& like) {
 bool isImageDigest(const std::string& digest) { return hexTail(digest, kSha256, 64) || isLegacyDigest(digest); }
 
 bool isLegacyDigest(const std::string& digest) { return hexTail(digest, kFnv, 16); }
+
+std::string base64(const std::string& bytes) {
+    std::string out(4 * ((bytes.size() + 2) / 3) + 1, '\0');
+    const int n = EVP_EncodeBlock(reinterpret_cast<unsigned char*>(out.data()),
+                                  reinterpret_cast<const unsigned char*>(bytes.data()), int(bytes.size()));
+    out.resize(size_t(std::max(n, 0)));
+    return out;
+}
 
 }  // namespace cavity::core

@@ -38,4 +38,8 @@ std::string imageDigestLike(const HostImage& image, const std::string& like);
 bool isImageDigest(const std::string& digest);
 bool isLegacyDigest(const std::string& digest);   // an image digest in fnv1a64:
 
+// The bytes as base64 (RFC 4648, with padding), by OpenSSL's EVP_EncodeBlock:
+// images inlined in a self-contained page.
+std::string base64(const std::string& bytes);
+
 }  // namespace cavity::core

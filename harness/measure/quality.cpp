@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <random>
+#include <tuple>
 
 namespace cavity::measure {
 
@@ -38,14 +40,58 @@ Result<GroundTruth> groundTruth(gpu::Backend& gpu, const std::string& scene, int
     return t;
 }
 
+namespace {
+
+// The 2.5th and 97.5th percentiles of the MAE over resamples of whole tiles
+// (their summed error and surface pixels), from a fixed seed: the same
+// images give the same interval.
+using Tiles = std::vector<std::pair<double, long long>>;
+
+// The 2.5th and 97.5th percentiles of a statistic of the tiles over
+// resamples of whole tile indices, from a fixed seed: the same images give
+// the same interval. `stat` gets each resample's (summed error, pixels) of
+// every tile list given.
+template <class Stat>
+std::pair<double, double> bootstrap(const std::vector<const Tiles*>& lists, Stat stat) {
+    const size_t count = lists.front()->size();
+    if (count == 0) return {0, 0};
+    std::mt19937_64 rng(0x5eed);
+    std::uniform_int_distribution<size_t> pick(0, count - 1);
+    std::vector<double> draws;
+    draws.reserve(kBootstrapDraws);
+    std::vector<std::pair<double, long long>> sums(lists.size());
+    for (int d = 0; d < kBootstrapDraws; ++d) {
+        std::fill(sums.begin(), sums.end(), std::pair<double, long long>{0, 0});
+        for (size_t k = 0; k < count; ++k) {
+            const size_t i = pick(rng);
+            for (size_t l = 0; l < lists.size(); ++l) {
+                sums[l].first += (*lists[l])[i].first;
+                sums[l].second += (*lists[l])[i].second;
+            }
+        }
+        draws.push_back(stat(sums));
+    }
+    std::sort(draws.begin(), draws.end());
+    return {draws[size_t(0.025 * (draws.size() - 1))], draws[size_t(0.975 * (draws.size() - 1))]};
+}
+
+double mae(const std::pair<double, long long>& s) { return s.second ? s.first / double(s.second) : 0; }
+
+}  // namespace
+
 QualityRow compareToTruth(const HostImage& ao, const GroundTruth& truth) {
     QualityRow r;
     double sum = 0, sumAo = 0, sumTruth = 0;
+    const int tilesX = (truth.ao.width + kTileSide - 1) / kTileSide;
+    Tiles tiles(size_t(tilesX) * ((truth.ao.height + kTileSide - 1) / kTileSide));
     for (int y = 0; y < truth.ao.height; ++y)
         for (int x = 0; x < truth.ao.width; ++x) {
             if (truth.surface.at(x, y) == 0.0f) continue;
             const double a = ao.at(x, y, 0), t = truth.ao.at(x, y, 0);
             const double e = std::fabs(a - t);
+            auto& tile = tiles[size_t(y / kTileSide) * tilesX + x / kTileSide];
+            tile.first += e;
+            ++tile.second;
             sum += e;
             sumAo += a;
             sumTruth += t;
@@ -57,7 +103,14 @@ QualityRow compareToTruth(const HostImage& ao, const GroundTruth& truth) {
         r.meanAo = sumAo / double(r.pixels);
         r.meanTruth = sumTruth / double(r.pixels);
     }
+    r.tiles = std::move(tiles);
+    std::tie(r.maeLow, r.maeHigh) = bootstrap({&r.tiles}, [](const auto& s) { return mae(s[0]); });
     return r;
+}
+
+std::pair<double, double> maeDifference(const QualityRow& a, const QualityRow& b) {
+    if (a.tiles.size() != b.tiles.size()) return {-1, 1};   // not comparable: nothing can be told apart
+    return bootstrap({&a.tiles, &b.tiles}, [](const auto& s) { return mae(s[1]) - mae(s[0]); });
 }
 
 void applySwitches(RunConfig& c, const kernels::ParamValues& switches) {
@@ -73,7 +126,8 @@ Result<std::vector<QualityRow>> measureQuality(gpu::Backend& gpu, const QualityO
             if (k.role == kernels::Role::Ao) names.push_back(k.name);
     std::vector<QualityRow> rows;
     for (const auto& scene : o.scenes) {
-        CAVITY_ASSIGN(const GroundTruth truth, groundTruth(gpu, scene, o.width, o.height, o.rays, o.sharedReach ? o.radius : 0));
+        CAVITY_ASSIGN(GroundTruth made, groundTruth(gpu, scene, o.width, o.height, o.rays, o.sharedReach ? o.radius : 0));
+        const auto truth = std::make_shared<const GroundTruth>(std::move(made));
         for (const auto& kernel : names)
             for (int n : o.samples) {
                 RunConfig c = baseConfig(gpu, kernel, o.width, o.height);
@@ -85,10 +139,14 @@ Result<std::vector<QualityRow>> measureQuality(gpu::Backend& gpu, const QualityO
                 c.stage = o.stage;
                 applySwitches(c, o.switches);
                 CAVITY_ASSIGN(auto images, renderImages(gpu, c, {"ao_blur"}, o.overrides));
-                QualityRow r = compareToTruth(images["ao_blur"], truth);
+                QualityRow r = compareToTruth(images["ao_blur"], *truth);
                 r.scene = scene;
                 r.kernel = kernel;
                 r.samples = n;
+                if (o.keepImages) {
+                    r.ao = std::make_shared<const HostImage>(std::move(images["ao_blur"]));
+                    r.truth = truth;
+                }
                 rows.push_back(r);
             }
     }

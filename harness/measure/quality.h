@@ -17,6 +17,7 @@
 
 #include <map>
 #include <string>
+#include <memory>
 #include <vector>
 
 namespace cavity::measure {
@@ -47,19 +48,35 @@ struct QualityOptions {
     // --kernel-source: kernels/NAME replaced by a file's text in every
     // kernel's pipeline (the ground truth keeps its own).
     std::map<std::string, std::string> overrides;   // pipeline::SourceOverrides
+    // Keep each row's AO image and its scene's truth (QualityRow::ao,
+    // ::truth), for the error maps of `quality --out`.
+    bool keepImages = false;
 };
 
 // `c` with the switches its kernel declares.
 void applySwitches(RunConfig& c, const kernels::ParamValues& switches);
 
+struct GroundTruth;
+
 struct QualityRow {
     std::string scene, kernel;
     int samples = 0;
     double meanAbsError = 0;   // over surface pixels, AO in [0, 1]
+    // The MAE's 95% interval: a bootstrap over kTileSide-pixel tiles of the
+    // image (a resample draws whole tiles, so that neighbouring pixels'
+    // correlated errors stay together), percentile method.
+    double maeLow = 0, maeHigh = 0;
     double maxAbsError = 0;
     double meanAo = 0, meanTruth = 0;   // signed bias is meanAo - meanTruth
     long long pixels = 0;
+    // Per kTileSide tile in row order (empty ones too, so that two rows of
+    // one scene and size line up): summed |error| and surface pixels.
+    std::vector<std::pair<double, long long>> tiles;
+    std::shared_ptr<const HostImage> ao;          // QualityOptions::keepImages
+    std::shared_ptr<const GroundTruth> truth;
 };
+constexpr int kTileSide = 8;
+constexpr int kBootstrapDraws = 1000;
 
 // The ground-truth AO of a scene at a size on one backend, and the mask of
 // surface pixels (1 where the G-buffer holds a surface).
@@ -72,6 +89,10 @@ Result<GroundTruth> groundTruth(gpu::Backend& gpu, const std::string& scene, int
 
 // MAE of one AO image against the truth over its surface pixels.
 QualityRow compareToTruth(const HostImage& ao, const GroundTruth& truth);
+// The 95% interval of MAE(b) - MAE(a) for two rows of one scene and size,
+// by a paired bootstrap over their tiles (one resample of tile indices for
+// both): when it holds 0 the two kernels cannot be told apart.
+std::pair<double, double> maeDifference(const QualityRow& a, const QualityRow& b);
 
 Result<std::vector<QualityRow>> measureQuality(gpu::Backend& gpu, const QualityOptions& options);
 

@@ -3,6 +3,7 @@
 #include "report/gate_report.h"
 
 #include "report/verdict_text.h"
+#include "core/digest.h"
 #include "pipeline/config_id.h"
 
 #include <algorithm>
@@ -24,26 +25,7 @@ namespace {
 std::string base64File(const std::string& path) {
     std::ifstream f(path, std::ios::binary);
     if (!f) return "";
-    const std::string data((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
-    static const char* t = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    std::string o;
-    size_t i = 0;
-    for (; i + 2 < data.size(); i += 3) {
-        const unsigned v = (unsigned char)data[i] << 16 | (unsigned char)data[i + 1] << 8 | (unsigned char)data[i + 2];
-        o += t[v >> 18 & 63];
-        o += t[v >> 12 & 63];
-        o += t[v >> 6 & 63];
-        o += t[v & 63];
-    }
-    if (i < data.size()) {
-        unsigned v = (unsigned char)data[i] << 16;
-        if (i + 1 < data.size()) v |= (unsigned char)data[i + 1] << 8;
-        o += t[v >> 18 & 63];
-        o += t[v >> 12 & 63];
-        o += i + 1 < data.size() ? t[v >> 6 & 63] : '=';
-        o += '=';
-    }
-    return o;
+    return core::base64(std::string((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>()));
 }
 
 std::string dataUri(const std::string& png) {
