@@ -3,6 +3,7 @@
 #include "values.h"
 #include "quality_command.h"
 #include "quality_page.h"
+#include "quality_report.h"
 #include "quality_recommend.h"
 #include "core/json_file.h"
 #include "pipeline/config_id.h"
@@ -21,6 +22,7 @@
 #include <numeric>
 #include <optional>
 #include <regex>
+#include <tuple>
 
 namespace cavity::flags {
 
@@ -224,10 +226,21 @@ Result<std::vector<QualityRow>> runQuality(gpu::Backend& gpu, const std::vector<
     return rows;
 }
 
-// The two rows' MAEs, of one scene, differ by an amount whose 95% interval holds 0.
-bool cannotTellApart(const QualityRow& better, const QualityRow& worse) {
-    const auto [low, high] = measure::maeDifference(better, worse);
-    return low <= 0 && high >= 0;
+
+// With --kernel-source: the same steps with the committed kernels, and each
+// row whose MAE the edit changed labelled with the committed one.
+Status markEdited(gpu::Backend& gpu, std::vector<QualityStep> steps, std::vector<QualityRow>& rows, bool quiet) {
+    for (auto& step : steps) {
+        step.options.overrides.clear();
+        step.options.keepImages = false;
+    }
+    CAVITY_ASSIGN(const auto committed, runQuality(gpu, steps, quiet));
+    std::map<std::tuple<std::string, std::string, int>, double> mae;
+    for (const auto& r : committed) mae[{r.scene, r.kernel, r.samples}] = r.meanAbsError;
+    for (auto& r : rows)
+        if (const auto it = mae.find({r.scene, r.kernel, r.samples}); it != mae.end() && it->second != r.meanAbsError)
+            r.committedMae = it->second;
+    return {};
 }
 
 nlohmann::json qualityJson(const QualityRequest& q, const std::string& device, const std::vector<QualityRow>& rows) {
@@ -270,46 +283,18 @@ nlohmann::json qualityJson(const QualityRequest& q, const std::string& device, c
                                {"mean_ao", r.meanAo},
                                {"mean_truth", r.meanTruth},
                                {"pixels", r.pixels},
-                               {"tied_with", tied.count(k) ? nlohmann::json(tied[k]) : nlohmann::json(nullptr)}});
+                               {"tied_with", tied.count(k) ? nlohmann::json(tied[k]) : nlohmann::json(nullptr)},
+                               {"edited", r.committedMae.has_value()},
+                               {"committed_mae", r.committedMae ? nlohmann::json(*r.committedMae) : nlohmann::json(nullptr)}});
     }
     return doc;
 }
 
-void printQuality(const QualityOptions& o, std::vector<QualityRow> rows,
-                  const std::map<std::pair<std::string, int>, double>& costs) {
-    if (o.sharedReach)
-        std::printf("reach: shared, every kernel and the truth at R = %g\n", o.radius);
-    else
-        std::printf("reach: seed, each kernel at its own default reach, the truth at R = 0.5\n");
-    using A = TextTable::Align;
-    // Each scene's rows, most accurate first.
-    std::stable_sort(rows.begin(), rows.end(), [](const QualityRow& a, const QualityRow& b) {
-        return a.scene != b.scene ? a.scene < b.scene : a.meanAbsError < b.meanAbsError;
-    });
-    TextTable table({{"scene", A::Left}, {"kernel", A::Left}, {"samples", A::Right}, {"MAE", A::Right},
-                     {"95% interval", A::Right}, {"", A::Left}, {"max", A::Right}, {"mean AO", A::Right},
-                     {"truth", A::Right}, {"cost ms", A::Right}});
-    int ties = 0;
-    for (size_t i = 0; i < rows.size(); ++i) {
-        const auto& r = rows[i];
-        const auto c = costs.find({r.kernel, r.samples});
-        const bool tie = i > 0 && rows[i - 1].scene == r.scene && cannotTellApart(rows[i - 1], r);
-        ties += tie;
-        table.add({r.scene, r.kernel, std::to_string(r.samples), TextTable::number(r.meanAbsError, 4),
-                   TextTable::number(r.maeLow, 4) + "-" + TextTable::number(r.maeHigh, 4), tie ? "~" : "",
-                   TextTable::number(r.maxAbsError, 4), TextTable::number(r.meanAo, 4), TextTable::number(r.meanTruth, 4),
-                   c == costs.end() ? "-" : TextTable::number(c->second, 4)});
-    }
-    table.print();
-    if (ties)
-        std::printf("~: the 95%% interval of its MAE's difference from the row above's (a paired bootstrap over %d px "
-                    "tiles) holds 0: the two cannot be told apart at this size\n", measure::kTileSide);
-}
 
 // The screen-space Pareto front and the best within --budget-ms, printed
 // and returned for quality.json.
 nlohmann::json recommend(const QualityRequest& q, const std::vector<QualityRow>& rows,
-                         const std::map<std::pair<std::string, int>, double>& costs) {
+                         const std::map<std::pair<std::string, int>, double>& costs, const CostSource& source) {
     const auto all = candidates(rows, costs);
     const auto front = paretoFront(all);
     std::printf("\nscreen-space Pareto front (mean MAE over the scenes against the AO pipeline's time from %s; the SDF "
@@ -323,8 +308,10 @@ nlohmann::json recommend(const QualityRequest& q, const std::vector<QualityRow>&
     if (q.budgetMs) {
         out["budget_ms"] = *q.budgetMs;
         const auto best = bestWithin(all, *q.budgetMs);
-        if (best) std::printf("best within %g ms: %s n%d (MAE %.4f, %.4f ms)\n", *q.budgetMs, best->kernel.c_str(),
-                              best->samples, best->mae, *best->costMs);
+        if (best) std::printf("best within %g ms: %s n%d (MAE %.4f, %.4f ms)%s\n", *q.budgetMs, best->kernel.c_str(),
+                              best->samples, best->mae, *best->costMs,
+                              source.softwareRenderer ? " -- on a software renderer's times: say nothing of a GPU budget"
+                                                      : "");
         else std::printf("best within %g ms: none of the screen-space kernels measured fits\n", *q.budgetMs);
         out["best"] = best ? candidateJson(*best) : nlohmann::json(nullptr);
     }
@@ -359,10 +346,14 @@ int qualityCommand(const std::vector<std::string>& argv, const std::string& prog
         if (auto st = checkWritableDir("--out", q->out); !st) return failed(st.error());
     // The cost file is the user's input: read before the backend starts.
     std::map<std::pair<std::string, int>, double> costs;
+    CostSource source;
     if (!q->cost.empty()) {
         auto c = loadCosts(q->cost, q->options.half);
         if (!c) return failed(c.error());
         costs = std::move(*c);
+        auto s = costSource(q->cost, q->options.half);
+        if (!s) return failed(s.error());
+        source = std::move(*s);
     }
     auto gpu = gpu::createBackend(q->api, q->backend);
     if (!gpu) return failed(gpu.error());
@@ -372,9 +363,15 @@ int qualityCommand(const std::vector<std::string>& argv, const std::string& prog
     for (auto& step : *steps) step.options.keepImages = !q->out.empty();
     auto rows = runQuality(**gpu, *steps, parsed->has("--quiet"));
     if (!rows) return failed(rows.error());
+    if (!q->replaced.empty())
+        if (auto st = markEdited(**gpu, *steps, *rows, parsed->has("--quiet")); !st) return failed(st.error());
     printQuality(q->options, *rows, costs);
+    if (!costs.empty()) std::printf("%s\n", source.text.c_str());
     nlohmann::json doc = qualityJson(*q, device, *rows);
-    if (!costs.empty()) doc["recommendation"] = recommend(*q, *rows, costs);
+    if (!costs.empty()) {
+        doc["recommendation"] = recommend(*q, *rows, costs, source);
+        doc["cost_source"] = {{"text", source.text}, {"software_renderer", source.softwareRenderer}};
+    }
     if (q->out.empty()) return 0;
     std::error_code ec;
     std::filesystem::create_directories(q->out, ec);

@@ -108,7 +108,8 @@ figcaption{font-size:11px;color:#aaa;max-width:330px} canvas{image-rendering:pix
     // tied_with: the better row whose MAE this one's cannot be told from
     // (a paired bootstrap of the difference holds 0).
     for (const r of rows)
-      table.append(el('tr', {}, el('td', {class: 'l'}, r.kernel), el('td', {}, String(r.samples)), el('td', {}, num(r.mae)),
+      table.append(el('tr', {}, el('td', {class: 'l'}, r.kernel + (r.edited ? ' (edited; committed: ' + num(r.committed_mae) + ')' : '')),
+                      el('td', {}, String(r.samples)), el('td', {}, num(r.mae)),
                       el('td', {}, num(r.mae_low) + ' to ' + num(r.mae_high)),
                       el('td', {class: 'l tie'}, r.tied_with ? 'cannot be told from ' + r.tied_with : '')));
     const figs = el('div', {});

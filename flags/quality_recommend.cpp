@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <regex>
+#include <set>
 
 namespace cavity::flags {
 
@@ -39,6 +40,31 @@ Result<std::map<std::pair<std::string, int>, double>> loadCosts(const std::strin
         return badInput("--cost " + path + ": no configuration of the form scene/kernel/nS/bB/" + (half ? "half" : "full") +
                         "/WxH/api/stage with a time");
     return costs;
+}
+
+Result<CostSource> costSource(const std::string& path, bool half) {
+    CAVITY_ASSIGN(const compare::SampleSets sets, compare::loadSampleSets(path));
+    static const std::regex id(R"(^[^/]+/[a-z_]+/n\d+/b\d+/(full|half)/(\d+x\d+)/(gl|vk)/(compute|fragment)$)");
+    std::set<std::string> apis, stages, sizes, clocks;
+    for (const auto& [key, series] : sets.series) {
+        std::smatch m;
+        if (series.ms.empty() || !std::regex_match(key.first, m, id) || (m[1] == "half") != half) continue;
+        sizes.insert(m[2]);
+        apis.insert(m[3]);
+        stages.insert(m[4]);
+        clocks.insert(series.clock == "wall" ? "host wall clock" : "GPU timestamps");
+    }
+    auto list = [](const std::set<std::string>& s) {
+        std::string out;
+        for (const auto& v : s) out += (out.empty() ? "" : ", ") + v;
+        return out;
+    };
+    CostSource out;
+    out.softwareRenderer = sets.softwareRenderer;
+    out.text = "cost ms: the AO pipeline's median time (G-buffer left out) from " + path + ", over " + list(apis) + ", " +
+               list(stages) + " at the largest of " + list(sizes) + ", on " + list(clocks) +
+               (sets.softwareRenderer ? "; measured on a software renderer: the host CPU's time, not a GPU's" : "");
+    return out;
 }
 
 std::vector<Candidate> candidates(const std::vector<QualityRow>& rows,

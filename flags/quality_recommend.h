@@ -34,6 +34,16 @@ struct Candidate {
 // and the largest size the file has for it.
 Result<std::map<std::pair<std::string, int>, double>> loadCosts(const std::string& path, bool half);
 
+// Where loadCosts's times come from, in one line for the table: the file,
+// the APIs, stages, sizes and clocks of the configurations it read, and
+// "a software renderer" when the file says so (its times are the host
+// CPU's: no GPU budget follows from them).
+struct CostSource {
+    std::string text;
+    bool softwareRenderer = false;
+};
+Result<CostSource> costSource(const std::string& path, bool half);
+
 std::vector<Candidate> candidates(const std::vector<QualityRow>& rows,
                                   const std::map<std::pair<std::string, int>, double>& costs);
 // The screen-space candidates no other beats on both error and time, cheapest first.

@@ -153,6 +153,12 @@ TEST_F(Cli, QualityMeasuresAnEditedKernel) {
     ASSERT_EQ(e["kernel_sources"].size(), 1u);
     EXPECT_EQ(e["kernel_sources"][0]["name"], "ao/alchemy_fast/ssao_alchemy_fast.glsl");
     EXPECT_TRUE(p["kernel_sources"].empty());
+    // The edited row is labelled, with the committed kernel's MAE beside it.
+    EXPECT_TRUE(e["rows"][0]["edited"].get<bool>());
+    EXPECT_DOUBLE_EQ(e["rows"][0]["committed_mae"].get<double>(), p["rows"][0]["mae"].get<double>());
+    EXPECT_FALSE(p["rows"][0]["edited"].get<bool>());
+    EXPECT_NE(edited.output.find("alchemy_fast*"), std::string::npos) << edited.output;
+    EXPECT_NE(edited.output.find("vs committed: its MAE minus the committed kernel's"), std::string::npos) << edited.output;
 }
 
 TEST_F(Cli, UnwritableOutputFolderExitsTwo) {
@@ -267,6 +273,11 @@ TEST_F(Cli, QualityRecommendsTheBestScreenSpaceKernelWithinABudget) {
     std::ifstream f(dir / "q" / "quality.json");
     const auto doc = nlohmann::json::parse(f);
     EXPECT_EQ(doc["reach"], "shared");   // the default now
+    // The cost column names where its times come from.
+    EXPECT_EQ(doc["cost_source"]["text"], "cost ms: the AO pipeline's median time (G-buffer left out) from " + cost.string() +
+                                              ", over vk, compute at the largest of 64x36, on GPU timestamps");
+    EXPECT_FALSE(doc["cost_source"]["software_renderer"].get<bool>());
+    EXPECT_NE(o.output.find(doc["cost_source"]["text"].get<std::string>()), std::string::npos) << o.output;
     const auto& rec = doc["recommendation"];
     // The best within --budget-ms: the least error among screen-space kernels that fit.
     double best = 1e9;
@@ -303,6 +314,16 @@ TEST_F(Cli, QualityRecommendsTheBestScreenSpaceKernelWithinABudget) {
             EXPECT_GE(mae, previous) << line;
             previous = mae;
         }
+    // Times from a software renderer: said beside the column and the pick.
+    bench["context"]["cavity_software_renderer"] = "true";
+    std::ofstream(cost) << bench.dump();
+    const Outcome soft = cavity("quality --kernel alchemy,hemisphere_fast --samples 8 --res 64x36 --scene corner --quiet "
+                                "--cost " + cost.string() + " --budget-ms 0.16");
+    ASSERT_EQ(soft.code, 0) << soft.output;
+    EXPECT_NE(soft.output.find("measured on a software renderer: the host CPU's time, not a GPU's"), std::string::npos)
+        << soft.output;
+    EXPECT_NE(soft.output.find("on a software renderer's times: say nothing of a GPU budget"), std::string::npos)
+        << soft.output;
     // --budget-ms alone is refused.
     const Outcome lone = cavity("quality --budget-ms 0.1");
     EXPECT_EQ(lone.code, 2) << lone.output;

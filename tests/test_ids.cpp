@@ -125,7 +125,19 @@ TEST(ConfigId, DistinctInEveryMatrix) {
                                             c.params["blur"] = b;
                                             c.half = half;
                                             c.width = w, c.height = h, c.api = api, c.stage = stage;
-                                            raw.push_back(c);
+                                            // Every combination of the group's other parameters.
+                                            std::vector<RunConfig> combos{c};
+                                            for (const auto& [param, values] : g.params) {
+                                                std::vector<RunConfig> next;
+                                                for (const auto& base : combos)
+                                                    for (double v : values) {
+                                                        RunConfig one = base;
+                                                        one.params[param] = v;
+                                                        next.push_back(one);
+                                                    }
+                                                combos = std::move(next);
+                                            }
+                                            raw.insert(raw.end(), combos.begin(), combos.end());
                                         }
         }
         SCOPED_TRACE("matrix " + name);
@@ -133,7 +145,8 @@ TEST(ConfigId, DistinctInEveryMatrix) {
         // The same matrix with every configuration at a second radius too.
         auto twice = raw;
         for (auto c : raw) {
-            c.params["radius"] = 0.37;   // no kernel's default
+            // No kernel's default, and no radius a group sets.
+            c.params["radius"] = c.params.count("radius") ? c.params["radius"] * 1.37 : 0.37;
             twice.push_back(c);
         }
         expectIdsMatchContent(twice);

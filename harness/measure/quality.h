@@ -18,6 +18,7 @@
 #include <map>
 #include <string>
 #include <memory>
+#include <optional>
 #include <vector>
 
 namespace cavity::measure {
@@ -69,6 +70,9 @@ struct QualityRow {
     double maxAbsError = 0;
     double meanAo = 0, meanTruth = 0;   // signed bias is meanAo - meanTruth
     long long pixels = 0;
+    // With a --kernel-source edit that changed this row's AO: the MAE of the
+    // same configuration with the committed kernels.
+    std::optional<double> committedMae;
     // Per kTileSide tile in row order (empty ones too, so that two rows of
     // one scene and size line up): summed |error| and surface pixels.
     std::vector<std::pair<double, long long>> tiles;
