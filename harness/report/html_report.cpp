@@ -171,7 +171,15 @@ nlohmann::json reportData(const GateRun& run, const std::string& chartsDir) {
         if (const auto at = shared.find(k); at != shared.end()) v["card"] = at->second;
         results.push_back(std::move(v));
     }
-    for (const auto& [k, card] : shared) results[card]["same"].push_back(run.results[k].label());
+    for (const auto& [k, card] : shared) {
+        results[card]["same"].push_back(run.results[k].label());
+        // The card's commands accept both APIs' configurations.
+        const auto& r = run.results[card];
+        std::string both = r.id;
+        const std::string api = std::string("/") + gpu::apiName(r.config.api) + "/";
+        if (const auto at = both.find(api); at != std::string::npos) both.replace(at, api.size(), "/(gl|vk)/");
+        results[card]["note"] = verdictNote(r, both);
+    }
     return {{"gate", toJson(run)},
             {"view",
              {{"counts", countsText(run)},

@@ -66,8 +66,9 @@ std::string joined(const std::vector<std::string>& lines) {
     return s;
 }
 
-std::string verdictNote(const ConfigResult& r) {
+std::string verdictNote(const ConfigResult& r, const std::string& idPattern) {
     const std::string v = r.verdict();
+    const std::string id = idPattern.empty() ? r.id : idPattern;
     if (v == "flaky")
         return "flaky: passed on attempt " + std::to_string(r.attempts) + ", attempt 1 failed: " + joined(r.firstFailures);
     if (v == "expected-fail") return "expected failure (" + r.expectedWhy + ")";
@@ -77,8 +78,8 @@ std::string verdictNote(const ConfigResult& r) {
     // A failure that is the intended result of a change is accepted one
     // configuration at a time, by the command the card prints.
     if (v == "fail" && r.error.empty())
-        return "to accept this configuration alone: cavity baselines update --filter '^" + r.id +
-               "$' (its images become the baselines), or cavity baselines approve --filter '^" + r.id +
+        return "to accept this configuration alone: cavity baselines update --filter '^" + id +
+               "$' (its images become the baselines), or cavity baselines approve --filter '^" + id +
                "$' --why '...' (its digests approved for this device class)";
     if (v == "changed") {
         std::string s = "changed within tolerance:";
@@ -88,7 +89,7 @@ std::string verdictNote(const ConfigResult& r) {
                      num(100 * i.metrics->overThresholdShare, 3) + "% of pixels over " +
                      num(i.tolerance.pixelThreshold, 3) + ";";
         s.pop_back();
-        return s + " (to make it the reference: cavity baselines update --filter '^" + r.id + "$')";
+        return s + " (to make it the reference: cavity baselines update --filter '^" + id + "$')";
     }
     return "";
 }

@@ -26,7 +26,9 @@ std::vector<const ConfigResult*> ordered(const GateRun& run);
 std::string joined(const std::vector<std::string>& lines);
 // One line for a verdict that is not a plain pass (a failure: the command
 // that accepts its configuration alone); empty otherwise.
-std::string verdictNote(const ConfigResult& r);
+// `idPattern`: the regex the printed commands select with, when a card
+// stands for more than this configuration (empty: its own id, escaped as is).
+std::string verdictNote(const ConfigResult& r, const std::string& idPattern = "");
 // "3 passed, 1 flaky, ...": every verdict that occurred, in a fixed order.
 std::string countsText(const GateRun& run);
 
