@@ -23,11 +23,12 @@ const CommandSpec& coverageSpec() {
         "parameter it reads, and each path its package declares under [[paths]] (a remainder, a table size, the "
         "smallest levels). Prints the count, or one line listing every path no configuration reaches.",
         {{"--matrix", "NAMES", "the matrices to count (comma-separated; default: every matrix in matrices.json)"},
-         {"--baselines", "DIR", "folder holding matrices.json (default: baselines/ of the repository)"}},
+         {"--baselines", "DIR", "folder holding matrices.json (default: baselines/ of the repository)"},
+         {"--list", "", "print every path, and the first configuration that reaches it (or \"not reached\")"}},
         "",
         "",
         "\nExit codes: 0 every path is reached, 1 some path is not (listed on one line), 2 bad input.",
-        {"cavity kernels coverage", "cavity kernels coverage --matrix ci,gpu-cpu",
+        {"cavity kernels coverage", "cavity kernels coverage --matrix ci,gpu-cpu --list",
          "cavity --kernels my_kernels/ kernels coverage"}};
     return spec;
 }
@@ -84,6 +85,14 @@ int coverageCommand(const std::vector<std::string>& argv) {
     size_t declared = 0;
     for (const auto& k : kernels::all()) declared += plan::declaredPaths(k).size();
     const auto missing = plan::uncovered(matrices);
+    if (parsed->has("--list")) {
+        const auto reached = plan::reachedBy(matrices);
+        for (const auto& k : kernels::all())
+            for (const auto& p : plan::declaredPaths(k)) {
+                const auto at = reached.find(p.text());
+                std::cout << p.text() << "  " << (at == reached.end() ? "not reached" : at->second) << "\n";
+            }
+    }
     if (missing.empty()) {
         std::cout << program << ": all " << declared << " paths of " << kernels::all().size()
                   << " kernels are compiled and judged by " << list << " (" << configs << " configurations)\n";

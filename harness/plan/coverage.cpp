@@ -1,4 +1,5 @@
 #include "plan/coverage.h"
+#include "pipeline/config_id.h"
 #include "pipeline/pipeline.h"
 
 #include <algorithm>
@@ -122,11 +123,16 @@ std::vector<CodePath> pathsOf(const RunConfig& c) {
     return out;
 }
 
-std::vector<CodePath> uncovered(const std::vector<Matrix>& matrices) {
-    std::set<std::string> reached;
+std::map<std::string, std::string> reachedBy(const std::vector<Matrix>& matrices) {
+    std::map<std::string, std::string> reached;
     for (const auto& m : matrices)
         for (const auto& c : m.expand())
-            for (const auto& p : pathsOf(c)) reached.insert(p.text());
+            for (const auto& p : pathsOf(c)) reached.emplace(p.text(), m.name + ": " + pipeline::configId(c));
+    return reached;
+}
+
+std::vector<CodePath> uncovered(const std::vector<Matrix>& matrices) {
+    const auto reached = reachedBy(matrices);
     std::vector<CodePath> out;
     for (const auto& k : kernels::all())
         for (const auto& p : declaredPaths(k))

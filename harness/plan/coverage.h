@@ -8,6 +8,7 @@
 #include "plan/matrix.h"
 #include "kernel.h"
 
+#include <map>
 #include <string>
 #include <vector>
 
@@ -33,6 +34,10 @@ std::vector<CodePath> declaredPaths(const kernels::KernelDecl& k);
 // The paths of one configuration: those of every pass of its pipeline, with
 // the pass's stage, output size and parameter values.
 std::vector<CodePath> pathsOf(const RunConfig& c);
+
+// Each path some configuration of `matrices` reaches (CodePath::text), with
+// the id of the first configuration that does, in matrix order.
+std::map<std::string, std::string> reachedBy(const std::vector<Matrix>& matrices);
 
 // Every declared path of every kernel that no configuration of `matrices`
 // reaches, in kernel then declaration order.
