@@ -82,7 +82,7 @@ from cavity_charts.inputs import (DIMS, BadInput, bench_floor_rows, config_id, l
                                   load_quality, load_results, parse_id, strip_name)
 from cavity_charts.labels import (API_NAMES, device_line, device_name, driver_name, file_label,  # noqa: E402,F401
                                   fixed_line, format_ratio, is_compute_card, series_label, short_ids, shorten)
-from cavity_charts.plotting import DPI, Canvas, pick_slice  # noqa: E402,F401
+from cavity_charts.plotting import DPI, Canvas, kernel_colours, pick_slice  # noqa: E402,F401
 from cavity_charts.quality_cost import AO_COST_PASSES, is_screen_space, join_quality_cost, pareto_front  # noqa: E402,F401
 from cavity_charts.quality_cost import main as quality_cost_main  # noqa: E402,F401
 from cavity_charts.time_vs_megapixels import fit_through_origin  # noqa: E402,F401

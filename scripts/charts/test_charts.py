@@ -504,6 +504,9 @@ class Crowded(unittest.TestCase):
             index = index_of(out)
             self.assertEqual(len(index["time_vs_samples"]["points"]), 8)
             self.assertEqual(len(index["full_vs_half"]["labels"]), 8)
+            self.assertEqual(len({p["id"].split("/")[1] for p in index["gl_vs_vk"]["pairs"]}), 8)
+            # every kernel of the sweep its own colour
+            self.assertEqual(len(set(charts.kernel_colours(self.KERNELS).values())), len(self.KERNELS))
             with open(os.path.join(out, "time_vs_samples.svg")) as f:
                 self.assertTrue("the first 8 of 24 series" in f.read(), "the subtitle says what was left out")
             for c in index.values():

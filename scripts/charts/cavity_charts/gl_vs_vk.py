@@ -8,7 +8,7 @@ import math
 
 from . import spread
 from .labels import short_ids, shorten, time_label
-from .plotting import whiskers
+from .plotting import MAX_SERIES, whiskers
 
 NAME = "gl_vs_vk"
 
@@ -51,6 +51,12 @@ def draw(c):
     pairs = api_pairs(c.records)
     if not pairs:
         return c.skip("gl_vs_vk", "no configuration measured on both OpenGL and Vulkan")
+    # A colour a kernel: at most MAX_SERIES of them, the first by name.
+    kernels = sorted({g["kernel"] for g, _ in pairs})
+    left_out = len(kernels) - MAX_SERIES
+    if left_out > 0:
+        keep = set(kernels[:MAX_SERIES])
+        pairs = [(g, k) for g, k in pairs if g["kernel"] in keep]
     fig, ax = c.figure(width=11.0, height=7.4)
     vals = [v for g, k in pairs for r in (g, k) for v in (r["ms"], r.get("q25"), r.get("q75")) if v]
     lo, hi = min(vals) / 1.6, max(vals) * 1.6
@@ -113,5 +119,6 @@ def draw(c):
             multialignment="left",
             bbox=dict(boxstyle="round", facecolor="white", edgecolor="#cccccc"))
     c.finish("gl_vs_vk", fig, ax, "OpenGL vs Vulkan, same configuration",
-             "every configuration measured on both APIs (all scenes, sizes, samples)",
+             "every configuration measured on both APIs (all scenes, sizes, samples)" +
+             (f", of the first {MAX_SERIES} of {len(kernels)} kernels (--filter picks others)" if left_out > 0 else ""),
              legend_kw=dict(loc="upper left", bbox_to_anchor=(1.03, 1.0), ncol=1), drawn=gls + vks, extra={"pairs": chs})

@@ -83,6 +83,22 @@ def series_sort_key(key):
     return (kernel, 0 if api == "vk" else 1, api)
 
 
+def kernel_colours(kernels):
+    """{kernel: colour}: alchemy, hemisphere and ssdo keep theirs in every
+    chart; the others take the rest in name order."""
+    # matplotlib's tab10, then darker hues of tab20b: 20 distinct colours,
+    # so that the kernels of a chart (at most MAX_SERIES) never share one.
+    palette = ["#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2",
+               "#7f7f7f", "#bcbd22", "#17becf", "#393b79", "#637939", "#8c6d31", "#843c39", "#7b4173",
+               "#5254a3", "#8ca252", "#bd9e39", "#ad494a", "#a55194"]
+    fixed = {"alchemy": palette[0], "hemisphere": palette[1], "ssdo": palette[2]}
+    rest = [c for c in palette if c not in fixed.values()]
+    out = {}
+    for k in sorted(kernels):
+        out[k] = fixed.get(k) or rest[len([1 for v in out if v not in fixed]) % len(rest)]
+    return out
+
+
 class Canvas:
     """The files, the records of the last one, the output folder and what was written or skipped."""
 
@@ -111,14 +127,7 @@ class Canvas:
         self.prefix = title_prefix
         self.written = []
         self.skipped = []
-        kernels = sorted({r["kernel"] for f in files for r in f["records"].values()})
-        palette = ["#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2",
-                   "#7f7f7f", "#bcbd22", "#17becf"]
-        fixed = {"alchemy": palette[0], "hemisphere": palette[1], "ssdo": palette[2]}
-        rest = [c for c in palette if c not in fixed.values()]
-        self.kcolor = {}
-        for k in kernels:
-            self.kcolor[k] = fixed.get(k) or rest[len([1 for v in self.kcolor if v not in fixed]) % len(rest)]
+        self.kcolor = kernel_colours({r["kernel"] for f in files for r in f["records"].values()})
 
     # -- helpers
     def style(self, key):
