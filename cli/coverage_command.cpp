@@ -61,16 +61,9 @@ int coverageCommand(const std::vector<std::string>& argv) {
         if (!doc->is_object()) return fail(program, badInput(path + ": must be an object of matrices by name"));
         for (const auto& [name, m] : doc->items()) wanted.push_back(name);
     } else {
-        std::string item;
-        for (size_t i = 0; i <= names.size(); ++i) {
-            if (i < names.size() && names[i] != ',') {
-                item += names[i];
-                continue;
-            }
-            if (item.empty()) return fail(program, badInput("--matrix " + names + ": an empty name in the list"));
-            wanted.push_back(item);
-            item.clear();
-        }
+        auto list = splitList("--matrix", names);
+        if (!list) return fail(program, list.error());
+        wanted = std::move(*list);
     }
     std::vector<plan::Matrix> matrices;
     size_t configs = 0;

@@ -42,14 +42,11 @@ Result<GroundTruth> groundTruth(gpu::Backend& gpu, const std::string& scene, int
 
 namespace {
 
-// The 2.5th and 97.5th percentiles of the MAE over resamples of whole tiles
-// (their summed error and surface pixels), from a fixed seed: the same
-// images give the same interval.
 using Tiles = std::vector<std::pair<double, long long>>;
 
-// The 2.5th and 97.5th percentiles of a statistic of the tiles over
-// resamples of whole tile indices, from a fixed seed: the same images give
-// the same interval. `stat` gets each resample's (summed error, pixels) of
+// The kIntervalLow and kIntervalHigh quantiles of a statistic of the tiles
+// over resamples of whole tile indices, from a fixed seed: the same images
+// give the same interval. `stat` gets each resample's (summed error, pixels) of
 // every tile list given.
 template <class Stat>
 std::pair<double, double> bootstrap(const std::vector<const Tiles*>& lists, Stat stat) {
@@ -72,7 +69,7 @@ std::pair<double, double> bootstrap(const std::vector<const Tiles*>& lists, Stat
         draws.push_back(stat(sums));
     }
     std::sort(draws.begin(), draws.end());
-    return {draws[size_t(0.025 * (draws.size() - 1))], draws[size_t(0.975 * (draws.size() - 1))]};
+    return {draws[size_t(kIntervalLow * double(draws.size() - 1))], draws[size_t(kIntervalHigh * double(draws.size() - 1))]};
 }
 
 double mae(const std::pair<double, long long>& s) { return s.second ? s.first / double(s.second) : 0; }

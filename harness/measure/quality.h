@@ -63,9 +63,10 @@ struct QualityRow {
     std::string scene, kernel;
     int samples = 0;
     double meanAbsError = 0;   // over surface pixels, AO in [0, 1]
-    // The MAE's 95% interval: a bootstrap over kTileSide-pixel tiles of the
-    // image (a resample draws whole tiles, so that neighbouring pixels'
-    // correlated errors stay together), percentile method.
+    // The MAE's interval between the kIntervalLow and kIntervalHigh
+    // quantiles of a bootstrap over kTileSide-pixel tiles of the image (a
+    // resample draws whole tiles, so that neighbouring pixels' correlated
+    // errors stay together), percentile method.
     double maeLow = 0, maeHigh = 0;
     double maxAbsError = 0;
     double meanAo = 0, meanTruth = 0;   // signed bias is meanAo - meanTruth
@@ -81,6 +82,8 @@ struct QualityRow {
 };
 constexpr int kTileSide = 8;
 constexpr int kBootstrapDraws = 1000;
+// The interval's quantiles: the central share the reports print as its confidence.
+constexpr double kIntervalLow = 0.025, kIntervalHigh = 0.975;
 
 // The ground-truth AO of a scene at a size on one backend, and the mask of
 // surface pixels (1 where the G-buffer holds a surface).
@@ -93,7 +96,7 @@ Result<GroundTruth> groundTruth(gpu::Backend& gpu, const std::string& scene, int
 
 // MAE of one AO image against the truth over its surface pixels.
 QualityRow compareToTruth(const HostImage& ao, const GroundTruth& truth);
-// The 95% interval of MAE(b) - MAE(a) for two rows of one scene and size,
+// The interval (kIntervalLow to kIntervalHigh) of MAE(b) - MAE(a) for two rows of one scene and size,
 // by a paired bootstrap over their tiles (one resample of tile indices for
 // both): when it holds 0 the two kernels cannot be told apart.
 std::pair<double, double> maeDifference(const QualityRow& a, const QualityRow& b);

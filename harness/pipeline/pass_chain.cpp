@@ -146,12 +146,10 @@ Status PassChain::createPass(const PassSpec& spec, const RunConfig& c, const Sou
         mipLevels = std::max(mipLevels, o.mipLevels);
         oneDispatch |= o.oneDispatch;
     }
-    // A mip chain and interleaved layers are compute work whatever the stage.
-    const bool interleaved = k.interleaved && interleaveOf(c) > 1;
-    pass->stage = mipLevels > 1 || interleaved ? gpu::Stage::Compute : c.stage;
+    pass->stage = passStage(k, c);
     pass->width = spec.half ? (c.width + 1) / 2 : c.width;
     pass->height = spec.half ? (c.height + 1) / 2 : c.height;
-    pass->layers = interleaved ? interleaveOf(c) : 1;
+    pass->layers = k.interleaved ? interleaveOf(c) : 1;
     CAVITY_TRY(createOutputs(*pass, spec, c));
     CAVITY_TRY(createUniforms(*pass, spec, c));
     CAVITY_TRY(bindInputs(*pass, spec, c));

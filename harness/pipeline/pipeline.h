@@ -47,6 +47,9 @@ bool supportsHalf(const std::string& kernel);
 // The interleaved layers per axis a configuration asks for (its `interleave`
 // parameter; KernelDecl::interleaved): 1 for a plain dispatch.
 int interleaveOf(const RunConfig& c);
+// The stage kernel `k` runs on in configuration `c`: a mip chain and
+// interleaved layers are compute work whatever the configuration's stage.
+gpu::Stage passStage(const kernels::KernelDecl& k, const RunConfig& c);
 
 // Validates the whole configuration against the pipeline it builds: kernel
 // known and of role "ao", every parameter in range for every kernel of the

@@ -60,6 +60,11 @@ std::string screenSpaceAoNames() {
 
 int interleaveOf(const RunConfig& c) { return kernels::interleaveValue(c.params); }
 
+gpu::Stage passStage(const kernels::KernelDecl& k, const RunConfig& c) {
+    const bool mipChain = std::any_of(k.outputs.begin(), k.outputs.end(), [](const auto& o) { return o.mipLevels > 1; });
+    return mipChain || (k.interleaved && interleaveOf(c) > 1) ? gpu::Stage::Compute : c.stage;
+}
+
 bool supportsHalf(const std::string& kernel) {
     const auto* k = kernels::find(kernel);
     return k && !isSsdo(*k);

@@ -103,9 +103,7 @@ std::vector<CodePath> pathsOf(const RunConfig& c) {
     for (const auto& pass : pipeline::buildPasses(c)) {
         const kernels::KernelDecl* k = kernels::find(pass.kernel);
         if (!k || k->role == kernels::Role::Reference) continue;
-        // As PassChain runs it: a mip chain and interleaved layers are compute work.
-        const bool compute =
-            c.stage == gpu::Stage::Compute || writesMipChain(*k) || (k->interleaved && pipeline::interleaveOf(c) > 1);
+        const bool compute = pipeline::passStage(*k, c) == gpu::Stage::Compute;   // as PassChain runs it
         out.push_back({k->name, std::string(compute ? "compute" : "fragment") + "/" + gpu::apiName(c.api), "stage"});
         kernels::ParamValues values;
         for (const auto& p : k->params) {
