@@ -5,6 +5,7 @@
 
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -108,6 +109,7 @@ void chain(benchmark::State& state, gpu::Backend& gpu, bool store, int width, in
         state.counters["first_pass_us"] = 1000.0 * summarize(first).median;
         state.counters["width"] = width;
         state.counters["height"] = height;
+        state.counters["workgroups"] = double(kGroup.groupsX(width)) * kGroup.groupsY(height);
     }
     release();
 }
@@ -116,19 +118,30 @@ void chain(benchmark::State& state, gpu::Backend& gpu, bool store, int width, in
 
 int registerOverheadProbes(gpu::Backend& gpu, gpu::Api api, int width, int height) {
     const std::string tag = gpu::apiName(api);
-    const std::string size = std::to_string(width) + "x" + std::to_string(height);
     gpu::Backend* g = &gpu;
     benchmark::RegisterBenchmark(("timer/empty_scope/" + tag).c_str(), [g](benchmark::State& s) { emptyScope(s, *g); })
         ->UseManualTime()
         ->Iterations(50)
         ->Unit(benchmark::kMicrosecond);
-    for (bool store : {false, true})
-        benchmark::RegisterBenchmark(("timer/" + std::string(store ? "store_chain/" : "empty_chain/") + size + "/" + tag).c_str(),
-                                     [g, store, width, height](benchmark::State& s) { chain(s, *g, store, width, height); })
+    auto registerChain = [&](bool store, int w, int h) {
+        const std::string id = "timer/" + std::string(store ? "store_chain/" : "empty_chain/") + std::to_string(w) +
+                               "x" + std::to_string(h) + "/" + tag;
+        benchmark::RegisterBenchmark(id.c_str(), [g, store, w, h](benchmark::State& s) { chain(s, *g, store, w, h); })
             ->UseManualTime()
             ->Iterations(50)
             ->Unit(benchmark::kMicrosecond);
-    return 3;
+    };
+    registerChain(false, width, height);
+    registerChain(true, width, height);
+    // The empty dispatch at sizes from twice the sweep's down to an eighth
+    // of it: the launch cost against the number of workgroups, which the
+    // floor model's launch term is fitted to (docs/roofline.md).
+    for (int shift : {-1, 1, 2, 3}) {
+        const int w = shift < 0 ? width * 2 : std::max(1, width >> shift);
+        const int h = shift < 0 ? height * 2 : std::max(1, height >> shift);
+        registerChain(false, w, h);
+    }
+    return 7;
 }
 
 }  // namespace cavity::bench
