@@ -64,7 +64,8 @@ void setFloorCounters(benchmark::State& state, const gpu::Backend& gpu, const Pa
     const GpuClocks* gpuClocks = GpuClocks::forDevice(gpu.info());
     const DeviceFloor device = deviceFloor(gpu.info(), gpuClocks ? gpuClocks->maxSmMhz() : std::nullopt);
     for (size_t i = 0; i < passes.size(); ++i) {
-        const auto f = passFloor(device, passes[i].kernel, c.params, double(chain.passPixels(i)), chain.passShape(i));
+        const auto f =
+            passFloor(device, passes[i].kernel, c.params, double(chain.passPixels(i)), chain.passShape(i), c.api);
         if (!f.floor) continue;
         state.counters["floor_" + passes[i].name + "_ms"] = f.floor->ms();
         state.counters["over_floor_" + passes[i].name] = t.passes[i].stats.median / f.floor->ms();

@@ -136,9 +136,14 @@ struct Workgroup {
 // of its inputs into shared memory once (include/blur_separable.glsl,
 // include/upsample.glsl), so that its pixels fetch fewer texels than their
 // taps read. The fragment stage has no workgroup and fetches every tap.
+// For its floor's launch term, what the pass dispatched: its dispatches (a
+// per-level mip chain makes one a level) and their workgroups together; 0
+// where unknown (a cost alone, or a fragment pass).
 struct PassShape {
     bool compute = true;
     Workgroup workgroup;
+    int dispatches = 0;
+    long long workgroups = 0;
 };
 
 // A code path of a kernel that a parameter selects without being an option

@@ -104,7 +104,36 @@ TEST(Roofline, DriverAndNvmlFiguresWinOverTheTable) {
     ASSERT_TRUE(r.floor);
     EXPECT_NEAR(r.floor->fetchMs, 1e3 * kPixels1080p * 70 / (66 * 4 * 1755e6), 1e-12);
     EXPECT_EQ(describe(d), "NVIDIA H200: 66 SMs (driver) x 4 texture units/SM (table:NVIDIA H200) x 1755 MHz (nvml); "
-                           "DRAM 4800 GB/s (table:NVIDIA H200)");
+                           "DRAM 4800 GB/s (table:NVIDIA H200); launch vk 3.65 us + 0.58 ns a workgroup, gl 6.05 us + "
+                           "0.58 ns a workgroup");
+}
+
+// The launch term, worked by hand: each dispatch's fixed cost on the API
+// and each workgroup's start, added to the memory floor; a pass that only
+// launches is "launch" bound. Where the model has no term (a fragment
+// pass, unknown dispatches, a device with no launch figures) it adds
+// nothing and says why.
+TEST(Roofline, LaunchTermCountsDispatchesAndWorkgroupsPerApi) {
+    const DeviceFloor d = deviceFloor(device("NVIDIA H200"), std::nullopt);
+    const kernels::PassShape one{true, {16, 16}, 1, 120 * 68};
+    const auto vk = passFloor(d, "composite", {}, kPixels1080p, one, gpu::Api::Vulkan);
+    const auto gl = passFloor(d, "composite", {}, kPixels1080p, one, gpu::Api::OpenGL);
+    ASSERT_TRUE(vk.floor && gl.floor);
+    EXPECT_NEAR(vk.floor->launchMs, 1e-3 * 3.65 + 1e-6 * 8160 * 0.58, 1e-12);
+    EXPECT_NEAR(gl.floor->launchMs - vk.floor->launchMs, 1e-3 * (6.05 - 3.65), 1e-12);
+    EXPECT_NEAR(vk.floor->ms(), vk.floor->memoryMs() + vk.floor->launchMs, 1e-15);
+    EXPECT_STREQ(vk.floor->bound(), "launch");   // 0.0083 ms of launch over 0.0079 of fetches
+    // Five dispatches (a per-level pyramid) pay the fixed part five times.
+    const auto chain = passFloor(d, "composite", {}, kPixels1080p, kernels::PassShape{true, {16, 16}, 5, 8160});
+    EXPECT_NEAR(chain.floor->launchMs - vk.floor->launchMs, 4e-3 * 3.65, 1e-12);
+    const auto fragment = passFloor(d, "composite", {}, kPixels1080p, kernels::PassShape{false, {16, 16}});
+    EXPECT_EQ(fragment.floor->launchMs, 0);
+    EXPECT_NE(fragment.floor->launchReason.find("fragment"), std::string::npos);
+    EXPECT_EQ(passFloor(d, "composite", {}, kPixels1080p).floor->launchReason, "no dispatch given");
+    const DeviceFloor h100 = deviceFloor(device("NVIDIA H100 80GB HBM3"), std::nullopt);
+    const auto none = passFloor(h100, "composite", {}, kPixels1080p, one, gpu::Api::OpenGL);
+    EXPECT_EQ(none.floor->launchMs, 0);
+    EXPECT_EQ(none.floor->launchReason, "no launch figures measured for NVIDIA H100 80GB HBM3 on gl");
 }
 
 TEST(Roofline, SoftwareRendererHasNoFloor) {
@@ -242,11 +271,11 @@ std::string number(double v) {
 // kernel (the six share one cost), full and (where it exists) half
 // resolution, and the fast kernels' half resolution with the fused tail, at
 // 1920x1080 on the H200's table entry, every pass compute in its declared
-// workgroup: one row per distinct pass (kernel and size), naming the
-// pipelines it is part of.
+// workgroup, one dispatch: one row per distinct pass (kernel and size),
+// naming the pipelines it is part of, with its launch term on each API.
 std::string floorTable() {
     const DeviceFloor d = deviceFloor(device("NVIDIA H200"), std::nullopt);
-    struct Row { std::string pass, kernel; double pixels; PassFloor floor; std::vector<std::string> in; };
+    struct Row { std::string pass, kernel; double pixels; PassFloor floor, gl; std::vector<std::string> in; };
     std::vector<Row> rows;
     int pipelines = 0;
     for (const std::string kernel : {"alchemy", "hemisphere", "hemisphere_cosine", "ssdo", "sdf_classic", "alchemy_fast",
@@ -263,18 +292,24 @@ std::string floorTable() {
             const std::string name = kernel + (variant == 1 ? " half" : variant == 2 ? " half fused" : "");
             ++pipelines;
             for (const PassSpec& p : buildPasses(c)) {
-                const double pixels = p.half ? double((c.width + 1) / 2) * ((c.height + 1) / 2) : double(c.width) * c.height;
-                const PassFloorResult r = passFloor(d, p.kernel, c.params, pixels);
-                if (!r.floor) return "no floor for " + configId(c) + " " + p.name + ": " + r.reason;
+                const int w = p.half ? (c.width + 1) / 2 : c.width, h = p.half ? (c.height + 1) / 2 : c.height;
+                const double pixels = double(w) * h;
+                const auto* k = kernels::find(p.kernel);
+                if (!k) return "no kernel " + p.kernel;
+                const kernels::PassShape shape{true, k->workgroup, 1,
+                                               (long long)k->workgroup.groupsX(w) * k->workgroup.groupsY(h)};
+                const PassFloorResult r = passFloor(d, p.kernel, c.params, pixels, shape, gpu::Api::Vulkan);
+                const PassFloorResult gl = passFloor(d, p.kernel, c.params, pixels, shape, gpu::Api::OpenGL);
+                if (!r.floor || !gl.floor) return "no floor for " + configId(c) + " " + p.name + ": " + r.reason;
                 auto it = std::find_if(rows.begin(), rows.end(),
                                        [&](const Row& x) { return x.pass == p.name && x.kernel == p.kernel && x.pixels == pixels; });
-                if (it == rows.end()) it = rows.insert(rows.end(), Row{p.name, p.kernel, pixels, *r.floor, {}});
+                if (it == rows.end()) it = rows.insert(rows.end(), Row{p.name, p.kernel, pixels, *r.floor, *gl.floor, {}});
                 it->in.push_back(name);
             }
         }
     std::string out = "| pass | kernel | pixels | fetches / px | slots / px | DRAM bytes / px | fetch floor | "
-                      "DRAM floor | floor | bound | in |\n"
-                      "| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | --- | --- |\n";
+                      "DRAM floor | launch vk / gl | floor vk / gl | bound | in |\n"
+                      "| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | --- | --- |\n";
     for (const Row& r : rows) {
         std::string in;
         for (const auto& x : r.in) in += (in.empty() ? "" : ", ") + x;
@@ -282,7 +317,8 @@ std::string floorTable() {
         const PassFloor& f = r.floor;
         out += "| " + r.pass + " | `" + r.kernel + "` | " + fixed(r.pixels, 0) + " | " + number(f.cost.fetchesPerPixel) +
                " | " + number(f.cost.fetchSlotsPerPixel) + " | " + number(f.cost.dramBytesPerPixel) + " | " +
-               fixed(f.fetchMs, 4) + " ms | " + fixed(f.dramMs, 4) + " ms | **" + fixed(f.ms(), 4) + " ms** | " +
+               fixed(f.fetchMs, 4) + " ms | " + fixed(f.dramMs, 4) + " ms | " + fixed(f.launchMs, 4) + " / " +
+               fixed(r.gl.launchMs, 4) + " ms | **" + fixed(f.ms(), 4) + " / " + fixed(r.gl.ms(), 4) + " ms** | " +
                f.bound() + " | " + in + " |\n";
     }
     return out;

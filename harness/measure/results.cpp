@@ -72,6 +72,11 @@ json clocksJson(const GpuClockSummary& c) {
 
 json figureJson(const Figure& f) { return {{"value", f.value}, {"source", f.source}}; }
 
+json launchJson(const std::optional<LaunchFigures>& l) {
+    if (!l) return nullptr;
+    return {{"fixed_us", l->fixedUs}, {"per_workgroup_ns", l->perWorkgroupNs}};
+}
+
 json floorDeviceJson(const DeviceFloor& d) {
     if (!d.figures) return nullptr;
     const DeviceFigures& f = *d.figures;
@@ -81,7 +86,8 @@ json floorDeviceJson(const DeviceFloor& d) {
             {"sm_clock_mhz", figureJson(f.smClockMhz)},
             {"dram_gb_per_s", figureJson(f.dramGBps)},
             {"fetch_slots_per_s", f.slotsPerSecond()},
-            {"table_source", f.tableSource}};
+            {"table_source", f.tableSource},
+            {"launch", {{"vk", launchJson(f.launchVk)}, {"gl", launchJson(f.launchGl)}, {"source", f.launchSource}}}};
 }
 
 json floorJson(const PassFloorResult& r, double medianMs) {
@@ -90,6 +96,8 @@ json floorJson(const PassFloorResult& r, double medianMs) {
     return {{"floor_ms", p.ms()},
             {"fetch_floor_ms", p.fetchMs},
             {"dram_floor_ms", p.dramMs},
+            {"launch_ms", p.launchMs},
+            {"launch_reason", p.launchReason},
             {"bound", p.bound()},
             {"measured_over_floor", medianMs / p.ms()},
             {"pixels", p.pixels},
@@ -143,7 +151,8 @@ json toJson(const RunRecord& r) {
     for (size_t i = 0; i < r.passes.size() && i < r.timing.passes.size(); ++i) {
         const auto [w, h] = r.passSizes[i];
         const auto shape = i < r.passShapes.size() ? std::optional(r.passShapes[i]) : std::nullopt;
-        const PassFloorResult floor = passFloor(r.floorDevice, r.passes[i].kernel, r.config.params, double(w) * h, shape);
+        const PassFloorResult floor =
+            passFloor(r.floorDevice, r.passes[i].kernel, r.config.params, double(w) * h, shape, r.config.api);
         const auto pipeline = r.pipelines.find(r.passes[i].name);
         const gpu::PipelineInfo info = pipeline == r.pipelines.end() ? gpu::PipelineInfo{} : pipeline->second;
         passes.push_back({{"name", r.passes[i].name},

@@ -15,6 +15,9 @@ struct TableEntry {
     const char* name;           // VkPhysicalDeviceProperties::deviceName; GL_RENDERER up to its first '/'
     double smCount, textureUnitsPerSm, maxSmClockMhz, dramGBps;
     const char* source;
+    // Measured, not from a data sheet: the study that fitted them, or none.
+    std::optional<LaunchFigures> launchVk = std::nullopt, launchGl = std::nullopt;
+    const char* launchSource = "";
 };
 
 const std::vector<TableEntry>& table() {
@@ -22,7 +25,10 @@ const std::vector<TableEntry>& table() {
         {"NVIDIA H200", 132, 4, 1980, 4800,
          "NVIDIA H200 Tensor Core GPU data sheet (SXM: 4.8 TB/s HBM3e); NVIDIA H100 Tensor Core GPU "
          "Architecture whitepaper (GH100 SXM5, the H200's GPU: 132 SMs, 4 texture units per SM); 1980 MHz, "
-         "the maximum SM clock NVML reports on the H200"},
+         "the maximum SM clock NVML reports on the H200",
+         LaunchFigures{3.65, 0.58}, LaunchFigures{6.05, 0.58},
+         "study 2026-12-03_h200_batched: the empty dispatch at 2025, 8100 and 32400 workgroups, and GL's "
+         "extra cost a pass (study 2026-12-03_h200_kernels2)"},
         {"NVIDIA H100 80GB HBM3", 132, 4, 1980, 3350,
          "NVIDIA H100 Tensor Core GPU data sheet (SXM: 3.35 TB/s HBM3) and Architecture whitepaper (GH100 "
          "SXM5: 132 SMs, 4 texture units per SM); 1980 MHz, the maximum SM clock NVML reports on the H100"},
@@ -44,6 +50,15 @@ std::string number(double v) {
     return buf;
 }
 
+// "; launch vk 3.65 us + 0.58 ns a workgroup, gl ...", or nothing.
+std::string describeLaunch(const DeviceFigures& f) {
+    std::string out;
+    for (const auto& [api, l] : {std::pair{"vk", &f.launchVk}, std::pair{"gl", &f.launchGl}})
+        if (*l) out += std::string(out.empty() ? "; launch " : ", ") + api + " " + number((*l)->fixedUs) + " us + " +
+                       number((*l)->perWorkgroupNs) + " ns a workgroup";
+    return out;
+}
+
 }  // namespace
 
 DeviceFloor deviceFloor(const gpu::DeviceInfo& device, std::optional<double> maxSmMhz) {
@@ -61,6 +76,9 @@ DeviceFloor deviceFloor(const gpu::DeviceInfo& device, std::optional<double> max
     f.textureUnitsPerSm = {e->textureUnitsPerSm, table};
     f.smClockMhz = maxSmMhz && *maxSmMhz > 0 ? Figure{*maxSmMhz, "nvml"} : Figure{e->maxSmClockMhz, table};
     f.dramGBps = {e->dramGBps, table};
+    f.launchVk = e->launchVk;
+    f.launchGl = e->launchGl;
+    f.launchSource = e->launchSource;
     return {f, ""};
 }
 
@@ -70,11 +88,11 @@ std::string describe(const DeviceFloor& d) {
     return f.name + ": " + number(f.smCount.value) + " SMs (" + f.smCount.source + ") x " +
            number(f.textureUnitsPerSm.value) + " texture units/SM (" + f.textureUnitsPerSm.source + ") x " +
            number(f.smClockMhz.value) + " MHz (" + f.smClockMhz.source + "); DRAM " + number(f.dramGBps.value) +
-           " GB/s (" + f.dramGBps.source + ")";
+           " GB/s (" + f.dramGBps.source + ")" + describeLaunch(f);
 }
 
 PassFloorResult passFloor(const DeviceFloor& device, const std::string& kernel, const kernels::ParamValues& params,
-                          double pixels, const std::optional<kernels::PassShape>& shape) {
+                          double pixels, const std::optional<kernels::PassShape>& shape, gpu::Api api) {
     const kernels::KernelDecl* k = kernels::find(kernel);
     if (!k || !k->cost) return {std::nullopt, "no cost declared"};
     const kernels::Cost cost = k->cost(kernels::withDefaults(*k, params), shape.value_or(kernels::PassShape{true, k->workgroup}));
@@ -88,6 +106,16 @@ PassFloorResult passFloor(const DeviceFloor& device, const std::string& kernel, 
     p.cost = cost;
     p.fetchMs = 1e3 * pixels * cost.fetchSlotsPerPixel / f.slotsPerSecond();
     p.dramMs = 1e3 * pixels * cost.dramBytesPerPixel / (f.dramGBps.value * 1e9);
+    const auto& launch = api == gpu::Api::OpenGL ? f.launchGl : f.launchVk;
+    if (!shape || !shape->compute)
+        p.launchReason = shape ? "a fragment pass: the launch of its rasterized tiles is not modelled"
+                               : "no dispatch given";
+    else if (shape->dispatches <= 0)
+        p.launchReason = "the pass's dispatches are unknown";
+    else if (!launch)
+        p.launchReason = "no launch figures measured for " + f.name + " on " + gpu::apiName(api);
+    else
+        p.launchMs = 1e-3 * shape->dispatches * launch->fixedUs + 1e-6 * double(shape->workgroups) * launch->perWorkgroupNs;
     return {p, ""};
 }
 

@@ -5,7 +5,9 @@
 //
 //   fetch floor = pixels x fetch slots per pixel / (SMs x texture units per SM x SM clock)
 //   DRAM floor  = pixels x DRAM bytes per pixel / DRAM bandwidth
-//   floor       = the larger of the two ("bound" names which)
+//   launch      = dispatches x fixed cost + workgroups x cost a workgroup (the API's)
+//   floor       = the larger of the two, plus the launch ("bound" names
+//                 which of the three is largest)
 //
 // A figure comes from the driver where it reports it (the SM count:
 // VK_NV_shader_sm_builtins, GL_NV_shader_thread_group), from NVML (the
@@ -29,10 +31,21 @@ struct Figure {
     std::string source;
 };
 
+// What starting a compute dispatch costs on one API: a fixed part (the
+// dispatch, the barrier before it, its scope's timestamps) and a part a
+// workgroup, fitted to the empty dispatch at several sizes
+// (bench/overhead_probes.h, timer/empty_chain).
+struct LaunchFigures {
+    double fixedUs = 0, perWorkgroupNs = 0;
+};
+
 struct DeviceFigures {
     std::string name;           // the table entry's device name
     std::string tableSource;    // the document the table entry's figures are from
     Figure smCount, textureUnitsPerSm, smClockMhz, dramGBps;
+    // Measured per API, where a study has (launchSource names it).
+    std::optional<LaunchFigures> launchVk, launchGl;
+    std::string launchSource;
     // 32-bit texels (fetch slots) per second.
     double slotsPerSecond() const { return smCount.value * textureUnitsPerSm.value * smClockMhz.value * 1e6; }
 };
@@ -53,8 +66,17 @@ struct PassFloor {
     double pixels = 0;
     kernels::Cost cost;         // per pixel, at the configuration's parameter values
     double fetchMs = 0, dramMs = 0;
-    double ms() const { return fetchMs > dramMs ? fetchMs : dramMs; }
-    const char* bound() const { return fetchMs >= dramMs ? "fetch" : "dram"; }
+    // The launch term; 0 with launchReason set where the model has none
+    // (a fragment pass, a shape of unknown dispatches, a device with no
+    // measured launch figures).
+    double launchMs = 0;
+    std::string launchReason;
+    double memoryMs() const { return fetchMs > dramMs ? fetchMs : dramMs; }
+    double ms() const { return memoryMs() + launchMs; }
+    const char* bound() const {
+        if (launchMs > memoryMs()) return "launch";
+        return fetchMs >= dramMs ? "fetch" : "dram";
+    }
 };
 
 struct PassFloorResult {
@@ -65,8 +87,10 @@ struct PassFloorResult {
 // The floor of a pass of `kernel` over `pixels` output pixels, with the
 // configuration's parameters (the kernel's defaults fill the rest), run as
 // `shape` says (PassChain::passShape); unset, a compute pass in the
-// kernel's declared workgroup.
+// kernel's declared workgroup, with no launch term. `api`: whose launch
+// figures count.
 PassFloorResult passFloor(const DeviceFloor& device, const std::string& kernel, const kernels::ParamValues& params,
-                          double pixels, const std::optional<kernels::PassShape>& shape = std::nullopt);
+                          double pixels, const std::optional<kernels::PassShape>& shape = std::nullopt,
+                          gpu::Api api = gpu::Api::Vulkan);
 
 }  // namespace cavity::measure

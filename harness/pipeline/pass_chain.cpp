@@ -43,6 +43,8 @@ struct PassChain::Pass {
     int vertexCount = 3;
     int width = 0, height = 0;
     int layers = 1;   // interleaved layers per axis: dispatched over their atlas (recordPass)
+    // The atlas of whole layers reaches the last pixels where k does not divide the size.
+    int atlas(int size) const { return (size + layers - 1) / layers * layers; }
     kernels::Workgroup workgroup;        // compute stage
     std::vector<Level> levels;           // levels 1.. of a mip-chain pass
 };
@@ -282,9 +284,7 @@ void PassChain::recordPass(size_t i) {
     auto& p = *passes_[i];
     gpu_.beginScope(specs_[i].name);
     if (p.stage == gpu::Stage::Compute) {
-        // Interleaved layers: the atlas, whole layers, reaches the last pixels where k does not divide the size.
-        const auto atlas = [&](int size) { return (size + p.layers - 1) / p.layers * p.layers; };
-        gpu_.dispatch(p.pipeline, p.binds, p.workgroup.groupsX(atlas(p.width)), p.workgroup.groupsY(atlas(p.height)));
+        gpu_.dispatch(p.pipeline, p.binds, p.workgroup.groupsX(p.atlas(p.width)), p.workgroup.groupsY(p.atlas(p.height)));
         // A mip chain's level l reads level l - 1: one scope, a barrier apart.
         for (const auto& l : p.levels) {
             gpu_.barrier();
@@ -337,10 +337,7 @@ Result<std::vector<NonFinite>> PassChain::findNonFinite() const {
                 bool finite = true;
                 for (size_t c = 0; c < channels; ++c) finite &= std::isfinite(img.pixels[pixel * channels + c]);
                 if (finite) continue;
-                if (n.count++ == 0) {
-                    n.x = int(pixel % size_t(img.width));
-                    n.y = int(pixel / size_t(img.width));
-                }
+                if (n.count++ == 0) n.x = int(pixel % size_t(img.width)), n.y = int(pixel / size_t(img.width));
             }
             if (n.count) found.push_back(std::move(n));
         }
@@ -353,12 +350,15 @@ std::map<std::string, gpu::PipelineInfo> PassChain::pipelineInfos() const {
     return m;
 }
 
-long long PassChain::passPixels(size_t i) const {
-    return (long long)passes_[i]->width * passes_[i]->height;
-}
+long long PassChain::passPixels(size_t i) const { return (long long)passes_[i]->width * passes_[i]->height; }
 
 kernels::PassShape PassChain::passShape(size_t i) const {
-    return {passes_[i]->stage == gpu::Stage::Compute, passes_[i]->workgroup};
+    const auto& p = *passes_[i];
+    if (p.stage != gpu::Stage::Compute) return {false, p.workgroup};
+    // What recordPass dispatches: the atlas, then each further mip level.
+    long long groups = (long long)p.workgroup.groupsX(p.atlas(p.width)) * p.workgroup.groupsY(p.atlas(p.height));
+    for (const auto& l : p.levels) groups += (long long)p.workgroup.groupsX(l.width) * p.workgroup.groupsY(l.height);
+    return {true, p.workgroup, 1 + int(p.levels.size()), groups};
 }
 
 Result<std::map<std::string, HostImage>> renderImages(gpu::Backend& gpu, const RunConfig& c,
