@@ -50,7 +50,7 @@ std::string number(double v) {
     return buf;
 }
 
-// "; launch vk 3.65 us + 0.58 ns a workgroup, gl ...", or nothing.
+// "; launch vk <fixed> us + <per group> ns a workgroup, gl ...", or nothing.
 std::string describeLaunch(const DeviceFigures& f) {
     std::string out;
     for (const auto& [api, l] : {std::pair{"vk", &f.launchVk}, std::pair{"gl", &f.launchGl}})
