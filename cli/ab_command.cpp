@@ -44,6 +44,7 @@ const CommandSpec& abSpec() {
             {"--out", "DIR", "where the runs, a.json, b.json and compare.json go (default out/ab)"},
             {"--min-change", "P|auto", "as cavity compare (default auto)"},
             {"--fail-on-slower", "", "exit 1 when any pass of B is slower than A's"},
+            {"--list", "", "print the benchmarks each build would run, with every flag given, and run nothing"},
         },
         "",
         "",
@@ -65,65 +66,71 @@ Result<std::string> benchBinary(const std::string& flag, const std::string& path
                                         "or a bundle)");
 }
 
-// One cavity_bench process, its own flags and ours; its output goes to `log`.
-Status runBench(const std::string& exe, const std::vector<std::string>& args, const std::string& log) {
+// What a cavity_bench process left: its exit code, and its output where it
+// was not sent to a log file.
+struct BenchExit {
+    int code = 0;
+    std::string output;
+};
+
+// One cavity_bench process, its own flags and ours: its stdout and stderr go
+// to the file `log`, or, where `log` is empty, come back in the result.
+Result<BenchExit> spawnBench(const std::string& exe, const std::vector<std::string>& args, const std::string& log) {
     std::vector<char*> argv{const_cast<char*>(exe.c_str())};
     for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
     argv.push_back(nullptr);
+    int pipe[2] = {-1, -1};
+    if (log.empty() && ::pipe(pipe) != 0) return internal("pipe failed");
     const pid_t pid = ::fork();
     if (pid < 0) return internal("fork failed");
     if (pid == 0) {
-        if (FILE* f = std::freopen(log.c_str(), "w", stdout)) ::dup2(::fileno(f), 2);
+        if (!log.empty()) {
+            if (FILE* f = std::freopen(log.c_str(), "w", stdout)) ::dup2(::fileno(f), 2);
+        } else {
+            ::dup2(pipe[1], 1);
+            ::dup2(pipe[1], 2);
+            ::close(pipe[0]);
+            ::close(pipe[1]);
+        }
         // A bundle's libraries are beside the binary.
         const std::string lib = (fs::path(exe).parent_path() / "lib").string();
         if (fs::is_directory(lib)) ::setenv("LD_LIBRARY_PATH", lib.c_str(), 1);
         ::execv(exe.c_str(), argv.data());
         std::_Exit(127);
     }
+    BenchExit e;
+    if (log.empty()) {
+        ::close(pipe[1]);
+        char buf[4096];
+        for (ssize_t n; (n = ::read(pipe[0], buf, sizeof buf)) > 0;) e.output.append(buf, size_t(n));
+        ::close(pipe[0]);
+    }
     int status = 0;
     ::waitpid(pid, &status, 0);
-    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
-        return internal(exe + " failed (exit " + std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) + "); see " + log);
+    e.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return e;
+}
+
+Status runBench(const std::string& exe, const std::vector<std::string>& args, const std::string& log) {
+    CAVITY_ASSIGN(const BenchExit e, spawnBench(exe, args, log));
+    if (e.code != 0) return internal(exe + " failed (exit " + std::to_string(e.code) + "); see " + log);
     return {};
 }
 
 // The benchmarks a side would run (cavity_bench --benchmark_list_tests with
 // the same flags), asked before anything is written: a filter that matches
 // nothing, or a flag that side refuses, is bad input, not a failed run.
-Status checkSide(const std::string& exe, const std::string& flag, std::vector<std::string> args) {
+Result<std::string> checkSide(const std::string& exe, const std::string& flag, std::vector<std::string> args) {
     args.insert(args.begin(), "--benchmark_list_tests=true");
-    std::vector<char*> argv{const_cast<char*>(exe.c_str())};
-    for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-    argv.push_back(nullptr);
-    int pipe[2];
-    if (::pipe(pipe) != 0) return internal("pipe failed");
-    const pid_t pid = ::fork();
-    if (pid < 0) return internal("fork failed");
-    if (pid == 0) {
-        ::dup2(pipe[1], 1);
-        ::dup2(pipe[1], 2);
-        ::close(pipe[0]);
-        ::close(pipe[1]);
-        const std::string lib = (fs::path(exe).parent_path() / "lib").string();
-        if (fs::is_directory(lib)) ::setenv("LD_LIBRARY_PATH", lib.c_str(), 1);
-        ::execv(exe.c_str(), argv.data());
-        std::_Exit(127);
-    }
-    ::close(pipe[1]);
-    std::string out;
-    char buf[4096];
-    for (ssize_t n; (n = ::read(pipe[0], buf, sizeof buf)) > 0;) out.append(buf, size_t(n));
-    ::close(pipe[0]);
-    int status = 0;
-    ::waitpid(pid, &status, 0);
-    const int code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    if (code == 0) return {};
+    CAVITY_ASSIGN(const BenchExit e, spawnBench(exe, args, ""));
+    if (e.code == 0) return e.output;
     std::string last;
-    std::istringstream lines(out);
+    std::istringstream lines(e.output);
     for (std::string l; std::getline(lines, l);)
         if (!l.empty()) last = l;
-    const std::string why = flag + " " + exe + ": " + (last.empty() ? "exit " + std::to_string(code) : last);
-    return code == 2 ? Status(badInput(why)) : Status(internal(why));
+    const std::string why = flag + " " + exe + ": " + (last.empty() ? "exit " + std::to_string(e.code) : last);
+    if (e.code == 2) return badInput(why);
+    return internal(why);
 }
 
 // The iteration entries of every round's file, each round one repetition.
@@ -150,12 +157,14 @@ struct AbFlags {
     int rounds = 10;
     CompareThresholds thresholds;
     bool failOnSlower = false;
+    bool list = false;   // --list: what each side would run, and nothing run
 };
 
 Result<AbFlags> parseAb(const ParsedFlags& p) {
     AbFlags f;
     f.thresholds.autoMinChange = true;
     f.failOnSlower = p.has("--fail-on-slower");
+    f.list = p.has("--list");
     for (const auto& [flag, v] : p.values) {
         if (flag == "--a") {
             CAVITY_ASSIGN(f.a, benchBinary(flag, v));
@@ -201,8 +210,11 @@ int abCommand(const std::vector<std::string>& argv) {
         if (!f->filter.empty()) args.push_back("--benchmark_filter=" + f->filter);
         args.insert(args.end(), f->benchArgs.begin(), f->benchArgs.end());
         args.insert(args.end(), f->sideArgs[side].begin(), f->sideArgs[side].end());
-        if (auto st = checkSide(side == 0 ? f->a : f->b, side == 0 ? "--a" : "--b", args); !st) return fail(program, st.error());
+        auto listed = checkSide(side == 0 ? f->a : f->b, side == 0 ? "--a" : "--b", args);
+        if (!listed) return fail(program, listed.error());
+        if (f->list) std::cout << (side == 0 ? "A: " : "B: ") << (side == 0 ? f->a : f->b) << "\n" << *listed;
     }
+    if (f->list) return 0;
     std::error_code ec;
     fs::create_directories(f->out, ec);
     if (ec) return fail(program, badInput("--out " + f->out + ": cannot be created: " + ec.message()));

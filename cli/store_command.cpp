@@ -35,8 +35,8 @@ const CommandSpec& checkSpec() {
         "\nExit codes: 0 every image there and whole, 2 bad input, 5 the store cannot be reached or lacks an image, "
         "6 an image does not match its digest.",
         {
-            "cavity store check --class nvidia-h200",
-            "cavity store check --store https://store.example/refs --filter '1920x1080'",
+            "cavity store check --class llvmpipe --filter '^corner/alchemy_fast/n16/b4/full/160x90$'",
+            "cavity store check --store https://store.example/refs --filter '^corner/alchemy_fast/n16/b4/full/160x90$'",
         },
     };
     return spec;

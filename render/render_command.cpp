@@ -45,6 +45,7 @@ const flags::CommandSpec& renderSpec() {
             {"--shard", "I/N", "shard I of N (0 <= I < N); also GTEST_SHARD_INDEX/GTEST_TOTAL_SHARDS, TEST_SHARD_INDEX"},
             {"--device", "K", "device index (0..64; default 0)"},
             {"--filter", "REGEX", "only the configurations whose id matches (searched)"},
+            {"--list", "", "print the ids of the selection (with --backend and --shard), one a line, and render nothing"},
             {"--repeat", "N", "renders of each configuration (1..1000; default 1)"},
             {"--validation", "", "enable the Vulkan validation layers and the GL debug output"},
             {"--timing", "batch|drained", "batch: back-to-back frames; drained: wait for the GPU after each (default: the device's)"},
@@ -180,6 +181,7 @@ Result<RenderCommand> parseRenderFlags(const std::vector<std::string>& argv) {
         return o;
     }
     o.render.validation = parsed.has("--validation");
+    o.list = parsed.has("--list");
     for (const auto& [flag, v] : parsed.values) {
         if (flag == "--matrix") o.matrix = v;
         else if (flag == "--baselines") o.baselines = v;
@@ -224,7 +226,7 @@ Result<RenderCommand> parseRenderFlags(const std::vector<std::string>& argv) {
         CAVITY_ASSIGN(o.baselines, flags::defaultBaselines());
     }
     if (o.matrix.empty()) return badInput("--matrix: missing (name a matrix of " + o.baselines + "/matrices.json)");
-    if (o.out.empty()) return badInput("--out: missing (the render folder to write)");
+    if (o.out.empty() && !o.list) return badInput("--out: missing (the render folder to write)");
     // --shard, GoogleTest's and Bazel's variables: one partition (shard_sources.h).
     CAVITY_ASSIGN(const flags::Shard shard, flags::resolveShard(shardFlag));
     o.shardIndex = shard.index;
@@ -248,6 +250,12 @@ int renderCommand(const std::vector<std::string>& argv) {
     std::vector<RunConfig> selected;
     for (const auto& e : *entries) selected.push_back(e.config);
     if (auto st = checkSourcesUsed(o->replaced, selected); !st) return fail(st.error());
+    if (o->list) {
+        for (const auto& c : selected)
+            if (std::find(o->render.apis.begin(), o->render.apis.end(), c.api) != o->render.apis.end())
+                std::cout << configId(c) << "\n";
+        return 0;
+    }
     if (auto env = gpu::withEnvironment({}); !env) return fail(env.error());
     if (auto st = checkWritableDir("--out", o->out); !st) return fail(st.error());
 

@@ -20,6 +20,7 @@ struct RenderCommand {
     bool help = false;                    // --help given: print helpText, exit 0, nothing else read
     std::string helpText;
     std::string matrix, baselines, out, filter;   // baselines: empty until found (flags::defaultBaselines)
+    bool list = false;                    // --list: print the selection's ids, render nothing
     int shardIndex = 0, shardCount = 1;
     RenderOptions render;
     std::vector<ReplacedSource> replaced;   // --kernel-source, recorded in the manifest
