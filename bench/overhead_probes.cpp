@@ -60,8 +60,10 @@ void emptyScope(benchmark::State& state, gpu::Backend& gpu) {
 // kChainPasses dispatches of width x height, each in its own scope with a
 // barrier() between them. The iteration's time is one pass's, the median
 // over the chain's passes after the first; the first is reported apart,
-// since it also waits for whatever the frame's start leaves.
-void chain(benchmark::State& state, gpu::Backend& gpu, bool store, int width, int height) {
+// since it also waits for whatever the frame's start leaves. `oneScope`:
+// the passes after the first share one scope, and a pass's time is its
+// share of it: what a pass costs without timestamps of its own.
+void chain(benchmark::State& state, gpu::Backend& gpu, bool store, int width, int height, bool oneScope = false) {
     auto pipe = gpu.createComputePipeline(probeKernel(store));
     if (!pipe) {
         state.SkipWithError(pipe.error().message.c_str());
@@ -88,9 +90,9 @@ void chain(benchmark::State& state, gpu::Backend& gpu, bool store, int width, in
         gpu.beginFrame();
         for (int i = 0; i < kChainPasses; ++i) {
             if (i) gpu.barrier();
-            gpu.beginScope("pass");
+            if (!oneScope || i < 2) gpu.beginScope(i ? "passes" : "pass");
             gpu.dispatch(*pipe, binds[size_t(i)], kGroup.groupsX(width), kGroup.groupsY(height));
-            gpu.endScope();
+            if (!oneScope || i == 0 || i == kChainPasses - 1) gpu.endScope();
         }
         if (auto s = gpu.endFrame(); !s) {
             state.SkipWithError(s.error().message.c_str());
@@ -99,7 +101,7 @@ void chain(benchmark::State& state, gpu::Backend& gpu, bool store, int width, in
         const auto scopes = gpu.scopeTimes();
         std::vector<double> passes;
         for (size_t i = 1; i < scopes.size(); ++i) passes.push_back(scopes[i].gpuMs);
-        const double t = summarize(passes).median;
+        const double t = oneScope ? scopes.at(1).gpuMs / (kChainPasses - 1) : summarize(passes).median;
         later.push_back(t);
         first.push_back(scopes.at(0).gpuMs);
         state.SetIterationTime(t / 1000.0);
@@ -133,6 +135,12 @@ int registerOverheadProbes(gpu::Backend& gpu, gpu::Api api, int width, int heigh
     };
     registerChain(false, width, height);
     registerChain(true, width, height);
+    benchmark::RegisterBenchmark(("timer/empty_chain_one_scope/" + std::to_string(width) + "x" + std::to_string(height) +
+                                  "/" + tag).c_str(),
+                                 [g, width, height](benchmark::State& s) { chain(s, *g, false, width, height, true); })
+        ->UseManualTime()
+        ->Iterations(50)
+        ->Unit(benchmark::kMicrosecond);
     // The empty dispatch at sizes from twice the sweep's down to an eighth
     // of it: the launch cost against the number of workgroups, which the
     // floor model's launch term is fitted to (docs/roofline.md).
@@ -141,7 +149,7 @@ int registerOverheadProbes(gpu::Backend& gpu, gpu::Api api, int width, int heigh
         const int h = shift < 0 ? height * 2 : std::max(1, height >> shift);
         registerChain(false, w, h);
     }
-    return 7;
+    return 8;
 }
 
 }  // namespace cavity::bench
