@@ -25,6 +25,7 @@ f+='|^corner/alchemy_fast/n32/b4/full/1920x1080/(gl|vk)/compute/|^corner/ssdo_fa
 filter="$f|^timer/" reps=10 maxt=0.3 OUT=$K bench targets
 echo "targets: rc $? ($(el) s)"
 python3 lab/2026-12-04_h200_floors/floors.py $K/targets.json > $K/floors.md 2>&1; head -40 $K/floors.md
+python3 lab/2026-12-06_gpu_packed_texel/launch_fit.py $K/targets.json > $K/launch.md 2>&1; cat $K/launch.md
 smi_start $K/ab.clocks.csv
 .bundle/cavity.sh ab --a .bundle_old --b .bundle --rounds 4 --filter "$f" --bench-args='--sweep gpu --max-time 0.3' \
   --out $K/ab > $K/ab.txt 2>&1
