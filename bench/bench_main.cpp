@@ -249,6 +249,13 @@ int main(int argc, char** argv) {
         return 2;
     }
     if (help) return 0;
+    // Listing runs nothing, yet Google Benchmark would still open
+    // --benchmark_out and leave the file empty: a listing never touches it.
+    const std::string list = benchmarkFlag(rest, "benchmark_list_tests");
+    const bool listing = list == "true" || list == "1" ||
+                         std::any_of(rest.begin(), rest.end(), [](const char* a) { return std::strcmp(a, "--benchmark_list_tests") == 0; });
+    if (listing)
+        std::erase_if(rest, [](const char* a) { return std::strncmp(a, "--benchmark_out=", 16) == 0; });
     // Read before Initialize, which takes its flags out of the list.
     const std::string out = benchmarkFlag(rest, "benchmark_out"), format = benchmarkFlag(rest, "benchmark_out_format"),
                       filter = benchmarkFlag(rest, "benchmark_filter"),

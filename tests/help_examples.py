@@ -1,9 +1,13 @@
 #!/usr/bin/env python3
-"""Every example of every --help runs as printed: each program's and each
-subcommand's help is read, its example lines are run through the shell in a
-scratch folder that holds what they name (a copy of baselines/, a render
-folder, a gate run, results and benchmark files, a kernel package, an edited
-kernel, a git commit for $SHA), and each must exit 0.
+"""Every example of every --help, and every command line of README.md's and
+docs/'s code blocks that runs one of the programs, runs as printed: each is
+run through the shell in a scratch folder that holds what they name (a copy
+of baselines/ with a matrix of the user's, render folders, gate runs,
+results and benchmark files, a kernel package, an edited kernel, an OpenEXR
+G-buffer, a git commit for $SHA), and each must exit 0. A usage synopsis
+(`[--flag VALUE]`, `DIR`) is not a command and is left out; the scripts the
+docs name are run by documented_scripts, and the GPU machine's wrappers
+(.bundle/) by gpu_scripts.
 
 Three kinds of example are changed before they run, and the change is one
 suffix or one substitution, printed beside the example:
@@ -22,10 +26,13 @@ must keep showing how it is used.
 
     help_examples.py SOURCE_DIR BUILD_DIR
 """
+import glob
 import gzip
+import json
 import os
 import re
 import shutil
+import struct
 import subprocess
 import sys
 import tempfile
@@ -70,6 +77,63 @@ def examples(help_cmd):
     return [line.strip() for line in text[at:].splitlines()[2:] if line.strip()] if at >= 0 else []
 
 
+DOC_PROGRAMS = {"build/harness/cavity": "cavity", "build/bench/cavity_bench": "cavity_bench",
+                "build/render/cavity_render": "cavity_render", "cavity": "cavity", "cavity_bench": "cavity_bench",
+                "cavity_render": "cavity_render"}
+SYNOPSIS = re.compile(r"\[--|\[\.\.\.|\.\.\.\]|(?<!\$)\b(DIR|FILE|REGEX|NAME|SHA|DB|URL|RENDER_DIR)\b(?!\.)")
+
+
+def doc_examples():
+    """(where, command) for each command line in README.md's and docs/'s
+    indented code blocks that starts with a program: continuation lines
+    joined, a trailing comment dropped, the program's path as printed."""
+    out = []
+    for path in [os.path.join(SOURCE, "README.md")] + sorted(glob.glob(os.path.join(SOURCE, "docs", "*.md"))):
+        lines = open(path).read().splitlines()
+        i = 0
+        while i < len(lines):
+            line, where = lines[i], f"{os.path.relpath(path, SOURCE)}:{i + 1}"
+            i += 1
+            if not line.startswith("    "):
+                continue
+            cmd = line.strip()
+            while cmd.endswith("\\") and i < len(lines):
+                cmd = cmd[:-1].rstrip() + " " + lines[i].strip()
+                i += 1
+            cmd = re.sub(r"\s{2,}#.*$", "", cmd)
+            first = cmd.split(" ", 1)[0]
+            if first in DOC_PROGRAMS and not SYNOPSIS.search(cmd):
+                out.append((where, DOC_PROGRAMS[first] + cmd[len(first):]))
+    return out
+
+
+def write_exr(path, width, height):
+    """A G-buffer as cavity run --gbuffer import reads it: an uncompressed
+    scanline OpenEXR of float channels N.X, N.Y, N.Z and Z, a plane facing
+    the camera 5 units away."""
+    names = ["N.X", "N.Y", "N.Z", "Z"]
+    value = {"N.X": 0.0, "N.Y": 0.0, "N.Z": 1.0, "Z": 5.0}
+
+    def attr(name, kind, data):
+        return name.encode() + b"\0" + kind.encode() + b"\0" + struct.pack("<i", len(data)) + data
+    chlist = b"".join(n.encode() + b"\0" + struct.pack("<iB3xii", 2, 0, 1, 1) for n in names) + b"\0"
+    box = struct.pack("<iiii", 0, 0, width - 1, height - 1)
+    header = (b"\x76\x2f\x31\x01" + struct.pack("<i", 2) + attr("channels", "chlist", chlist) +
+              attr("compression", "compression", b"\0") + attr("dataWindow", "box2i", box) +
+              attr("displayWindow", "box2i", box) + attr("lineOrder", "lineOrder", b"\0") +
+              attr("pixelAspectRatio", "float", struct.pack("<f", 1)) +
+              attr("screenWindowCenter", "v2f", struct.pack("<ff", 0, 0)) +
+              attr("screenWindowWidth", "float", struct.pack("<f", 1)) + b"\0")
+    row = b"".join(struct.pack("<f", value[n]) * width for n in names)
+    block = len(row) + 8
+    start = len(header) + 8 * height
+    with open(path, "wb") as f:
+        f.write(header)
+        f.write(b"".join(struct.pack("<Q", start + y * block) for y in range(height)))
+        for y in range(height):
+            f.write(struct.pack("<ii", y, len(row)) + row)
+
+
 def fixtures(work):
     """What the examples name, made by the programs themselves."""
     def must(args, what):
@@ -107,14 +171,27 @@ def fixtures(work):
     os.makedirs(os.path.join(work, "out"), exist_ok=True)
     for copy in ("main.json", "pr.json", "old.json", "new.json", "out/results.json"):
         shutil.copy(os.path.join(work, "main", "results.json"), os.path.join(work, copy))
-    # A benchmark of the H200 (every kernel, 1920x1080): what the examples
-    # that name a GPU (--device H200) and a cost file read.
-    with gzip.open(os.path.join(SOURCE, "tests", "data", "2026-11-30_h200_full_sweep.json.gz"), "rb") as f:
-        open(os.path.join(work, "bench.json"), "wb").write(f.read())
+    for side in ("old", "new"):
+        shutil.copytree(os.path.join(work, "main"), os.path.join(work, side))
+    # Shards of one gate run, and of one render, for the merge and judge examples.
+    for i in range(4):
+        must([CAVITY, "gate", "--matrix", "ci", "--filter", SOME, "--shard", f"{i}/4", "--out", f"out/s{i}", "--quiet"],
+             f"gate shard {i}/4")
+    for i in range(2):
+        must([RENDER, "--matrix", "ci", "--filter", SOME, "--shard", f"{i}/2", "--out", f"out/r{i}"], f"render {i}/2")
+    write_exr(os.path.join(work, "capture.exr"), 1920, 1080)
+    # A benchmark of the H200 (1920x1080): what the examples that name a GPU
+    # (--device H200) and a cost file read.
+    # Its alchemy configurations only: a history chart draws every one, in
+    # a page Chromium then opens.
+    with gzip.open(os.path.join(SOURCE, "tests", "data", "2026-11-30_h200_full_sweep.json.gz"), "rt") as f:
+        sweep = json.load(f)
+    sweep["benchmarks"] = [b for b in sweep["benchmarks"] if re.match(r"corner/alchemy(_fast)?/n16/b4/", b["name"])]
+    json.dump(sweep, open(os.path.join(work, "bench.json"), "w"))
     shutil.copy(os.path.join(SOURCE, "kernels", "ao", "alchemy_fast", "ssao_alchemy_fast.glsl"),
                 os.path.join(work, "edit.glsl"))
-    shutil.copy(os.path.join(SOURCE, "kernels", "ao", "alchemy", "ssao_alchemy.glsl"),
-                os.path.join(work, "my_alchemy.glsl"))
+    for name in ("my_alchemy.glsl", "my_edit.glsl"):
+        shutil.copy(os.path.join(SOURCE, "kernels", "ao", "alchemy", "ssao_alchemy.glsl"), os.path.join(work, name))
     pkg = os.path.join(work, "my_kernels", "my_ao")
     os.makedirs(pkg)
     toml = open(os.path.join(SOURCE, "kernels", "ao", "alchemy", "kernel.toml")).read()
@@ -123,6 +200,7 @@ def fixtures(work):
     shutil.copy(os.path.join(work, "my_alchemy.glsl"), os.path.join(pkg, "my_ao.glsl"))
     os.makedirs(os.path.join(work, "references"))
     os.symlink(BUILD, os.path.join(work, "build"))   # the checkout's build folder
+    os.symlink(os.path.join(BUILD, "bench"), os.path.join(work, ".bundle"))
     for side in ("main", "pr"):
         os.symlink(BUILD, os.path.join(work, side, "build"))
         os.symlink(os.path.join(BUILD, "bench"), os.path.join(work, side, ".bundle"))
@@ -143,14 +221,34 @@ LISTING = [(r"^cavity run ", "--list"), (r"^cavity gate(?! (judge|merge))( |$)",
            (r"^cavity_bench ", "--benchmark_list_tests")]
 
 
+def baselines_as_checked_out(work, example):
+    """baselines/'s files as the fixtures left them, before each example, so
+    that one example's approvals (a digest marked known bad) or updates do not
+    decide the next one's verdict; with "--matrix mine", the user's own
+    matrix added (the README's "a matrix of yours in matrices.json")."""
+    for name, text in PRISTINE.items():
+        open(os.path.join(work, "baselines", name), "w").write(text)
+    if "--matrix mine" in example:
+        path = os.path.join(work, "baselines", "matrices.json")
+        matrices = json.load(open(path))
+        matrices["mine"] = {"description": "my_ao, one configuration per API", "frames": 2, "warmup": 0,
+                            "groups": [{"scenes": ["corner"], "kernels": ["my_ao"], "samples": [16], "blurs": [4],
+                                        "resolutions": ["full"], "sizes": ["160x90"], "apis": ["gl", "vk"],
+                                        "stages": ["compute"]}]}
+        json.dump(matrices, open(path, "w"), indent=1)
+
+
+PRISTINE = {}
+
+
 def adapt(example, work):
     """The example as it runs here, and what was changed (or "")."""
     cmd, changes = example, []
     if "https://store.example/refs" in cmd:
         cmd = cmd.replace("https://store.example/refs", os.path.join(work, "store", "refs"))
         changes.append("the store a folder")
-    if re.search(r"postgresql://\S+", cmd):
-        cmd = re.sub(r"postgresql://\S+", "history.sqlite", cmd)
+    if "postgresql://" in cmd:
+        cmd = re.sub(r'"postgresql://[^"]*"|postgresql://\S+', "history.sqlite", cmd)
         changes.append("the database an SQLite file")
     for pattern, flag in LISTING:
         if re.search(pattern, cmd) and flag not in cmd.split():
@@ -167,19 +265,26 @@ def main():
     work = tempfile.mkdtemp(prefix="help-examples-")
     try:
         sha = fixtures(work)
-        env = dict(os.environ, SHA=sha)
+        for name in ("matrices.json", "manifest.json", "budgets.json", "approvals.json"):
+            PRISTINE[name] = open(os.path.join(work, "baselines", name)).read()
+        env = dict(os.environ, SHA=sha, CI_JOB_URL="https://ci.example/jobs/1")
         # Ingest first: the history examples that read a database need one.
-        todo = [(h, e) for h in HELPS for e in examples(h)]
+        todo = [(" ".join(h) + " --help", e) for h in HELPS for e in examples(h)]
+        docs = doc_examples()
+        check(len(docs) >= 40, f"README.md and docs/ hold {len(docs)} command lines (at least 40)")
+        todo += docs
         todo.sort(key=lambda he: 0 if " ingest " in he[1] else 1)
-        for help_cmd, example in todo:
+        print(f"{len(todo)} examples")
+        for where, example in todo:
             if example.split()[0] not in PROGRAMS:
                 check(False, f"{example}: starts with a program")
                 continue
             cmd, changed = adapt(example, work)
+            baselines_as_checked_out(work, example)
             p = subprocess.run(cmd, shell=True, cwd=work, env=env, capture_output=True, text=True, timeout=600)
             last = (p.stderr.strip() or p.stdout.strip()).splitlines()[-1:] if p.returncode else []
-            check(p.returncode == 0,
-                  f"{example}" + (f"   [{changed}]" if changed else "") + (f": exit {p.returncode}: {last}" if last else ""))
+            check(p.returncode == 0, f"{where}: {example}" + (f"   [{changed}]" if changed else "") +
+                  (f": exit {p.returncode}: {last}" if last else ""))
     finally:
         shutil.rmtree(work, ignore_errors=True)
     if failures:
