@@ -22,11 +22,6 @@ plant() {   # name, file under kernels/, configurations regex, sed expression
 # where samples land 64 px or more away.
 plant pyramid_level3 include/pyramid_build.glsl '_fast/' \
   's|    if (pick != pixel >> (k - 1)) return false;|    if (k >= 3) pick = min(t * 2 + ivec2(t.x \& 1, t.y \& 1), levelSizeOf(k - 1) - 1);\n&|'
-# The pyramid texel's packing drops the lowest bit of the source pixel's x
-# offset: a sample of level 1 or deeper rebuilds its position on the ray of
-# a pixel up to one column off.
-plant pyramid_offset_bit include/pyramid_texel.glsl '_fast/' \
-  's/| offset.x | (offset.y << n);/| (offset.x \& ~1) | (offset.y << n);/'
 # alchemy_fast reads one pyramid level too coarse everywhere.
 plant alchemy_fast_level ao/alchemy_fast/ssao_alchemy_fast.glsl '/alchemy_fast/' \
   's|int level = pyramidLevel(int(h), maxLevel);|int level = min(pyramidLevel(int(h), maxLevel) + 1, maxLevel);|'

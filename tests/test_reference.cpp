@@ -295,7 +295,7 @@ TEST_P(KernelVsReference, OtherScenes160x90) {
 // The depth pyramid's smaller levels, which the per-pass check above cannot
 // see (a readback holds level 0): each must be the rotated-grid pick of the
 // level above, bit for bit, at sizes that go odd (45, 11, 5 rows), and each
-// texel's packed source pixel the one the reference finds by undoing the
+// texel's stored source pixel the one the reference finds by undoing the
 // picks. A level that averaged, took the wrong texel of its block, stored
 // the wrong source, or was never written (all zero) fails here. Both builds, one dispatch (the default:
 // depth_pyramid_single, and at half resolution downsample_pyramid, which
@@ -336,7 +336,7 @@ TEST_P(KernelVsReference, DepthPyramidLevels) {
                 const int levels = zmip->mipLevels;
                 ASSERT_GT(levels, 2);
                 const auto want = reference::pyramidLevels(*level0, levels);
-                // Level 0 holds each pixel's depth, bit for bit.
+                // Level 0 holds each pixel's depth beside the pixel itself.
                 EXPECT_EQ(level0->pixels, want[0].pixels) << builder << " level 0";
                 built[perLevel].push_back(*level0);
                 for (int l = 1; l < levels; ++l) {

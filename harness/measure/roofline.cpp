@@ -31,7 +31,9 @@ const std::vector<TableEntry>& table() {
          "extra cost a pass (study 2026-12-03_h200_kernels2)"},
         {"NVIDIA H100 80GB HBM3", 132, 4, 1980, 3350,
          "NVIDIA H100 Tensor Core GPU data sheet (SXM: 3.35 TB/s HBM3) and Architecture whitepaper (GH100 "
-         "SXM5: 132 SMs, 4 texture units per SM); 1980 MHz, the maximum SM clock NVML reports on the H100"},
+         "SXM5: 132 SMs, 4 texture units per SM); 1980 MHz, the maximum SM clock NVML reports on the H100",
+         LaunchFigures{1.94, 0.602}, LaunchFigures{5.07, 0.602},
+         "study 2026-12-06_gpu_packed_texel: the empty dispatch at 135 to 32400 workgroups of 16x16, each API"},
     };
     return t;
 }

@@ -8,7 +8,6 @@
 #include "reference/refs.h"
 #include "reference/vec.h"
 
-#include <algorithm>
 #include <bit>
 #include <cstdint>
 #include <utility>
@@ -30,38 +29,23 @@ inline std::pair<int, int> layerTexel(const kernels::FrameUniforms& f, int k, in
 // The levels of depth_pyramid's output.
 int levelCount();
 
-// include/pyramid_texel.glsl's PYRAMID_OFFSET_BITS: the source pixel's
-// offset bits per axis a texel packs below its depth.
-inline constexpr int kOffsetBits = 5;
-
-// pyramidValue(): the texel of `level` whose depth came from level-0 pixel
-// (sx, sy), the pixel's offset in its block packed into the depth's low
-// bits; the background (depth <= 0) as it is.
-inline float packValue(float depth, int sx, int sy, int level) {
-    const int n = std::min(level, kOffsetBits), drop = level - n;
-    const int32_t ox = (sx & ((1 << level) - 1)) >> drop, oy = (sy & ((1 << level) - 1)) >> drop;
-    const int32_t bits = (std::bit_cast<int32_t>(depth) & ~((int32_t(1) << (2 * n)) - 1)) | ox | (oy << n);
-    return depth > 0.0f ? std::bit_cast<float>(bits) : depth;
+// pyramidValue()'s second channel (include/pyramid_texel.glsl): the level-0
+// pixel (x, y) a texel's depth came from, its bits as they are.
+inline float packSource(int x, int y) {
+    return std::bit_cast<float>(int32_t(0x40000000 | (y << 15) | x));
 }
 
-// pyramidSourceOf(): the level-0 pixel whose depth texel (tx, ty) of
-// `level` holds (`packed`), into (tx, ty).
-inline void sourceOf(float packed, int level, int& tx, int& ty) {
-    const int n = std::min(level, kOffsetBits);
-    const int32_t bits = std::bit_cast<int32_t>(packed), mask = (int32_t(1) << n) - 1;
-    tx = (tx << level) | ((bits & mask) << (level - n));
-    ty = (ty << level) | (((bits >> n) & mask) << (level - n));
-}
+// A level-0 image of the pyramid (depth in channel 0, two channels, as a
+// build writes it): each pixel's own packSource in channel 1.
+void packSources(HostImage& level0);
 
-// The level-0 pixel whose depth texel (tx, ty) of `level` holds, read from
-// the texel's bits as the GPU reads it (sourceOf). Every depth a fast
-// kernel reads off the pyramid passes through here, so it also counts the
-// read in levelReads().
+// The level-0 pixel whose depth texel (tx, ty) of `level` holds, found by
+// undoing the picks: the readers' statement of the rule, where the GPU reads
+// the pixel the build stored. Every depth a fast kernel reads off the
+// pyramid passes through here, so it also counts the read in levelReads().
 void sourcePixel(const std::vector<HostImage>& zmip, int level, int& tx, int& ty);
 
-// The same pixel found by undoing the picks: the build's rule stated a
-// second way (pyramidLevels packs what it finds, and the GPU's builds are
-// held to that). Reads the levels' sizes only.
+// The same, without counting.
 void undoPicks(const std::vector<HostImage>& zmip, int level, int& tx, int& ty);
 
 // How many depths the references have read from each pyramid level since

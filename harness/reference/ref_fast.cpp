@@ -105,6 +105,7 @@ using pyramid::findMsb;
 using pyramid::kLogMaxOffset;
 using pyramid::octDecode;
 using pyramid::octEncode;
+using pyramid::packSources;
 using pyramid::positionAt;
 using pyramid::sourcePixel;
 
@@ -180,12 +181,13 @@ Result<std::vector<HostImage>> blurSeparable(const Context& ctx, bool horizontal
 namespace {
 
 // A pyramid build's outputs with level 0 made: each pixel's depth (the
-// first input), its own source, so nothing is packed. Its other levels are
-// checked against pyramidLevels by the tests.
+// first input) beside the pixel itself. Its other levels are checked against
+// pyramidLevels by the tests.
 std::vector<HostImage> pyramidLevel0(const Context& ctx) {
     auto out = makeOutputs(ctx);
     for (int y = 0; y < ctx.frame.size[1]; ++y)
         for (int x = 0; x < ctx.frame.size[0]; ++x) out[0].at(x, y) = ctx.inputs[0]->at(x, y);
+    packSources(out[0]);
     return out;
 }
 

@@ -9,6 +9,7 @@
 // srcSize = full), and its inputs are full size; the upsample's frame is
 // the full one, and its half-size inputs are whatever size they are.
 #include "reference/portable_math.h"
+#include "reference/pyramid.h"
 #include "reference/refs.h"
 #include "reference/vec.h"
 
@@ -63,9 +64,11 @@ Result<std::vector<HostImage>> downsampleDepth(const Context& ctx) {
 }
 
 // downsample_pyramid: the same texels, and the depth as the pyramid's level
-// 0 (where a texel is its own source, and nothing is packed).
+// 0 beside its pixel.
 Result<std::vector<HostImage>> downsamplePyramid(const Context& ctx) {
-    return downsampleDepth(ctx);
+    CAVITY_ASSIGN(auto out, downsampleDepth(ctx));
+    pyramid::packSources(out[2]);
+    return out;
 }
 
 namespace {

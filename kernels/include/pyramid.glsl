@@ -78,10 +78,10 @@ float pyramidDepth(ivec2 t, int level) {
 }
 
 // The depth of texel t of `level`, and (`source`) the level-0 pixel it came
-// from, which the texel packs into its low bits (include/pyramid_texel.glsl):
-// one 4-byte fetch, and no undoing of the picks, which took a fifth of
-// alchemy_fast's AO pass as a shift and two masks per level. Level 0 of the
-// interleaved layers holds the same depth, and there the source is t itself.
+// from, which the texel stores beside it (include/pyramid_texel.glsl): one
+// fetch, and no undoing of the picks, which took a fifth of alchemy_fast's
+// AO pass as a shift and two masks. Level 0 of the interleaved layers holds
+// the depth alone, and there the source is t itself.
 float pyramidFetch(ivec2 t, int level, out ivec2 source) {
 #if defined(CAVITY_INTERLEAVE) && CAVITY_INTERLEAVE > 1
     if (level == 0) {
@@ -89,9 +89,9 @@ float pyramidFetch(ivec2 t, int level, out ivec2 source) {
         return texelFetch(in_zlayers, cavityLayerTexel(t), 0).r;
     }
 #endif
-    float packed = texelFetch(in_zmip, t, level).r;
-    source = pyramidSourceOf(packed, t, level);
-    return packed;
+    vec2 texel = texelFetch(in_zmip, t, level).rg;
+    source = pyramidSourceOf(texel.y);
+    return texel.x;
 }
 
 struct PyramidView {

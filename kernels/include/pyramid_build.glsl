@@ -19,19 +19,19 @@ ivec2 levelSizeOf(int l) {
 // picked by no smaller level either (the chain passes through level k), and
 // neither is one past an odd level's last texel: the first false ends the
 // work. Three pixels in four stop at level 1.
-bool pyramidLink(int k, ivec2 pixel, float depth) {
+bool pyramidLink(int k, ivec2 pixel, vec4 depth) {
     if (k >= CAVITY_LEVELS_zmip) return false;
     ivec2 t = pixel >> k;
     if (any(greaterThanEqual(t, levelSizeOf(k)))) return false;
     ivec2 pick = min(t * 2 + ivec2(t.y & 1, t.x & 1), levelSizeOf(k - 1) - 1);
     if (pick != pixel >> (k - 1)) return false;
-    write_zmip_level(k, t, vec4(pyramidValue(depth, pixel, k), 0.0, 0.0, 0.0));
+    write_zmip_level(k, t, depth);
     return true;
 }
 
-// Level 0's texel `pixel`, its linear depth `depth`, packed with the pixel
-// into every level whose texel picked it (level 0 itself is the caller's).
-void writePyramidChain(ivec2 pixel, float depth) {
+// Level 0's texel `pixel`, its pyramidValue `depth`, written to every level
+// whose texel picked it (level 0 itself is the caller's).
+void writePyramidChain(ivec2 pixel, vec4 depth) {
     // The links written out, each with its level a constant, where a loop
     // over k was one: NVIDIA's GL driver kept that loop rolled, picking the
     // level's image through a chain of tests every iteration, and this form

@@ -1,5 +1,5 @@
 // SSDO's sampling (include/ssdo.glsl) on the linear-depth pyramid: the same
-// basis, directions and marched points, each tested with one R32F fetch of
+// basis, directions and marched points, each tested with one RG32F fetch of
 // the pyramid (include/pyramid.glsl) and no position or normal, instead of
 // against the G-buffer's position and normal. Shared by ssdo_fast_direct.glsl
 // and ssdo_fast_indirect.glsl, which must walk the same points: the bounce

@@ -2,7 +2,7 @@
 // estimator (seed 004, the hemisphere SSAO lesson (docs/kernels.md), with its sampling fixed:
 // n / steps cosine-weighted rays in the normal hemisphere, each walked in
 // `steps` points out to R and blocked when any point is, AO = (1 - blocked
-// rays / rays)^k, the range check) with one 4-byte fetch per point (a depth
+// rays / rays)^k, the range check) with one 8-byte fetch per point (a depth
 // and its source pixel) instead of a position and a normal. The kernel points are hemisphere_cosine's
 // (cosineKernel, decl_screen_space.cpp), made on the CPU.
 //

@@ -1,7 +1,7 @@
 // Screen-space directional occlusion on the linear-depth pyramid: the direct
 // pass of ssdo_marched (ssdo_direct.glsl, seed Ritschel et al., I3D 2009, each
 // direction marched in `steps` points out to R) with each point tested by
-// one R32F fetch of the pyramid along the receiver's normal
+// one RG32F fetch of the pyramid along the receiver's normal
 // (include/ssdo_fast.glsl), where ssdo_direct.glsl fetches an RGBA32F
 // position and an RGBA16F normal per point. The sky is gathered as there.
 //

@@ -12,8 +12,8 @@
 // depth_pyramid.glsl makes a dispatch at a time (clamp included): texel t of
 // level k picked, from level k - 1, min(2t + (t.y & 1, t.x & 1), size - 1);
 // and the level k - 1 texel on this pixel's chain is pixel >> (k - 1), since
-// a pick stays inside its own block. Each texel packs the pixel into its
-// depth's low bits; the CPU reference finds it by undoing the picks, so the
+// a pick stays inside its own block. Each texel stores the pixel beside its
+// depth; the CPU reference finds it instead by undoing the picks, so the
 // build and the undoing stay two statements of one rule, and a mistake in
 // one shows against the other.
 #include "include/common.glsl"
@@ -38,9 +38,10 @@ void writeLayers(ivec2 pixel, vec4 depth) {
 
 void cavity_main(ivec2 pixel) {
     float depth = texelFetch(in_linear_depth, pixel, 0).r;
-    write_zmip(pixel, vec4(depth, 0.0, 0.0, 0.0));
+    vec4 value = pyramidValue(depth, pixel);
+    write_zmip(pixel, value);
 #ifdef CAVITY_INTERLEAVE
     writeLayers(pixel, vec4(depth, 0.0, 0.0, 0.0));
 #endif
-    writePyramidChain(pixel, depth);
+    writePyramidChain(pixel, value);
 }

@@ -15,6 +15,7 @@ void cavity_main(ivec2 pixel) {
     vec4 p = texelFetch(in_position, best, 0);
     write_position_half(pixel, p);
     write_normal_half(pixel, texelFetch(in_normal, best, 0));
-    write_zmip(pixel, vec4(p.w, 0.0, 0.0, 0.0));
-    writePyramidChain(pixel, p.w);
+    vec4 value = pyramidValue(p.w, pixel);
+    write_zmip(pixel, value);
+    writePyramidChain(pixel, value);
 }
