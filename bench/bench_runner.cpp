@@ -129,6 +129,25 @@ void setTimingCounters(benchmark::State& state, const Timing& t) {
     state.SetLabel(label);
 }
 
+// The pipeline timed as one scope (PassChain::recordInOneScope), the median
+// of kOneScopeFrames frames each its own submission, on the chain the
+// measurement has just warmed: "pipeline_one_scope_ms", beside the sum of
+// the passes' own scopes, which carries a timestamp pair a pass. Only where
+// the timestamps are the clock; nothing where a frame fails.
+void setOneScopeCounter(benchmark::State& state, gpu::Backend& gpu, PassChain& chain, const Timing& t) {
+    constexpr int kOneScopeFrames = 21;
+    if (t.clock != "gpu-timestamp") return;
+    std::vector<double> ms;
+    for (int f = 0; f < kOneScopeFrames; ++f) {
+        gpu.beginFrame();
+        chain.recordInOneScope();
+        if (!gpu.endFrame()) return;
+        for (const auto& s : gpu.scopeTimes())
+            if (s.name == "pipeline") ms.push_back(s.gpuMs);
+    }
+    if (!ms.empty()) state.counters["pipeline_one_scope_ms"] = stats::summarize(ms).median;
+}
+
 // One benchmark iteration is one whole measurement (harness/measure/timing.h: batched
 // frames after a steady warm-up, stopped on noise), so every Google Benchmark
 // repetition is an independent measurement and the repetitions' spread is the
@@ -173,6 +192,7 @@ void run(benchmark::State& state, const Bench& b) {
     setWorkCounters(state, *chains[0], c, t);
     setRegisterCounters(state, *chains[0]);
     setTimingCounters(state, t);
+    setOneScopeCounter(state, gpu, *chains[0], t);
 }
 
 }  // namespace

@@ -280,9 +280,9 @@ PassChain::~PassChain() {
     for (auto& [name, t] : constants_) gpu_.destroy(t.image);
 }
 
-void PassChain::recordPass(size_t i) {
+void PassChain::recordPass(size_t i, bool scoped) {
     auto& p = *passes_[i];
-    gpu_.beginScope(specs_[i].name);
+    if (scoped) gpu_.beginScope(specs_[i].name);
     if (p.stage == gpu::Stage::Compute) {
         gpu_.dispatch(p.pipeline, p.binds, p.workgroup.groupsX(p.atlas(p.width)), p.workgroup.groupsY(p.atlas(p.height)));
         // A mip chain's level l reads level l - 1: one scope, a barrier apart.
@@ -292,7 +292,7 @@ void PassChain::recordPass(size_t i) {
         }
     } else
         gpu_.draw(p.pipeline, p.binds, p.targets, p.vertexCount);
-    gpu_.endScope();
+    if (scoped) gpu_.endScope();
 }
 
 void PassChain::record() {

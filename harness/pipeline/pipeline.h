@@ -105,7 +105,13 @@ public:
     // barrier between passes. The caller owns beginFrame/endFrame.
     void record();
     // Records pass i alone (the wall-clock fallback times passes one by one).
-    void recordPass(size_t i);
+    // `scoped` false: no timestamp scope of its own (recordInOneScope).
+    void recordPass(size_t i, bool scoped = true);
+    // As record(), but the passes after the G-buffer share one scope named
+    // "pipeline" (the G-buffer keeps its own): the pipeline's time without a
+    // timestamp pair around each pass, which costs each API differently
+    // (pass_chain_scopes.cpp).
+    void recordInOneScope();
     size_t passCount() const { return passes_.size(); }
     const std::vector<PassSpec>& passes() const { return specs_; }
 
