@@ -73,10 +73,6 @@ std::vector<ParamDecl> declareSwitches() {
         // composite) or fused into one (upsample_composite): the same image.
         flag("fused_tail", false,
              "at half resolution, upsample and composite in one full-resolution pass (upsample_composite)"),
-        // The separable blur's two passes as one (blur_separable_xy), where
-        // its tile fits: the same image within a half float's rounding.
-        flag("fused_blur", false,
-             "the separable blur's two passes in one compute dispatch (blur_separable_xy; radius up to 5)"),
     };
 }
 

@@ -642,42 +642,6 @@ TEST_P(KernelVsReference, FullBarriersChangeNoImage) {
 // interleaved layers included, whose workgroups then span other pixels of
 // one layer) comes out bit for bit as with the default. A shape the variable cannot
 // take is an error naming it.
-// fused_blur: one pass (blur_separable_xy) for the separable pair. Its CPU
-// reference, fed the pass's own input, within a half float's step of the
-// GPU; the whole frame's blurred AO within two steps of the pair's
-// (the pair's key between its passes and the fused pass's shared rows
-// round the same sums to half floats; the exp and dot of two shaders may
-// round apart), at full and half resolution and at radii 1, 4 and 5
-// (the largest whose tile fits), on corner and on slats.
-TEST_P(KernelVsReference, FusedBlurIsTheSeparablePair) {
-    for (const std::string scene : {"corner", "slats"})
-        for (int variant = 0; variant < 4; ++variant) {
-            RunConfig c = smallConfig(api(), "alchemy_fast", variant == 1);
-            ASSERT_TRUE(setParam(c, "scene", scene).ok());
-            ASSERT_TRUE(setParam(c, "blur", variant == 2 ? "1" : variant == 3 ? "5" : "4").ok());
-            const auto pair = frameImages(gpu(), c);
-            ASSERT_TRUE(setParam(c, "fused_blur", "1").ok());
-            auto chain = recordedChain(gpu(), c);
-            ASSERT_TRUE(pair && chain) << (pair ? chain.error() : pair.error()).message;
-            const auto& passes = (*chain)->passes();
-            const auto fused = std::find_if(passes.begin(), passes.end(), [](const auto& p) { return p.kernel == "blur_separable_xy"; });
-            ASSERT_NE(fused, passes.end()) << configId(c);
-            EXPECT_EQ(std::count_if(passes.begin(), passes.end(), [](const auto& p) { return p.kernel == "blur_separable_x"; }), 0);
-            auto want = referenceOf(**chain, *fused, c);
-            auto got = (*chain)->read(fused->outputs[0]);
-            ASSERT_TRUE(want && got) << (want ? got.error() : want.error()).message;
-            auto blurred = (*chain)->read("ao_blur");
-            ASSERT_TRUE(blurred) << blurred.error().message;
-            float worstRef = 0, worstPair = 0;
-            for (size_t i = 0; i < got->pixels.size(); ++i)
-                worstRef = std::max(worstRef, std::abs(got->pixels[i] - (*want)[0].pixels[i]));
-            for (size_t i = 0; i < blurred->pixels.size(); ++i)
-                worstPair = std::max(worstPair, std::abs(blurred->pixels[i] - pair->at("ao_blur").pixels[i]));
-            EXPECT_LE(worstRef, 1.0f / 1024) << configId(c) << ": against the CPU reference";
-            EXPECT_LE(worstPair, 2.0f / 1024) << configId(c) << ": against the pair";
-        }
-}
-
 TEST_P(KernelVsReference, WorkgroupShapeChangesNoImage) {
     struct Env {
         ~Env() { unsetenv("CAVITY_WORKGROUP"); }

@@ -163,18 +163,8 @@ PassSpec upsamplePass() {
 
 // A kernel that packs AO with its depth key ("ao_key") is blurred by the
 // separable pair, which reads only that.
-// fused_blur: both passes as one (blur_separable_xy), on the compute stage
-// where its tile of keys fits in shared memory (r <= 5 in 16x16); else the
-// pair, which gives the same image.
-void separableTail(const kernels::KernelDecl& k, const RunConfig& c, const std::vector<ImageRef>& in, bool half,
-                   std::vector<PassSpec>& p) {
+void separableTail(const kernels::KernelDecl& k, const std::vector<ImageRef>& in, bool half, std::vector<PassSpec>& p) {
     p.push_back({"ao", k.name, in, {"ao", "ao_key"}, half});
-    const auto fused = c.params.find("fused_blur");
-    if (fused != c.params.end() && fused->second != 0 && c.stage == gpu::Stage::Compute && c.blur() <= 5) {
-        p.push_back({"blur", "blur_separable_xy", {"ao_key"}, {half ? "ao_half_blur" : "ao_blur"}, half});
-        if (half) p.push_back(upsamplePass());
-        return;
-    }
     p.push_back({"blur_x", "blur_separable_x", {"ao_key"}, {"ao_key_x"}, half});
     if (half) {
         p.push_back({"blur_y", "blur_separable_y", {"ao_key_x"}, {"ao_half_blur"}, true});
@@ -232,7 +222,7 @@ std::vector<PassSpec> buildPasses(const RunConfig& c) {
         p.push_back({"downsample", "downsample_depth", {"position", "normal"},
                      {"position_half", "normal_half", "linear_depth_half"}, true});
     const auto in = aoInputs(*k, c, half, p);
-    if (packsKey(*k)) separableTail(*k, c, in, half, p);
+    if (packsKey(*k)) separableTail(*k, in, half, p);
     else bilateralTail(*k, c, in, half, p);
     // fused_tail: the upsample and the composite as one pass, which writes
     // the full-resolution AO as well for the gate and the quality measure.

@@ -48,12 +48,6 @@ bool readsPyramid(const std::string& kernel) {
     return k && std::any_of(k->inputs.begin(), k->inputs.end(), [](const auto& i) { return i.name == "zmip"; });
 }
 
-// Whether the pipeline blurs with the separable pair (which fused_blur fuses).
-bool blursSeparably(const RunConfig& c) {
-    const auto passes = pipeline::buildPasses(c);
-    return std::any_of(passes.begin(), passes.end(), [](const auto& p) { return p.kernel == "blur_separable_x"; });
-}
-
 }  // namespace
 
 std::vector<RunConfig> benchmarkSweep(const SweepAxes& axes, const std::vector<gpu::Api>& apis) {
@@ -100,12 +94,6 @@ std::vector<RunConfig> benchmarkSweep(const SweepAxes& axes, const std::vector<g
                 // the default samples and blur.
                 if (pipeline::supportsHalf(kernel) && !sdfFamily(kernel))
                     add(around({{"fused_tail", {1}}}, {true}), base);
-                // The separable blur's two passes as one, full and half, and
-                // with the fused tail, where the pipeline has the pair.
-                if (blursSeparably(base)) {
-                    add(around({{"fused_blur", {1}}}, {false, true}), base);
-                    add(around({{"fused_blur", {1}}, {"fused_tail", {1}}}, {true}), base);
-                }
                 // The precision contract's other side, where a kernel offers it.
                 if (declares(kernel, "exact")) add(around({{"exact", {1}}}), base);
                 // The depth pyramid a dispatch per level, against the one dispatch.

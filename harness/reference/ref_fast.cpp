@@ -176,24 +176,6 @@ Result<std::vector<HostImage>> blurSeparable(const Context& ctx, bool horizontal
     return out;
 }
 
-// blur_separable_xy.glsl: the pair, with the horizontal result rounded to a
-// half float as the pair's RGBA16F key between its passes rounds it.
-Result<std::vector<HostImage>> blurSeparableXY(const Context& ctx) {
-    CAVITY_TRY(requireInputs(ctx, {4}));
-    const int r = intParam(ctx, "blur");
-    if (r > 0 && int(array(ctx, "weights").size()) <= r)
-        return internal("reference " + ctx.kernel.name + ": too few weights for radius " + std::to_string(r));
-    HostImage rows = *ctx.inputs[0];
-    Vec3 unused;
-    for (int y = 0; y < ctx.frame.size[1]; ++y)
-        for (int x = 0; x < ctx.frame.size[0]; ++x)
-            rows.at(x, y, 0) = float(_Float16(blurAlong(ctx, *ctx.inputs[0], nullptr, x, y, 1, 0, unused)[0]));
-    auto out = makeOutputs(ctx);
-    for (int y = 0; y < ctx.frame.size[1]; ++y)
-        for (int x = 0; x < ctx.frame.size[0]; ++x) out[0].at(x, y, 0) = blurAlong(ctx, rows, nullptr, x, y, 0, 1, unused)[0];
-    return out;
-}
-
 }  // namespace
 
 namespace {
@@ -373,7 +355,6 @@ std::vector<RefEntry> fastRefs() {
             {"hemisphere_fast", hemisphereFast},
             {"blur_separable_x", blurSeparableX},
             {"blur_separable_y", blurSeparableY},
-            {"blur_separable_xy", blurSeparableXY},
             {"blur_separable_ssdo_x", blurSeparableSsdoX},
             {"blur_separable_ssdo_y", blurSeparableSsdoY}};
 }
