@@ -125,22 +125,19 @@ int registerOverheadProbes(gpu::Backend& gpu, gpu::Api api, int width, int heigh
         ->UseManualTime()
         ->Iterations(50)
         ->Unit(benchmark::kMicrosecond);
-    auto registerChain = [&](bool store, int w, int h) {
-        const std::string id = "timer/" + std::string(store ? "store_chain/" : "empty_chain/") + std::to_string(w) +
-                               "x" + std::to_string(h) + "/" + tag;
-        benchmark::RegisterBenchmark(id.c_str(), [g, store, w, h](benchmark::State& s) { chain(s, *g, store, w, h); })
+    // `oneScope`: the empty chain's passes after the first under one scope.
+    auto registerChain = [&](bool store, int w, int h, bool oneScope = false) {
+        const std::string kind = store ? "store_chain/" : oneScope ? "empty_chain_one_scope/" : "empty_chain/";
+        const std::string id = "timer/" + kind + std::to_string(w) + "x" + std::to_string(h) + "/" + tag;
+        benchmark::RegisterBenchmark(id.c_str(),
+                                     [g, store, w, h, oneScope](benchmark::State& s) { chain(s, *g, store, w, h, oneScope); })
             ->UseManualTime()
             ->Iterations(50)
             ->Unit(benchmark::kMicrosecond);
     };
     registerChain(false, width, height);
     registerChain(true, width, height);
-    benchmark::RegisterBenchmark(("timer/empty_chain_one_scope/" + std::to_string(width) + "x" + std::to_string(height) +
-                                  "/" + tag).c_str(),
-                                 [g, width, height](benchmark::State& s) { chain(s, *g, false, width, height, true); })
-        ->UseManualTime()
-        ->Iterations(50)
-        ->Unit(benchmark::kMicrosecond);
+    registerChain(false, width, height, true);
     // The empty dispatch at sizes from twice the sweep's down to an eighth
     // of it: the launch cost against the number of workgroups, which the
     // floor model's launch term is fitted to (docs/roofline.md).

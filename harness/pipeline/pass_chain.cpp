@@ -295,17 +295,6 @@ void PassChain::recordPass(size_t i, bool scoped) {
     if (scoped) gpu_.endScope();
 }
 
-void PassChain::record() {
-    for (size_t i = 0; i < passes_.size(); ++i) {
-        // A backend records the barrier at the next pass, inside its scope;
-        // the scope's begin timestamp is taken once every earlier command has
-        // finished (BOTTOM_OF_PIPE, GL_TIMESTAMP), so it still follows the
-        // completion of the pass before.
-        if (i) gpu_.barrier();
-        recordPass(i);
-    }
-}
-
 Result<HostImage> PassChain::read(const std::string& image, int level) const {
     auto it = images_.find(image);
     if (it == images_.end()) return internal("no image '" + image + "' in this pipeline");

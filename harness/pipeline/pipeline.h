@@ -132,6 +132,8 @@ public:
 
 private:
     explicit PassChain(gpu::Backend& gpu);
+    // record() (each pass its own scope) or recordInOneScope().
+    void recordFrame(bool oneScope);
     Status createConstant(const std::string& name, const kernels::ParamValues& params);
     Status createRaster(const PassSpec& spec, const RunConfig& c);
     Status uploadGBuffer(const RunConfig& c);
