@@ -4,11 +4,17 @@
 # in one step"): DIR/<name>.glsl plus DIR/list.txt, a line per defect:
 #   <name> <kernels/ file it replaces> <regex of the configurations it touches>
 # Each is one small change of the kind a review misses; each edit is checked
-# to have applied (the file differs from the original).
-#   scripts/planted_defects.sh DIR
+# to have applied (the file differs from the original). With --subtle, the
+# four systematic but slight errors the gate must fail clearly instead
+# (docs/gate.md, "Subtle errors").
+#   scripts/planted_defects.sh DIR [--subtle]
 set -euo pipefail
 cd "$(dirname "$0")/.."
-out="${1:?usage: scripts/planted_defects.sh DIR}"
+out="${1:?usage: scripts/planted_defects.sh DIR [--subtle]}"
+subtle="${2:-}"
+if [ -n "$subtle" ] && [ "$subtle" != "--subtle" ]; then
+  echo "planted_defects: second argument is '$subtle': only --subtle is allowed" >&2; exit 2
+fi
 mkdir -p "$out"
 : > "$out/list.txt"
 plant() {   # name, file under kernels/, configurations regex, sed expression
@@ -17,6 +23,24 @@ plant() {   # name, file under kernels/, configurations regex, sed expression
   if cmp -s "kernels/$file" "$out/$name.glsl"; then echo "planted_defects: $name did not apply to $file" >&2; exit 1; fi
   echo "$name $file $touches" >> "$out/list.txt"
 }
+if [ -n "$subtle" ]; then
+  # Positions rebuilt at the pixel's corner, not its centre: half a pixel
+  # off (both builds of positionAt, the exact one and the fma one).
+  plant half_pixel_shift include/pyramid.glsl '_fast/' \
+    's|(vec2(pixel) + 0.5) \* frame.invSize|vec2(pixel) * frame.invSize|; s|(frame.invSize - 1.0) \* camera|(-1.0) * camera|'
+  # The separable blur's background test reads the tap's AO, not its depth:
+  # every fully occluded tap is dropped, in the tiled and texture paths.
+  plant dropped_occluded_taps include/blur_separable.glsl '_fast/' \
+    's|bool counts = !isBackground(tap.w);|bool counts = !isBackground(tileAo[i]);|; s|if (isBackground(tap.g)) continue;|if (isBackground(tap.r)) continue;|'
+  # Alchemy takes one sample fewer than it divides by.
+  plant wrong_sample_count ao/alchemy/ssao_alchemy.glsl '/alchemy/' \
+    's|for (int i = 0; i < n; ++i) {|for (int i = 0; i < n - 1; ++i) {|'
+  # The bilateral blur without its normal weight: AO bleeds across creases.
+  plant missing_normal_weight include/blur_bilateral.glsl '/(alchemy|hemisphere|hemisphere_cosine|ssdo|ssdo_marched|sdf_[a-z]+)/' \
+    's|float normalWeight = max(0.0, dot(N, Ni));|float normalWeight = 1.0;|'
+  wc -l < "$out/list.txt" | xargs echo "planted_defects: subtle defects in $out/list.txt:"
+  exit 0
+fi
 # The depth pyramid's pick with x and y swapped from level 3 down, in the
 # one-dispatch build: coarse texels hold another pixel's depth, read only
 # where samples land 64 px or more away.

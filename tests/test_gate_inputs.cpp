@@ -102,6 +102,12 @@ TEST_F(GateInputs, ManifestWithAnUnknownKeyIsBadInput) {
     expectBad(gate(), "manifest.json: unknown key 'max_abss'");
 }
 
+TEST_F(GateInputs, ManifestWithAnUnknownDeviceScopeIsBadInput) {
+    std::ofstream(base / "manifest.json", std::ios::trunc)
+        << R"({"devices": [{"pattern": "llvmpipe", "scope": "sometimes", "pipelines": {"*": {"rmse": 0.001}}}]})";
+    expectBad(gate(), "devices[0].scope is \"sometimes\": must be \"baselines\" (against the stored baselines only) or \"all\"");
+}
+
 TEST_F(GateInputs, ManifestWithANegativeToleranceIsBadInput) {
     std::ofstream(base / "manifest.json", std::ios::trunc) << R"({"pipelines": {"alchemy": {"rmse": -0.5}}})";
     expectBad(gate(), "pipelines.alchemy.rmse is -0.5: tolerances must be >= 0");

@@ -67,12 +67,12 @@ void apply(Tolerance& t, const std::map<std::string, double>& values) {
 
 // ---- manifest ----
 
-Tolerance Manifest::forPipeline(const std::string& kernel, const std::string& deviceName) const {
+Tolerance Manifest::forPipeline(const std::string& kernel, const std::string& deviceName, bool ownClass) const {
     Tolerance t;
     if (auto it = rawPipelines.find("*"); it != rawPipelines.end()) apply(t, it->second);
     if (auto it = rawPipelines.find(kernel); it != rawPipelines.end()) apply(t, it->second);
     for (const auto& d : devices) {
-        if (!icontains(deviceName, d.pattern)) continue;
+        if (!icontains(deviceName, d.pattern) || (ownClass && !d.everyReference)) continue;
         if (auto it = d.pipelines.find("*"); it != d.pipelines.end()) apply(t, it->second);
         if (auto it = d.pipelines.find(kernel); it != d.pipelines.end()) apply(t, it->second);
     }
@@ -98,10 +98,16 @@ Result<Manifest> loadManifest(const std::string& path) {
         int i = 0;
         for (const auto& d : doc["devices"]) {
             const std::string where = "devices[" + std::to_string(i++) + "]";
-            CAVITY_TRY(onlyKeys(path, where, d, {"pattern", "pipelines", "note"}));
+            CAVITY_TRY(onlyKeys(path, where, d, {"pattern", "pipelines", "note", "scope"}));
             if (!d.contains("pattern") || !d["pattern"].is_string())
                 return badInput(path + ": " + where + " needs a string 'pattern'");
             Manifest::DeviceOverride o{d["pattern"].get<std::string>(), {}};
+            if (d.contains("scope")) {
+                if (d["scope"] != "baselines" && d["scope"] != "all")
+                    return badInput(path + ": " + where + ".scope is " + d["scope"].dump() +
+                                    ": must be \"baselines\" (against the stored baselines only) or \"all\"");
+                o.everyReference = d["scope"] == "all";
+            }
             if (d.contains("pipelines"))
                 for (const auto& [k, v] : d["pipelines"].items()) {
                     CAVITY_ASSIGN(o.pipelines[k], readTolerances(path, where + ".pipelines." + k, v));

@@ -34,10 +34,22 @@ struct Tolerance {
 };
 struct Manifest {
     std::map<std::string, Tolerance> pipelines;   // by AO kernel name; "*" is the default
-    struct DeviceOverride { std::string pattern; std::map<std::string, std::map<std::string, double>> pipelines; };
+    // A device's own tolerances. By default (scope "baselines") they apply
+    // only where its image is judged against the stored baselines, which
+    // another device rendered: they allow for that device's rounding. Scope
+    // "all" applies them against every reference, its own class's included:
+    // for a renderer whose own renders are the stored baselines, where they
+    // are its own noise (the CPU renderers, docs/gate.md "Subtle errors").
+    struct DeviceOverride {
+        std::string pattern;
+        std::map<std::string, std::map<std::string, double>> pipelines;
+        bool everyReference = false;
+    };
     std::vector<DeviceOverride> devices;
     std::map<std::string, std::map<std::string, double>> rawPipelines;   // as written, for overrides
-    Tolerance forPipeline(const std::string& kernel, const std::string& deviceName) const;
+    // The tolerances for an image of `deviceName` judged against the stored
+    // baselines (ownClass false) or against its own class's reference.
+    Tolerance forPipeline(const std::string& kernel, const std::string& deviceName, bool ownClass = false) const;
 };
 Result<Manifest> loadManifest(const std::string& path);
 

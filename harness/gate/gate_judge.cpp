@@ -158,7 +158,7 @@ const Approval* classReference(const Judge& j, const ConfigResult& r, const std:
 // judge would use against the reference it would choose.
 Result<ImageCheck> fromRemote(ImageCheck& check, const RemoteCheck& k, const ConfigResult& r, const Judge& j,
                               bool perceptual) {
-    check.tolerance = j.manifest.forPipeline(r.config.kernel, "");
+    check.tolerance = j.manifest.forPipeline(r.config.kernel, r.device, true);
     const Approval* ref = classReference(j, r, check.image);
     if (!ref || ref->digest != k.referenceDigest)
         return badInput(r.label() + ": " + check.image + " was judged where it was rendered against " + k.referenceDigest +
@@ -219,15 +219,16 @@ Result<ImageCheck> judgeImage(const CheckedImage& ci, const HostImage* now, cons
         return internal(r.label() + ": " + ci.name + " holds no pixels and its digest " + digest + " is not approved");
     }
     if (const Approval* ref = classReference(j, r, ci.name)) {
-        // Its own class's reference: the default tolerances, no device
-        // override (those allow for another device's rounding). A software
+        // Its own class's reference: the default tolerances, and only the
+        // device overrides of scope "all" (the others allow for another
+        // device's rounding). A software
         // renderer's approvals mark its images unchanged by digest; where
         // the image store does not hold their pixels (a clone has none), a
         // change is judged against the stored baseline instead, which every
         // clone has (docs/gate.md, "Changed is a state of its own").
         auto base = j.reference(ref->digest);
         if (base || !software || !cavity::store::isMissingObject(base.error())) {
-            check.tolerance = j.manifest.forPipeline(r.config.kernel, "");
+            check.tolerance = j.manifest.forPipeline(r.config.kernel, r.device, true);
             check.reference = ref->deviceClass + " " + ref->api + "/" + ref->stage;
             check.referenceDigest = ref->digest;
             check.approval = approvalText(*ref);

@@ -6,7 +6,7 @@ set -uo pipefail
 cd "$(dirname "$0")/../.."
 out="${1:?usage: run.sh OUT}"
 here=lab/2026-12-06_cpu_subtle_defects
-bash $here/plant.sh "$out/plants" > /dev/null
+scripts/planted_defects.sh "$out/plants" --subtle > /dev/null
 while read -r name file touches; do
   for m in ci gpu-cpu; do
     build/harness/cavity gate --matrix $m --filter "$touches" --retries 0 --quiet \
