@@ -60,17 +60,28 @@ struct CommitRow {
     int64_t firstRun = 0;
 };
 
+// The one key of a map by commit id that begins with `prefix`, other than
+// `skip`; "" where none or several do. Commit ids are stored as given, a
+// short id beside its full one, and every lookup by a short id goes
+// through here, so that a prefix of two commits never picks one of them.
+template <class Map>
+std::string onlyCommitStartingWith(const Map& m, const std::string& prefix, const std::string& skip = "") {
+    std::string found;
+    for (auto it = m.lower_bound(prefix); it != m.end() && it->first.compare(0, prefix.size(), prefix) == 0; ++it) {
+        if (it->first == skip) continue;
+        if (!found.empty()) return "";
+        found = it->first;
+    }
+    return found;
+}
+
 // A commit stored by a prefix (a short id) stands for the one longer
 // commit it begins, where there is exactly one.
 std::map<std::string, std::string> canonicalCommits(const std::map<std::string, CommitRow>& commits) {
     std::map<std::string, std::string> out;
-    for (auto it = commits.begin(); it != commits.end(); ++it) {
-        const std::string& c = it->first;
-        std::string longer;
-        int count = 0;
-        for (auto next = std::next(it); next != commits.end() && next->first.compare(0, c.size(), c) == 0; ++next)
-            if (next->first.size() > c.size()) longer = next->first, ++count;
-        out[c] = count == 1 ? longer : c;
+    for (const auto& [c, row] : commits) {
+        const std::string longer = onlyCommitStartingWith(commits, c, c);
+        out[c] = longer.empty() ? c : longer;
     }
     return out;
 }
@@ -102,13 +113,9 @@ Result<std::vector<std::string>> commitOrder(Database& db) {
     // names a parent.
     std::map<std::string, std::vector<std::string>> children;
     std::map<std::string, int> waiting;
-    const auto resolve = [&](const std::string& parent) -> std::string {
-        if (merged.count(parent)) return parent;
-        auto it = merged.lower_bound(parent);
-        if (it != merged.end() && it->first.compare(0, parent.size(), parent) == 0 && std::next(it) != merged.end() &&
-            std::next(it)->first.compare(0, parent.size(), parent) == 0)
-            return "";   // a prefix of two commits: no edge
-        return it != merged.end() && it->first.compare(0, parent.size(), parent) == 0 ? it->first : "";
+    // A parent named by a prefix of two commits gets no edge.
+    const auto resolve = [&](const std::string& parent) {
+        return merged.count(parent) ? parent : onlyCommitStartingWith(merged, parent);
     };
     for (const auto& [sha, row] : merged) {
         const std::string parent = row.parent.empty() ? "" : resolve(row.parent);
@@ -216,8 +223,8 @@ Result<std::vector<Series>> loadSeries(Database& db, const SeriesFilter& f) {
     for (size_t i = 0; i < order.size(); ++i) rank[order[i]] = i;
     // Each stored form of a commit (a short id beside its full one) to its canonical form's rank.
     const auto rankOf = [&](const std::string& sha) -> size_t {
-        auto it = rank.lower_bound(sha);
-        return it != rank.end() && it->first.compare(0, sha.size(), sha) == 0 ? it->second : order.size();
+        const std::string c = rank.count(sha) ? sha : onlyCommitStartingWith(rank, sha);
+        return c.empty() ? order.size() : rank.at(c);
     };
     CAVITY_ASSIGN(const auto runs, selectedRuns(db, f, rankOf));
     // A pass row to its series and run.
