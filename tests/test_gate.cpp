@@ -261,6 +261,21 @@ TEST(Gate, DeviceToleranceScopeDecidesWhichReferencesItApplies) {
     EXPECT_EQ(m->forPipeline("alchemy", "llvmpipe (LLVM 15.0.6, 256 bits)", false).rmse, 0.0016);
     EXPECT_EQ(m->forPipeline("alchemy", "llvmpipe (LLVM 15.0.6, 256 bits)", true).rmse, 0.0016);
     EXPECT_EQ(m->forPipeline("alchemy", "", true).rmse, 0.003);
+    // Sized tolerances: stated for 14400 pixels, an image of four times as
+    // many gets a quarter of the mean and share and half the RMSE; sizing
+    // twice for one image is sizing once; unsized ones hold at any size.
+    gate::Tolerance sized;
+    sized.meanAbs = 6e-5;
+    sized.rmse = 0.002;
+    sized.overThresholdShare = 5e-4;
+    sized.sizedForPixels = 14400;
+    const auto big = gate::sizedFor(sized, 320 * 180);
+    EXPECT_DOUBLE_EQ(big.meanAbs, 1.5e-5);
+    EXPECT_DOUBLE_EQ(big.rmse, 0.001);
+    EXPECT_DOUBLE_EQ(big.overThresholdShare, 1.25e-4);
+    EXPECT_DOUBLE_EQ(gate::sizedFor(big, 320 * 180).meanAbs, big.meanAbs);
+    EXPECT_DOUBLE_EQ(gate::sizedFor(sized, 24 * 12).overThresholdShare, 0.025);
+    EXPECT_EQ(gate::sizedFor(m->forPipeline("alchemy", "NVIDIA H100"), 320 * 180).rmse, 0.003);
     const auto stored = gate::loadManifest(kBaselines + "/manifest.json");
     ASSERT_TRUE(stored.ok()) << stored.error().message;
     for (const bool own : {false, true}) {

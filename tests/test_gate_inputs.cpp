@@ -108,6 +108,12 @@ TEST_F(GateInputs, ManifestWithAnUnknownDeviceScopeIsBadInput) {
     expectBad(gate(), "devices[0].scope is \"sometimes\": must be \"baselines\" (against the stored baselines only) or \"all\"");
 }
 
+TEST_F(GateInputs, ManifestWithAFractionalSizeIsBadInput) {
+    std::ofstream(base / "manifest.json", std::ios::trunc)
+        << R"({"pipelines": {"*": {"mean_abs": 0.001, "sized_for_pixels": 1.5}}})";
+    expectBad(gate(), "pipelines.*.sized_for_pixels is 1.5: must be a whole number of pixels (0: any size)");
+}
+
 TEST_F(GateInputs, ManifestWithANegativeToleranceIsBadInput) {
     std::ofstream(base / "manifest.json", std::ios::trunc) << R"({"pipelines": {"alchemy": {"rmse": -0.5}}})";
     expectBad(gate(), "pipelines.alchemy.rmse is -0.5: tolerances must be >= 0");

@@ -37,6 +37,7 @@ const std::map<std::string, double Tolerance::*>& toleranceFields() {
         {"flip_mean_max", &Tolerance::flipMeanMax},
         {"differing_delta", &Tolerance::differingDelta},
         {"differing_share_max", &Tolerance::differingShareMax},
+        {"sized_for_pixels", &Tolerance::sizedForPixels},
     };
     return f;
 }
@@ -52,6 +53,8 @@ Result<std::map<std::string, double>> readTolerances(const std::string& path, co
         if (!(x >= 0)) return badInput(path + ": " + where + "." + k + " is " + v.dump() + ": tolerances must be >= 0");
         if (k == "differing_delta" && (x != std::floor(x) || x > 255))
             return badInput(path + ": " + where + "." + k + " is " + v.dump() + ": must be an integer in 0..255 (8-bit steps)");
+        if (k == "sized_for_pixels" && x != std::floor(x))
+            return badInput(path + ": " + where + "." + k + " is " + v.dump() + ": must be a whole number of pixels (0: any size)");
         if ((k == "differing_share_max" || k == "over_threshold_share") && x > 1)
             return badInput(path + ": " + where + "." + k + " is " + v.dump() + ": must be a share in 0..1");
         out[k] = x;
@@ -66,6 +69,16 @@ void apply(Tolerance& t, const std::map<std::string, double>& values) {
 }  // namespace
 
 // ---- manifest ----
+
+Tolerance sizedFor(Tolerance t, long long pixels) {
+    if (t.sizedForPixels <= 0 || pixels <= 0) return t;
+    const double f = t.sizedForPixels / double(pixels);
+    t.meanAbs *= f;
+    t.rmse *= std::sqrt(f);
+    t.overThresholdShare = std::min(1.0, t.overThresholdShare * f);
+    t.sizedForPixels = double(pixels);
+    return t;
+}
 
 Tolerance Manifest::forPipeline(const std::string& kernel, const std::string& deviceName, bool ownClass) const {
     Tolerance t;

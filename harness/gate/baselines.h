@@ -31,7 +31,18 @@ struct Tolerance {
     // differingDelta steps in any colour channel (1 allows every pixel).
     double differingDelta = 0;
     double differingShareMax = 1;
+    // 0: the tolerances hold for an image of any size. N: mean abs, RMSE and
+    // the share over the threshold are stated for an image of N pixels, for
+    // noise that is a count of pixels rather than a share of them (the CPU
+    // renderers' flipped samples, docs/gate.md "Subtle errors"); sizedFor()
+    // scales them to an image's own size.
+    double sizedForPixels = 0;
 };
+// `t` for an image of `pixels` pixels: where t.sizedForPixels is N > 0, mean
+// abs and the share over the threshold times N / pixels (the share at most
+// 1), RMSE times its square root, and sizedForPixels = pixels, so that
+// sizing again for the same image changes nothing.
+Tolerance sizedFor(Tolerance t, long long pixels);
 struct Manifest {
     std::map<std::string, Tolerance> pipelines;   // by AO kernel name; "*" is the default
     // A device's own tolerances. By default (scope "baselines") they apply

@@ -15,7 +15,7 @@ json toleranceJson(const Tolerance& t) {
     return {{"max_abs", t.maxAbs}, {"mean_abs", t.meanAbs}, {"rmse", t.rmse}, {"psnr_min", t.psnrMin},
             {"pixel_threshold", t.pixelThreshold}, {"over_threshold_share", t.overThresholdShare},
             {"ssim_min", t.ssimMin}, {"flip_mean_max", t.flipMeanMax}, {"differing_delta", t.differingDelta},
-            {"differing_share_max", t.differingShareMax}};
+            {"differing_share_max", t.differingShareMax}, {"sized_for_pixels", t.sizedForPixels}};
 }
 
 namespace {
@@ -79,6 +79,8 @@ Result<Tolerance> readTolerance(const JsonObject& t) {
     // Absent from gate.json files written before the differing-pixel count.
     CAVITY_ASSIGN(out.differingDelta, t.number("differing_delta", 0, 255, 0));
     CAVITY_ASSIGN(out.differingShareMax, t.number("differing_share_max", 0, 1, 1));
+    // Absent from gate.json files written before tolerances were sized.
+    CAVITY_ASSIGN(out.sizedForPixels, t.number("sized_for_pixels", 0, kAny, 0));
     return out;
 }
 

@@ -147,6 +147,12 @@ Status judgeByTolerance(ImageCheck& check, const CheckedImage& ci, const HostIma
     return judgeAgainst(check, ci, now, base, dir);
 }
 
+// The pixels of a checked image, which the tolerances are sized for.
+long long pixelsOf(const ConfigResult& r, const std::string& image) {
+    const ImageShape s = checkedShape(r.config, image);
+    return (long long)s.width * s.height;
+}
+
 // The nearest image approved for the device's own class (Approvals::reference).
 const Approval* classReference(const Judge& j, const ConfigResult& r, const std::string& image) {
     const std::string stage = r.id.substr(r.id.rfind('/') + 1);
@@ -158,7 +164,7 @@ const Approval* classReference(const Judge& j, const ConfigResult& r, const std:
 // judge would use against the reference it would choose.
 Result<ImageCheck> fromRemote(ImageCheck& check, const RemoteCheck& k, const ConfigResult& r, const Judge& j,
                               bool perceptual) {
-    check.tolerance = j.manifest.forPipeline(r.config.kernel, r.device, true);
+    check.tolerance = sizedFor(j.manifest.forPipeline(r.config.kernel, r.device, true), pixelsOf(r, check.image));
     const Approval* ref = classReference(j, r, check.image);
     if (!ref || ref->digest != k.referenceDigest)
         return badInput(r.label() + ": " + check.image + " was judged where it was rendered against " + k.referenceDigest +
@@ -189,7 +195,7 @@ Result<ImageCheck> judgeImage(const CheckedImage& ci, const HostImage* now, cons
     ImageCheck check;
     check.image = ci.name;
     check.digest = digest;
-    check.tolerance = tol;
+    check.tolerance = sizedFor(tol, pixelsOf(r, ci.name));
     const fs::path basePath = fs::path(j.baselines) / "images" / r.key / (ci.name + ci.extension);
     check.baseline = basePath.string();
     if (now && !j.remote) {
@@ -221,14 +227,14 @@ Result<ImageCheck> judgeImage(const CheckedImage& ci, const HostImage* now, cons
     if (const Approval* ref = classReference(j, r, ci.name)) {
         // Its own class's reference: the default tolerances, and only the
         // device overrides of scope "all" (the others allow for another
-        // device's rounding). A software
-        // renderer's approvals mark its images unchanged by digest; where
-        // the image store does not hold their pixels (a clone has none), a
-        // change is judged against the stored baseline instead, which every
-        // clone has (docs/gate.md, "Changed is a state of its own").
+        // device's rounding). A software renderer's approvals mark its
+        // images unchanged by digest; where the image store does not hold
+        // their pixels (a clone has none), a change is judged against the
+        // stored baseline instead, which every clone has (docs/gate.md,
+        // "Changed is a state of its own").
         auto base = j.reference(ref->digest);
         if (base || !software || !cavity::store::isMissingObject(base.error())) {
-            check.tolerance = j.manifest.forPipeline(r.config.kernel, r.device, true);
+            check.tolerance = sizedFor(j.manifest.forPipeline(r.config.kernel, r.device, true), pixelsOf(r, ci.name));
             check.reference = ref->deviceClass + " " + ref->api + "/" + ref->stage;
             check.referenceDigest = ref->digest;
             check.approval = approvalText(*ref);

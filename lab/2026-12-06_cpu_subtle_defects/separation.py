@@ -33,14 +33,31 @@ def load(path):
     return [r for r in rows if not r.get("missing")]
 
 
+def size_of(cid):
+    """A configuration's image size ("320x180"; a half one writes at it too)."""
+    return next(p for p in cid.split("/") if "x" in p and p[0].isdigit())
+
+
+def pixels(cid):
+    w, h = size_of(cid).split("x")
+    return int(w) * int(h)
+
+
+def sized(tol, cid, at=14400):
+    """CPU_TIER stated for `at` pixels, scaled to the configuration's: the
+    noise is a count of pixels (manifest.json's sized_for_pixels)."""
+    f = at / pixels(cid)
+    return {m: t * (f ** 0.5 if m == "rmse" else 1 if m == "max_abs" else f) for m, t in tol.items()}
+
+
 def table(rows, tol):
-    """tol(metric, image) -> tolerance; rows' severity per configuration."""
+    """tol(row) -> {metric: tolerance}; rows' severity per configuration."""
     out = []
     for label in sorted({r["label"] for r in rows}):
         per = collections.defaultdict(float)
         for r in rows:
             if r["label"] == label:
-                per[r["id"]] = max([per[r["id"]]] + [r[m] / t for m, t in tol(r["image"]).items() if t > 0])
+                per[r["id"]] = max([per[r["id"]]] + [r[m] / t for m, t in tol(r).items() if t > 0])
         v = sorted(per.values())
         fail = [x for x in v if x > 1]
         out.append(f"{label}: {len(fail)}/{len(v)} fail, weakest {min(fail) if fail else 0:.2f}, "
@@ -67,11 +84,22 @@ def main():
         if m in DEFAULT:
             continue
         print(m)
-        for line in table(defects, lambda im, m=m: dict(DEFAULT, **{m: margin * noise[(m, im)]})):
+        for line in table(defects, lambda r, m=m: dict(DEFAULT, **{m: margin * noise[(m, r["image"])]})):
             print("   ", line)
-    print("\n## the gate's metrics at the CPU renderers' tolerances")
-    for line in table(defects + cpu, lambda im: CPU_TIER):
+    print("\n## the gate's metrics at the CPU renderers' tolerances, for any size")
+    for line in table(defects + cpu, lambda r: CPU_TIER):
         print("   ", line)
+    print("\n## the same, sized for 14400 pixels (kept)")
+    for line in table(defects + cpu, lambda r: sized(CPU_TIER, r["id"])):
+        print("   ", line)
+    print("\n## the CPU noise by size: largest sum |d|, sum d^2 and pixels over 0.01 of an image")
+    by = collections.defaultdict(lambda: [0.0, 0.0, 0.0])
+    for r in cpu:
+        n = pixels(r["id"])
+        k = by[(size_of(r["id"]), r["image"])]
+        k[0], k[1], k[2] = max(k[0], r["mean_abs"] * n), max(k[1], r["rmse"] ** 2 * n), max(k[2], r["over"] * n)
+    for (size, im), (a, b, c) in sorted(by.items()):
+        print(f"    {size:8s} {im:8s} {a:8.3f} {b:8.4f} {c:4.0f}")
 
 
 if __name__ == "__main__":
