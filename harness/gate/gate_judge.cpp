@@ -153,6 +153,13 @@ long long pixelsOf(const ConfigResult& r, const std::string& image) {
     return (long long)s.width * s.height;
 }
 
+// The tolerances against the device's own class's reference, wherever it
+// is judged: the defaults and the device entries of scope "all", sized for
+// the image.
+Tolerance classTolerance(const Judge& j, const ConfigResult& r, const std::string& image) {
+    return sizedFor(j.manifest.forPipeline(r.config.kernel, r.device, true), pixelsOf(r, image));
+}
+
 // The nearest image approved for the device's own class (Approvals::reference).
 const Approval* classReference(const Judge& j, const ConfigResult& r, const std::string& image) {
     const std::string stage = r.id.substr(r.id.rfind('/') + 1);
@@ -164,7 +171,7 @@ const Approval* classReference(const Judge& j, const ConfigResult& r, const std:
 // judge would use against the reference it would choose.
 Result<ImageCheck> fromRemote(ImageCheck& check, const RemoteCheck& k, const ConfigResult& r, const Judge& j,
                               bool perceptual) {
-    check.tolerance = sizedFor(j.manifest.forPipeline(r.config.kernel, r.device, true), pixelsOf(r, check.image));
+    check.tolerance = classTolerance(j, r, check.image);
     const Approval* ref = classReference(j, r, check.image);
     if (!ref || ref->digest != k.referenceDigest)
         return badInput(r.label() + ": " + check.image + " was judged where it was rendered against " + k.referenceDigest +
@@ -234,7 +241,7 @@ Result<ImageCheck> judgeImage(const CheckedImage& ci, const HostImage* now, cons
         // "Changed is a state of its own").
         auto base = j.reference(ref->digest);
         if (base || !software || !cavity::store::isMissingObject(base.error())) {
-            check.tolerance = sizedFor(j.manifest.forPipeline(r.config.kernel, r.device, true), pixelsOf(r, ci.name));
+            check.tolerance = classTolerance(j, r, ci.name);
             check.reference = ref->deviceClass + " " + ref->api + "/" + ref->stage;
             check.referenceDigest = ref->digest;
             check.approval = approvalText(*ref);
