@@ -70,6 +70,25 @@ TEST(Summary, GroupsByKernelAndCheckWorstFirstWithTheApisMerged) {
     EXPECT_NE(s.find("[Full report](https://ci.example.org/r/index.html)"), std::string::npos) << s;
 }
 
+// Tolerances sized to each image's pixels differ between the rows a group
+// counts: the row gives the worst one's limit and the range it spans.
+TEST(Summary, AGroupHeldToSeveralLimitsSaysTheirRange) {
+    GateRun run;
+    run.matrix = "ci";
+    ConfigResult small = failingResult("alchemy", 16, "vk", 0.006), large = failingResult("alchemy", 32, "vk", 0.004);
+    small.images[0].failures = {"mean abs error 0.0002 > 6e-05"};
+    large.images[0].failures = {"mean abs error 0.0001 > 1.5e-05"};
+    run.results = {small, large};
+    const std::string s = report::summaryMarkdown(run);
+    EXPECT_NE(s.find("mean abs error 0.0001 at `corner/alchemy/n32/b4/full/160x90/compute` | ≤ 1.5e-05 "
+                     "(1.5e-05 to 6e-05 across them) |"),
+              std::string::npos)
+        << s;
+    run.results = {small};
+    const std::string one = report::summaryMarkdown(run);
+    EXPECT_NE(one.find("| ≤ 6e-05 |"), std::string::npos) << one;
+}
+
 // A failing card prints the commands that accept its configuration alone.
 TEST(Summary, AFailureNamesTheCommandThatAcceptsItAlone) {
     const ConfigResult r = failingResult("alchemy", 16, "vk", 0.02);

@@ -80,6 +80,9 @@ struct Group {
     std::set<std::string> configs, apis;   // ids without the API; APIs seen
     double worst = -1;
     std::string worstResult, worstTolerance, worstId;
+    // Each configuration's limit of this check: they differ where tolerances
+    // are sized to each image's pixels ("sized_for_pixels").
+    double leastLimit = std::numeric_limits<double>::infinity(), mostLimit = -leastLimit;
 };
 
 void add(std::map<std::pair<std::string, std::string>, Group>& groups, const ConfigResult& r, const std::string& check,
@@ -90,6 +93,8 @@ void add(std::map<std::pair<std::string, std::string>, Group>& groups, const Con
     if (!image.empty()) g.images.insert(image);
     g.configs.insert(withoutApi(r.id));
     if (const auto api = apiOf(r.id); !api.empty()) g.apis.insert(api);
+    if (const double limit = firstNumber(tolerance); !tolerance.empty() && std::isfinite(limit))
+        g.leastLimit = std::min(g.leastLimit, limit), g.mostLimit = std::max(g.mostLimit, limit);
     const double s = severity(result, tolerance);
     if (s > g.worst) g.worst = s, g.worstResult = result, g.worstTolerance = tolerance, g.worstId = withoutApi(r.id);
 }
@@ -219,9 +224,14 @@ std::string summaryMarkdown(const GateRun& run, const std::string& reportUrl) {
             std::string images;
             for (const auto& i : g.images) images += (images.empty() ? " (" : ", ") + i;
             if (!images.empty()) images += ")";
+            // The worst configuration's limit, and the range where the rows it
+            // groups were held to different ones (images of several sizes).
+            const std::string limits = g.leastLimit < g.mostLimit
+                                           ? " (" + num(g.leastLimit) + " to " + num(g.mostLimit) + " across them)"
+                                           : "";
             lines.push_back("| `" + g.kernel + "` | " + cell(g.check + images) + " | " + std::to_string(g.configs.size()) +
                             (apis.empty() ? "" : " (" + apis + ")") + " | " + cell(g.worstResult) + " at `" + g.worstId +
-                            "` | " + cell(g.worstTolerance) + " |");
+                            "` | " + cell(g.worstTolerance + limits) + " |");
         }
         if (shown < groups.size())
             lines.push_back("| … | " + std::to_string(groups.size() - shown) + " more groups | | in the full report | |");
