@@ -7,6 +7,7 @@
 // form. The slices' mean is the visibility: 1 = fully open.
 #include "include/common.glsl"
 #include "include/noise.glsl"
+#include "include/octahedral.glsl"
 
 // The integral of cos(h - n) |sin h| over [0, h] in closed form, one side of
 // a slice (Jimenez et al. 2016, eq. 7): 0.25 (-cos(2h - n) + cos n + 2 h sin n).
@@ -48,6 +49,7 @@ void cavity_main(ivec2 pixel) {
     float depth = centre.w;
     if (isBackground(depth)) {
         write_ao(pixel, vec4(1.0));
+        write_ao_key(pixel, vec4(1.0, 0.0, 0.0, 0.0));
         return;
     }
     vec3 X = centre.xyz;
@@ -92,4 +94,5 @@ void cavity_main(ivec2 pixel) {
         visibility = multiBounce(visibility, dot(albedo, vec3(1.0 / 3.0)));
     }
     write_ao(pixel, vec4(visibility, 0.0, 0.0, 0.0));
+    write_ao_key(pixel, vec4(visibility, depth, octEncode(N)));
 }
