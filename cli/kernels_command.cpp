@@ -204,7 +204,9 @@ std::vector<std::string> checkOne(const kernels::KernelDecl& k) {
             }
             auto active = kernels::activeUniforms(*src, api);
             if (!active) {
-                problems.push_back(oneLine(active.error().message));
+                // The message names the API; the stage tells its twin apart.
+                problems.push_back(std::string(stage == gpu::Stage::Compute ? "compute stage: " : "fragment stage: ") +
+                                   oneLine(active.error().message));
                 continue;
             }
             if (api == gpu::Api::Vulkan && stage == gpu::Stage::Compute)

@@ -4,6 +4,8 @@
 // given twice, an empty value, the nearest known flag).
 #include "flags.h"
 
+#include "nearest.h"
+
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
@@ -12,21 +14,6 @@
 namespace cavity::flags {
 
 namespace {
-
-size_t editDistance(const std::string& a, const std::string& b) {
-    std::vector<size_t> row(b.size() + 1);
-    for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
-    for (size_t i = 1; i <= a.size(); ++i) {
-        size_t diag = row[0];
-        row[0] = i;
-        for (size_t j = 1; j <= b.size(); ++j) {
-            const size_t up = row[j];
-            row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] == b[j - 1] ? 0 : 1)});
-            diag = up;
-        }
-    }
-    return row[b.size()];
-}
 
 const FlagSpec* findFlag(const CommandSpec& spec, const std::string& name) {
     for (const auto& f : spec.flags)
@@ -58,14 +45,7 @@ std::unique_ptr<CLI::App> makeApp(const CommandSpec& spec, std::map<std::string,
 }  // namespace
 
 std::string nearest(const std::string& word, const std::vector<std::string>& candidates) {
-    std::string best;
-    size_t bestDistance = std::string::npos;
-    for (const auto& c : candidates) {
-        const size_t d = editDistance(word, c);
-        if (d < bestDistance) bestDistance = d, best = c;
-    }
-    // Close enough to be a typo: at most a third of the word, and at least 2.
-    return bestDistance <= std::max<size_t>(2, word.size() / 3) ? best : "";
+    return nearestWord(word, candidates);
 }
 
 namespace {

@@ -56,8 +56,6 @@ Result<std::string> sourceKey(const std::string& name) {
     return badInput(name + ": no kernel source of that name (a .glsl file under kernels/ or in a --kernels package)");
 }
 
-// How diagnostics name a source: its path in the repository, or for a file a
-// package brought from disk, its path there.
 std::string sourceLabel(const std::string& name) {
     if (embeddedSources().count(name)) return "kernels/" + name;
     const PackageSource* p = packageSource(name);

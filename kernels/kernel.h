@@ -309,6 +309,10 @@ const std::string* sourceFile(const std::string& name);
 // or a file name that one source alone has ("ssao_alchemy.glsl"), so that a
 // command written before the kernels became packages still names its file.
 Result<std::string> sourceKey(const std::string& name);
+// How diagnostics and assemble()'s file list name the source `key`: its path
+// in the repository ("kernels/include/common.glsl"), or for a file a package
+// brought from disk, its path there.
+std::string sourceLabel(const std::string& key);
 // The first line of a replacement source read from a file, naming that file
 // ("//!cavity-replaced-from: my_alchemy.glsl"): assemble() labels the
 // replacement's diagnostics with it, and drops the line.

@@ -255,8 +255,13 @@ std::string allowedValues(const ParamDecl& p) {
         what = "one of ";
         for (size_t i = 0; i < p.choices.size(); ++i) what += (i ? ", " : "") + p.choices[i];
     }
-    if (p.type == ParamType::Float)
-        what += ", and 0 or at least " + number(std::numeric_limits<float>::min()) + " in magnitude (a 32-bit float)";
+    // Denormals are refused (a GPU may flush them): said only where the
+    // range reaches them, and 0 offered only where the range holds it.
+    const double least = std::numeric_limits<float>::min();
+    if (p.type == ParamType::Float && p.min < least && p.max > -least) {
+        const bool zero = p.min <= 0 && p.max >= 0 && !(p.minExclusive && p.min == 0);
+        what += std::string(", and ") + (zero ? "0 or " : "") + "at least " + number(least) + " in magnitude (a 32-bit float)";
+    }
     return what + (p.unit.empty() ? "" : " (" + p.unit + ")");
 }
 

@@ -119,11 +119,17 @@ def bad_packages():
         ("min over max", lambda d: w(d, "kernel.toml", sub(t, "min = 1\nmax = 32", "min = 9\nmax = 3")),
          r"params\[2\]\.max = 3: must be at least min"),
         ("new parameter without type", lambda d: w(d, "kernel.toml", sub(t, 'type = "int"\n', "")),
-         r"params\[2\]\.type: missing"),
+         r"params\[2\]\.name = ring_px: no parameter of that name; a new one needs its type"),
+        ("misspelt harness parameter", lambda d: w(d, "kernel.toml", sub(t, 'name = "radius"\n', 'name = "radious"\n')),
+         r"params\[1\]\.name = radious: no parameter of that name \(did you mean radius\?\)"),
+        ("harness parameter declared otherwise", lambda d: w(d, "kernel.toml", sub(t, 'name = "radius"\n', 'name = "radius"\ntype = "int"\nmin = 1\nmax = 9\nhelp = "h"\n')),
+         r"params\[1\]\.type = 'int': 'radius' is declared already, as a number > 0"),
+        ("enum default not a choice", lambda d: w(d, "kernel.toml", sub(sub(t, 'type = "int"', 'type = "enum"\nchoices = ["near", "far"]'), "default = 4\nmin = 1\nmax = 32\n", 'default = "farr"\n')),
+         r"params\[2\]\.default = farr: must be one of near, far"),
         ("unknown type", lambda d: w(d, "kernel.toml", sub(t, 'type = "int"', 'type = "double"')),
          r"params\[2\]\.type = double: must be int, float, bool or enum"),
         ("harness parameter's range", lambda d: w(d, "kernel.toml", sub(t, 'name = "radius"\n', 'name = "radius"\nmax = 2\n')),
-         r"params\[1\]\.max = 2: 'radius' is a harness parameter"),
+         r"params\[1\]\.max = 2: 'radius' is declared already"),
         ("float compiled in", lambda d: w(d, "kernel.toml", sub(t, 'name = "radius"\n', 'name = "radius"\ncompiled_in = true\n')),
          r"params\[1\]\.compiled_in = true: only an int, bool or enum"),
         ("input no pass provides", lambda d: w(d, "kernel.toml", sub(t, 'name = "normal"', 'name = "velocity"')),
@@ -278,6 +284,27 @@ def main():
         r = run([bench, "--kernels", pkg, "--sweep", "cpu", f"--benchmark_filter=^{re.escape(one)}$", "--max-time", "0.05",
                  "--benchmark_format=json"])
         assert r.returncode == 0 and '"name": "' + one in r.stdout, r.stdout[-2000:] + r.stderr
+
+        # An edit of the package's own shader through --kernel-source, as of a
+        # built-in's: the gate judges the edit (twice the occlusion fails the
+        # approvals) and records the replacement.
+        edited = os.path.join(root, "ring_ao_edit.glsl")
+        w(root, "ring_ao_edit.glsl", GLSL.replace("float occlusion = 0.0;", "float occlusion = 0.25;"))
+        third = run(gate + ["--out", os.path.join(root, "gate3"), "--store", os.path.join(root, "store"),
+                            "--kernel-source", "ring_ao.glsl=" + edited])
+        assert third.returncode == 1, third.stdout + third.stderr
+        assert edited in json.dumps(json.load(open(os.path.join(root, "gate3", "gate.json")))["kernel_sources"])
+
+        # cavity ab passes the packages it loaded on to the builds it runs.
+        r = run([cavity, "ab", "--kernels", pkg, "--a", bench, "--b", bench, "--filter", "/ring_ao/", "--bench-args",
+                 "--sweep cpu", "--list"])
+        assert r.returncode == 0 and "/ring_ao/" in r.stdout, r.stdout + r.stderr
+
+        # Two packages of one folder may declare the same new parameter alike.
+        for name in ("ring_a", "ring_b"):
+            make(os.path.join(root, "pair", name), toml=TOML.replace('"ring_ao"', f'"{name}"'))
+        r = run([cavity, "kernels", "list", "--kernels", os.path.join(root, "pair")])
+        assert r.returncode == 0 and "ring_a" in r.stdout and "ring_b" in r.stdout, r.stdout + r.stderr
 
         failures += check_disagreement(cavity, root)
         failures += check_unknown_reference(cavity, root)

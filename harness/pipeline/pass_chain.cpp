@@ -367,20 +367,21 @@ Result<std::map<std::string, HostImage>> renderImages(gpu::Backend& gpu, const R
 
 Status checkSourcesUsed(const std::vector<ReplacedSource>& replaced, const std::vector<RunConfig>& configs) {
     if (replaced.empty()) return {};
-    std::set<std::string> used, assembled;   // kernels/ file names; kernel and stage pairs done
+    // Every file a pass compiles, as assemble() labels them: a repository
+    // path for the embedded sources, a path on disk for a package's own.
+    std::set<std::string> used, assembled;   // source labels; kernel and stage pairs done
     for (const auto& c : configs)
         for (const auto& spec : buildPasses(c)) {
             const auto* k = kernels::find(spec.kernel);
             if (!k || !assembled.insert(spec.kernel + (c.stage == gpu::Stage::Compute ? "/c" : "/f")).second) continue;
             auto src = kernels::assemble(*k, c.stage, {}, nullptr, 0);
             if (!src) continue;
-            for (const auto& f : src->files)
-                if (f.rfind("kernels/", 0) == 0) used.insert(f.substr(8));
+            used.insert(src->files.begin(), src->files.end());
         }
     for (const auto& r : replaced)
-        if (!used.count(r.name))
-            return badInput("--kernel-source " + r.name + "=" + r.file + ": no configuration of the selection compiles kernels/" +
-                            r.name + " (the replacement would change nothing)");
+        if (const std::string label = kernels::sourceLabel(r.name); !used.count(label))
+            return badInput("--kernel-source " + r.name + "=" + r.file + ": no configuration of the selection compiles " +
+                            label + " (the replacement would change nothing)");
     return {};
 }
 

@@ -1,5 +1,7 @@
 #include "package/declaration.h"
 
+#include "nearest.h"
+
 #include "package/toml_read.h"
 
 #include "blur_weights.h"
@@ -66,8 +68,10 @@ Result<ParamDecl> newParam(const Ctx& c, const toml::table& t, const std::string
 // Reads the default, given as a number, a bool or (enum) a choice's name.
 Result<double> defaultValue(const Ctx& c, const toml::node& n, const ParamDecl& p, const std::string& key) {
     if (p.type == ParamType::Enum && n.is_string()) {
-        CAVITY_ASSIGN(const double v, parseValue(p, *n.value<std::string>()));
-        return v;
+        const std::string name = *n.value<std::string>();
+        for (size_t i = 0; i < p.choices.size(); ++i)
+            if (p.choices[i] == name) return double(i);
+        return c.fail(&n, key, name, "must be " + allowedValues(p));
     }
     if (n.is_boolean()) return *n.value<bool>() ? 1.0 : 0.0;
     if (!n.is_number()) return c.fail(&n, key, show(n), "must be a number");
@@ -87,17 +91,34 @@ Status readParam(const Ctx& c, const toml::table& t, size_t i, KernelDecl& k, Pa
     for (const auto& p : k.params)
         if (p.name() == name) return c.fail(t.get("name"), where + "name", name, "declared twice in this kernel");
     const ParamDecl* decl = findParam(name);
-    const bool fresh = !decl;
-    if (!fresh) {
-        for (const char* key : {"type", "min", "max", "unit", "help", "choices"})
+    const bool fresh = !decl, redeclared = !fresh && t.get("type");
+    if (redeclared) {
+        // One declaration a name, whoever made it: another package's kernel
+        // may declare it again only as it stands.
+        CAVITY_ASSIGN(const ParamDecl again, newParam(c, t, where, name));
+        if (again.type != decl->type || again.min != decl->min || again.max != decl->max ||
+            again.minExclusive != decl->minExclusive || again.choices != decl->choices || again.unit != decl->unit)
+            return c.fail(t.get("type"), where + "type", show(*t.get("type")),
+                          "'" + name + "' is declared already, as " + allowedValues(*decl) +
+                              " (cavity run --help): declare it exactly so, set only its default and note, or "
+                              "name a parameter of your own");
+    } else if (!fresh) {
+        for (const char* key : {"min", "max", "unit", "help", "choices"})
             if (t.get(key))
                 return c.fail(t.get(key), where + key, show(*t.get(key)),
-                              "'" + name + "' is a harness parameter (cavity run --help): a package sets its default "
-                              "and note, not its " + key);
+                              "'" + name + "' is declared already (cavity run --help): without its type a package "
+                              "sets only its default and note");
+    } else if (!t.get("type")) {
+        std::vector<std::string> known;
+        for (const auto& p : paramDecls()) known.push_back(p.name);
+        const std::string near = nearestWord(name, known);
+        return c.fail(t.get("name"), where + "name", name,
+                      "no parameter of that name" + (near.empty() ? std::string() : " (did you mean " + near + "?)") +
+                          "; a new one needs its type, default and help (and min and max, or choices)");
     }
-    CAVITY_TRY(onlyKeys(c, t, where, fresh ? std::set<std::string>{"name", "default", "note", "compiled_in", "type", "min",
-                                                                    "max", "unit", "help", "choices"}
-                                           : std::set<std::string>{"name", "default", "note", "compiled_in"}));
+    CAVITY_TRY(onlyKeys(c, t, where, fresh || redeclared ? std::set<std::string>{"name", "default", "note", "compiled_in", "type",
+                                                                                 "min", "max", "unit", "help", "choices"}
+                                                         : std::set<std::string>{"name", "default", "note", "compiled_in"}));
     if (fresh) {
         CAVITY_ASSIGN(ParamDecl added, newParam(c, t, where, name));
         out.added.push_back(std::move(added));

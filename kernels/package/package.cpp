@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 
@@ -97,6 +98,11 @@ const PackageSource* packageSource(const std::string& key) {
 Status loadPackages(const std::string& dir) {
     std::error_code ec;
     if (!fs::is_directory(dir, ec)) return badInput(dir + ": no such folder");
+    // A folder named twice (CAVITY_KERNELS, which --kernels passes on to the
+    // programs a command starts, and the same --kernels again) loads once.
+    static std::set<std::string> done;
+    const std::string canonical = fs::weakly_canonical(dir, ec).string();
+    if (done.count(canonical)) return {};
     std::vector<fs::path> folders;
     if (fs::exists(fs::path(dir) / "kernel.toml")) {
         folders.push_back(dir);
@@ -120,6 +126,7 @@ Status loadPackages(const std::string& dir) {
         }
     }
     registryForTests() = std::move(registry);
+    done.insert(canonical);
     return {};
 }
 
@@ -157,6 +164,7 @@ Status loadPackagesFromCommandLine(std::vector<std::string>& args) {
             start = end + 1;
         }
     }
+    std::string flagged;   // ":DIR" for each --kernels folder loaded
     for (size_t i = 0; i < args.size();) {
         std::string dir;
         size_t take = 0;
@@ -172,7 +180,16 @@ Status loadPackagesFromCommandLine(std::vector<std::string>& args) {
             continue;
         }
         if (Status s = loadPackages(dir); !s) return badInput("--kernels " + dir + ": " + s.error().message);
+        std::error_code ec;
+        flagged += ":" + fs::absolute(dir, ec).string();
         args.erase(args.begin() + long(i), args.begin() + long(i + take));
+    }
+    // The programs a command starts (cavity ab's builds, a gate's renders)
+    // load what it loaded: through CAVITY_KERNELS, in absolute paths.
+    if (!flagged.empty()) {
+        const char* env = std::getenv("CAVITY_KERNELS");
+        const std::string list = (env && *env) ? env + flagged : flagged.substr(1);
+        ::setenv("CAVITY_KERNELS", list.c_str(), 1);
     }
     return {};
 }
