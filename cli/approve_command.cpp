@@ -274,8 +274,9 @@ int approveCommand(const std::vector<std::string>& argv) {
     auto stored = putImages(pixels, *f);
     if (!stored) return fail(program, stored.error());
     if (auto st = plan::saveApprovals(path, *approvals); !st) return fail(program, st.error());
+    // Images with the same pixels (both APIs alike, say) share one object.
     std::cout << added << " image digests " << (f->negative ? "marked known bad" : "approved") << " in " << path << "; "
-              << *stored << " images in the store\n";
+              << *stored << " distinct images in the store\n";
     if (skipped)
         std::cout << skipped << " configurations left out: a render error, or repetitions with different images\n";
     return 0;

@@ -1,5 +1,7 @@
 #include "run_sweep.h"
 
+#include "kernel.h"
+#include "pipeline/pipeline.h"
 #include "plan/axes.h"
 
 #include <algorithm>
@@ -216,6 +218,33 @@ Result<std::vector<RunConfig>> expandSweep(const Sweep& s) {
         out.push_back(std::move(c));
         return {};
     }));
+    // A parameter that no pass of any configuration reads changes nothing
+    // that runs, and would only add a segment to the ids: another kernel's
+    // own parameter given for this one, most likely.
+    for (const auto& [name, values] : s.params) {
+        const auto reads = [&name](const RunConfig& c) {
+            for (const auto& spec : pipeline::buildPasses(c))
+                if (const auto* k = kernels::find(spec.kernel); k && kernels::declares(*k, name)) return true;
+            return false;
+        };
+        if (out.empty() || std::any_of(out.begin(), out.end(), reads)) continue;
+        // What would read it: the selection at half resolution (the fused
+        // tail), else the AO kernels whose pipelines do, to name.
+        if (std::any_of(out.begin(), out.end(), [&](RunConfig c) {
+                c.half = true;
+                return supportsHalf(c.kernel) && reads(c);
+            }))
+            return badInput("--" + name + ": read at half resolution only; add --resolution half");
+        std::string owners;
+        size_t count = 0;
+        for (const auto& k : kernels::all()) {
+            RunConfig other = out.front();
+            other.kernel = k.name;
+            if (k.role == kernels::Role::Ao && reads(other)) owners += (count++ ? ", " : "") + k.name;
+        }
+        return badInput("--" + name + ": no kernel of the selection reads it" +
+                        (count ? " (" + owners + (count == 1 ? " does)" : " do)") : std::string()));
+    }
     return out;
 }
 

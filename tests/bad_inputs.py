@@ -170,6 +170,11 @@ CASES = [
     Case("nan", "cavity", RUN + ["--radius", "nan"], ["--radius", "nan", "in"]),
     Case("inf", "cavity", RUN + ["--radius", "inf"], ["--radius", "inf", "in"]),
     Case("hexfloat", "cavity", RUN + ["--radius", "0x1p-2"], ["--radius", "0x1p-2", "in"]),
+    # A parameter no kernel of the selection reads: named, with who reads it.
+    Case("param-nobody-reads", "cavity", RUN + ["--kernel", "alchemy", "--ssdo_mode", "radiance"],
+         ["--ssdo_mode", "no kernel of the selection reads it", "ssdo"]),
+    Case("param-read-at-half", "cavity", RUN + ["--kernel", "alchemy", "--fused_tail", "1"],
+         ["--fused_tail", "--resolution half"]),
     Case("out-empty", "cavity", RUN[:-2] + ["--out", ""], ["--out", "empty"]),
     Case("stray-argument", "cavity", ["run", "stray"], ["stray"]),
     # More of the same families.

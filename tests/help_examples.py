@@ -143,6 +143,14 @@ def fixtures(work):
     os.makedirs(os.path.join(work, "baselines"))
     for name in ("matrices.json", "manifest.json", "budgets.json", "approvals.json"):
         shutil.copy(os.path.join(SOURCE, "baselines", name), os.path.join(work, "baselines", name))
+    # The store examples check every approval under their key, and a store
+    # holds only what some machine rendered into it: here, the CPU
+    # renderers' images. So the copy keeps their class's approvals alone.
+    approvals = os.path.join(work, "baselines", "approvals.json")
+    doc = json.load(open(approvals))
+    doc["approvals"] = [a for a in doc["approvals"] if a["device_class"] == "llvmpipe"]
+    with open(approvals, "w") as f:
+        json.dump(doc, f)
     for name in ("images", "expectations"):
         src = os.path.join(SOURCE, "baselines", name)
         if os.path.isdir(src):

@@ -527,7 +527,7 @@ TEST(Gate, HtmlReportOpensInHeadlessChromiumWithFailuresFirst) {
     // baseline, diff and slider.
     std::ifstream sm(fs::path(o.out) / "summary.md");
     const std::string summary((std::istreambuf_iterator<char>(sm)), std::istreambuf_iterator<char>());
-    EXPECT_TRUE(std::regex_search(summary, std::regex("\\| mean abs error \\([a-z_, ]*\\) \\| [0-9]+ \\(vk\\) \\| mean abs error [0-9.]+ at `[^`]+` \\| ≤ [0-9.e+-]+ \\|")))
+    EXPECT_TRUE(std::regex_search(summary, std::regex("\\| mean abs error \\([a-z_, ]*\\) \\| [0-9]+ \\(vk\\) \\| mean abs error [0-9.]+ at `[^`]+` \\| ≤ [0-9.e+-]+( \\([0-9.e+-]+ to [0-9.e+-]+ across them\\))? \\|")))
         << summary;
     EXPECT_NE(text.find("class=\"scale\""), std::string::npos);
     for (const auto& r : run.results) {

@@ -100,6 +100,32 @@ TEST(ConfigId, GroundTruthNamesItsRays) {
     EXPECT_EQ(configId(c), "corner/ground_truth/rays2048/b4/full/320x180/vk/compute");
 }
 
+// A matrix names an enum's values by choice, as the command line does, or
+// by index; anything else is refused naming the choices.
+TEST(ConfigId, MatrixEnumValuesByName) {
+    const fs::path dir = fs::temp_directory_path() / "cavity_matrix_enum";
+    fs::create_directories(dir);
+    const std::string path = (dir / "matrices.json").string();
+    auto write = [&](const std::string& values) {
+        std::ofstream(path) << R"({"m": {"description": "d", "groups": [{"scenes": ["corner"], "kernels": ["ssdo"],
+            "samples": [16], "blurs": [4], "params": {"ssdo_mode": )" << values << R"(}, "resolutions": ["full"],
+            "sizes": ["160x90"], "apis": ["vk"], "stages": ["compute"]}]}})";
+    };
+    write(R"(["radiance", 0])");
+    auto m = plan::loadMatrix(path, "m");
+    ASSERT_TRUE(m) << m.error().message;
+    std::set<double> modes;
+    for (const auto& c : m->expand()) modes.insert(c.param("ssdo_mode"));
+    EXPECT_EQ(modes, (std::set<double>{0, 1}));
+    write(R"(["radiant"])");
+    m = plan::loadMatrix(path, "m");
+    ASSERT_FALSE(m);
+    EXPECT_NE(m.error().message.find("params.ssdo_mode has \"radiant\": must be one of visibility, radiance"),
+              std::string::npos)
+        << m.error().message;
+    fs::remove_all(dir);
+}
+
 TEST(ConfigId, DistinctInEveryMatrix) {
     std::ifstream in(std::string(CAVITY_SOURCE_DIR) + "/baselines/matrices.json");
     const auto doc = nlohmann::json::parse(in);

@@ -231,7 +231,7 @@ def cases(work, http, https, ca, www):
 
     # The writer puts the three images; approvals.json names their digests.
     p = run([CAVITY, "baselines", "approve", "--from", good, "--baselines", base, "--store", url, "--why", "t"], writer)
-    check(p.returncode == 0 and "3 images in the store" in p.stdout, f"writer approves: {p.stdout.strip()} {p.stderr.strip()}")
+    check(p.returncode == 0 and "3 distinct images in the store" in p.stdout, f"writer approves: {p.stdout.strip()} {p.stderr.strip()}")
     digests = [a["digest"] for a in json.load(open(approvals))["approvals"]]
     on_server = sorted(os.listdir(os.path.join(www, "cavity", "sha256")))
     check(sorted(d.split(":")[1] + ".f32z" for d in digests) == on_server, f"objects on the server: {on_server}")

@@ -73,7 +73,8 @@ std::vector<RunConfig> Matrix::expand() const {
 namespace {
 
 // "params": {"radius": [2, 4]}: kernel parameters other than samples and
-// blur (which have keys of their own), each a list of numbers; their ranges
+// blur (which have keys of their own), each a list of numbers (an enum's
+// also of its choices' names); their ranges
 // are checked with every configuration by validate().
 Result<std::vector<std::pair<std::string, std::vector<double>>>> parseParams(const std::string& path,
                                                                            const std::string& gw, const json& g) {
@@ -86,9 +87,21 @@ Result<std::vector<std::pair<std::string, std::vector<double>>>> parseParams(con
                             "' (a kernel parameter other than samples, blur and scene; see cavity run --help)");
         if (!values.is_array() || values.empty())
             return badInput(path + ": " + gw + ".params." + name + " must be a non-empty list of numbers");
+        // A number, or an enum's choice by name as on the command line.
+        const kernels::ParamDecl& decl = *kernels::findParam(name);
         std::vector<double> list;
         for (const auto& v : values) {
-            if (!v.is_number()) return badInput(path + ": " + gw + ".params." + name + " has " + v.dump() + " (a number)");
+            if (v.is_string() && decl.type == kernels::ParamType::Enum) {
+                auto parsed = kernels::parseValue(decl, v.get<std::string>());
+                if (!parsed)
+                    return badInput(path + ": " + gw + ".params." + name + " has " + v.dump() + ": must be " +
+                                    kernels::allowedValues(decl));
+                list.push_back(*parsed);
+                continue;
+            }
+            if (!v.is_number())
+                return badInput(path + ": " + gw + ".params." + name + " has " + v.dump() + ": must be " +
+                                kernels::allowedValues(decl));
             list.push_back(v.get<double>());
         }
         out.emplace_back(name, std::move(list));
