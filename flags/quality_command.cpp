@@ -15,6 +15,7 @@
 #include "core/text_table.h"
 #include "plan/axes.h"
 #include "plan/sweep.h"
+#include "package/package.h"
 
 #include <cstdio>
 #include <filesystem>
@@ -62,6 +63,12 @@ CommandSpec qualitySpec(const std::string& program) {
         {"--list", "", "print the configuration ids this would measure, one a line, and measure nothing"},
         {"--quiet", "", "no progress lines on stderr"},
     };
+    // A loaded package's own parameters, one value each (its kernels only).
+    for (const auto& p : kernels::packages())
+        for (const auto& name : p.builtIn ? std::vector<std::string>{} : p.addedParams)
+            c.flags.push_back({"--" + name, "V", "a parameter of " + p.name + "'s package, " +
+                                                     kernels::allowedValues(*kernels::findParam(name)) +
+                                                     "; set on the kernels that declare it"});
     c.examples = {
         program + " --kernel alchemy_fast,hemisphere_fast --samples 16 --reach seed",
         program + " --cost bench.json --budget-ms 0.2",
@@ -148,6 +155,8 @@ Status qualityFlag(QualityRequest& q, const std::string& flag, const std::string
         q.out = v;
     } else if (flag == "--filter") {
         CAVITY_ASSIGN(q.filter, parseFilter(flag, v));
+    } else if (kernels::findParam(flag.substr(2))) {   // a package's own (qualitySpec)
+        CAVITY_ASSIGN(o.switches[flag.substr(2)], paramFlag(flag.substr(2), v));
     }
     return {};
 }

@@ -84,7 +84,8 @@ Result<std::vector<std::pair<std::string, std::vector<double>>>> parseParams(con
     for (const auto& [name, values] : g["params"].items()) {
         if (name == "samples" || name == "blur" || name == "scene" || !kernels::findParam(name))
             return badInput(path + ": " + gw + ".params has '" + name +
-                            "' (a kernel parameter other than samples, blur and scene; see cavity run --help)");
+                            "' (a kernel parameter other than samples, blur and scene; see cavity run --help, and "
+                            "load the package that declares it with --kernels DIR)");
         if (!values.is_array() || values.empty())
             return badInput(path + ": " + gw + ".params." + name + " must be a non-empty list of numbers");
         // A number, or an enum's choice by name as on the command line.
