@@ -184,8 +184,8 @@ Status loadPackagesFromCommandLine(std::vector<std::string>& args) {
         flagged += ":" + fs::absolute(dir, ec).string();
         args.erase(args.begin() + long(i), args.begin() + long(i + take));
     }
-    // The programs a command starts (cavity ab's builds, a gate's renders)
-    // load what it loaded: through CAVITY_KERNELS, in absolute paths.
+    // The programs a command starts (cavity ab's two builds) load what it
+    // loaded: through CAVITY_KERNELS, in absolute paths.
     if (!flagged.empty()) {
         const char* env = std::getenv("CAVITY_KERNELS");
         const std::string list = (env && *env) ? env + flagged : flagged.substr(1);
