@@ -181,14 +181,15 @@ Status loadPackagesFromCommandLine(std::vector<std::string>& args) {
         }
         if (Status s = loadPackages(dir); !s) return badInput("--kernels " + dir + ": " + s.error().message);
         std::error_code ec;
-        flagged += ":" + fs::absolute(dir, ec).string();
+        flagged.push_back(':');
+        flagged.append(fs::absolute(dir, ec).string());
         args.erase(args.begin() + long(i), args.begin() + long(i + take));
     }
     // The programs a command starts (cavity ab's two builds) load what it
     // loaded: through CAVITY_KERNELS, in absolute paths.
     if (!flagged.empty()) {
-        const char* env = std::getenv("CAVITY_KERNELS");
-        const std::string list = (env && *env) ? env + flagged : flagged.substr(1);
+        std::string list(std::getenv("CAVITY_KERNELS") ? std::getenv("CAVITY_KERNELS") : "");
+        list.append(flagged, list.empty() ? 1 : 0, std::string::npos);
         ::setenv("CAVITY_KERNELS", list.c_str(), 1);
     }
     return {};
