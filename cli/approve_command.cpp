@@ -107,13 +107,14 @@ struct Pixels {
 };
 
 Result<size_t> addApprovals(plan::Approvals& a, const gate::GateRun& run, const ApproveFlags& f, std::vector<Pixels>& pixels,
-                           size_t& selected) {
+                           size_t& selected, size_t& rendered) {
     const std::string when = utcTimestamp();
     size_t added = 0;
     for (const auto& r : run.results) {
         if (f.filter && !std::regex_search(r.id, *f.filter)) continue;
         ++selected;
         if (!r.error.empty()) continue;
+        ++rendered;
         if (r.device.empty())
             return badInput(f.from + "/gate.json: " + r.id + ": no device recorded (a digest is approved for the device "
                             "class it was rendered on)");
@@ -148,7 +149,7 @@ Result<size_t> addApprovals(plan::Approvals& a, const gate::GateRun& run, const 
 // the device each configuration rendered on. A configuration whose
 // repetitions disagree is left out (a digest approves one image exactly).
 Result<size_t> addRenderApprovals(plan::Approvals& a, const std::string& dir, const ApproveFlags& f, size_t& skipped,
-                                  std::vector<Pixels>& pixels, size_t& selected) {
+                                  std::vector<Pixels>& pixels, size_t& selected, size_t& rendered) {
     const std::string path = (fs::path(dir) / "manifest.json").string();
     CAVITY_ASSIGN(const auto j, readJsonFile(path));
     CAVITY_ASSIGN(const render::RenderManifest m, render::parseManifest(j, path));
@@ -175,6 +176,7 @@ Result<size_t> addRenderApprovals(plan::Approvals& a, const std::string& dir, co
             ++skipped;
             continue;
         }
+        ++rendered;
         const auto device = m.devices.find(c.api);
         const std::string stage = c.id.substr(c.id.rfind('/') + 1);
         for (const auto& [image, ds] : digests) {
@@ -249,19 +251,30 @@ int approveCommand(const std::vector<std::string>& argv) {
     auto f = parseApprove(*parsed);
     if (!f) return fail(program, f.error());
     const std::string path = (fs::path(f->root) / "approvals.json").string();
+    // Checked before anything is put into the store.
+    if (std::error_code ec; !fs::is_directory(f->root, ec))
+        return fail(program, badInput("--baselines " + f->root + ": no such folder"));
     auto approvals = plan::loadApprovals(path);
     if (!approvals) return fail(program, approvals.error());
-    size_t added = 0, skipped = 0, selected = 0;
+    size_t added = 0, skipped = 0, selected = 0, rendered = 0;
     std::vector<Pixels> pixels;
     std::error_code ec;
     if (!fs::exists(fs::path(f->from) / "gate.json", ec) && fs::exists(fs::path(f->from) / "manifest.json", ec)) {
-        auto n = addRenderApprovals(*approvals, f->from, *f, skipped, pixels, selected);
+        auto n = addRenderApprovals(*approvals, f->from, *f, skipped, pixels, selected, rendered);
         if (!n) return fail(program, n.error());
         added = *n;
     } else {
         auto run = loadGateJson(f->from);
         if (!run) return fail(program, run.error());
-        auto n = addApprovals(*approvals, *run, *f, pixels, selected);
+        // Digests of an edit that kernels/ does not hold would pass the
+        // next run of the edit and fail the tree's own (baselines update
+        // --with-kernel-source copies the edit in with the images).
+        if (!run->replaced.empty() && !f->negative)
+            return fail(program, badInput("--from " + f->from + ": rendered with kernels/" + run->replaced.front().name +
+                                          " replaced (--kernel-source): its digests are not what kernels/ renders; "
+                                          "accept it with cavity baselines update --with-kernel-source, or copy the "
+                                          "edit into kernels/ and run the gate again"));
+        auto n = addApprovals(*approvals, *run, *f, pixels, selected, rendered);
         if (!n) return fail(program, n.error());
         added = *n;
     }
@@ -271,6 +284,10 @@ int approveCommand(const std::vector<std::string>& argv) {
             if (flag == "--filter") what = "--filter " + v + ": matches no configuration of " + f->from;
         return fail(program, badInput(what + " (nothing approved, approvals.json left as it was)"));
     }
+    if (rendered == 0)
+        return fail(program, badInput("--from " + f->from + ": no image to approve (every selected configuration failed "
+                                      "to render, or its repetitions disagree); nothing approved, approvals.json left "
+                                      "as it was"));
     auto stored = putImages(pixels, *f);
     if (!stored) return fail(program, stored.error());
     if (auto st = plan::saveApprovals(path, *approvals); !st) return fail(program, st.error());

@@ -222,11 +222,7 @@ Result<std::vector<RunConfig>> expandSweep(const Sweep& s) {
     // that runs, and would only add a segment to the ids: another kernel's
     // own parameter given for this one, most likely.
     for (const auto& [name, values] : s.params) {
-        const auto reads = [&name](const RunConfig& c) {
-            for (const auto& spec : pipeline::buildPasses(c))
-                if (const auto* k = kernels::find(spec.kernel); k && kernels::declares(*k, name)) return true;
-            return false;
-        };
+        const auto reads = [&name](const RunConfig& c) { return pipeline::pipelineReads(c, name); };
         if (out.empty() || std::any_of(out.begin(), out.end(), reads)) continue;
         // What would read it: the selection at half resolution (the fused
         // tail), else the AO kernels whose pipelines do, to name.

@@ -217,6 +217,7 @@ Result<std::vector<QualityStep>> planQuality(const QualityRequest& q) {
         return {};
     }));
     CAVITY_TRY(pipeline::checkSourcesUsed(q.replaced, measured));
+    CAVITY_TRY(measure::checkSwitchesUsed(o.switches, measured));
     return steps;
 }
 

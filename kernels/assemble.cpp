@@ -29,6 +29,10 @@ const std::string* sourceFile(const std::string& name) {
 }
 
 Result<std::string> sourceKey(const std::string& name) {
+    // The names the reports print are taken too: "kernels/<key>" for an
+    // embedded source, the path on disk of a package's own file.
+    if (name.rfind("kernels/", 0) == 0 && embeddedSources().count(name.substr(8))) return sourceKey(name.substr(8));
+    if (const std::string key = packageKeyOfFile(name); !key.empty()) return key;
     if (sourceFile(name) && name.size() > 5 && name.compare(name.size() - 5, 5, ".glsl") == 0) return name;
     // A file name alone: the one source of that name, wherever its package
     // keeps it ("ssao_alchemy.glsl" for "ao/alchemy/ssao_alchemy.glsl").

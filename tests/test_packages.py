@@ -124,6 +124,16 @@ def bad_packages():
          r"params\[1\]\.name = radious: no parameter of that name \(did you mean radius\?\)"),
         ("harness parameter declared otherwise", lambda d: w(d, "kernel.toml", sub(t, 'name = "radius"\n', 'name = "radius"\ntype = "int"\nmin = 1\nmax = 9\nhelp = "h"\n')),
          r"params\[1\]\.type = 'int': 'radius' is declared already, as a number > 0"),
+        ("duplicate enum choice", lambda d: w(d, "kernel.toml", sub(sub(t, 'type = "int"', 'type = "enum"\nchoices = ["near", "near"]'), "default = 4\nmin = 1\nmax = 32\n", 'default = "near"\n')),
+         r"params\[2\]\.choices = near: each choice must be a distinct, non-empty name"),
+        ("int range past 32 bits", lambda d: w(d, "kernel.toml", sub(t, "max = 32", "max = 4294967296")),
+         r"params\[2\]\.max = 4294967296: outside what a 32-bit int holds"),
+        ("float range past 32 bits", lambda d: w(d, "kernel.toml", sub(sub(t, 'type = "int"', 'type = "float"'), "max = 32", "max = 1e39")),
+         r"params\[2\]\.max = [0-9.e+]+: outside what a 32-bit float holds"),
+        ("min not a number", lambda d: w(d, "kernel.toml", sub(sub(t, 'type = "int"', 'type = "float"'), "min = 1", "min = nan")),
+         r"params\[2\]\.min = nan: must be a finite number"),
+        ("empty help", lambda d: w(d, "kernel.toml", sub(t, 'help = "the ring\'s radius in pixels"', 'help = ""')),
+         r"params\[2\]\.help = '': must not be empty"),
         ("enum default not a choice", lambda d: w(d, "kernel.toml", sub(sub(t, 'type = "int"', 'type = "enum"\nchoices = ["near", "far"]'), "default = 4\nmin = 1\nmax = 32\n", 'default = "farr"\n')),
          r"params\[2\]\.default = farr: must be one of near, far"),
         ("unknown type", lambda d: w(d, "kernel.toml", sub(t, 'type = "int"', 'type = "double"')),
@@ -299,6 +309,28 @@ def main():
                             "--kernel-source", "ring_ao.glsl=" + edited])
         assert third.returncode == 1, third.stdout + third.stderr
         assert edited in json.dumps(json.load(open(os.path.join(root, "gate3", "gate.json")))["kernel_sources"])
+
+        # The edit's run is not approved by digest alone: kernels/ does not hold it.
+        r = run([cavity, "baselines", "approve", "--kernels", pkg, "--from", os.path.join(root, "gate3"), "--baselines",
+                 base, "--why", "an edit", "--store", os.path.join(root, "store")])
+        assert r.returncode == 2 and "--with-kernel-source" in r.stderr, r.stderr
+        # The names the reports print select the file too: its path on disk.
+        r = run([cavity, "run", "--kernels", pkg, "--kernel", "ring_ao", "--kernel-source",
+                 os.path.join(pkg, "ring_ao.glsl") + "=" + edited, "--list"])
+        assert r.returncode == 0 and "/ring_ao/" in r.stdout, r.stdout + r.stderr
+        # A matrix value twice, or one no kernel of its group reads; quality
+        # with a package's parameter for a kernel that does not declare it.
+        for params, said in (('{"ring_px": [3, 3]}', "twice"), ('{"ring_px": [3]}', "no kernel of the group reads it")):
+            bad = os.path.join(root, "bad_matrix")
+            shutil.copytree(base, bad, dirs_exist_ok=True)
+            json.dump({"mine": {"description": "d", "groups": [
+                {"scenes": ["corner"], "kernels": ["ring_ao" if said == "twice" else "alchemy"], "samples": [8],
+                 "blurs": [4], "params": json.loads(params), "resolutions": ["full"], "sizes": ["64x36"],
+                 "apis": ["vk"], "stages": ["compute"]}]}}, open(os.path.join(bad, "matrices.json"), "w"))
+            r = run([cavity, "gate", "--kernels", pkg, "--matrix", "mine", "--baselines", bad, "--list"])
+            assert r.returncode == 2 and said in r.stderr, r.stderr
+        r = run([cavity, "quality", "--kernels", pkg, "--kernel", "alchemy", "--ring_px", "3", "--list"])
+        assert r.returncode == 2 and "--ring_px: no kernel measured declares it" in r.stderr, r.stderr
 
         # cavity ab passes the packages it loaded on to the builds it runs.
         r = run([cavity, "ab", "--kernels", pkg, "--a", bench, "--b", bench, "--filter", "/ring_ao/", "--bench-args",

@@ -116,6 +116,16 @@ void applySwitches(RunConfig& c, const kernels::ParamValues& switches) {
         if (k && kernels::declares(*k, name)) c.params[name] = value;
 }
 
+Status checkSwitchesUsed(const kernels::ParamValues& switches, const std::vector<RunConfig>& measured) {
+    for (const auto& [name, value] : switches)
+        if (!measured.empty() && std::none_of(measured.begin(), measured.end(), [&](const RunConfig& c) {
+                const auto* k = kernels::find(c.kernel);
+                return k && kernels::declares(*k, name);
+            }))
+            return badInput("--" + name + ": no kernel measured declares it (set it on one that does, with --kernel)");
+    return {};
+}
+
 Result<std::vector<QualityRow>> measureQuality(gpu::Backend& gpu, const QualityOptions& o) {
     std::vector<std::string> names = o.kernels;
     if (names.empty())

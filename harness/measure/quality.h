@@ -56,6 +56,9 @@ struct QualityOptions {
 
 // `c` with the switches its kernel declares.
 void applySwitches(RunConfig& c, const kernels::ParamValues& switches);
+// Fails naming the first switch that no measured configuration's kernel
+// declares: a flag that changes nothing measured is a mistake.
+Status checkSwitchesUsed(const kernels::ParamValues& switches, const std::vector<RunConfig>& measured);
 
 struct GroundTruth;
 

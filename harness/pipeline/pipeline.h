@@ -40,6 +40,10 @@ struct PassSpec {
 };
 
 std::vector<PassSpec> buildPasses(const RunConfig& c);
+// Whether some pass of c's pipeline declares the parameter `name`: a value
+// no pass reads changes nothing that runs (cavity run and the matrices
+// refuse one).
+bool pipelineReads(const RunConfig& c, const std::string& name);
 // Whether a kernel has a half-resolution pipeline (SSDO does not: its
 // radiance would need an upsample of its own).
 bool supportsHalf(const std::string& kernel);

@@ -65,6 +65,12 @@ gpu::Stage passStage(const kernels::KernelDecl& k, const RunConfig& c) {
     return mipChain || (k.interleaved && interleaveOf(c) > 1) ? gpu::Stage::Compute : c.stage;
 }
 
+bool pipelineReads(const RunConfig& c, const std::string& name) {
+    for (const auto& spec : buildPasses(c))
+        if (const auto* k = kernels::find(spec.kernel); k && kernels::declares(*k, name)) return true;
+    return false;
+}
+
 bool supportsHalf(const std::string& kernel) {
     const auto* k = kernels::find(kernel);
     return k && !isSsdo(*k);

@@ -8,6 +8,7 @@
 #include "pipeline/pipeline.h"
 #include "plan/sweep.h"
 
+#include <algorithm>
 #include <optional>
 #include <regex>
 #include <set>
@@ -92,6 +93,8 @@ Result<std::vector<std::pair<std::string, std::vector<double>>>> parseParams(con
         const kernels::ParamDecl& decl = *kernels::findParam(name);
         std::vector<double> list;
         for (const auto& v : values) {
+            if (std::count(values.begin(), values.end(), v) > 1)
+                return badInput(path + ": " + gw + ".params." + name + " has " + v.dump() + " twice");
             if (v.is_string() && decl.type == kernels::ParamType::Enum) {
                 auto parsed = kernels::parseValue(decl, v.get<std::string>());
                 if (!parsed)
@@ -169,7 +172,16 @@ Result<Matrix> loadMatrix(const std::string& path, const std::string& name) {
     if (!m.contains("groups") || !m["groups"].is_array()) return badInput(path + ": " + where + ".groups must be a list");
     int gi = 0;
     for (const auto& g : m["groups"]) {
-        CAVITY_ASSIGN(MatrixGroup grp, parseGroup(path, where + ".groups[" + std::to_string(gi++) + "]", g));
+        const std::string gw = where + ".groups[" + std::to_string(gi++) + "]";
+        CAVITY_ASSIGN(MatrixGroup grp, parseGroup(path, gw, g));
+        // A value no pass of the group reads changes nothing it renders.
+        Matrix one;
+        one.groups = {grp};
+        const auto configs = one.expand();
+        for (const auto& [name, values] : grp.params)
+            if (!configs.empty() && std::none_of(configs.begin(), configs.end(),
+                                                 [&](const RunConfig& c) { return pipeline::pipelineReads(c, name); }))
+                return badInput(path + ": " + gw + ".params." + name + ": no kernel of the group reads it");
         matrix.groups.push_back(std::move(grp));
     }
     for (const auto& c : matrix.expand()) {

@@ -10,7 +10,10 @@
 #include "screen_space_tables.h"
 
 
+#include <algorithm>
+#include <cmath>
 #include <deque>
+#include <limits>
 #include <map>
 #include <regex>
 #include <set>
@@ -35,7 +38,27 @@ Result<double> number(const Ctx& c, const toml::table& t, const std::string& whe
     if (!n) return c.fail(&t, where + key, "", "missing; a number is required");
     if (n->is_boolean()) return *n->value<bool>() ? 1.0 : 0.0;
     if (!n->is_number()) return c.fail(n, where + key, show(*n), "must be a number");
-    return *n->value<double>();
+    // An integer as TOML holds it (64 bits); value<double>() has none for
+    // one a double cannot hold exactly.
+    const double v = n->is_integer() ? double(*n->value<int64_t>()) : *n->value<double>();
+    if (!std::isfinite(v)) return c.fail(n, where + key, show(*n), "must be a finite number");
+    return v;
+}
+
+// The range a declared int or float may span: what the shader's 32-bit
+// uniform holds.
+Status checkRange(const Ctx& c, const toml::table& t, const std::string& where, const ParamDecl& p) {
+    const double limit = p.type == ParamType::Int ? 2147483647.0 : double(std::numeric_limits<float>::max());
+    for (const char* key : {"min", "max"}) {
+        const double v = std::string(key) == "min" ? p.min : p.max;
+        if (p.type == ParamType::Int && v != std::floor(v))
+            return c.fail(t.get(key), where + key, show(*t.get(key)), "must be an integer");
+        if (v > limit || v < -limit - (p.type == ParamType::Int ? 1 : 0))
+            return c.fail(t.get(key), where + key, show(*t.get(key)),
+                          std::string("outside what a 32-bit ") + (p.type == ParamType::Int ? "int" : "float") +
+                              " holds (" + (p.type == ParamType::Int ? "-2147483648..2147483647" : "+-3.4e38") + ")");
+    }
+    return {};
 }
 
 // A parameter the harness does not know: its whole declaration.
@@ -55,12 +78,21 @@ Result<ParamDecl> newParam(const Ctx& c, const toml::table& t, const std::string
         const auto* ch = t.get("choices") ? t.get("choices")->as_array() : nullptr;
         if (!ch || ch->empty() || !ch->is_homogeneous(toml::node_type::string))
             return c.fail(t.get("choices") ? t.get("choices") : &t, where + "choices", "", "an enum needs a list of names");
-        for (auto&& v : *ch) p.choices.push_back(*v.value<std::string>());
+        for (auto&& v : *ch) {
+            const std::string choice = *v.value<std::string>();
+            // Each must be givable as a flag's value, and tell one from another.
+            if (choice.empty() || choice.find_first_of(", \t\n") != std::string::npos ||
+                std::find(p.choices.begin(), p.choices.end(), choice) != p.choices.end())
+                return c.fail(&v, where + "choices", choice, "each choice must be a distinct, non-empty name "
+                                                             "without spaces or commas");
+            p.choices.push_back(choice);
+        }
         p.min = 0, p.max = double(p.choices.size() - 1);
     } else {
         CAVITY_ASSIGN(p.min, number(c, t, where, "min"));
         CAVITY_ASSIGN(p.max, number(c, t, where, "max"));
         if (p.min > p.max) return c.fail(t.get("max"), where + "max", show(*t.get("max")), "must be at least min");
+        CAVITY_TRY(checkRange(c, t, where, p));
     }
     return p;
 }

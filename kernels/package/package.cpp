@@ -95,6 +95,18 @@ const PackageSource* packageSource(const std::string& key) {
     return it == sources().end() ? nullptr : &it->second;
 }
 
+std::string packageKeyOfFile(const std::string& path) {
+    if (path.find('/') == std::string::npos) return "";
+    std::error_code ec;
+    const fs::path given = fs::weakly_canonical(path, ec);
+    for (const auto& p : loaded())
+        for (const auto& key : p.sourceKeys)
+            if (const PackageSource* src = packageSource(key);
+                src && !ec && key.ends_with(".glsl") && fs::weakly_canonical(src->label, ec) == given)
+                return key;
+    return "";
+}
+
 Status loadPackages(const std::string& dir) {
     std::error_code ec;
     if (!fs::is_directory(dir, ec)) return badInput(dir + ": no such folder");

@@ -52,6 +52,9 @@ struct PackageSource {
     std::string label;
 };
 const PackageSource* packageSource(const std::string& key);
+// The key of a loaded package's GLSL file given by its path on disk (as its
+// diagnostics label it), or "" for any other path.
+std::string packageKeyOfFile(const std::string& path);
 
 // Called by the registry once, after the C++ declarations: the embedded
 // built-in packages (kernels/ao/*/kernel.toml, kernels/passes/*/kernel.toml). A broken one is a build

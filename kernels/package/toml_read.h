@@ -55,7 +55,10 @@ inline Result<std::string> text(const Ctx& c, const toml::table& t, const std::s
         return std::string();
     }
     if (!n->is_string()) return c.fail(n, where + key, show(*n), "must be a string");
-    return std::string(*n->value<std::string>());
+    std::string value(*n->value<std::string>());
+    if (required && value.find_first_not_of(" \t\n") == std::string::npos)
+        return c.fail(n, where + key, show(*n), "must not be empty");
+    return value;
 }
 
 inline Result<const toml::array*> arrayOfTables(const Ctx& c, const toml::table& t, const std::string& key) {
