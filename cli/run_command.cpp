@@ -122,8 +122,10 @@ RunOutcome runPlan(const Sweep& s, const std::vector<gpu::Api>& apis, const std:
             out.failed(gpu::apiName(api), "", backend.error());
             continue;
         }
-        std::cerr << "cavity run: " << gpu::apiName(api) << ": " << (*backend)->info().deviceName << " ("
-                  << (*backend)->info().driver << ")\n";
+        // Which device ran, unless --quiet (then stderr is errors alone).
+        if (!s.quiet)
+            std::cerr << "cavity run: " << gpu::apiName(api) << ": " << (*backend)->info().deviceName << " ("
+                      << (*backend)->info().driver << ")\n";
         runOnBackend(**backend, api, plan, options, progress, out);
     }
     progress.interrupt();

@@ -45,7 +45,7 @@ const CommandSpec& runSpec() {
             {"--validation", "", "enable the Vulkan validation layers and the GL debug output", output},
             {"--out", "DIR", "output folder (default out)", output},
             {"--list", "", "print the configuration ids this run would measure, one a line, and run nothing", output},
-            {"--quiet", "", "no progress lines on stderr", output},
+            {"--quiet", "", "no progress or device lines on stderr: errors alone", output},
             {"--table", "", "print table.txt's table (every pass of every configuration) before the summary", output},
         };
         for (auto& f : kernelParamFlags({"scene"})) c.flags.push_back(std::move(f));
