@@ -1,10 +1,12 @@
 #include "run_sweep.h"
 
 #include "kernel.h"
+#include "pipeline/config_id.h"
 #include "pipeline/pipeline.h"
 #include "plan/axes.h"
 
 #include <algorithm>
+#include <set>
 
 namespace cavity::cli {
 
@@ -241,7 +243,17 @@ Result<std::vector<RunConfig>> expandSweep(const Sweep& s) {
         return badInput("--" + name + ": no kernel of the selection reads it" +
                         (count ? " (" + owners + (count == 1 ? " does)" : " do)") : std::string()));
     }
-    return out;
+    // A mixed selection: each configuration keeps the parameters its own
+    // pipeline reads, and those that then coincide run once.
+    std::vector<std::string> names;
+    for (const auto& p : s.params) names.push_back(p.first);
+    std::vector<RunConfig> kept;
+    std::set<std::string> seen;
+    for (auto& c : out) {
+        pipeline::dropUnreadParams(c, names);
+        if (seen.insert(pipeline::configId(c)).second) kept.push_back(std::move(c));
+    }
+    return kept;
 }
 
 }  // namespace cavity::cli

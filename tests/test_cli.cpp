@@ -253,6 +253,20 @@ TEST_F(Cli, ViewsMeasuredInTurnKeepViewZerosImages) {
     EXPECT_EQ(cavity("run --views 5 --list").code, 2);
 }
 
+// A kernel's own parameter swept over a mixed selection reaches only the
+// kernels that read it: alchemy keeps one configuration with no slices
+// segment, gtao gets one per value.
+TEST_F(Cli, AParameterOfOneKernelStaysOutOfTheOthersIds) {
+    const Outcome o = cavity("run --kernel alchemy,gtao --slices 1,3 --backend vk --list");
+    ASSERT_EQ(o.code, 0) << o.output;
+    EXPECT_EQ(o.output, "corner/alchemy/n16/b4/full/320x180/vk/compute\n"
+                        "corner/gtao/n16/b4/slices=1/full/320x180/vk/compute\n"
+                        "corner/gtao/n16/b4/slices=3/full/320x180/vk/compute\n");
+    // --blur 0 decides that no blur pass runs: it stays in the id.
+    const Outcome b = cavity("run --kernel alchemy --blur 0 --backend vk --list");
+    EXPECT_EQ(b.output, "corner/alchemy/n16/b0/full/320x180/vk/compute\n");
+}
+
 // cavity quality with the kernels' times: rows sorted by error, the
 // screen-space Pareto front, and the best within a budget, each checked
 // against the rows it came from.

@@ -44,6 +44,12 @@ std::vector<PassSpec> buildPasses(const RunConfig& c);
 // no pass reads changes nothing that runs (cavity run and the matrices
 // refuse one).
 bool pipelineReads(const RunConfig& c, const std::string& name);
+// Takes out of c.params each of `names` that no pass of c's pipeline reads,
+// with it or at its default, so that a kernel's own parameter given for a
+// mixed selection (--kernel alchemy,crease --shells 3) stays out of the
+// other kernels' ids. A value that decides whether its reader runs at all
+// (--blur 0) stays.
+void dropUnreadParams(RunConfig& c, const std::vector<std::string>& names);
 // Whether a kernel has a half-resolution pipeline (SSDO does not: its
 // radiance would need an upsample of its own).
 bool supportsHalf(const std::string& kernel);

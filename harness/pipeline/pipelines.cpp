@@ -71,6 +71,16 @@ bool pipelineReads(const RunConfig& c, const std::string& name) {
     return false;
 }
 
+void dropUnreadParams(RunConfig& c, const std::vector<std::string>& names) {
+    for (const auto& name : names) {
+        const auto it = c.params.find(name);
+        if (it == c.params.end() || pipelineReads(c, name)) continue;
+        RunConfig without = c;
+        without.params.erase(name);
+        if (!pipelineReads(without, name)) c.params.erase(it);
+    }
+}
+
 bool supportsHalf(const std::string& kernel) {
     const auto* k = kernels::find(kernel);
     return k && !isSsdo(*k);

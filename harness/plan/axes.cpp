@@ -76,8 +76,11 @@ Status forEachConfig(const Axes& axes, const RunConfig& base, const ConfigVisit&
 Result<std::vector<RunConfig>> expandAxes(const Axes& axes, const RunConfig& base) {
     std::vector<RunConfig> out;
     std::set<std::string> seen;
+    std::vector<std::string> names;
+    for (const auto& p : axes.params) names.push_back(p.first);
     CAVITY_TRY(forEachConfig(axes, base, [&](RunConfig c) {
         if (c.half && !supportsHalf(c.kernel)) return Status{};
+        pipeline::dropUnreadParams(c, names);
         if (seen.insert(configId(c)).second) out.push_back(std::move(c));
         return Status{};
     }));
