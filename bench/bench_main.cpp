@@ -189,7 +189,23 @@ std::string benchmarkFlag(const std::vector<char*>& args, const char* name) {
 // What Google Benchmark would find late or say in its own words: the
 // filter, compiled as a std::regex (extended; '-' first negates it), and an
 // unwritable --benchmark_out, found only after the whole sweep has run.
-cavity::Status checkBenchmarkFlags(const std::string& filter, const std::string& out) {
+cavity::Status checkBenchmarkFlags(const std::vector<char*>& args, const std::string& filter, const std::string& out) {
+    const auto given = [&](const char* name) {
+        const std::string prefix = std::string("--") + name + "=";
+        return std::any_of(args.begin(), args.end(), [&](const char* a) { return std::strncmp(a, prefix.c_str(), prefix.size()) == 0; });
+    };
+    if (given("benchmark_filter") && filter.empty())
+        return cavity::badInput("--benchmark_filter='': empty; give a regular expression (or leave the flag out for every benchmark)");
+    // Google Benchmark takes a repetition count below 1 as a vector size
+    // (and throws), and 0 as a run that measured nothing.
+    if (given("benchmark_repetitions"))
+        if (auto r = cavity::flags::parseInt("--benchmark_repetitions", benchmarkFlag(args, "benchmark_repetitions"), 1, 10000); !r)
+            return r.error();
+    for (const char* name : {"benchmark_out_format", "benchmark_format"}) {
+        const std::string v = benchmarkFlag(args, name);
+        if (given(name) && v != "json" && v != "console" && v != "csv")
+            return cavity::badInput(std::string("--") + name + "='" + v + "': must be json, console or csv");
+    }
     if (!filter.empty()) {
         try {
             std::regex(filter[0] == '-' ? filter.substr(1) : filter, std::regex_constants::extended);
@@ -260,10 +276,18 @@ int main(int argc, char** argv) {
     const std::string out = benchmarkFlag(rest, "benchmark_out"), format = benchmarkFlag(rest, "benchmark_out_format"),
                       filter = benchmarkFlag(rest, "benchmark_filter"),
                       consoleFormat = benchmarkFlag(rest, "benchmark_format");
-    if (const auto checked = checkBenchmarkFlags(filter, out); !checked) {
+    if (const auto checked = checkBenchmarkFlags(rest, filter, out); !checked) {
         std::cerr << "cavity_bench: " << checked.error().message << "\n";
         return 2;
     }
+    // Google Benchmark writes --benchmark_out as it goes: it writes a file
+    // beside it here, renamed over it once some benchmark has measured
+    // something, so that a run that fails or is killed leaves an existing
+    // file whole.
+    const std::string partial = out.empty() ? std::string() : out + ".partial." + std::to_string(::getpid());
+    std::string partialFlag = "--benchmark_out=" + partial;
+    for (auto& a : rest)
+        if (!out.empty() && std::strncmp(a, "--benchmark_out=", 16) == 0) a = partialFlag.data();
     int n = int(rest.size());
     benchmark::Initialize(&n, rest.data());
     if (benchmark::ReportUnrecognizedArguments(n, rest.data())) return 2;
@@ -290,5 +314,15 @@ int main(int argc, char** argv) {
     const size_t ran = benchmark::RunSpecifiedBenchmarks(console.get(), file.get());
     benchmark::Shutdown();
     cavity::bench::releaseBackends();
+    file.reset();
+    if (!partial.empty()) {
+        std::error_code ec;
+        if (ran > cavity::bench::failures().size()) std::filesystem::rename(partial, out, ec);
+        else std::filesystem::remove(partial, ec);
+        if (ec) {
+            std::cerr << "cavity_bench: --benchmark_out=" << out << ": cannot be written (" << ec.message() << ")\n";
+            return 2;
+        }
+    }
     return runExitCode(ran, filter);
 }
