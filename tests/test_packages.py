@@ -211,7 +211,18 @@ def check_bad(cavity, root):
     if r.returncode != 2 or "(gl)" not in r.stderr:
         failures += 1
         print(f"FAIL a shader for one API only: exit {r.returncode}, {r.stderr!r}")
-    n = len(bad_packages()) + 2
+    # Run with the GLSL error: exit 2 on either API (glslang rejects the
+    # user's source on GL too, before the driver's compiler is asked).
+    make(os.path.join(root, "compile_error", "ring_ao"),
+         glsl=GLSL.replace("float occlusion = 0.0;", "float occlusion = undeclared_thing;"))
+    for api in ("gl", "vk"):
+        r = run([cavity, "run", "--kernels", os.path.join(root, "compile_error"), "--kernel", "ring_ao", "--backend", api,
+                 "--res", "32x18", "--frames", "1", "--warmup", "0", "--quiet",
+                 "--out", os.path.join(root, "glsl_error_" + api)])
+        if r.returncode != 2 or "undeclared_thing" not in r.stderr:
+            failures += 1
+            print(f"FAIL run of a kernel that does not compile on {api}: exit {r.returncode}, {r.stderr!r}")
+    n = len(bad_packages()) + 4
     print(f"bad packages: {n - failures} of {n} refused with one line naming the file")
     return failures
 

@@ -152,10 +152,12 @@ Result<BuiltProgram> buildProgram(std::span<const ShaderSource* const> stages, c
         auto modules = toSpirv(stages);
         if (!modules) rejected = modules.error();
     }
+    // glslang's rejection is the source's fault, as on Vulkan, with its code
+    // (a kernel that does not compile is bad input on either API).
     if (rejected) {
-        std::string message = "gl: " + rejected->message;
+        std::string message = rejected->message;
         while (!message.empty() && std::isspace(static_cast<unsigned char>(message.back()))) message.pop_back();
-        return internal(message);
+        return Error{rejected->code, message};
     }
     return glsl.error();
 }
