@@ -152,21 +152,45 @@ int merge(const std::vector<std::string>& argv) {
     if (dirs.empty()) return fail("cavity gate merge", badInput("needs one or more shard output folders"));
     gate::GateRun merged;
     std::set<std::pair<std::string, int>> seen;
+    std::map<int, std::string> shards;   // index -> its folder
     for (const auto& d : dirs) {
         auto run = loadGateJson(d);
         if (!run) return fail("cavity gate merge", run.error());
         if (merged.matrix.empty()) {
             merged.matrix = run->matrix;
             merged.replaced = run->replaced;
+            merged.strict = run->strict;
+            merged.shardCount = run->shardCount;
         }
         else if (merged.matrix != run->matrix)
             return fail("cavity gate merge", badInput(d + ": matrix " + run->matrix + " differs from " + merged.matrix));
+        else if (merged.strict != run->strict)
+            return fail("cavity gate merge", badInput(d + ": --strict " + (run->strict ? "given" : "not given") +
+                                                      ", unlike the shards before it (gate every shard alike)"));
+        // The merge is the verdict of the whole matrix: every shard of one
+        // split, each once, or a shard missing would pass unseen.
+        const std::string shard = std::to_string(run->shardIndex) + "/" + std::to_string(run->shardCount);
+        if (run->shardCount != merged.shardCount)
+            return fail("cavity gate merge", badInput(d + ": shard " + shard + " is of another split than " +
+                                                      std::to_string(merged.shardCount) + " shards"));
+        if (const auto [at, fresh] = shards.emplace(run->shardIndex, d); !fresh)
+            return fail("cavity gate merge", badInput(d + ": shard " + shard + " is given twice (also " + at->second + ")"));
         merged.seconds = std::max(merged.seconds, run->seconds);
         merged.renderSeconds = std::max(merged.renderSeconds, run->renderSeconds);
         for (auto& e : run->backendErrors) merged.backendErrors.push_back(e);
         for (auto& r : run->results)
             if (seen.insert({r.id, r.repetition}).second) merged.results.push_back(std::move(r));
     }
+    if (shards.size() != size_t(merged.shardCount)) {
+        std::string missing;
+        for (int i = 0, n = 0; i < merged.shardCount && n < 8; ++i)
+            if (!shards.count(i)) missing += (n++ ? ", " : "") + std::to_string(i);
+        return fail("cavity gate merge", badInput("shards of " + std::to_string(merged.shardCount) + ": " +
+                                                  std::to_string(merged.shardCount - int(shards.size())) +
+                                                  " missing (" + missing + (merged.shardCount - int(shards.size()) > 8 ? ", ..." : "") +
+                                                  "); give every shard's folder"));
+    }
+    merged.shardCount = 1;   // the whole matrix
     if (auto st = checkWritableDir("--out", out); !st) return fail("cavity gate merge", st.error());
     if (auto st = report::writeReports(merged, out, reportUrl); !st) return fail("cavity gate merge", st.error());
     std::cout << report::summaryMarkdown(merged, reportUrl.empty() ? "index.html" : reportUrl);
@@ -215,6 +239,7 @@ int judge(const std::vector<std::string>& argv) {
     auto run = gate::judgeFolders(dirs, o);
     if (!run) return fail("cavity gate judge", run.error());
     run->strict = strict;
+    run->applyStrict();
     gate::applyExpectations(*run, *expectations);
     if (auto st = report::writeReports(*run, o.out, reportUrl); !st) return fail("cavity gate judge", st.error());
     std::cout << report::summaryMarkdown(*run, reportUrl.empty() ? "index.html" : reportUrl);

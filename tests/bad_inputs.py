@@ -83,6 +83,10 @@ def replace_with_folder(rel):
     return setup
 
 
+SHARD_JSON = ('{"schema": "cavity.gate/1", "matrix": "ci", "shard": [%d, 2], "strict": %s, "seconds": 1, '
+              '"backend_errors": [], "results": []}')
+
+
 def write(rel, text):
     def setup(tmp):
         path = os.path.join(tmp, rel)
@@ -140,6 +144,15 @@ CASES = [
     Case("compare-folder", "cavity", ["compare", "prev", "x.json"], ["prev", "folder"], setup=replace_with_folder("prev")),
     Case("gate-json-wrong-type", "cavity", ["gate", "merge", "prev", "--out", "out"], ["gate.json", "seconds"],
          setup=write("prev/gate.json", '{"schema": "cavity.gate/1", "matrix": "ci", "shard": [0, 1], "seconds": "3", "backend_errors": [], "results": []}')),
+    # A merge is the whole matrix's verdict: a shard missing, given twice or
+    # gated unlike the others is refused.
+    Case("gate-merge-shard-missing", "cavity", ["gate", "merge", "s0", "--out", "out"], ["shards of 2", "missing (1)"],
+         setup=write("s0/gate.json", SHARD_JSON % (0, "false"))),
+    Case("gate-merge-shard-twice", "cavity", ["gate", "merge", "s0", "s0", "--out", "out"], ["s0", "0/2", "twice"],
+         setup=write("s0/gate.json", SHARD_JSON % (0, "false"))),
+    Case("gate-merge-strict-mixed", "cavity", ["gate", "merge", "s0", "s1", "--out", "out"], ["s1", "--strict"],
+         setup=lambda tmp: (write("s0/gate.json", SHARD_JSON % (0, "false"))(tmp),
+                            write("s1/gate.json", SHARD_JSON % (1, "true"))(tmp))),
     # Bad values that were accepted.
     Case("samples-empty", "cavity", RUN + ["--samples", ""], ["--samples", "empty"]),
     Case("samples-empty-item", "cavity", RUN + ["--samples", "8,,16"], ["--samples", "empty"]),

@@ -319,15 +319,23 @@ TEST(Gate, AChangeWithinToleranceIsReportedAsChanged) {
     EXPECT_NE(summary.find("changed within tolerance"), std::string::npos) << summary;
     EXPECT_NE(report::commitStatus(run, "")["description"].get<std::string>().find("1 changed within tolerance"),
               std::string::npos);
-    // --strict: the same change fails the run (Mesa's trace-checksum policy),
-    // and survives gate.json.
+    // --strict: the same change fails the run (Mesa's trace-checksum policy)
+    // in every report, and survives gate.json.
     gate::GateRun strict = run;
     strict.strict = true;
+    strict.applyStrict();
     EXPECT_EQ(strict.exitCode(), 1);
     EXPECT_EQ(report::commitStatus(strict, "")["state"], "failure");
-    EXPECT_NE(report::commitStatus(strict, "")["description"].get<std::string>().find("1 of 1 configurations changed (--strict)"),
+    EXPECT_NE(report::commitStatus(strict, "")["description"].get<std::string>().find("1 of 1 configurations failed"),
               std::string::npos) << report::commitStatus(strict, "").dump();
-    const auto back = gate::fromJson(gate::toJson(strict), "gate.json");
+    const std::string strictSummary = report::summaryMarkdown(strict);
+    EXPECT_NE(strictSummary.find("**1 of 1 configurations failed**"), std::string::npos) << strictSummary;
+    EXPECT_NE(strictSummary.find("--strict"), std::string::npos) << strictSummary;
+    const std::string junit = report::junitXml(strict);
+    EXPECT_NE(junit.find("failures=\"1\""), std::string::npos) << junit;
+    const auto json = gate::toJson(strict);
+    EXPECT_TRUE(json["results"][0]["fatal"].get<bool>()) << json.dump();
+    const auto back = gate::fromJson(json, "gate.json");
     ASSERT_TRUE(back.ok());
     EXPECT_EQ(back->exitCode(), 1);
     fs::remove_all(o.out);

@@ -80,6 +80,15 @@ int GateRun::exitCode() const {
     return bad ? 2 : corrupt ? 6 : unreachable ? 5 : backend ? 3 : regression ? 1 : 0;
 }
 
+void GateRun::applyStrict() {
+    if (!strict) return;
+    for (auto& r : results)
+        for (auto& i : r.images)
+            if (i.changed() && i.passed())
+                i.failures.push_back("changed: max abs error " + std::to_string(i.metrics->maxAbs) +
+                                     " > 0 (--strict: approve its digest to accept it)");
+}
+
 std::map<std::string, int> GateRun::counts() const {
     std::map<std::string, int> c;
     for (const auto& r : results) ++c[r.verdict()];
@@ -183,6 +192,7 @@ Result<GateRun> runGate(const GateOptions& o) {
         if (again.empty()) break;
         CAVITY_TRY(render::renderEntries(matrix, again, ro, sink, nullptr));
     }
+    run.applyStrict();
     applyExpectations(run, expectations);
     run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return run;

@@ -138,6 +138,10 @@ struct GateRun {
     // regression or an unexpected pass, 2 bad input (a baseline missing or
     // unreadable), 3 a backend could not start.
     int exitCode() const;
+    // Under --strict, every image that changed within its tolerance gets a
+    // failure line, so that each report (summary.md, junit.xml, gate.json,
+    // status.json, the HTML page) fails it as the exit code does.
+    void applyStrict();
     // Configurations per verdict().
     std::map<std::string, int> counts() const;
 };
