@@ -8,15 +8,20 @@
 #include "core/progress.h"
 #include "measure/runner.h"
 #include "core/text_table.h"
+#include "core/digest.h"
+#include "package/package.h"
 
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <map>
 #include <memory>
 #include <optional>
 #include <regex>
+
+#include <unistd.h>
 
 namespace cavity::cli {
 
@@ -110,10 +115,50 @@ void runOnBackend(gpu::Backend& gpu, gpu::Api api, const std::vector<RunConfig>&
     }
 }
 
-RunOutcome runPlan(const Sweep& s, const std::vector<gpu::Api>& apis, const std::vector<RunConfig>& plan) {
+// The images are written under a staging folder in --out, and move to
+// their places only once every configuration has run (movedIn): a run that
+// fails or is killed leaves what --out held as it was. A staging folder
+// whose process is gone is a killed run's, and goes.
+bool processRuns(const std::string& pid) {
+    // A zombie (state Z: killed, not yet reaped) has ended too.
+    std::ifstream stat("/proc/" + pid + "/stat");
+    std::string line;
+    if (!std::getline(stat, line)) return false;
+    const auto paren = line.rfind(')');
+    return paren != std::string::npos && paren + 2 < line.size() && line[paren + 2] != 'Z' && line[paren + 2] != 'X';
+}
+
+std::filesystem::path stagingDir(const std::string& out) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    for (const auto& e : fs::directory_iterator(out, ec)) {
+        const std::string name = e.path().filename().string();
+        if (name.rfind(".partial-", 0) == 0 && !processRuns(name.substr(9))) fs::remove_all(e.path(), ec);
+    }
+    return fs::path(out) / (".partial-" + std::to_string(::getpid()));
+}
+
+Status movedIn(const std::filesystem::path& staging, const std::string& out, const RunOutcome& outcome) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    for (const auto& r : outcome.runs) {
+        const std::string id = configId(r.config);
+        const fs::path from = staging / id, to = fs::path(out) / id;
+        if (!fs::exists(from, ec)) continue;
+        fs::remove_all(to, ec);
+        fs::create_directories(to.parent_path(), ec);
+        fs::rename(from, to, ec);
+        if (ec) return badInput("--out " + out + ": cannot move " + id + " in: " + ec.message());
+    }
+    fs::remove_all(staging, ec);
+    return {};
+}
+
+RunOutcome runPlan(const Sweep& s, const std::vector<gpu::Api>& apis, const std::vector<RunConfig>& plan,
+                   const std::filesystem::path& staging) {
     RunOutcome out;
     RunOptions options = s.options;
-    options.outDir = s.out;
+    options.outDir = staging.string();
     Progress progress(plan.size(), s.quiet);
     for (auto api : apis) {
         auto backend = gpu::createBackend(api, s.backend);
@@ -132,9 +177,30 @@ RunOutcome runPlan(const Sweep& s, const std::vector<gpu::Api>& apis, const std:
     return out;
 }
 
+// The packages from disk whose kernels ran (--kernels, CAVITY_KERNELS):
+// the folder each was loaded from and a digest of its kernel.toml and GLSL,
+// so that a result is never taken for another version's, and the command
+// that results.json records can be run again.
+nlohmann::json packagesRun(const RunOutcome& out) {
+    nlohmann::json list = nlohmann::json::array();
+    for (const auto& p : kernels::packages()) {
+        if (p.builtIn || std::none_of(out.runs.begin(), out.runs.end(), [&](const auto& r) { return r.config.kernel == p.name; }))
+            continue;
+        std::ifstream toml(std::filesystem::path(p.folder) / "kernel.toml", std::ios::binary);
+        std::string text((std::istreambuf_iterator<char>(toml)), std::istreambuf_iterator<char>());
+        for (const auto& key : p.sourceKeys)
+            if (const auto* src = kernels::packageSource(key)) text += "\n" + key + "\n" + src->text;
+        list.push_back({{"name", p.name}, {"folder", std::filesystem::absolute(p.folder).lexically_normal().string()},
+                        {"digest", core::digestText(core::fnv1a64(text.data(), text.size()))}});
+    }
+    return list;
+}
+
 // results.json, table.txt and index.html, then the summary that names them.
 Status writeResults(const Sweep& s, const RunOutcome& out, const std::vector<std::string>& argv) {
     std::string command = "cavity run";
+    const auto packages = packagesRun(out);
+    for (const auto& p : packages) command += " --kernels " + p["folder"].get<std::string>();
     for (const auto& a : argv) command += " " + a;
     std::error_code ec;
     std::filesystem::create_directories(s.out, ec);
@@ -148,8 +214,9 @@ Status writeResults(const Sweep& s, const RunOutcome& out, const std::vector<std
         for (const auto& r : s.replaced)
             doc["kernel_sources"].push_back({{"name", r.name}, {"file", r.file}, {"digest", r.digest}});
     }
-    CAVITY_TRY(writeJson(results, doc));
+    if (!packages.empty()) doc["kernel_packages"] = packages;
     if (out.runs.empty()) {
+        CAVITY_TRY(writeJson(results, doc));
         std::printf("wrote %s (no configuration ran)\n", results.c_str());
         return {};
     }
@@ -157,6 +224,7 @@ Status writeResults(const Sweep& s, const RunOutcome& out, const std::vector<std
     const std::string tableText = runTable(out.runs);
     CAVITY_TRY(writeFileAtomically(table, tableText));
     CAVITY_TRY(report::writeRunPage(s.out, out.runs, command));
+    CAVITY_TRY(writeJson(results, doc));   // last: what readers of the folder take as its record
     if (s.table) std::printf("\n%s", tableText.c_str());
     std::printf("%s", runSummary(out.runs, {"wrote " + results + " and " + table + " (every pass, its clock, the notes)",
                                             "open " + page})
@@ -190,13 +258,19 @@ int runCommand(const std::vector<std::string>& argv) {
     }
     if (auto o = gpu::withEnvironment(s.backend); !o) return fail(o.error());
     if (auto st = checkWritableDir("--out", s.out); !st) return fail(st.error());
-    const RunOutcome out = runPlan(s, apis, *plan);
+    const auto staging = stagingDir(s.out);
+    const RunOutcome out = runPlan(s, apis, *plan, staging);
     // --max-time bounds a run whatever --frames asks: say where it cut one short.
     for (const auto& r : out.runs)
         if (r.timing.stop == "time" && r.timing.frame.ms.size() < size_t(r.timingOptions.frames))
             std::cerr << "cavity run: " << configId(r.config) << ": --max-time stopped measuring after "
                       << r.timing.frame.ms.size() << " of the " << r.timingOptions.frames << " frames --frames asked for\n";
-    if (out.runs.empty() && out.errors.empty()) return out.worst;
+    if (out.runs.empty() && out.errors.empty()) {
+        std::error_code ec;
+        std::filesystem::remove_all(staging, ec);
+        return out.worst;
+    }
+    if (auto st = movedIn(staging, s.out, out); !st) return fail(st.error());
     if (auto st = writeResults(s, out, argv); !st) return fail(st.error());
     return out.worst;
 }
