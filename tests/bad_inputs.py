@@ -153,6 +153,12 @@ CASES = [
     Case("gate-merge-strict-mixed", "cavity", ["gate", "merge", "s0", "s1", "--out", "out"], ["s1", "--strict"],
          setup=lambda tmp: (write("s0/gate.json", SHARD_JSON % (0, "false"))(tmp),
                             write("s1/gate.json", SHARD_JSON % (1, "true"))(tmp))),
+    # Too small for the pyramid's mip levels: said before any image is made
+    # (it was the API's error: exit 4 on GL, 2 on Vulkan).
+    Case("res-under-pyramid", "cavity", ["run", "--kernel", "alchemy_fast", "--res", "8x8", "--backend", "gl", "--out", "out"],
+         ["--res", "8x8", "at least 16 px"]),
+    Case("res-under-pyramid-half", "cavity", ["run", "--kernel", "alchemy_fast", "--res", "16x9", "--resolution", "half", "--out", "out"],
+         ["--res", "16x9", "at least 31 px", "half"]),
     # Bad values that were accepted.
     Case("samples-empty", "cavity", RUN + ["--samples", ""], ["--samples", "empty"]),
     Case("samples-empty-item", "cavity", RUN + ["--samples", "8,,16"], ["--samples", "empty"]),

@@ -283,6 +283,22 @@ Status validate(const RunConfig& c) {
     if (interleaveOf(c) > 1 && pyramidPerLevel(c))
         return badInput("--pyramid_per_level 1: the interleaved layers (--interleave " + std::to_string(interleaveOf(c)) +
                         ") are written by the one-dispatch pyramid; use one or the other");
+    // A pass that writes a mip chain needs a level for each: an image of at
+    // least 2^(levels - 1) px on its longer side, found here rather than as
+    // the API's error when the image is made.
+    for (const auto& spec : buildPasses(c)) {
+        const auto* d = kernels::find(spec.kernel);
+        if (!d) continue;
+        for (const auto& o : d->outputs) {
+            const int need = 1 << (o.mipLevels - 1);
+            const int w = spec.half ? (c.width + 1) / 2 : c.width, h = spec.half ? (c.height + 1) / 2 : c.height;
+            if (std::max(w, h) >= need) continue;
+            return badInput("--res " + std::to_string(c.width) + "x" + std::to_string(c.height) + ": pass " + spec.name +
+                            " of " + c.kernel + " writes " + std::to_string(o.mipLevels) +
+                            " mip levels, which need at least " + std::to_string(spec.half ? 2 * need - 1 : need) +
+                            " px on the longer side" + (spec.half ? " at --resolution half" : ""));
+        }
+    }
     // Values set in code (sweeps, matrices, tests) rather than parsed.
     for (const auto& [name, v] : c.params) {
         const auto* p = kernels::findParam(name);
