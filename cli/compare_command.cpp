@@ -102,10 +102,16 @@ int compareCommand(const std::vector<std::string>& argv) {
     if (!after) return fail(program, after.error());
 
     auto rows = compareAll(*before, *after, t);
+    // Nothing compared is no verdict: two runs with no (configuration, pass)
+    // in common, or with none measured, would print "0 slower" and exit 0.
+    const auto compared = [](const auto& r) { return r.verdict != "new" && r.verdict != "gone"; };
+    if (std::none_of(rows.begin(), rows.end(), compared))
+        return fail(program, badInput(files[0] + " and " + files[1] + ": no configuration and pass measured in both (" +
+                                      std::to_string(rows.size()) + " in one only); compare runs of the same sweep"));
     if (filter) {
         std::erase_if(rows, [&](const auto& r) { return !std::regex_search(r.id + " " + r.pass, *filter); });
-        if (rows.empty())
-            return fail(program, badInput("--filter: matches no \"<configuration id> <pass>\" of either run"));
+        if (std::none_of(rows.begin(), rows.end(), compared))
+            return fail(program, badInput("--filter: matches no \"<configuration id> <pass>\" measured in both runs"));
     }
     // The JSON first: if it cannot be written the command fails before it
     // has printed a table that looks like success.

@@ -83,6 +83,8 @@ def replace_with_folder(rel):
     return setup
 
 
+BENCH_JSON = ('{"benchmarks": [{"name": "%s/iterations:1/manual_time", "run_type": "iteration", "real_time": %g, '
+              '"time_unit": "ms"}]}')
 SHARD_JSON = ('{"schema": "cavity.gate/1", "matrix": "ci", "shard": [%d, 2], "strict": %s, "seconds": 1, '
               '"backend_errors": [], "results": []}')
 
@@ -271,6 +273,13 @@ CASES = [
     Case("compare-nan-real-time", "cavity", ["compare", "a.json", "a.json"], ["a.json", "real_time", "NaN"],
          setup=write("a.json", '{"benchmarks": [{"name": "corner/alchemy/n16/b4/full/32x18/vk/compute", '
                                '"run_type": "iteration", "real_time": NaN, "time_unit": "ms"}]}')),
+    Case("compare-negative-real-time", "cavity", ["compare", "a.json", "a.json"], ["a.json", "real_time", "-5", ">= 0"],
+         setup=write("a.json", BENCH_JSON % ("corner/alchemy/n16/b4/full/32x18/vk/compute", -5))),
+    # Nothing in common is nothing compared: no verdict, not "0 slower".
+    Case("compare-nothing-in-common", "cavity", ["compare", "a.json", "b.json", "--fail-on-slower"],
+         ["a.json", "b.json", "no configuration"],
+         setup=lambda tmp: (write("a.json", BENCH_JSON % ("corner/alchemy/n16/b4/full/32x18/vk/compute", 1))(tmp),
+                            write("b.json", BENCH_JSON % ("corner/alchemy/n8/b4/full/32x18/vk/compute", 1))(tmp))),
     # The image store (docs/store.md).
     Case("store-is-file", "cavity", GATE + ["--store", "prev"], ["--store", "prev", "not a folder"], setup=write("prev", "x")),
     Case("store-empty", "cavity", GATE + ["--store", ""], ["--store", "empty"]),

@@ -6,6 +6,7 @@
 #include "compare/sample_sets.h"
 
 #include <array>
+#include <cmath>
 #include <cctype>
 
 namespace cavity::compare {
@@ -104,11 +105,19 @@ Result<SampleSets> readBenchmarkJson(const json& doc, const std::string& path) {
         // The repetition's median SM clock (cavity_bench writes it where NVML reads one).
         const double smMhz =
             b.contains("sm_mhz_median") && b["sm_mhz_median"].is_number() ? b["sm_mhz_median"].get<double>() : NAN;
+        // A negative or infinite time was never measured: the file is wrong.
+        const auto time = [&](const std::string& key, double ms) -> Status {
+            if (std::isfinite(ms) && ms >= 0) return {};
+            return badInput(where + " " + name + ": " + key + " " + std::to_string(ms) + " ms: a time must be finite and >= 0");
+        };
+        CAVITY_TRY(time("real_time", b["real_time"].get<double>() * factor));
         out.at(id, kPipelinePass).add(b["real_time"].get<double>() * factor, clock, smMhz);
         for (const auto& [key, value] : b.items()) {
             if (key.size() <= 8 || key.rfind("pass_", 0) != 0 || !endsWith(key, "_ms")) continue;
             SampleSet& pass = out.at(id, key.substr(5, key.size() - 8));
-            if (value.is_number()) pass.add(value.get<double>(), clock, smMhz);
+            if (!value.is_number()) continue;
+            CAVITY_TRY(time(key, value.get<double>()));
+            pass.add(value.get<double>(), clock, smMhz);
         }
     }
     return out;
