@@ -89,6 +89,27 @@ SHARD_JSON = ('{"schema": "cavity.gate/1", "matrix": "ci", "shard": [%d, 2], "st
               '"backend_errors": [], "results": []}')
 
 
+def gzip_cut_short(rel):
+    """A setup that writes a gzip-compressed bench JSON without the last 4
+    bytes of its trailer (a truncated download)."""
+    def setup(tmp):
+        import gzip
+        data = gzip.compress((BENCH_JSON % ("corner/alchemy/n16/b4/full/32x18/vk/compute", 1)).encode())
+        with open(os.path.join(tmp, rel), "wb") as f:
+            f.write(data[:-4])
+    return setup
+
+
+def ingested(db, commit, parent):
+    """A setup that ingests a one-configuration bench JSON (a.json) as
+    COMMIT with PARENT into DB."""
+    def setup(tmp):
+        write("a.json", BENCH_JSON % ("corner/alchemy/n16/b4/full/32x18/vk/compute", 1))(tmp)
+        subprocess.run([os.path.abspath(sys.argv[1]), "history", "ingest", "--db", db, "--commit", commit, "--parent",
+                        parent, "a.json"], cwd=tmp, check=True, capture_output=True)
+    return setup
+
+
 def write(rel, text):
     def setup(tmp):
         path = os.path.join(tmp, rel)
@@ -280,6 +301,16 @@ CASES = [
          ["a.json", "b.json", "no configuration"],
          setup=lambda tmp: (write("a.json", BENCH_JSON % ("corner/alchemy/n16/b4/full/32x18/vk/compute", 1))(tmp),
                             write("b.json", BENCH_JSON % ("corner/alchemy/n8/b4/full/32x18/vk/compute", 1))(tmp))),
+    # The history's order comes from --parent: no commit is its own parent
+    # or comes after its own child.
+    Case("history-parent-self", "cavity", ["history", "ingest", "--db", "h.sqlite", "--commit", "beef0001", "--parent",
+                                           "beef0001", "a.json"], ["--parent", "beef0001", "own parent"],
+         setup=write("a.json", BENCH_JSON % ("corner/alchemy/n16/b4/full/32x18/vk/compute", 1))),
+    Case("history-parent-cycle", "cavity", ["history", "ingest", "--db", "h.sqlite", "--commit", "abcdef1234", "--parent",
+                                            "1234abcd", "a.json"], ["--parent", "1234abcd", "descends from"],
+         setup=ingested("h.sqlite", "1234abcd", "abcdef1234")),
+    Case("history-gz-cut-short", "cavity", ["history", "ingest", "--db", "h.sqlite", "--commit", "beef0001", "a.json.gz"],
+         ["a.json.gz", "cut short"], setup=gzip_cut_short("a.json.gz")),
     # The image store (docs/store.md).
     Case("store-is-file", "cavity", GATE + ["--store", "prev"], ["--store", "prev", "not a folder"], setup=write("prev", "x")),
     Case("store-empty", "cavity", GATE + ["--store", ""], ["--store", "empty"]),

@@ -3,6 +3,7 @@
 
 #include <filesystem>
 #include <map>
+#include <set>
 
 namespace cavity::history {
 
@@ -70,8 +71,33 @@ Result<std::string> storedForm(Database& db, const std::string& flag, const std:
                                             {sha + "%", int64_t(sha.size())}));
     if (rows.size() > 1)
         return badInput(flag + " " + sha + ": begins " + std::to_string(rows.size()) + " commits in " + db.where() +
-                        " (give the full 40-digit id)");
+                        " (give more digits, or the full id)");
     return rows.empty() ? sha : *rows[0][0];
+}
+
+// The history is ordered by its parents (--parent): a commit that is its
+// own parent, or a parent that descends from the commit by the parents
+// already stored, would make that order a cycle.
+Status checkParent(Database& db, const RunInfo& info) {
+    if (info.parent.empty()) return {};
+    if (info.parent == info.commit) return badInput("--parent " + info.parent + ": is --commit itself (a commit is not its own parent)");
+    std::set<std::string> seen;
+    std::vector<std::string> next = {info.parent};
+    while (!next.empty()) {
+        const std::string c = next.back();
+        next.pop_back();
+        if (!seen.insert(c).second) continue;
+        CAVITY_ASSIGN(const auto rows, db.query("SELECT DISTINCT parent_sha FROM runs WHERE commit_sha = ? AND parent_sha IS NOT NULL",
+                                                {c}));
+        for (const auto& r : rows) {
+            if (!r[0]) continue;
+            if (*r[0] == info.commit)
+                return badInput("--parent " + info.parent + ": descends from --commit " + info.commit + " by the parents " +
+                                db.where() + " holds (a commit cannot come after its own child)");
+            next.push_back(*r[0]);
+        }
+    }
+    return {};
 }
 
 }  // namespace
@@ -88,6 +114,7 @@ Result<Ingested> ingest(Database& db, const RunFile& file, const RunInfo& info) 
     RunInfo resolved = info;
     CAVITY_ASSIGN(resolved.commit, storedForm(db, "--commit", info.commit));
     CAVITY_ASSIGN(resolved.parent, storedForm(db, "--parent", info.parent));
+    CAVITY_TRY(checkParent(db, resolved));
     CAVITY_ASSIGN(out.runId, insertRun(db, file, resolved));
     if (out.runId == 0) {
         CAVITY_ASSIGN(const auto seen, db.query("SELECT id FROM runs WHERE file_digest = ? AND commit_sha = ?",

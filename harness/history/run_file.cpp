@@ -34,8 +34,11 @@ Result<std::string> readBytes(const std::string& path) {
     while ((n = gzread(f, buf, sizeof buf)) > 0) text.append(buf, size_t(n));
     int errnum = 0;
     const std::string why = n < 0 ? gzerror(f, &errnum) : "";
-    gzclose(f);
+    // Z_BUF_ERROR from the close: the gzip stream ended before its trailer
+    // (a truncated download), whose checksum was then never checked.
+    const int closed = gzclose(f);
     if (n < 0) return badInput(path + ": cannot be read (" + why + ")");
+    if (closed == Z_BUF_ERROR) return badInput(path + ": is cut short (its gzip stream ends before its end)");
     if (text.find_first_not_of(" \t\r\n") == std::string::npos) return badInput(path + ": is empty (a JSON run file is expected)");
     return text;
 }

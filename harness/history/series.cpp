@@ -264,7 +264,7 @@ Result<std::vector<Series>> loadSeries(Database& db, const SeriesFilter& f) {
 Result<std::string> resolveBound(Database& db, const std::string& flag, const std::string& value, bool since) {
     const std::string given = flag + " " + value;
     if (value.empty()) return badInput(flag + " '': must be a date (2026-11-30, 2026-11-30T12:00:00Z) or a commit");
-    if (isCommit(value) && value.size() <= 40) {
+    if (isCommit(value)) {
         CAVITY_ASSIGN(const auto rows, db.query("SELECT commit_sha, min(run_date), max(run_date) FROM runs WHERE commit_sha "
                                                 "LIKE ? GROUP BY commit_sha", {value + "%"}));
         if (rows.size() > 1) return badInput(given + ": names " + std::to_string(rows.size()) + " commits (give more digits)");
@@ -273,7 +273,7 @@ Result<std::string> resolveBound(Database& db, const std::string& flag, const st
             return badInput(given + ": no run of that commit in " + db.where() + " (a date or a commit with runs is expected)");
     }
     std::string date = normalizeDate(value);
-    if (date.empty()) return badInput(given + ": neither a date (2026-11-30, 2026-11-30T12:00:00Z) nor a commit of 4..40 hex digits");
+    if (date.empty()) return badInput(given + ": neither a date (2026-11-30, 2026-11-30T12:00:00Z) nor a commit of 4..64 hex digits");
     // A bare day given as --until takes in the whole day.
     if (!since && value.size() == 10) date = date.substr(0, 10) + "T23:59:59Z";
     return date;
