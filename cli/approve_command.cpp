@@ -270,7 +270,7 @@ int approveCommand(const std::vector<std::string>& argv) {
         // next run of the edit and fail the tree's own (baselines update
         // --with-kernel-source copies the edit in with the images).
         if (!run->replaced.empty() && !f->negative)
-            return fail(program, badInput("--from " + f->from + ": rendered with kernels/" + run->replaced.front().name +
+            return fail(program, badInput("--from " + f->from + ": rendered with " + kernels::sourceLabel(run->replaced.front().name) +
                                           " replaced (--kernel-source): its digests are not what kernels/ renders; "
                                           "accept it with cavity baselines update --with-kernel-source, or copy the "
                                           "edit into kernels/ and run the gate again"));

@@ -4,7 +4,9 @@
 #include "gate_outputs.h"
 #include "core/digest.h"
 #include "core/json_file.h"
+#include "package/package.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -71,7 +73,7 @@ Result<std::map<fs::path, std::pair<std::string, std::string>>> kernelSourceCopi
     std::map<fs::path, std::pair<std::string, std::string>> out;   // target -> (file, text)
     if (run.replaced.empty()) return out;
     std::string names;
-    for (const auto& r : run.replaced) names += (names.empty() ? "kernels/" : ", kernels/") + r.name;
+    for (const auto& r : run.replaced) names += (names.empty() ? "" : ", ") + kernels::sourceLabel(r.name);
     if (!take)
         return badInput("--from " + from + ": rendered with " + names + " replaced (--kernel-source): its images are "
                         "not what kernels/ renders; pass --with-kernel-source to copy the edits into kernels/ with the "
@@ -79,12 +81,18 @@ Result<std::map<fs::path, std::pair<std::string, std::string>>> kernelSourceCopi
     std::error_code ec;
     const fs::path tree = fs::absolute(root, ec).lexically_normal().parent_path() / "kernels";
     for (const auto& r : run.replaced) {
-        const fs::path target = tree / r.name;
+        // A file of the tree goes to kernels/; a loaded package's from disk
+        // to its own file, where the package lives.
+        const std::string label = kernels::sourceLabel(r.name);
+        const bool inTree = !kernels::packageSource(r.name);
+        const fs::path target = inTree ? tree / r.name : fs::path(label);
         if (!fs::is_regular_file(target, ec))
-            return badInput("--with-kernel-source: kernels/" + r.name + " is not a file of " + tree.string() +
-                            " (a kernel package outside the tree is updated where it lives)");
+            return badInput("--with-kernel-source: " + label + " is not a file" +
+                            (inTree ? " of " + tree.string() + " (a package from disk: load it with --kernels DIR and "
+                                      "the edit is copied into its folder)"
+                                    : std::string()));
         std::ifstream in(r.file, std::ios::binary);
-        if (!in) return badInput("--with-kernel-source: " + r.file + " (for kernels/" + r.name + "): cannot be read");
+        if (!in) return badInput("--with-kernel-source: " + r.file + " (for " + label + "): cannot be read");
         std::string text((std::istreambuf_iterator<char>(in)), {});
         if (const std::string digest = core::digestText(core::fnv1a64(text.data(), text.size())); digest != r.digest)
             return badInput("--with-kernel-source: " + r.file + " changed since the run (digest " + digest +
@@ -179,9 +187,13 @@ int updateCommand(const std::vector<std::string>& argv) {
         if (auto st = writeFileAtomically(target.string(), copy.second); !st) return fail("cavity baselines update", st.error());
         std::cout << "copied " << copy.first << " over " << target.string() << "\n";
     }
+    const bool builtIn = std::any_of(run->replaced.begin(), run->replaced.end(),
+                                     [](const auto& r) { return !kernels::packageSource(r.name); });
     if (!sources->empty())
-        std::cout << "kernels/ now holds the edits the baselines show; rebuild cavity (built-in kernels are compiled in) "
-                     "and commit both\n";
+        std::cout << (builtIn ? "kernels/ now holds the edits the baselines show; rebuild cavity (built-in kernels are "
+                                "compiled in) and commit both\n"
+                              : "the packages now hold the edits the baselines show (they load at run time); commit "
+                                "both\n");
     const size_t changed = writes.size();
     std::cout << changed << " baseline files updated\n";
     if (const std::string hint = budgetOnlyHint(*run, filter.has_value(), from); !hint.empty()) std::cout << hint << "\n";

@@ -348,6 +348,16 @@ def main():
                  "--sweep cpu", "--list"])
         assert r.returncode == 0 and "/ring_ao/" in r.stdout, r.stdout + r.stderr
 
+        # The edit accepted as a user would: summary.md names the package's
+        # file on disk, and update --with-kernel-source copies the edit into
+        # it (where the package lives, not into kernels/).
+        summary = open(os.path.join(root, "gate3", "summary.md")).read()
+        assert "`" + os.path.join(pkg, "ring_ao.glsl") + "`" in summary, summary
+        r = run([cavity, "baselines", "update", "--kernels", pkg, "--from", os.path.join(root, "gate3"), "--baselines",
+                 base, "--with-kernel-source"])
+        assert r.returncode == 0 and "the packages now hold the edits" in r.stdout, r.stdout + r.stderr
+        assert open(os.path.join(pkg, "ring_ao.glsl")).read() == open(edited).read()
+
         # Two packages of one folder may declare the same new parameter alike.
         for name in ("ring_a", "ring_b"):
             make(os.path.join(root, "pair", name), toml=TOML.replace('"ring_ao"', f'"{name}"'))

@@ -171,7 +171,7 @@ std::vector<std::string> noteLines(const GateRun& run) {
     }
     for (const auto& e : run.backendErrors) n.push_back("- backend could not start: " + e);
     for (const auto& r : run.replaced)
-        n.push_back("- kernel source replaced: `kernels/" + r.name + "` by `" + r.file + "` (" + r.digest + ")");
+        n.push_back("- kernel source replaced: `" + kernels::sourceLabel(r.name) + "` by `" + r.file + "` (" + r.digest + ")");
     if (repetitions > 1)
         n.push_back("- each configuration was rendered " + std::to_string(repetitions) + " times; every repetition is judged");
     if (nondet) n.push_back("- " + std::to_string(nondet) + " configurations were not bit-identical across two frames");
