@@ -151,6 +151,26 @@ int show(const std::string& name) {
     return 0;
 }
 
+// Whether the kernel's derived arrays (KernelDecl::derive, filled on the
+// CPU: a kernel table, blur weights) change with the parameter: the shader
+// then reads it through them.
+bool derivedFrom(const kernels::KernelDecl& k, const kernels::KernelParam& p) {
+    if (!k.derive) return false;
+    const auto values = kernels::withDefaults(k);
+    std::map<std::string, std::vector<float>> base, moved;
+    k.derive(values, base);
+    const auto& d = *p.decl;
+    for (const double v : {p.def + 1, p.def - 1, d.min, d.max}) {
+        if (v == p.def || !kernels::checkValue(d, v)) continue;
+        auto changed = values;
+        changed[p.name()] = v;
+        moved.clear();
+        k.derive(changed, moved);
+        return moved != base;
+    }
+    return false;
+}
+
 // What the compiled shader reads, against what the declaration says it reads.
 std::vector<std::string> disagreements(const kernels::KernelDecl& k, const std::vector<std::string>& active) {
     std::set<std::string> read;
@@ -158,8 +178,14 @@ std::vector<std::string> disagreements(const kernels::KernelDecl& k, const std::
     const auto* pkg = kernels::findPackage(k.name);
     const std::string where = pkg ? pkg->declaration : k.name;
     std::vector<std::string> out;
+    // A compiled-in value reaches the shader as CAVITY_CONST_<name> (also);
+    // a switch the harness reads need not reach it at all.
+    const auto compiled = [&](const std::string& n) {
+        return std::find(k.compileTime.begin(), k.compileTime.end(), n) != k.compileTime.end();
+    };
     for (const auto& p : k.params)
-        if (!read.count(p.name()) && !read.count(p.name() + "[0]"))
+        if (!read.count(p.name()) && !read.count(p.name() + "[0]") && !compiled(p.name()) &&
+            !kernels::readByHarness(p.name()) && !derivedFrom(k, p))
             out.push_back(where + ": params: '" + p.name() + "' is declared, but the shader never reads P." + p.name() +
                           " (the uniform block is made from the declaration: drop it, or read it)");
     for (const auto& a : k.arrays)
@@ -168,6 +194,12 @@ std::vector<std::string> disagreements(const kernels::KernelDecl& k, const std::
     for (const auto& i : k.inputs)
         if (!read.count("in_" + i.name))
             out.push_back(where + ": inputs: '" + i.name + "' is declared, but the shader never reads in_" + i.name);
+    // The compute stage's output images (out_<name>, or out_<name>_<level>
+    // of a mip chain): one that no write reaches would leave its image as
+    // it was made, black, and every pass after it reading that.
+    for (const auto& o : k.outputs)
+        if (!read.count("out_" + o.name) && !read.count("out_" + o.name + "_0"))
+            out.push_back(where + ": outputs: '" + o.name + "' is declared, but the shader never calls write_" + o.name);
     return out;
 }
 
@@ -184,6 +216,12 @@ std::string oneLine(const std::string& message) {
     return out;
 }
 
+// A mip chain written by one dispatch runs on the compute stage only
+// (pipeline::passStage), whatever --stage says.
+bool computeOnly(const kernels::KernelDecl& k) {
+    return std::any_of(k.outputs.begin(), k.outputs.end(), [](const auto& o) { return o.oneDispatch && o.mipLevels > 1; });
+}
+
 std::vector<std::string> checkOne(const kernels::KernelDecl& k) {
     std::vector<std::string> problems;
     if (!k.reference.empty() && !reference::isReference(k.reference)) {
@@ -197,6 +235,7 @@ std::vector<std::string> checkOne(const kernels::KernelDecl& k) {
     const auto values = kernels::withDefaults(k);
     for (const auto api : {gpu::Api::Vulkan, gpu::Api::OpenGL}) {
         for (const auto stage : {gpu::Stage::Compute, gpu::Stage::Fragment}) {
+            if (stage == gpu::Stage::Fragment && computeOnly(k)) continue;
             auto src = kernels::assemble(k, stage, {}, &values);
             if (!src) {
                 problems.push_back(src.error().message);
@@ -209,8 +248,18 @@ std::vector<std::string> checkOne(const kernels::KernelDecl& k) {
                                    oneLine(active.error().message));
                 continue;
             }
-            if (api == gpu::Api::Vulkan && stage == gpu::Stage::Compute)
+            if (api == gpu::Api::Vulkan && stage == gpu::Stage::Compute) {
+                // An interleaved kernel reads its layers (zlayers) only when
+                // it runs in more than one: what either build reads counts.
+                if (k.interleaved) {
+                    auto layered = values;
+                    layered["interleave"] = 2;
+                    if (auto src2 = kernels::assemble(k, stage, {}, &layered); src2)
+                        if (auto more = kernels::activeUniforms(*src2, api); more)
+                            active->insert(active->end(), more->begin(), more->end());
+                }
                 for (auto& d : disagreements(k, *active)) problems.push_back(std::move(d));
+            }
         }
     }
     return problems;
@@ -221,9 +270,17 @@ int check(const std::string& dir) {
     namespace fs = std::filesystem;
     std::vector<kernels::PackageInfo> chosen;
     // A package loaded already (a built-in one, or by --kernels) is checked as loaded.
+    // A built-in one is named by its folder in the repository (kernels/ao/
+    // <name>), which is relative: from any working folder, a path that ends
+    // so is it.
+    std::string given = fs::absolute(dir).lexically_normal().string();
+    while (given.size() > 1 && given.back() == '/') given.pop_back();
+    const auto endsWith = [&](const std::string& tail) {
+        return given.size() > tail.size() && given.compare(given.size() - tail.size() - 1, std::string::npos, "/" + tail) == 0;
+    };
     for (const auto& p : kernels::packages()) {
         std::error_code ec;
-        if (fs::equivalent(p.folder, dir, ec)) chosen.push_back(p);
+        if (fs::equivalent(p.folder, dir, ec) || (p.builtIn && endsWith(p.folder))) chosen.push_back(p);
     }
     if (chosen.empty()) {
         const size_t before = kernels::packages().size();
@@ -237,7 +294,9 @@ int check(const std::string& dir) {
         for (const auto& p : problems) std::cerr << "cavity kernels check: " << p << "\n";
         bad += problems.empty() ? 0 : 1;
         std::cout << info.name << " (" << info.declaration << "): "
-                  << (problems.empty() ? "compiles on vk and gl, compute and fragment; the declaration matches the shader"
+                  << (problems.empty() ? std::string("compiles on vk and gl, ") +
+                                             (computeOnly(*k) ? "compute (a one-dispatch mip chain)" : "compute and fragment") +
+                                             "; the declaration matches the shader"
                                        : std::to_string(problems.size()) + " problem(s)")
                   << "\n";
         std::cout << "  flags it adds:";

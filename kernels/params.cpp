@@ -9,6 +9,7 @@
 #include <charconv>
 #include <cmath>
 #include <limits>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 
@@ -281,5 +282,10 @@ int asInt(double checkedValue) { return int(std::lround(checkedValue)); }
 int intValue(const ParamValues& values, const std::string& name) { return asInt(values.at(name)); }
 
 float floatValue(const ParamValues& values, const std::string& name) { return float(values.at(name)); }
+
+bool readByHarness(const std::string& name) {
+    static const std::set<std::string> names = {"exact", "interleave", "pyramid_per_level", "fused_tail", "depth_aware_box"};
+    return names.count(name) > 0;
+}
 
 }  // namespace cavity::kernels

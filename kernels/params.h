@@ -43,6 +43,12 @@ const ParamDecl* declareParam(ParamDecl p);
 void forgetParamsAfter(size_t count);
 // The declaration of a name, or null.
 const ParamDecl* findParam(const std::string& name);
+// Whether the harness itself reads the parameter, so that a kernel that
+// declares it need not read it from P: assemble() (exact, interleave) or
+// the pipeline, which picks passes by it (pyramid_per_level, fused_tail,
+// depth_aware_box). `cavity kernels check` holds every other declared
+// parameter to the shader.
+bool readByHarness(const std::string& name);
 
 // A kernel's use of a declared parameter.
 struct KernelParam {

@@ -227,6 +227,29 @@ def check_bad(cavity, root):
     return failures
 
 
+def check_builtins_and_outputs(cavity, root, source):
+    """Every built-in package passes check as a user would run it on the
+    example (compiled-in values, switches the harness reads, tables derived
+    on the CPU, compute-only mip chains); an output no write reaches fails."""
+    failures = 0
+    for group in ("ao", "passes"):
+        for name in sorted(os.listdir(os.path.join(source, "kernels", group))):
+            folder = os.path.join(source, "kernels", group, name)
+            if not os.path.isfile(os.path.join(folder, "kernel.toml")):
+                continue
+            r = run([cavity, "kernels", "check", folder])
+            if r.returncode != 0:
+                failures += 1
+                print(f"FAIL check of the built-in package kernels/{group}/{name}: {r.stderr.strip()[:400]!r}")
+    pkg = os.path.join(root, "unwritten")
+    make(pkg, glsl=GLSL.replace("write_ao(pixel, ", "keep_ao(").replace("void cavity_main", "void keep_ao(vec4 v) {}\nvoid cavity_main", 1))
+    r = run([cavity, "kernels", "check", pkg])
+    if r.returncode != 2 or "never calls write_ao" not in r.stderr:
+        failures += 1
+        print(f"FAIL check of a package that never writes its output: {r.returncode} {r.stderr!r}")
+    return failures
+
+
 def check_disagreement(cavity, root):
     """A declared parameter the shader never reads: check names it."""
     pkg = os.path.join(root, "unread")
@@ -365,6 +388,7 @@ def main():
         assert r.returncode == 0 and "ring_a" in r.stdout and "ring_b" in r.stdout, r.stdout + r.stderr
 
         failures += check_disagreement(cavity, root)
+        failures += check_builtins_and_outputs(cavity, root, source)
         failures += check_unknown_reference(cavity, root)
         failures += check_bad(cavity, root)
     print(f"packages: {'passed' if not failures else str(failures) + ' failed'}")
