@@ -85,6 +85,9 @@ Result<BackendOptions> withEnvironment(const BackendOptions& options) {
         if (std::string(v) != "1") return badInput(std::string(name) + "=" + v + ": must be 0 or 1");
         *flag = true;
     }
+    // Read by the GL backend itself; checked with the others.
+    if (const char* v = std::getenv("CAVITY_GL_FORCE_GLSL"); v && *v && std::string(v) != "0" && std::string(v) != "1")
+        return badInput(std::string("CAVITY_GL_FORCE_GLSL=") + v + ": must be 0 or 1");
     if (o.fullBarriers && o.noBarriers)
         return badInput("CAVITY_FULL_BARRIERS and CAVITY_NO_BARRIERS: set one of them (every barrier the widest, or none)");
     return o;

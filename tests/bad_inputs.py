@@ -309,6 +309,14 @@ CASES = [
     Case("history-parent-cycle", "cavity", ["history", "ingest", "--db", "h.sqlite", "--commit", "abcdef1234", "--parent",
                                             "1234abcd", "a.json"], ["--parent", "1234abcd", "descends from"],
          setup=ingested("h.sqlite", "1234abcd", "abcdef1234")),
+    Case("history-date-unreadable", "cavity", ["history", "ingest", "--db", "h.sqlite", "--commit", "beef0001", "a.json"],
+         ["a.json", "garbage", "ISO 8601"],
+         setup=write("a.json", BENCH_JSON.replace('{"benchmarks"', '{"context": {"date": "garbage"}, "benchmarks"')
+                     % ("corner/alchemy/n16/b4/full/32x18/vk/compute", 1))),
+    Case("history-clock-bogus", "cavity", ["history", "ingest", "--db", "h.sqlite", "--commit", "beef0001", "a.json"],
+         ["a.json", "clock", "bogus"],
+         setup=write("a.json", BENCH_JSON.replace('"time_unit"', '"label": "clock=bogus", "time_unit"')
+                     % ("corner/alchemy/n16/b4/full/32x18/vk/compute", 1))),
     Case("history-gz-cut-short", "cavity", ["history", "ingest", "--db", "h.sqlite", "--commit", "beef0001", "a.json.gz"],
          ["a.json.gz", "cut short"], setup=gzip_cut_short("a.json.gz")),
     # The image store (docs/store.md).
@@ -325,6 +333,8 @@ CASES = [
          env={"CAVITY_NO_BARRIERS": "1", "CAVITY_FULL_BARRIERS": "1"}),
     Case("quality-full-barriers-2", "cavity", ["quality", "--res", "32x18", "--out", "out"], ["CAVITY_FULL_BARRIERS=2"],
          env={"CAVITY_FULL_BARRIERS": "2"}),
+    Case("gl-force-glsl-bogus", "cavity", RUN, ["CAVITY_GL_FORCE_GLSL=yes", "0 or 1"],
+         env={"CAVITY_GL_FORCE_GLSL": "yes"}),
     Case("bench-no-barriers-nan", "cavity_bench", ["--benchmark_filter=timer/empty_scope"], ["CAVITY_NO_BARRIERS=nan"],
          env={"CAVITY_NO_BARRIERS": "nan"}),
     Case("store-missing-object", "cavity", ["store", "check", "--baselines", "baselines", "--store", "prev"],

@@ -303,9 +303,15 @@ Status checkShards(const std::vector<Folder>& folders, const std::string& told) 
             want.insert(i);
         }
     }
+    // At most 12 numbers, then how many more: the line stays one line.
     const auto text = [&](const std::set<int>& s) {
         std::string out;
+        size_t n = 0;
         for (int i : s) {
+            if (n++ == 12) {
+                out += ",... (" + std::to_string(s.size() - 12) + " more)";
+                break;
+            }
             if (!out.empty()) out += ',';
             out += std::to_string(i);
         }

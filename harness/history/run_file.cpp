@@ -126,6 +126,15 @@ Result<RunFile> readRunFile(const std::string& path) {
                         "(schema cavity.gate/1) nor cavity_bench's Google Benchmark JSON (benchmarks[])");
     }
     if (out.series.empty()) return badInput(path + ": holds no time (no pass of any configuration was timed)");
+    // A date the file gives must read as one: an unreadable one would be
+    // replaced by the time of ingest, and the run ordered by that.
+    if (!out.date.empty() && normalizeDate(out.date).empty())
+        return badInput(path + ": its date '" + out.date.substr(0, 40) +
+                        "' is not an ISO 8601 date (2026-11-30T12:00:00Z); the file is damaged");
+    for (const auto& s : out.series)
+        if (s.clock != "gpu-timestamp" && s.clock != "wall" && s.clock != "mixed" && s.clock != "unknown")
+            return badInput(path + ": " + s.configId + " " + s.pass + ": clock '" + s.clock.substr(0, 40) +
+                            "': must be gpu-timestamp or wall (the label's clock=)");
     for (const auto& s : out.series)
         for (const auto& x : s.samples)
             if (!std::isfinite(x.ms) || x.ms < 0)
