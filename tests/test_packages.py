@@ -381,6 +381,12 @@ def main():
         assert r.returncode == 0 and "the packages now hold the edits" in r.stdout, r.stdout + r.stderr
         assert open(os.path.join(pkg, "ring_ao.glsl")).read() == open(edited).read()
 
+        # One package named through two paths loads once; a file is no folder.
+        r = run([cavity, "kernels", "list", "--kernels", os.path.dirname(pkg), "--kernels", pkg])
+        assert r.returncode == 0 and len(re.findall(r"^ring_ao ", r.stdout, re.M)) == 1, r.stdout + r.stderr
+        r = run([cavity, "kernels", "list", "--kernels", os.path.join(pkg, "kernel.toml")])
+        assert r.returncode == 2 and "is a file" in r.stderr, r.stderr
+
         # Two packages of one folder may declare the same new parameter alike.
         for name in ("ring_a", "ring_b"):
             make(os.path.join(root, "pair", name), toml=TOML.replace('"ring_ao"', f'"{name}"'))

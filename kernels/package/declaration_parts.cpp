@@ -63,9 +63,12 @@ Status readTop(const toml::table& root, const Ctx& c, KernelDecl& k) {
     static const std::regex ident("[a-z][a-z0-9_]{0,39}");
     if (!std::regex_match(k.name, ident))
         return c.fail(root.get("name"), "name", k.name, "must be a-z, then a-z, 0-9 or _ (40 at most)");
-    if (c.in.nameTaken(k.name))
+    if (c.in.nameTaken(k.name)) {
+        const PackageInfo* owner = findPackage(k.name);
         return c.fail(root.get("name"), "name", k.name,
-                      "is taken: a package may not take the name of a built-in kernel or of a package loaded before");
+                      "is taken by " + (owner && !owner->builtIn ? "the package in " + owner->folder : std::string("a built-in kernel")) +
+                          ": a package may not take the name of a built-in kernel or of a package loaded before");
+    }
     CAVITY_ASSIGN(k.summary, text(c, root, "", "summary", true));
     if (const toml::node* s = root.get("sources")) {
         const toml::array* a = s->as_array();

@@ -109,6 +109,8 @@ std::string packageKeyOfFile(const std::string& path) {
 
 Status loadPackages(const std::string& dir) {
     std::error_code ec;
+    if (fs::is_regular_file(dir, ec))
+        return badInput(dir + ": is a file; give the package's folder (the one holding kernel.toml) or a folder of them");
     if (!fs::is_directory(dir, ec)) return badInput(dir + ": no such folder");
     // A folder named twice (CAVITY_KERNELS, which --kernels passes on to the
     // programs a command starts, and the same --kernels again) loads once.
@@ -128,6 +130,14 @@ Status loadPackages(const std::string& dir) {
     // replaces the real one only when every one of them loaded.
     std::vector<KernelDecl> registry = all();
     const size_t before = loaded().size(), params = paramDecls().size();
+    // A package loaded already through another path (--kernels pkgs and
+    // --kernels pkgs/mine) is the same package, not a second of its name.
+    std::erase_if(folders, [&](const fs::path& f) {
+        return std::any_of(loaded().begin(), loaded().end(), [&](const PackageInfo& p) {
+            std::error_code e;
+            return !p.builtIn && fs::weakly_canonical(p.folder, e) == fs::weakly_canonical(f, e);
+        });
+    });
     for (const auto& f : folders) {
         if (Status s = loadFolder(f, registry); !s) {
             for (size_t i = before; i < loaded().size(); ++i)
