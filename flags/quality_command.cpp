@@ -22,6 +22,8 @@
 #include <iostream>
 #include <numeric>
 #include <optional>
+#include <map>
+#include <set>
 #include <regex>
 #include <tuple>
 
@@ -63,12 +65,21 @@ CommandSpec qualitySpec(const std::string& program) {
         {"--list", "", "print the configuration ids this would measure, one a line, and measure nothing"},
         {"--quiet", "", "no progress lines on stderr"},
     };
-    // A loaded package's own parameters, one value each (its kernels only).
+    // Every other kernel parameter (a built-in's --steps, a loaded package's
+    // own), one value each, set on the kernels that declare it: a row is
+    // measured at one setting.
+    std::set<std::string> dedicated;
+    for (const auto& f : c.flags) dedicated.insert(f.name.substr(2));
+    std::map<std::string, std::string> owner;   // a package's own parameter -> the package
     for (const auto& p : kernels::packages())
-        for (const auto& name : p.builtIn ? std::vector<std::string>{} : p.addedParams)
-            c.flags.push_back({"--" + name, "V", "a parameter of " + p.name + "'s package, " +
-                                                     kernels::allowedValues(*kernels::findParam(name)) +
-                                                     "; set on the kernels that declare it"});
+        for (const auto& name : p.builtIn ? std::vector<std::string>{} : p.addedParams) owner.emplace(name, p.name);
+    for (const auto& d : kernels::paramDecls()) {
+        if (dedicated.count(d.name) || d.name == "scene" || d.name == "blur") continue;
+        const auto o = owner.find(d.name);
+        c.flags.push_back({"--" + d.name, "V",
+                           (o != owner.end() ? "a parameter of " + o->second + "'s package, " : std::string()) +
+                               kernels::allowedValues(d) + "; one value, set on the kernels that declare it", "Kernel parameters"});
+    }
     c.examples = {
         program + " --kernel alchemy_fast,hemisphere_fast --samples 16 --reach seed",
         program + " --cost bench.json --budget-ms 0.2",
@@ -155,7 +166,10 @@ Status qualityFlag(QualityRequest& q, const std::string& flag, const std::string
         q.out = v;
     } else if (flag == "--filter") {
         CAVITY_ASSIGN(q.filter, parseFilter(flag, v));
-    } else if (kernels::findParam(flag.substr(2))) {   // a package's own (qualitySpec)
+    } else if (kernels::findParam(flag.substr(2))) {   // any other kernel parameter (qualitySpec)
+        if (v.find(',') != std::string::npos)
+            return badInput(flag + " '" + v + "': one value (quality measures each kernel at one setting of it; "
+                                   "run it once a value)");
         CAVITY_ASSIGN(o.switches[flag.substr(2)], paramFlag(flag.substr(2), v));
     }
     return {};

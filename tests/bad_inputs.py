@@ -333,6 +333,8 @@ CASES = [
          env={"CAVITY_NO_BARRIERS": "1", "CAVITY_FULL_BARRIERS": "1"}),
     Case("quality-full-barriers-2", "cavity", ["quality", "--res", "32x18", "--out", "out"], ["CAVITY_FULL_BARRIERS=2"],
          env={"CAVITY_FULL_BARRIERS": "2"}),
+    Case("quality-param-list", "cavity", ["quality", "--kernel", "hemisphere_fast", "--steps", "4,8", "--list"],
+         ["--steps", "4,8", "one value"]),
     Case("gl-force-glsl-bogus", "cavity", RUN, ["CAVITY_GL_FORCE_GLSL=yes", "0 or 1"],
          env={"CAVITY_GL_FORCE_GLSL": "yes"}),
     Case("bench-no-barriers-nan", "cavity_bench", ["--benchmark_filter=timer/empty_scope"], ["CAVITY_NO_BARRIERS=nan"],
