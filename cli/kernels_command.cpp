@@ -233,6 +233,8 @@ std::vector<std::string> checkOne(const kernels::KernelDecl& k) {
                            " (a package without one leaves the line out)");
     }
     const auto values = kernels::withDefaults(k);
+    std::map<std::string, size_t> firstSeen;   // a compile error, without its API -> its problem
+    std::map<size_t, std::string> alsoIn;      // problem -> the other APIs and stages it failed
     for (const auto api : {gpu::Api::Vulkan, gpu::Api::OpenGL}) {
         for (const auto stage : {gpu::Stage::Compute, gpu::Stage::Fragment}) {
             if (stage == gpu::Stage::Fragment && computeOnly(k)) continue;
@@ -244,8 +246,20 @@ std::vector<std::string> checkOne(const kernels::KernelDecl& k) {
             auto active = kernels::activeUniforms(*src, api);
             if (!active) {
                 // The message names the API; the stage tells its twin apart.
-                problems.push_back(std::string(stage == gpu::Stage::Compute ? "compute stage: " : "fragment stage: ") +
-                                   oneLine(active.error().message));
+                // One error of the shared body fails every API and stage
+                // alike: said once, with where else it failed.
+                std::string message = oneLine(active.error().message);
+                const std::string where = std::string(api == gpu::Api::Vulkan ? "vk" : "gl") + " " +
+                                          (stage == gpu::Stage::Compute ? "compute" : "fragment");
+                std::string same = message;
+                for (const char* tag : {" (vk)", " (gl)"})
+                    if (const auto at = same.find(tag); at != std::string::npos) same.erase(at, 5);
+                if (const auto seen = firstSeen.find(same); seen != firstSeen.end()) {
+                    alsoIn[seen->second] += ", " + where;
+                    continue;
+                }
+                firstSeen[same] = problems.size();
+                problems.push_back(where + ": " + message);
                 continue;
             }
             if (api == gpu::Api::Vulkan && stage == gpu::Stage::Compute) {
@@ -262,6 +276,7 @@ std::vector<std::string> checkOne(const kernels::KernelDecl& k) {
             }
         }
     }
+    for (const auto& [i, where] : alsoIn) problems[i] += " (the same on " + where.substr(2) + ")";
     return problems;
 }
 
