@@ -118,7 +118,9 @@ int list() {
 
 std::string paramLine(const kernels::KernelParam& p) {
     std::string s = "  --" + p.name() + " " + kernels::valueText(*p.decl, p.def) + "  (" + kernels::allowedValues(*p.decl) + ")";
+    // This kernel's note on it, else what the parameter is (its help).
     if (!p.note.empty()) s += ": " + p.note;
+    else if (!p.decl->help.empty()) s += ": " + p.decl->help;
     return s;
 }
 
@@ -315,7 +317,7 @@ int check(const std::string& dir) {
                                        : std::to_string(problems.size()) + " problem(s)")
                   << "\n";
         std::cout << "  flags it adds:";
-        if (info.addedParams.empty()) std::cout << " none (it reads harness parameters only)";
+        if (info.addedParams.empty()) std::cout << " none new (every parameter it reads was declared before it)";
         for (const auto& n : info.addedParams) {
             const auto* p = kernels::findParam(n);
             std::cout << " --" << n << " (" << kernels::allowedValues(*p) << ")";
