@@ -51,8 +51,8 @@ std::vector<RunConfig> Matrix::expand() const {
         Axes axes;
         axes.scenes = g.scenes;
         axes.kernels = g.kernels.size() == 1 && g.kernels[0] == "all" ? aoKernels() : g.kernels;
-        axes.params = {{"samples", std::vector<double>(g.samples.begin(), g.samples.end())},
-                       {"blur", std::vector<double>(g.blurs.begin(), g.blurs.end())}};
+        axes.params = {{"blur", std::vector<double>(g.blurs.begin(), g.blurs.end())}};
+        if (g.samplesGiven) axes.params.insert(axes.params.begin(), {"samples", std::vector<double>(g.samples.begin(), g.samples.end())});
         axes.params.insert(axes.params.end(), g.params.begin(), g.params.end());
         axes.half = g.half;
         axes.sizes = g.sizes;
@@ -60,7 +60,7 @@ std::vector<RunConfig> Matrix::expand() const {
         axes.stages = g.stages;
         // An empty list is an empty product (the expander would keep the
         // default there); loadMatrix has checked every scene name.
-        if (g.scenes.empty() || axes.kernels.empty() || g.samples.empty() || g.blurs.empty() || g.half.empty() ||
+        if (g.scenes.empty() || axes.kernels.empty() || (g.samplesGiven && g.samples.empty()) || g.blurs.empty() || g.half.empty() ||
             g.sizes.empty() || g.apis.empty() || g.stages.empty())
             continue;
         auto configs = expandAxes(axes);
@@ -115,14 +115,17 @@ Result<std::vector<std::pair<std::string, std::vector<double>>>> parseParams(con
 
 Result<MatrixGroup> parseGroup(const std::string& path, const std::string& gw, const json& g) {
     CAVITY_TRY(onlyKeys(path, gw, g, {"scenes", "kernels", "samples", "blurs", "params", "resolutions", "sizes", "apis", "stages"}));
-    for (const char* key : {"scenes", "kernels", "samples", "blurs", "resolutions", "sizes", "apis", "stages"})
+    for (const char* key : {"scenes", "kernels", "blurs", "resolutions", "sizes", "apis", "stages"})
         if (!g.contains(key)) return badInput(path + ": " + gw + " lacks '" + key + "'");
     MatrixGroup grp;
     CAVITY_ASSIGN(const JsonObject gf, JsonObject::of(path, gw, g));
     CAVITY_ASSIGN(grp.scenes, gf.strings("scenes"));
     CAVITY_ASSIGN(grp.kernels, gf.strings("kernels"));
     // Ranges are the declarations' (validate() checks each configuration again).
-    CAVITY_ASSIGN(grp.samples, gf.integers("samples", 1, 1 << 20));
+    grp.samplesGiven = g.contains("samples");
+    if (grp.samplesGiven) {
+        CAVITY_ASSIGN(grp.samples, gf.integers("samples", 1, 1 << 20));
+    }
     CAVITY_ASSIGN(grp.blurs, gf.integers("blurs", 0, 1 << 20));
     CAVITY_ASSIGN(grp.params, parseParams(path, gw, g));
     CAVITY_ASSIGN(auto res, gf.strings("resolutions"));

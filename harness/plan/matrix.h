@@ -38,6 +38,10 @@ std::string shapeText(const ImageShape& s);   // "160x90x1"
 struct MatrixGroup {
     std::vector<std::string> scenes, kernels;   // kernels: names, or {"all"} for every AO kernel
     std::vector<int> samples, blurs;
+    // "samples" may be left out for a group of kernels that read no sample
+    // count (a package's own, such as a horizon search's directions): each
+    // kernel then runs at its default.
+    bool samplesGiven = true;
     // Any other kernel parameter, as a list of values ("params": {"radius":
     // [2]}): an axis each, after samples and blur, in name order.
     std::vector<std::pair<std::string, std::vector<double>>> params;
