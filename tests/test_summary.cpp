@@ -33,6 +33,19 @@ size_t lineCount(const std::string& s) {
     return n;
 }
 
+// A shard of a split larger than the matrix holds no configuration: it
+// says it judged nothing, never "all 0 configurations passed".
+TEST(Summary, AnEmptyShardSaysItJudgedNothing) {
+    GateRun run;
+    run.matrix = "ci";
+    run.shardIndex = 500;
+    run.shardCount = 1000;
+    const std::string s = report::summaryMarkdown(run);
+    EXPECT_NE(s.find("nothing was judged"), std::string::npos) << s;
+    EXPECT_EQ(s.find("passed"), std::string::npos) << s;
+    EXPECT_NE(report::commitStatus(run, "")["description"].get<std::string>().find("nothing judged"), std::string::npos);
+}
+
 TEST(Summary, AtMostThirtyLinesForAnyNumberOfFailures) {
     for (int kernels : {1, 3, 20, 200}) {
         GateRun run;

@@ -17,7 +17,8 @@ nlohmann::json commitStatus(const GateRun& run, const std::string& reportUrl) {
         changed += !r.fatal() && r.changed();
     }
     const std::string total = std::to_string(run.results.size());
-    std::string description = code == 0   ? "all " + total + " configurations passed" +
+    std::string description = code == 0 && run.results.empty() ? std::string("nothing judged: no configuration in this selection")
+                              : code == 0 ? "all " + total + " configurations passed" +
                                               (changed ? ", " + std::to_string(changed) + " changed within tolerance" : "")
                               : code == 1 && failed == 0 ? std::to_string(changed) + " of " + total + " configurations changed (--strict)"
                               : code == 1 ? std::to_string(failed) + " of " + total + " configurations failed"

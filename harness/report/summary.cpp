@@ -189,7 +189,11 @@ std::string headline(const GateRun& run, int failed, int noted) {
            ": " +
            (failed ? "**" + std::to_string(failed) + " of " + total + " configurations failed**"
             : noted ? "no regression in " + total + " configurations, " + std::to_string(noted) + " reported"
-                    : "all " + total + " configurations passed") +
+            // An empty shard of a split larger than the matrix judged
+            // nothing: `gate merge` of every shard is the verdict.
+            : run.results.empty() && run.backendErrors.empty()
+                ? std::string("no configuration of the matrix falls in this selection; nothing was judged")
+                : "all " + total + " configurations passed") +
            (run.renderSeconds > 0 ? " (rendered in " + num(run.renderSeconds, 3) + " s, judged in " +
                                         num(run.seconds - run.renderSeconds, 3) + " s)"
                                   : " (" + num(run.seconds, 3) + " s)");
