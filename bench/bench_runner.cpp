@@ -8,6 +8,7 @@
 #include "measure/gpu_clocks.h"
 #include "measure/roofline.h"
 #include "measure/timing.h"
+#include "measure/results.h"
 
 #include <benchmark/benchmark.h>
 
@@ -242,8 +243,8 @@ std::vector<RunConfig> selected(const std::vector<RunConfig>& configs, const std
 }
 
 // What the run changed on purpose, beside its numbers: a planted slowdown,
-// edited kernels.
-void addEditContext(const Options& o) {
+// edited kernels; and which packages from disk its kernels came from.
+void addEditContext(const Options& o, const std::vector<RunConfig>& configs) {
     if (!o.plant.empty() || !o.plantById.empty()) {
         std::string text;
         for (const auto& [pass, fmas] : o.plant) text += (text.empty() ? "" : ",") + pass + ":" + std::to_string(fmas);
@@ -255,6 +256,11 @@ void addEditContext(const Options& o) {
         for (const auto& r : o.replaced) text += (text.empty() ? "" : "; ") + r.name + "=" + r.file + " (" + r.digest + ")";
         benchmark::AddCustomContext("cavity_kernel_sources", text);
     }
+    std::set<std::string> kernels;
+    for (const auto& c : configs) kernels.insert(c.kernel);
+    std::string text;
+    for (const auto& p : measure::packagesUsed(kernels)) text += (text.empty() ? "" : "; ") + p.name + "=" + p.folder + " (" + p.digest + ")";
+    if (!text.empty()) benchmark::AddCustomContext("cavity_kernel_packages", text);
 }
 
 Result<int> registerSweep(const Options& o) {
@@ -318,7 +324,7 @@ Result<int> registerSweep(const Options& o) {
     const auto configs = benchmarkSweep(cpu ? cpuSweep() : gpuSweep(), started);
     CAVITY_TRY(checkPlants(o, configs));
     CAVITY_TRY(checkSourcesUsed(o.replaced, selected(configs, o.filter)));
-    addEditContext(o);
+    addEditContext(o, selected(configs, o.filter));
     for (const auto& c : configs) {
         const auto planted = o.plantById.find(configId(c));
         Bench b{c, timing, planted == o.plantById.end() ? o.plant : planted->second, o.overrides};

@@ -159,11 +159,15 @@ int merge(const std::vector<std::string>& argv) {
         if (merged.matrix.empty()) {
             merged.matrix = run->matrix;
             merged.replaced = run->replaced;
+            merged.packages = run->packages;
             merged.strict = run->strict;
             merged.shardCount = run->shardCount;
         }
         else if (merged.matrix != run->matrix)
             return fail("cavity gate merge", badInput(d + ": matrix " + run->matrix + " differs from " + merged.matrix));
+        else if (measure::packagesJson(merged.packages) != measure::packagesJson(run->packages))
+            return fail("cavity gate merge", badInput(d + ": judged kernel packages " + measure::packagesJson(run->packages).dump() +
+                                                      ", unlike the shards before it (gate every shard with the same --kernels)"));
         else if (merged.strict != run->strict)
             return fail("cavity gate merge", badInput(d + ": --strict " + (run->strict ? "given" : "not given") +
                                                       ", unlike the shards before it (gate every shard alike)"));

@@ -8,8 +8,7 @@
 #include "core/progress.h"
 #include "measure/runner.h"
 #include "core/text_table.h"
-#include "core/digest.h"
-#include "package/package.h"
+#include "render/render_manifest.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -20,6 +19,7 @@
 #include <memory>
 #include <optional>
 #include <regex>
+#include <set>
 
 #include <unistd.h>
 
@@ -177,30 +177,19 @@ RunOutcome runPlan(const Sweep& s, const std::vector<gpu::Api>& apis, const std:
     return out;
 }
 
-// The packages from disk whose kernels ran (--kernels, CAVITY_KERNELS):
-// the folder each was loaded from and a digest of its kernel.toml and GLSL,
-// so that a result is never taken for another version's, and the command
-// that results.json records can be run again.
-nlohmann::json packagesRun(const RunOutcome& out) {
-    nlohmann::json list = nlohmann::json::array();
-    for (const auto& p : kernels::packages()) {
-        if (p.builtIn || std::none_of(out.runs.begin(), out.runs.end(), [&](const auto& r) { return r.config.kernel == p.name; }))
-            continue;
-        std::ifstream toml(std::filesystem::path(p.folder) / "kernel.toml", std::ios::binary);
-        std::string text((std::istreambuf_iterator<char>(toml)), std::istreambuf_iterator<char>());
-        for (const auto& key : p.sourceKeys)
-            if (const auto* src = kernels::packageSource(key)) text += "\n" + key + "\n" + src->text;
-        list.push_back({{"name", p.name}, {"folder", std::filesystem::absolute(p.folder).lexically_normal().string()},
-                        {"digest", core::digestText(core::fnv1a64(text.data(), text.size()))}});
-    }
-    return list;
+// The packages from disk whose kernels ran (--kernels, CAVITY_KERNELS), so
+// that the command results.json records can be run again.
+std::vector<measure::PackageUsed> packagesRun(const RunOutcome& out) {
+    std::set<std::string> kernels;
+    for (const auto& r : out.runs) kernels.insert(r.config.kernel);
+    return measure::packagesUsed(kernels);
 }
 
 // results.json, table.txt and index.html, then the summary that names them.
 Status writeResults(const Sweep& s, const RunOutcome& out, const std::vector<std::string>& argv) {
     std::string command = "cavity run";
     const auto packages = packagesRun(out);
-    for (const auto& p : packages) command += " --kernels " + p["folder"].get<std::string>();
+    for (const auto& p : packages) command += " --kernels " + p.folder;
     for (const auto& a : argv) command += " " + a;
     std::error_code ec;
     std::filesystem::create_directories(s.out, ec);
@@ -214,7 +203,7 @@ Status writeResults(const Sweep& s, const RunOutcome& out, const std::vector<std
         for (const auto& r : s.replaced)
             doc["kernel_sources"].push_back({{"name", r.name}, {"file", r.file}, {"digest", r.digest}});
     }
-    if (!packages.empty()) doc["kernel_packages"] = packages;
+    if (!packages.empty()) doc["kernel_packages"] = measure::packagesJson(packages);
     if (out.runs.empty()) {
         CAVITY_TRY(writeJson(results, doc));
         std::printf("wrote %s (no configuration ran)\n", results.c_str());

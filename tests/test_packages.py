@@ -298,6 +298,10 @@ def main():
                      {c["id"] for c in results.get("runs", [])})
         for api in ("gl", "vk"):
             assert any(re.fullmatch(rf"corner/ring_ao/n8/b4/ring_px=3/full/64x36/{api}/compute", i) for i in ids), ids
+        # Which package ran, from where, in which version: every report says it.
+        packages = results["kernel_packages"]
+        assert [(p["name"], p["folder"]) for p in packages] == [("ring_ao", pkg)], packages
+        digest = packages[0]["digest"]
 
         # The gate: a matrix of the package's kernel; approve, then pass by digest.
         base = os.path.join(root, "baselines")
@@ -317,6 +321,7 @@ def main():
         assert second.returncode == 0, second.stdout + second.stderr
         judged = json.dumps(json.load(open(os.path.join(root, "gate2", "gate.json"))))
         assert "ring_ao" in judged and "digest" in judged, judged[:800]
+        assert json.loads(judged)["kernel_packages"] == packages, judged[:800]
 
         # quality against the ground truth, and cavity_bench.
         r = run([cavity, "quality", "--kernels", pkg, "--kernel", "ring_ao", "--samples", "8", "--scene", "corner",
@@ -333,6 +338,7 @@ def main():
         r = run([bench, "--kernels", pkg, "--sweep", "cpu", f"--benchmark_filter=^{re.escape(one)}$", "--max-time", "0.05",
                  "--benchmark_format=json"])
         assert r.returncode == 0 and '"name": "' + one in r.stdout, r.stdout[-2000:] + r.stderr
+        assert f"ring_ao={pkg} ({digest})" in json.loads(r.stdout)["context"]["cavity_kernel_packages"], r.stdout[:2000]
 
         # An edit of the package's own shader through --kernel-source, as of a
         # built-in's: the gate judges the edit (twice the occlusion fails the
@@ -392,6 +398,18 @@ def main():
             make(os.path.join(root, "pair", name), toml=TOML.replace('"ring_ao"', f'"{name}"'))
         r = run([cavity, "kernels", "list", "--kernels", os.path.join(root, "pair")])
         assert r.returncode == 0 and "ring_a" in r.stdout and "ring_b" in r.stdout, r.stdout + r.stderr
+
+        # Shards rendered from two versions of a package are not judged as one.
+        render = os.path.join(build, "render", "cavity_render")
+        for shard in (0, 1):
+            r = run([render, "--kernels", pkg, "--matrix", "mine", "--baselines", base, "--shard", f"{shard}/2",
+                     "--out", os.path.join(root, f"shard{shard}")])
+            assert r.returncode == 0, r.stderr
+            with open(os.path.join(pkg, "ring_ao.glsl"), "a") as f:
+                f.write("// edited between the shards\n")
+        r = run([cavity, "gate", "judge", "--kernels", pkg, "--baselines", base, "--out", os.path.join(root, "judged"),
+                 os.path.join(root, "shard0"), os.path.join(root, "shard1")])
+        assert r.returncode == 2 and "(render every shard with the same --kernels)" in r.stderr, r.stderr
 
         failures += check_disagreement(cavity, root)
         failures += check_builtins_and_outputs(cavity, root, source)

@@ -11,6 +11,7 @@
 #include "gate/baselines.h"
 #include "images/metrics.h"
 #include "pipeline/pipeline.h"
+#include "render/render_manifest.h"
 #include "store/store.h"
 
 #include <nlohmann/json.hpp>
@@ -129,6 +130,7 @@ struct GateRun {
     std::vector<ConfigResult> results;
     std::vector<std::string> backendErrors;   // backends that could not start
     std::vector<ReplacedSource> replaced;     // kernel sources replaced (--kernel-source)
+    std::vector<measure::PackageUsed> packages;   // packages from disk whose kernels were judged
     double seconds = 0;           // the whole gate: rendering and judging
     double renderSeconds = 0;     // of which rendering in cavity_render (gate judge); 0: rendered in this process
     // --strict: a configuration that changed (any pixel, within tolerance

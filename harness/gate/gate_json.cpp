@@ -59,6 +59,7 @@ json toJson(const GateRun& run) {
     return {{"schema", "cavity.gate/1"}, {"matrix", run.matrix}, {"shard", {run.shardIndex, run.shardCount}}, {"strict", run.strict},
             {"seconds", run.seconds}, {"render_seconds", run.renderSeconds}, {"exit_code", run.exitCode()}, {"counts", run.counts()},
             {"backend_errors", run.backendErrors}, {"kernel_sources", render::replacedJson(run.replaced)},
+            {"kernel_packages", measure::packagesJson(run.packages)},
             {"results", results}};
 }
 
@@ -199,6 +200,9 @@ Result<GateRun> fromJson(const json& j, const std::string& path) {
     // Absent before --kernel-source was recorded: nothing replaced.
     if (top.has("kernel_sources")) {
         CAVITY_ASSIGN(run.replaced, render::parseReplaced(top.raw()["kernel_sources"], path));
+    }
+    if (top.has("kernel_packages")) {   // absent before packages were recorded
+        CAVITY_ASSIGN(run.packages, measure::parsePackages(top.raw()["kernel_packages"], path));
     }
     CAVITY_ASSIGN(const auto results, top.objects("results"));
     for (const auto& rj : results) {

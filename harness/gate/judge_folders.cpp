@@ -148,6 +148,10 @@ Result<std::vector<Folder>> readFolders(const std::vector<std::string>& dirs) {
                 return badInput(f.path + ": rendered with kernel sources " + render::replacedJson(f.m.replaced).dump() + ", but " +
                                 first.path + " with " + render::replacedJson(first.m.replaced).dump() +
                                 " (render every shard with the same --kernel-source)");
+            if (measure::packagesJson(f.m.packages) != measure::packagesJson(first.m.packages))
+                return badInput(f.path + ": rendered with kernel packages " + measure::packagesJson(f.m.packages).dump() + ", but " +
+                                first.path + " with " + measure::packagesJson(first.m.packages).dump() +
+                                " (render every shard with the same --kernels)");
         }
         folders.push_back(std::move(f));
     }
@@ -196,6 +200,7 @@ GateRun runHeader(const std::vector<Folder>& folders, const Matrix& matrix, doub
         run.shardCount = folders.front().m.shardCount;
     }
     run.replaced = folders.front().m.replaced;
+    run.packages = folders.front().m.packages;
     rendered = 0;
     for (const auto& f : folders) {
         rendered = std::max(rendered, f.m.seconds);

@@ -3,12 +3,15 @@
 #include "core/json_file.h"
 
 #include "pipeline/config_id.h"
+#include "core/digest.h"
+#include "package/package.h"
 
 #include <chrono>
 #include <cmath>
 #include <ctime>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 
 #include <unistd.h>
 
@@ -224,5 +227,37 @@ json resultsDocument(const std::vector<RunRecord>& runs, const std::vector<RunEr
 }
 
 Status writeJson(const std::string& path, const json& doc) { return writeFileAtomically(path, doc.dump(2) + "\n"); }
+
+std::vector<PackageUsed> packagesUsed(const std::set<std::string>& kernels) {
+    std::vector<PackageUsed> out;
+    for (const auto& p : kernels::packages()) {
+        if (p.builtIn || !kernels.count(p.name)) continue;
+        std::ifstream toml(std::filesystem::path(p.folder) / "kernel.toml", std::ios::binary);
+        std::string text((std::istreambuf_iterator<char>(toml)), std::istreambuf_iterator<char>());
+        for (const auto& key : p.sourceKeys)
+            if (const auto* src = kernels::packageSource(key)) text += "\n" + key + "\n" + src->text;
+        out.push_back({p.name, std::filesystem::absolute(p.folder).lexically_normal().string(),
+                       core::digestText(core::fnv1a64(text.data(), text.size()))});
+    }
+    return out;
+}
+
+nlohmann::json packagesJson(const std::vector<PackageUsed>& packages) {
+    nlohmann::json out = nlohmann::json::array();
+    for (const auto& p : packages) out.push_back({{"name", p.name}, {"folder", p.folder}, {"digest", p.digest}});
+    return out;
+}
+
+Result<std::vector<PackageUsed>> parsePackages(const nlohmann::json& j, const std::string& path) {
+    std::vector<PackageUsed> out;
+    if (!j.is_array()) return badInput(path + ": kernel_packages must be a list");
+    for (const auto& p : j) {
+        if (!p.is_object() || !p.contains("name") || !p.contains("folder") || !p.contains("digest") || !p["name"].is_string() ||
+            !p["folder"].is_string() || !p["digest"].is_string())
+            return badInput(path + ": kernel_packages: each entry must have string name, folder and digest");
+        out.push_back({p["name"], p["folder"], p["digest"]});
+    }
+    return out;
+}
 
 }  // namespace cavity::measure

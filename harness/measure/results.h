@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -69,4 +70,17 @@ Status writeJson(const std::string& path, const nlohmann::json& doc);
 std::string gitCommit();
 std::string utcTimestamp();
 
+// A kernel package from disk (--kernels, CAVITY_KERNELS) whose kernel a run
+// used: the folder it was loaded from and a digest of its kernel.toml and
+// GLSL, so that a verdict or a time is never taken for another version's.
+struct PackageUsed {
+    std::string name, folder, digest;
+};
+
+// The packages from disk (not built in) that hold one of `kernels`.
+std::vector<PackageUsed> packagesUsed(const std::set<std::string>& kernels);
+// As results.json, render manifests and gate.json write them:
+// [{"name", "folder", "digest"}].
+nlohmann::json packagesJson(const std::vector<PackageUsed>& packages);
+Result<std::vector<PackageUsed>> parsePackages(const nlohmann::json& j, const std::string& path);
 }  // namespace cavity::measure

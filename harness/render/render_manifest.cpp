@@ -85,6 +85,7 @@ json toJson(const RenderManifest& m) {
             {"filter", m.filter},
             {"repeat", m.repeat},
             {"kernel_sources", replacedJson(m.replaced)},
+            {"kernel_packages", measure::packagesJson(m.packages)},
             {"seconds", m.seconds},
             {"image_format", kImageFormat},
             {"devices", devices},
@@ -159,6 +160,10 @@ Result<RenderManifest> parseManifest(const json& j, const std::string& path) {
     // Absent before --kernel-source was recorded: nothing replaced.
     if (j.contains("kernel_sources")) {
         CAVITY_ASSIGN(m.replaced, parseReplaced(j["kernel_sources"], path));
+    }
+    // Absent before packages were recorded.
+    if (j.contains("kernel_packages")) {
+        CAVITY_ASSIGN(m.packages, measure::parsePackages(j["kernel_packages"], path));
     }
     if (m.shardCount < 1 || m.shardIndex < 0 || m.shardIndex >= m.shardCount)
         return badInput(path + ": shard " + std::to_string(m.shardIndex) + "/" + std::to_string(m.shardCount) +

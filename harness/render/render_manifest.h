@@ -58,6 +58,7 @@ struct RenderManifest {
     std::vector<BackendError> backendErrors;
     std::vector<ConfigEntry> configs;
     std::vector<ReplacedSource> replaced;              // --kernel-source: what was rendered instead of kernels/
+    std::vector<measure::PackageUsed> packages;                // packages from disk whose kernels were rendered
 };
 
 nlohmann::json toJson(const RenderManifest& m);
