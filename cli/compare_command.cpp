@@ -6,6 +6,7 @@
 #include "report/compare_report.h"
 #include "measure/results.h"
 
+#include <filesystem>
 #include <algorithm>
 #include <optional>
 #include <regex>
@@ -100,6 +101,11 @@ int compareCommand(const std::vector<std::string>& argv) {
     if (!before) return fail(program, before.error());
     auto after = loadSampleSets(files[1]);
     if (!after) return fail(program, after.error());
+    // One file on both sides compares nothing: every pass would read "same".
+    std::error_code ec;
+    if (std::filesystem::equivalent(files[0], files[1], ec))
+        return fail(program, badInput(files[1] + ": the same file as " + files[0] +
+                                      " (compare the old run with the new one, two files)"));
 
     auto rows = compareAll(*before, *after, t);
     // Nothing compared is no verdict: two runs with no (configuration, pass)

@@ -296,6 +296,8 @@ CASES = [
                                '"run_type": "iteration", "real_time": NaN, "time_unit": "ms"}]}')),
     Case("compare-negative-real-time", "cavity", ["compare", "a.json", "a.json"], ["a.json", "real_time", "-5", ">= 0"],
          setup=write("a.json", BENCH_JSON % ("corner/alchemy/n16/b4/full/32x18/vk/compute", -5))),
+    Case("compare-same-file", "cavity", ["compare", "a.json", "./a.json"], ["./a.json", "the same file as a.json"],
+         setup=write("a.json", BENCH_JSON % ("corner/alchemy/n16/b4/full/32x18/vk/compute", 5))),
     # Nothing in common is nothing compared: no verdict, not "0 slower".
     Case("compare-nothing-in-common", "cavity", ["compare", "a.json", "b.json", "--fail-on-slower"],
          ["a.json", "b.json", "no configuration"],

@@ -41,7 +41,7 @@ Status checkWritableDir(const std::string& flag, const std::string& dir, size_t 
     // mkdir), so make and remove a probe folder where dir would be created.
     std::string probe = (existing / ".cavity-probe-XXXXXX").string();
     if (::mkdtemp(probe.data()) == nullptr)
-        return badInput(flag + " " + dir + ": cannot be written (" + existing.string() + ": " + std::strerror(errno) + ")");
+        return badInput(flag + " " + dir + ": cannot be written (making a folder in " + existing.string() + " failed: " + std::strerror(errno) + ")");
     ::rmdir(probe.c_str());
     return {};
 }
@@ -57,7 +57,7 @@ Status checkWritableFile(const std::string& flag, const std::string& file) {
     if (!fs::is_directory(parent, ec)) return badInput(flag + " " + file + ": folder " + parent.string() + " does not exist");
     std::string probe = (parent / ".cavity-probe-XXXXXX").string();
     if (::mkdtemp(probe.data()) == nullptr)
-        return badInput(flag + " " + file + ": cannot be written (" + parent.string() + ": " + std::strerror(errno) + ")");
+        return badInput(flag + " " + file + ": cannot be written (making a folder in " + parent.string() + " failed: " + std::strerror(errno) + ")");
     ::rmdir(probe.c_str());
     return {};
 }
