@@ -48,6 +48,8 @@ const CommandSpec& approveSpec() {
             {"--why", "TEXT", "why these images are right (or, with --negative, wrong); recorded (required)"},
             {"--filter", "REGEX", "only the configurations whose id matches (default: every one that rendered)"},
             {"--negative", "", "mark the digests known bad instead of approving them"},
+            {"--with-kernel-source", "", "the gate run replaced kernel sources (--kernel-source): also copy each file over "
+                                         "its kernels/NAME or its package's file, so that the tree renders what is approved"},
             {"--by", "NAME", "who approves (default: $USER)"},
             {"--baselines", "DIR", "folder with approvals.json (default: baselines/ of the checkout)"},
             {"--store", "DIR|URL", "the image store the approved images are put into, under their digest (default "
@@ -69,11 +71,13 @@ struct ApproveFlags {
     std::string from = "out/gate", why, by, root, store;
     std::optional<std::regex> filter;
     bool negative = false;
+    bool withKernelSource = false;   // copy a --kernel-source edit over its file with the approvals
 };
 
 Result<ApproveFlags> parseApprove(const ParsedFlags& p) {
     ApproveFlags f;
     f.negative = p.has("--negative");
+    f.withKernelSource = p.has("--with-kernel-source");
     for (const auto& [flag, v] : p.values) {
         if (flag == "--from") f.from = v;
         else if (flag == "--why") f.why = v;
@@ -257,6 +261,8 @@ int approveCommand(const std::vector<std::string>& argv) {
     auto approvals = plan::loadApprovals(path);
     if (!approvals) return fail(program, approvals.error());
     size_t added = 0, skipped = 0, selected = 0, rendered = 0;
+    SourceCopies sources;        // --with-kernel-source: the edits the approved images show
+    gate::GateRun replacedRun;
     std::vector<Pixels> pixels;
     std::error_code ec;
     if (!fs::exists(fs::path(f->from) / "gate.json", ec) && fs::exists(fs::path(f->from) / "manifest.json", ec)) {
@@ -269,11 +275,12 @@ int approveCommand(const std::vector<std::string>& argv) {
         // Digests of an edit that kernels/ does not hold would pass the
         // next run of the edit and fail the tree's own (baselines update
         // --with-kernel-source copies the edit in with the images).
-        if (!run->replaced.empty() && !f->negative)
-            return fail(program, badInput("--from " + f->from + ": rendered with " + kernels::sourceLabel(run->replaced.front().name) +
-                                          " replaced (--kernel-source): its digests are not what kernels/ renders; "
-                                          "accept it with cavity baselines update --with-kernel-source, or copy the "
-                                          "edit into kernels/ and run the gate again"));
+        if (!f->negative) {
+            auto copies = kernelSourceCopies(*run, f->root, f->from, f->withKernelSource);
+            if (!copies) return fail(program, copies.error());
+            sources = std::move(*copies);
+            replacedRun = *run;
+        }
         auto n = addApprovals(*approvals, *run, *f, pixels, selected, rendered);
         if (!n) return fail(program, n.error());
         added = *n;
@@ -291,6 +298,7 @@ int approveCommand(const std::vector<std::string>& argv) {
     auto stored = putImages(pixels, *f);
     if (!stored) return fail(program, stored.error());
     if (auto st = plan::saveApprovals(path, *approvals); !st) return fail(program, st.error());
+    if (auto st = copyKernelSources(sources, replacedRun); !st) return fail(program, st.error());
     // Images with the same pixels (both APIs alike, say) share one object.
     std::cout << added << " image digests " << (f->negative ? "marked known bad" : "approved") << " in " << path << "; "
               << *stored << " distinct images in the store\n";

@@ -62,15 +62,16 @@ std::string budgetOnlyHint(const gate::GateRun& run, bool filtered, const std::s
            " --pattern '" + device + "'` (docs/gate.md, \"Time budgets\")";
 }
 
+}  // namespace
+
 // The files a run rendered in place of kernels/ (--kernel-source), each
 // read and checked to be what was rendered, with where it goes in the tree
 // beside `root`. A run with replaced sources is refused without
 // --with-kernel-source: its images are not what kernels/ renders, and
 // accepting them alone would leave tree and baselines disagreeing.
-Result<std::map<fs::path, std::pair<std::string, std::string>>> kernelSourceCopies(const gate::GateRun& run,
-                                                                                  const std::string& root,
-                                                                                  const std::string& from, bool take) {
-    std::map<fs::path, std::pair<std::string, std::string>> out;   // target -> (file, text)
+Result<SourceCopies> kernelSourceCopies(const gate::GateRun& run, const std::string& root, const std::string& from,
+                                        bool take) {
+    SourceCopies out;
     if (run.replaced.empty()) return out;
     std::string names;
     for (const auto& r : run.replaced) names += (names.empty() ? "" : ", ") + kernels::sourceLabel(r.name);
@@ -102,7 +103,21 @@ Result<std::map<fs::path, std::pair<std::string, std::string>>> kernelSourceCopi
     return out;
 }
 
-}  // namespace
+// Writes what kernelSourceCopies found, and says where the edits now live.
+Status copyKernelSources(const SourceCopies& copies, const gate::GateRun& run) {
+    for (const auto& [target, copy] : copies) {
+        CAVITY_TRY(writeFileAtomically(target.string(), copy.second));
+        std::cout << "copied " << copy.first << " over " << target.string() << "\n";
+    }
+    const bool builtIn = std::any_of(run.replaced.begin(), run.replaced.end(),
+                                     [](const auto& r) { return !kernels::packageSource(r.name); });
+    if (!copies.empty())
+        std::cout << (builtIn ? "kernels/ now holds the edits the baselines show; rebuild cavity (built-in kernels are "
+                                "compiled in) and commit both\n"
+                              : "the packages now hold the edits the baselines show (they load at run time); commit "
+                                "both\n");
+    return {};
+}
 
 namespace {
 int updateCommand(const std::vector<std::string>& argv);
@@ -169,7 +184,15 @@ int updateCommand(const std::vector<std::string>& argv) {
             // A selected configuration rewrites the images that failed (all of
             // them when chosen by --filter): passing ones keep their bytes.
             if (!filter && i.passed()) continue;
-            const fs::path target = fs::path("images") / r.key / fs::path(i.baseline).filename();
+            // Judged against an approved image of the device's class: the gate
+            // compares with that reference before any baseline file, so writing
+            // one would change nothing the next gate sees.
+            if (i.baseline.rfind("store:", 0) == 0)
+                return fail("cavity baselines update",
+                            badInput("--from " + from + ": " + r.id + " " + i.image + " was judged against an approved " +
+                                     "image of its device class (" + i.reference + "), which a baseline file does not " +
+                                     "replace: accept it with cavity baselines approve --from " + from + " --why ..."));
+            const fs::path target = fs::path("images") / r.key / (i.image + fs::path(i.newExact).extension().string());
             writes.push_back({i.newExact, target});
             std::ostringstream line;
             line << "updated " << (fs::path(root) / target).string() << "  (from " << r.id;
@@ -183,17 +206,7 @@ int updateCommand(const std::vector<std::string>& argv) {
     // All or nothing (harness/gate/baseline_update.h).
     if (auto st = gate::applyBaselineUpdate(root, writes); !st) return fail("cavity baselines update", st.error());
     for (const auto& line : said) std::cout << line << "\n";
-    for (const auto& [target, copy] : *sources) {
-        if (auto st = writeFileAtomically(target.string(), copy.second); !st) return fail("cavity baselines update", st.error());
-        std::cout << "copied " << copy.first << " over " << target.string() << "\n";
-    }
-    const bool builtIn = std::any_of(run->replaced.begin(), run->replaced.end(),
-                                     [](const auto& r) { return !kernels::packageSource(r.name); });
-    if (!sources->empty())
-        std::cout << (builtIn ? "kernels/ now holds the edits the baselines show; rebuild cavity (built-in kernels are "
-                                "compiled in) and commit both\n"
-                              : "the packages now hold the edits the baselines show (they load at run time); commit "
-                                "both\n");
+    if (auto st = copyKernelSources(*sources, *run); !st) return fail("cavity baselines update", st.error());
     const size_t changed = writes.size();
     std::cout << changed << " baseline files updated\n";
     if (const std::string hint = budgetOnlyHint(*run, filter.has_value(), from); !hint.empty()) std::cout << hint << "\n";

@@ -5,10 +5,25 @@
 #include "cli.h"
 #include "gate/gate.h"
 
+#include <filesystem>
+#include <map>
+#include <string>
+#include <utility>
+
 namespace cavity::cli {
 
 // A gate output folder's gate.json; a missing one says to run the gate first.
 Result<gate::GateRun> loadGateJson(const std::string& dir);
+
+// The files a gate run rendered in place of kernels/ or a package's own
+// (--kernel-source), each read back and checked against the digest the run
+// recorded: target -> (file given, its text). Without `take`
+// (--with-kernel-source) a run with replaced sources is refused: its images
+// are not what the tree renders. baselines update and approve accept them.
+using SourceCopies = std::map<std::filesystem::path, std::pair<std::string, std::string>>;
+Result<SourceCopies> kernelSourceCopies(const gate::GateRun& run, const std::string& root, const std::string& from,
+                                        bool take);
+Status copyKernelSources(const SourceCopies& copies, const gate::GateRun& run);
 
 // --baselines's help, as every command that reads the baselines words it.
 inline const std::string kBaselinesHelp =

@@ -378,14 +378,27 @@ def main():
         assert r.returncode == 0 and "/ring_ao/" in r.stdout, r.stdout + r.stderr
 
         # The edit accepted as a user would: summary.md names the package's
-        # file on disk, and update --with-kernel-source copies the edit into
-        # it (where the package lives, not into kernels/).
+        # file on disk and says how to accept images judged against approved
+        # references. A baseline file would not replace those: update refuses
+        # (it once wrote files named after the reference's digest) and
+        # approve --with-kernel-source copies the edit into the package's
+        # file (where the package lives, not into kernels/) with the digests.
         summary = open(os.path.join(root, "gate3", "summary.md")).read()
         assert "`" + os.path.join(pkg, "ring_ao.glsl") + "`" in summary, summary
+        assert "`cavity baselines approve --from <gate output>" in summary, summary
+        listed = lambda d: sorted(os.listdir(d)) if os.path.isdir(d) else []
+        before = listed(os.path.join(base, "images", "corner", "ring_ao", "n8", "b4", "full", "64x36"))
         r = run([cavity, "baselines", "update", "--kernels", pkg, "--from", os.path.join(root, "gate3"), "--baselines",
                  base, "--with-kernel-source"])
+        assert r.returncode == 2 and "accept it with cavity baselines approve" in r.stderr, r.stdout + r.stderr
+        assert listed(os.path.join(base, "images", "corner", "ring_ao", "n8", "b4", "full", "64x36")) == before
+        assert open(os.path.join(pkg, "ring_ao.glsl")).read() != open(edited).read()
+        r = run([cavity, "baselines", "approve", "--kernels", pkg, "--from", os.path.join(root, "gate3"), "--baselines",
+                 base, "--why", "an edit", "--store", os.path.join(root, "store"), "--with-kernel-source"])
         assert r.returncode == 0 and "the packages now hold the edits" in r.stdout, r.stdout + r.stderr
         assert open(os.path.join(pkg, "ring_ao.glsl")).read() == open(edited).read()
+        fourth = run(gate + ["--out", os.path.join(root, "gate4"), "--store", os.path.join(root, "store")])
+        assert fourth.returncode == 0, fourth.stdout + fourth.stderr
 
         # One package named through two paths loads once; a file is no folder.
         r = run([cavity, "kernels", "list", "--kernels", os.path.dirname(pkg), "--kernels", pkg])

@@ -243,8 +243,19 @@ std::string summaryMarkdown(const GateRun& run, const std::string& reportUrl) {
     }
     lines.insert(lines.end(), notes.begin(), notes.end());
     if (!notes.empty()) lines.push_back("");
+    // An image judged against its class's approved reference is accepted by
+    // approving the new digest; a baseline file would not replace it.
+    bool byFile = false, byApproval = false;
+    for (const auto& r : run.results)
+        for (const auto& i : r.images)
+            if (!i.passed() || i.changed()) (i.baseline.rfind("store:", 0) == 0 ? byApproval : byFile) = true;
+    std::string accept = "`cavity baselines update --from <gate output>`";
+    if (byApproval)
+        accept = std::string(byFile ? accept + " (images judged against the stored baselines) and " : "") +
+                 "`cavity baselines approve --from <gate output> --why ...` (images judged against a device class's approved "
+                 "references)";
     lines.push_back("[Full report](" + reportUrl + "): every configuration with its images and heat-maps. Accept intended "
-                    "changes with `cavity baselines update --from <gate output>`.");
+                    "changes with " + accept + ".");
     std::ostringstream m;
     for (const auto& l : lines) m << l << "\n";
     return m.str();
