@@ -11,6 +11,7 @@
 // Its own flags are declared once (benchSpec below) and parsed by CLI11
 // through cli/flags.h, as cavity's are; --benchmark_* and --v= go to
 // Google Benchmark untouched.
+#include "core/json_file.h"
 #include "bench_runner.h"
 #include "package/package.h"
 #include "console_reporter.h"
@@ -66,7 +67,7 @@ Status readPlantFile(const std::string& path, std::map<std::string, cavity::pipe
                 return cavity::badInput("--plant-file " + path + ": " + id + ": must be a non-empty object {\"<pass>\": FMAS}");
             for (const auto& [pass, n] : passes.items()) {
                 if (!n.is_number_integer() || n.get<long>() < 1 || n.get<long>() > 1000000)
-                    return cavity::badInput("--plant-file " + path + ": " + id + " " + pass + " = " + n.dump() +
+                    return cavity::badInput("--plant-file " + path + ": " + id + " " + pass + " = " + cavity::core::jsonText(n) +
                                             ": must be an integer in 1..1000000");
                 out[id][pass] = n.get<int>();
             }

@@ -166,7 +166,7 @@ int merge(const std::vector<std::string>& argv) {
         else if (merged.matrix != run->matrix)
             return fail("cavity gate merge", badInput(d + ": matrix " + run->matrix + " differs from " + merged.matrix));
         else if (measure::packagesJson(merged.packages) != measure::packagesJson(run->packages))
-            return fail("cavity gate merge", badInput(d + ": judged kernel packages " + measure::packagesJson(run->packages).dump() +
+            return fail("cavity gate merge", badInput(d + ": judged kernel packages " + core::jsonText(measure::packagesJson(run->packages)) +
                                                       ", unlike the shards before it (gate every shard with the same --kernels)"));
         else if (merged.strict != run->strict)
             return fail("cavity gate merge", badInput(d + ": --strict " + (run->strict ? "given" : "not given") +

@@ -120,7 +120,7 @@ int historyAlerts(const std::vector<std::string>& argv) {
         if (flag != "--json") continue;
         const json doc = {{"schema", "cavity.history.alerts/1"}, {"alpha", q->detector.alpha},
                           {"min_change_pct", q->detector.minChange * 100}, {"alerts", out}};
-        const Status w = writeFileAtomically(path, doc.dump(2) + "\n");
+        const Status w = writeFileAtomically(path, core::jsonText(doc, 2) + "\n");
         if (!w) return fail(spec.program, w.error());
     }
     return parsed->has("--fail-on-slower") && history::slowerNow(alerts) ? 1 : 0;

@@ -158,7 +158,7 @@ int historyShow(const std::vector<std::string>& argv) {
         out.push_back({{"id", s.configId}, {"pass", s.pass}, {"device", s.device}, {"clock", s.clock}, {"points", points}});
     }
     if (const std::string path = flagValue(parsed, "--json"); !path.empty()) {
-        const Status w = writeFileAtomically(path, json{{"schema", "cavity.history.show/1"}, {"series", out}}.dump(2) + "\n");
+        const Status w = writeFileAtomically(path, core::jsonText(json{{"schema", "cavity.history.show/1"}, {"series", out}}, 2) + "\n");
         if (!w) return fail(spec.program, w.error());
     }
     return 0;

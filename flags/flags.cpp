@@ -130,7 +130,14 @@ Result<ParsedFlags> parseFlags(const CommandSpec& spec, const std::vector<std::s
     std::vector<std::string> words;   // what CLI11 parses: every value as --flag=VALUE
     std::map<std::string, int> count;
     std::vector<std::string> known;
-    for (const auto& f : spec.flags) known.push_back(f.name);
+    for (const auto& f : spec.flags) {
+        // A flag declared twice (a kernel parameter named like one of the
+        // command's own flags) would abort inside CLI11.
+        if (std::find(known.begin(), known.end(), f.name) != known.end())
+            return internal(spec.program + ": " + f.name + " is declared twice (a kernel parameter named like a flag of "
+                            "the command)");
+        known.push_back(f.name);
+    }
     for (size_t i = 0; i < argv.size(); ++i) {
         const std::string& w = argv[i];
         if (w == "--help" || w == "-h") {

@@ -147,6 +147,9 @@ std::vector<ParamDecl> declare() {
 }
 
 std::string number(double x) {
+    // A whole number up to 2^53 in full (2147483647, not 2.14748e+09),
+    // anything else as printf's %g does.
+    if (std::isfinite(x) && x == std::floor(x) && std::fabs(x) < 9007199254740992.0) return std::to_string((long long)x);
     std::ostringstream s;
     s << x;
     return s.str();

@@ -123,9 +123,36 @@ def bad_packages():
         ("misspelt harness parameter", lambda d: w(d, "kernel.toml", sub(t, 'name = "radius"\n', 'name = "radious"\n')),
          r"params\[1\]\.name = radious: no parameter of that name \(did you mean radius\?\)"),
         ("harness parameter declared otherwise", lambda d: w(d, "kernel.toml", sub(t, 'name = "radius"\n', 'name = "radius"\ntype = "int"\nmin = 1\nmax = 9\nhelp = "h"\n')),
-         r"params\[1\]\.type = 'int': 'radius' is declared already, as a number > 0"),
+         r"params\[1\]\.type = \"int\": 'radius' is declared already, as a number > 0"),
         ("duplicate enum choice", lambda d: w(d, "kernel.toml", sub(sub(t, 'type = "int"', 'type = "enum"\nchoices = ["near", "near"]'), "default = 4\nmin = 1\nmax = 32\n", 'default = "near"\n')),
-         r"params\[2\]\.choices = near: each choice must be a distinct, non-empty name"),
+         r"params\[2\]\.choices = \"near\": each choice must be a distinct name"),
+        # A choice is one segment of a configuration id, a path under --out.
+        ("choice with a slash", lambda d: w(d, "kernel.toml", sub(sub(t, 'type = "int"', 'type = "enum"\nchoices = ["near", "x/../../up"]'), "default = 4\nmin = 1\nmax = 32\n", 'default = "near"\n')),
+         r"params\[2\]\.choices = \"x/\.\./\.\./up\": each choice must be a distinct name of letters"),
+        # A parameter named like a flag of the commands aborted inside CLI11;
+        # a GLSL word failed only at compile time, naming neither file nor key.
+        ("parameter named like a flag", lambda d: w(d, "kernel.toml", sub(t, 'name = "ring_px"', 'name = "frames"')),
+         r"params\[2\]\.name = frames: is reserved"),
+        ("parameter named like a GLSL word", lambda d: w(d, "kernel.toml", sub(t, 'name = "ring_px"', 'name = "uniform"')),
+         r"params\[2\]\.name = uniform: is reserved"),
+        ("array named like a parameter", lambda d: w(d, "kernel.toml", t + '\n[[arrays]]\nname = "ring_px"\nvec4 = 4\nderive = "spiral"\n'),
+         r"arrays\[0\]\.name = ring_px: is taken by a parameter"),
+        ("int default given as a bool", lambda d: w(d, "kernel.toml", sub(t, "default = 4", "default = true")),
+         r"params\[2\]\.default = true: must be a number"),
+        ("int default past 64 bits of a double", lambda d: w(d, "kernel.toml", sub(t, "default = 4", "default = 9223372036854775807")),
+         r"params\[2\]\.default = 9223372036854775807: outside the parameter's range: must be an integer in 1\.\.32"),
+        ("choices on an int", lambda d: w(d, "kernel.toml", sub(t, "min = 1\n", 'min = 1\nchoices = ["a"]\n')),
+         r"params\[2\]\.choices = \[1 values\]: does not apply to a parameter of type int"),
+        ("a line break in the summary", lambda d: w(d, "kernel.toml", re.sub(r"summary = .*\n", lambda m: 'summary = "one\\ntwo"\n', t)),
+         r'summary = "one\\x0atwo": must be one line of printable text'),
+        ("an empty optional string", lambda d: w(d, "kernel.toml", sub(t, 'unit = "px"', 'unit = ""')),
+         r"params\[2\]\.unit = \"\": must not be empty \(leave the key out\)"),
+        ("cost infinite where the kernel runs", lambda d: w(d, "kernel.toml", sub(t, '"2 + samples"', '"2 + samples / max(ring_px - 3, 0)"')),
+         r"cost\.fetches = \"2 \+ samples / max\(ring_px - 3, 0\)\": gives inf at ring_px = 1: a count per pixel must be finite"),
+        ("cost nested past the stack", lambda d: w(d, "kernel.toml", sub(t, '"2 + samples"', '"' + "(" * 5000 + "1" + ")" * 5000 + '"')),
+         r"cost\.fetches = .*\(10003 characters\): column 65: nested more than 64 deep"),
+        ("expectation NaN", lambda d: w(d, "kernel.toml", t + "\n[expectations]\nopen_mean = nan\n"),
+         r"expectations\.open_mean = nan: must be a number in 0\.\.1"),
         ("int range past 32 bits", lambda d: w(d, "kernel.toml", sub(t, "max = 32", "max = 4294967296")),
          r"params\[2\]\.max = 4294967296: outside what a 32-bit int holds"),
         ("float range past 32 bits", lambda d: w(d, "kernel.toml", sub(sub(t, 'type = "int"', 'type = "float"'), "max = 32", "max = 1e39")),
@@ -133,7 +160,7 @@ def bad_packages():
         ("min not a number", lambda d: w(d, "kernel.toml", sub(sub(t, 'type = "int"', 'type = "float"'), "min = 1", "min = nan")),
          r"params\[2\]\.min = nan: must be a finite number"),
         ("empty help", lambda d: w(d, "kernel.toml", sub(t, 'help = "the ring\'s radius in pixels"', 'help = ""')),
-         r"params\[2\]\.help = '': must not be empty"),
+         r"params\[2\]\.help = \"\": must not be empty"),
         ("enum default not a choice", lambda d: w(d, "kernel.toml", sub(sub(t, 'type = "int"', 'type = "enum"\nchoices = ["near", "far"]'), "default = 4\nmin = 1\nmax = 32\n", 'default = "farr"\n')),
          r"params\[2\]\.default = farr: must be one of near, far"),
         ("unknown type", lambda d: w(d, "kernel.toml", sub(t, 'type = "int"', 'type = "double"')),
@@ -224,6 +251,28 @@ def check_bad(cavity, root):
             print(f"FAIL run of a kernel that does not compile on {api}: exit {r.returncode}, {r.stderr!r}")
     n = len(bad_packages()) + 4
     print(f"bad packages: {n - failures} of {n} refused with one line naming the file")
+    return failures
+
+
+def check_flag_names(cavity, bench, render, root):
+    """Every one-word flag of the commands that take kernel parameters is a
+    name a package's new parameter cannot take: reserved, or a parameter
+    the harness declares already (a clash aborted inside CLI11)."""
+    failures = 0
+    names = set()
+    for cmd in ([cavity, "run"], [cavity, "gate"], [cavity, "quality"], [bench], [render]):
+        names |= set(re.findall(r"--([a-z][a-z0-9_]*)\b(?!-)", run(cmd + ["--help"]).stdout))
+    for name in sorted(names):
+        pkg = os.path.join(root, "flag_names", name, "ring_ao")
+        make(pkg, toml=TOML.replace('name = "ring_px"', f'name = "{name}"').replace('unit = "px"', 'unit = "test units"'),
+             glsl=GLSL.replace("P.ring_px", f"P.{name}"))
+        r = run([cavity, "kernels", "check", pkg])
+        said = any(w in r.stderr for w in (f"name = {name}: is reserved", f"'{name}' is declared already",
+                                           f"name = {name}: declared twice"))
+        if r.returncode != 2 or len(r.stderr.strip().splitlines()) != 1 or not said:
+            failures += 1
+            print(f"FAIL a parameter named --{name}: exit {r.returncode}, {r.stderr!r}")
+    print(f"flag names: {len(names) - failures} of {len(names)} refused as a new parameter's name")
     return failures
 
 
@@ -424,6 +473,7 @@ def main():
                  os.path.join(root, "shard0"), os.path.join(root, "shard1")])
         assert r.returncode == 2 and "(render every shard with the same --kernels)" in r.stderr, r.stderr
 
+        failures += check_flag_names(cavity, bench, render, root)
         failures += check_disagreement(cavity, root)
         failures += check_builtins_and_outputs(cavity, root, source)
         failures += check_unknown_reference(cavity, root)

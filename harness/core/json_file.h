@@ -34,4 +34,11 @@ void removeStaleTemps(const std::string& dir);
 
 Status writeFileAtomically(const std::string& path, const std::string& text);
 
+// The document as text (indent < 0: one line). A string that is not UTF-8
+// (a compile error quoting a Latin-1 byte of a user's shader, a path) is
+// written with U+FFFD in place of its bad bytes instead of throwing.
+inline std::string jsonText(const nlohmann::json& j, int indent = -1) {
+    return j.dump(indent, ' ', false, nlohmann::json::error_handler_t::replace);
+}
+
 }  // namespace cavity::core

@@ -19,7 +19,7 @@ Status onlyKeys(const std::string& path, const std::string& where, const json& o
 }
 
 std::string shortDump(const json& v) {
-    std::string s = v.dump();
+    std::string s = core::jsonText(v);
     return s.size() > 60 ? s.substr(0, 57) + "..." : s;
 }
 

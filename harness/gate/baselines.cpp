@@ -50,13 +50,13 @@ Result<std::map<std::string, double>> readTolerances(const std::string& path, co
     for (const auto& [k, v] : obj.items()) {
         if (!v.is_number()) return badInput(path + ": " + where + "." + k + " must be a number");
         const double x = v.get<double>();
-        if (!(x >= 0)) return badInput(path + ": " + where + "." + k + " is " + v.dump() + ": tolerances must be >= 0");
+        if (!(x >= 0)) return badInput(path + ": " + where + "." + k + " is " + core::jsonText(v) + ": tolerances must be >= 0");
         if (k == "differing_delta" && (x != std::floor(x) || x > 255))
-            return badInput(path + ": " + where + "." + k + " is " + v.dump() + ": must be an integer in 0..255 (8-bit steps)");
+            return badInput(path + ": " + where + "." + k + " is " + core::jsonText(v) + ": must be an integer in 0..255 (8-bit steps)");
         if (k == "sized_for_pixels" && x != std::floor(x))
-            return badInput(path + ": " + where + "." + k + " is " + v.dump() + ": must be a whole number of pixels (0: any size)");
+            return badInput(path + ": " + where + "." + k + " is " + core::jsonText(v) + ": must be a whole number of pixels (0: any size)");
         if ((k == "differing_share_max" || k == "over_threshold_share") && x > 1)
-            return badInput(path + ": " + where + "." + k + " is " + v.dump() + ": must be a share in 0..1");
+            return badInput(path + ": " + where + "." + k + " is " + core::jsonText(v) + ": must be a share in 0..1");
         out[k] = x;
     }
     return out;
@@ -117,7 +117,7 @@ Result<Manifest> loadManifest(const std::string& path) {
             Manifest::DeviceOverride o{d["pattern"].get<std::string>(), {}};
             if (d.contains("scope")) {
                 if (d["scope"] != "baselines" && d["scope"] != "all")
-                    return badInput(path + ": " + where + ".scope is " + d["scope"].dump() +
+                    return badInput(path + ": " + where + ".scope is " + core::jsonText(d["scope"]) +
                                     ": must be \"baselines\" (against the stored baselines only) or \"all\"");
                 o.everyReference = d["scope"] == "all";
             }
@@ -163,7 +163,7 @@ Result<Budgets> loadBudgets(const std::string& path) {
                 if (!passes.is_object()) return badInput(path + ": " + where + ".budgets_ms[\"" + id + "\"] must be an object");
                 for (const auto& [pass, ms] : passes.items()) {
                     if (!ms.is_number() || !(ms.get<double>() > 0))
-                        return badInput(path + ": budget " + id + " " + pass + " is " + ms.dump() + ": must be a number > 0");
+                        return badInput(path + ": budget " + id + " " + pass + " is " + core::jsonText(ms) + ": must be a number > 0");
                     dev.configs[id][pass] = ms.get<double>();
                 }
             }

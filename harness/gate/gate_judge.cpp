@@ -179,7 +179,7 @@ Result<ImageCheck> fromRemote(ImageCheck& check, const RemoteCheck& k, const Con
                         " for it: render it again");
     if (k.tolerance != toleranceJson(check.tolerance))
         return badInput(r.label() + ": " + check.image + " was judged where it was rendered with other tolerances than "
-                        "manifest.json's here (" + k.tolerance.dump() + "): render it again");
+                        "manifest.json's here (" + core::jsonText(k.tolerance) + "): render it again");
     CAVITY_ASSIGN(check.metrics, metricsFromJson(k.metrics, r.label() + " " + check.image));
     check.failures = verdict(*check.metrics, check.tolerance, perceptual);
     if (!check.failures.empty())

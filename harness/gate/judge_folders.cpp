@@ -145,12 +145,12 @@ Result<std::vector<Folder>> readFolders(const std::vector<std::string>& dirs) {
                 return badInput(f.path + ": rendered by build " + f.m.gitCommit + ", but " + first.path + " by build " +
                                 first.m.gitCommit + " (render every shard with one build)");
             if (render::replacedJson(f.m.replaced) != render::replacedJson(first.m.replaced))
-                return badInput(f.path + ": rendered with kernel sources " + render::replacedJson(f.m.replaced).dump() + ", but " +
-                                first.path + " with " + render::replacedJson(first.m.replaced).dump() +
+                return badInput(f.path + ": rendered with kernel sources " + core::jsonText(render::replacedJson(f.m.replaced)) + ", but " +
+                                first.path + " with " + core::jsonText(render::replacedJson(first.m.replaced)) +
                                 " (render every shard with the same --kernel-source)");
             if (measure::packagesJson(f.m.packages) != measure::packagesJson(first.m.packages))
-                return badInput(f.path + ": rendered with kernel packages " + measure::packagesJson(f.m.packages).dump() + ", but " +
-                                first.path + " with " + measure::packagesJson(first.m.packages).dump() +
+                return badInput(f.path + ": rendered with kernel packages " + core::jsonText(measure::packagesJson(f.m.packages)) + ", but " +
+                                first.path + " with " + core::jsonText(measure::packagesJson(first.m.packages)) +
                                 " (render every shard with the same --kernels)");
         }
         folders.push_back(std::move(f));

@@ -70,7 +70,7 @@ std::string chartPage(const std::vector<Series>& series, const ChartOptions& o) 
     for (const auto& s : series) all.push_back(seriesJson(s, o.detector));
     const json data = {{"db", o.db}, {"generated", measure::utcTimestamp()}, {"alpha", o.detector.alpha},
                        {"min_change_pct", o.detector.minChange * 100}, {"series", all}};
-    const std::string dataText = core::scriptSafeJson(data.dump());
+    const std::string dataText = core::scriptSafeJson(core::jsonText(data));
     // Last marker first, so that no inserted text is searched for a marker.
     std::string page = chartPageFiles().at("chart_page.html");
     replace(page, "/*PAGE_JS*/", chartPageFiles().at("chart_page.js"));

@@ -226,7 +226,7 @@ json resultsDocument(const std::vector<RunRecord>& runs, const std::vector<RunEr
     return doc;
 }
 
-Status writeJson(const std::string& path, const json& doc) { return writeFileAtomically(path, doc.dump(2) + "\n"); }
+Status writeJson(const std::string& path, const json& doc) { return writeFileAtomically(path, core::jsonText(doc, 2) + "\n"); }
 
 std::vector<PackageUsed> packagesUsed(const std::set<std::string>& kernels) {
     std::vector<PackageUsed> out;

@@ -96,7 +96,7 @@ Status saveApprovals(const std::string& path, const Approvals& a) {
     // One approval a line: the file grows by a line per image a review
     // approves, and a diff shows which.
     std::string text = "{\n  \"schema\": \"cavity.approvals/1\",\n  \"approvals\": [";
-    for (size_t i = 0; i < list.size(); ++i) text += (i ? ",\n    " : "\n    ") + list[i].dump();
+    for (size_t i = 0; i < list.size(); ++i) text += (i ? ",\n    " : "\n    ") + core::jsonText(list[i]);
     text += list.empty() ? "]\n}\n" : "\n  ]\n}\n";
     return writeFileAtomically(path, text);
 }

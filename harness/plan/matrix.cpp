@@ -94,17 +94,17 @@ Result<std::vector<std::pair<std::string, std::vector<double>>>> parseParams(con
         std::vector<double> list;
         for (const auto& v : values) {
             if (std::count(values.begin(), values.end(), v) > 1)
-                return badInput(path + ": " + gw + ".params." + name + " has " + v.dump() + " twice");
+                return badInput(path + ": " + gw + ".params." + name + " has " + core::jsonText(v) + " twice");
             if (v.is_string() && decl.type == kernels::ParamType::Enum) {
                 auto parsed = kernels::parseValue(decl, v.get<std::string>());
                 if (!parsed)
-                    return badInput(path + ": " + gw + ".params." + name + " has " + v.dump() + ": must be " +
+                    return badInput(path + ": " + gw + ".params." + name + " has " + core::jsonText(v) + ": must be " +
                                     kernels::allowedValues(decl));
                 list.push_back(*parsed);
                 continue;
             }
             if (!v.is_number())
-                return badInput(path + ": " + gw + ".params." + name + " has " + v.dump() + ": must be " +
+                return badInput(path + ": " + gw + ".params." + name + " has " + core::jsonText(v) + ": must be " +
                                 kernels::allowedValues(decl));
             list.push_back(v.get<double>());
         }
@@ -166,7 +166,7 @@ Result<Matrix> loadMatrix(const std::string& path, const std::string& name) {
     CAVITY_TRY(onlyKeys(path, where, m, {"description", "frames", "warmup", "groups"}));
     Matrix matrix;
     matrix.name = name;
-    const std::string text = m.dump();
+    const std::string text = core::jsonText(m);
     matrix.hash = digestText(fnv1a64(text.data(), text.size()));
     // The same ranges as cavity run's --frames and --warmup.
     CAVITY_ASSIGN(const JsonObject fields, JsonObject::of(path, where, m));

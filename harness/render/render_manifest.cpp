@@ -59,7 +59,7 @@ Result<std::vector<ReplacedSource>> parseReplaced(const json& j, const std::stri
     for (const auto& r : j) {
         if (!r.is_object() || !r.contains("name") || !r.contains("file") || !r.contains("digest") || !r["name"].is_string() ||
             !r["file"].is_string() || !r["digest"].is_string())
-            return badInput(path + ": kernel_sources has " + r.dump() + " (each {name, file, digest}, strings)");
+            return badInput(path + ": kernel_sources has " + core::jsonText(r) + " (each {name, file, digest}, strings)");
         out.push_back({r["name"], r["file"], r["digest"]});
     }
     return out;
@@ -96,7 +96,7 @@ json toJson(const RenderManifest& m) {
 Result<RenderManifest> parseManifest(const json& j, const std::string& path) {
     if (!j.is_object() || !j.contains("schema") || j["schema"] != kRenderSchema)
         return badInput(path + ": not a render manifest (schema must be " + std::string(kRenderSchema) + ", found " +
-                        (j.is_object() && j.contains("schema") ? j["schema"].dump() : std::string("none")) + ")");
+                        (j.is_object() && j.contains("schema") ? core::jsonText(j["schema"]) : std::string("none")) + ")");
     if (j.value("image_format", "") != kImageFormat)
         return badInput(path + ": image_format " + j.value("image_format", "(none)") + " (this build reads " +
                         kImageFormat + ")");

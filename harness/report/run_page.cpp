@@ -58,7 +58,7 @@ Status writeRunPage(const std::string& dir, const std::vector<measure::RunRecord
     // Last marker first, so that no inserted text is searched for a marker.
     replace(page, "/*PAGE_JS*/", reportFiles().at("run_page.js"));
     replace(page, "/*CHART_JS*/", core::chartLibrary());
-    replace(page, "/*RUN_DATA*/", core::scriptSafeJson(runPageData(runs, command).dump()));
+    replace(page, "/*RUN_DATA*/", core::scriptSafeJson(core::jsonText(runPageData(runs, command))));
     return writeFileAtomically((std::filesystem::path(dir) / "index.html").string(), page);
 }
 

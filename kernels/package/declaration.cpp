@@ -36,7 +36,6 @@ const std::map<std::string, ParamType>& paramTypes() {
 Result<double> number(const Ctx& c, const toml::table& t, const std::string& where, const std::string& key) {
     const toml::node* n = t.get(key);
     if (!n) return c.fail(&t, where + key, "", "missing; a number is required");
-    if (n->is_boolean()) return *n->value<bool>() ? 1.0 : 0.0;
     if (!n->is_number()) return c.fail(n, where + key, show(*n), "must be a number");
     // An integer as TOML holds it (64 bits); value<double>() has none for
     // one a double cannot hold exactly.
@@ -70,6 +69,14 @@ Result<ParamDecl> newParam(const Ctx& c, const toml::table& t, const std::string
     if (ty == paramTypes().end())
         return c.fail(t.get("type"), where + "type", type, "must be int, float, bool or enum");
     p.type = ty->second;
+    // What each type takes: a key that does not apply is a mistake, not a no-op.
+    for (const char* key : {"min", "max", "choices"}) {
+        const bool applies = std::string(key) == "choices" ? p.type == ParamType::Enum
+                                                           : p.type == ParamType::Int || p.type == ParamType::Float;
+        if (t.get(key) && !applies)
+            return c.fail(t.get(key), where + key, show(*t.get(key)), "does not apply to a parameter of type " + type +
+                          " (int and float take min and max, enum takes choices, bool neither)");
+    }
     CAVITY_ASSIGN(p.help, text(c, t, where, "help", true));
     CAVITY_ASSIGN(p.unit, text(c, t, where, "unit", false));
     if (p.type == ParamType::Bool) {
@@ -80,11 +87,13 @@ Result<ParamDecl> newParam(const Ctx& c, const toml::table& t, const std::string
             return c.fail(t.get("choices") ? t.get("choices") : &t, where + "choices", "", "an enum needs a list of names");
         for (auto&& v : *ch) {
             const std::string choice = *v.value<std::string>();
-            // Each must be givable as a flag's value, and tell one from another.
-            if (choice.empty() || choice.find_first_of(", \t\n") != std::string::npos ||
-                std::find(p.choices.begin(), p.choices.end(), choice) != p.choices.end())
-                return c.fail(&v, where + "choices", choice, "each choice must be a distinct, non-empty name "
-                                                             "without spaces or commas");
+            // Each must be givable as a flag's value, tell one from another,
+            // and stay one segment of a configuration id, which is a path
+            // under --out and the baselines.
+            static const std::regex word("[A-Za-z0-9][A-Za-z0-9_+-]{0,31}");
+            if (!std::regex_match(choice, word) || std::find(p.choices.begin(), p.choices.end(), choice) != p.choices.end())
+                return c.fail(&v, where + "choices", show(v), "each choice must be a distinct name of letters, digits, _, + "
+                                                             "or - (32 at most, starting with a letter or digit)");
             p.choices.push_back(choice);
         }
         p.min = 0, p.max = double(p.choices.size() - 1);
@@ -105,9 +114,16 @@ Result<double> defaultValue(const Ctx& c, const toml::node& n, const ParamDecl& 
             if (p.choices[i] == name) return double(i);
         return c.fail(&n, key, name, "must be " + allowedValues(p));
     }
-    if (n.is_boolean()) return *n.value<bool>() ? 1.0 : 0.0;
+    if (p.type == ParamType::Enum) return c.fail(&n, key, show(n), "must be " + allowedValues(p) + ", in quotes");
+    if (p.type == ParamType::Bool) {   // as on the command line, 0 and 1 too
+        if (n.is_integer() && (*n.value<int64_t>() == 0 || *n.value<int64_t>() == 1)) return double(*n.value<int64_t>());
+        if (!n.is_boolean()) return c.fail(&n, key, show(n), "must be true or false (or 0 or 1)");
+        return *n.value<bool>() ? 1.0 : 0.0;
+    }
     if (!n.is_number()) return c.fail(&n, key, show(n), "must be a number");
-    return *n.value<double>();
+    // An integer as TOML holds it (64 bits): value<double>() has none for
+    // one a double cannot hold exactly.
+    return n.is_integer() ? double(*n.value<int64_t>()) : *n.value<double>();
 }
 
 struct ParamsOut {
@@ -122,6 +138,10 @@ Status readParam(const Ctx& c, const toml::table& t, size_t i, KernelDecl& k, Pa
         return c.fail(t.get("name"), where + "name", name, "must be a GLSL name: a-z, then a-z, 0-9 or _ (32 at most)");
     for (const auto& p : k.params)
         if (p.name() == name) return c.fail(t.get("name"), where + "name", name, "declared twice in this kernel");
+    if (!findParam(name) && reservedName(name, true))
+        return c.fail(t.get("name"), where + "name", name,
+                      "is reserved: a flag of cavity run, gate, quality, cavity_bench or cavity_render, or a word GLSL "
+                      "keeps; name the parameter otherwise");
     const ParamDecl* decl = findParam(name);
     const bool fresh = !decl, redeclared = !fresh && t.get("type");
     if (redeclared) {
@@ -164,7 +184,8 @@ Status readParam(const Ctx& c, const toml::table& t, size_t i, KernelDecl& k, Pa
         return c.fail(&t, where + "default", "", "missing; a new parameter needs its default");
     }
     if (const Status s = checkValue(*decl, kp.def); !s)
-        return c.fail(t.get("default") ? t.get("default") : &t, where + "default", valueText(*decl, kp.def),
+        return c.fail(t.get("default") ? t.get("default") : &t, where + "default",
+                      t.get("default") ? show(*t.get("default")) : valueText(*decl, kp.def),
                       "outside the parameter's range: must be " + allowedValues(*decl));
     if (fresh) out.added.back().def = kp.def;
     if (const toml::node* ci = t.get("compiled_in")) {

@@ -7,6 +7,7 @@
 #include "screen_space_tables.h"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <memory>
 #include <regex>
@@ -74,7 +75,12 @@ Status readTop(const toml::table& root, const Ctx& c, KernelDecl& k) {
         const toml::array* a = s->as_array();
         if (!a || !a->is_homogeneous(toml::node_type::string))
             return c.fail(s, "sources", show(*s), "must be a list of strings (the publications it follows)");
-        for (auto&& v : *a) k.sources.push_back(*v.value<std::string>());
+        for (auto&& v : *a) {
+            const std::string source = *v.value<std::string>();
+            if (source.find_first_not_of(' ') == std::string::npos)
+                return c.fail(&v, "sources", show(v), "each source must name a publication (not empty)");
+            k.sources.push_back(source);
+        }
     }
     CAVITY_ASSIGN(const std::string role, text(c, root, "", "role", true));
     // A user's package is an AO estimator, which the harness builds its
@@ -217,6 +223,12 @@ Status readArrays(const toml::table& root, const Ctx& c, KernelDecl& k) {
         CAVITY_TRY(onlyKeys(c, t, where, {"name", "vec4", "derive"}));
         ArrayDecl d;
         CAVITY_ASSIGN(d.name, text(c, t, where, "name", true));
+        static const std::regex ident("[a-z][a-z0-9_]{0,31}");
+        if (!std::regex_match(d.name, ident) || reservedName(d.name, false))
+            return c.fail(t.get("name"), where + "name", d.name, "must be a GLSL name (a-z, then a-z, 0-9 or _; 32 at "
+                          "most) that GLSL and the harness do not keep");
+        if (declares(k, d.name) || std::any_of(k.arrays.begin(), k.arrays.end(), [&](const auto& o) { return o.name == d.name; }))
+            return c.fail(t.get("name"), where + "name", d.name, "is taken by a parameter or array of this kernel");
         const toml::node* n = t.get("vec4");
         if (!n || !n->is_integer() || *n->value<int64_t>() < 1 || *n->value<int64_t>() > 1024)
             return c.fail(n ? n : &t, where + "vec4", n ? show(*n) : "", "must be the array's vec4 count, 1 to 1024");
@@ -241,78 +253,6 @@ Status readArrays(const toml::table& root, const Ctx& c, KernelDecl& k) {
             else if (gen == "spiral") arrays[name] = spiralTable();
             else arrays[name] = skySh();
         }
-    };
-    return {};
-}
-
-Status readCost(const toml::table& root, const Ctx& c, KernelDecl& k) {
-    const toml::node* n = root.get("cost");
-    if (!n) return {};
-    const toml::table* t = n->as_table();
-    if (!t) return c.fail(n, "cost", show(*n), "must be a table ([cost])");
-    const std::vector<std::string> keys = {"fetches", "bytes", "fetch_slots", "dram_bytes"};
-    std::set<std::string> allowedKeys(keys.begin(), keys.end());
-    allowedKeys.insert("let");
-    CAVITY_TRY(onlyKeys(c, *t, "cost.", allowedKeys));
-    // A formula reads the kernel's parameters, the pass's shape (a compute
-    // pass's workgroup may share a tile of its inputs) and the named terms
-    // of [cost.let], which may read each other but not in a circle.
-    std::set<std::string> names = {"compute", "workgroup_x", "workgroup_y"};
-    for (const auto& p : k.params) names.insert(p.name());
-    std::vector<std::pair<std::string, Expression>> lets;
-    if (const toml::node* ln = t->get("let")) {
-        const toml::table* lt = ln->as_table();
-        if (!lt) return c.fail(ln, "cost.let", show(*ln), "must be a table of named formulas ([cost.let])");
-        static const std::regex ident("[a-z][a-z0-9_]{0,31}");
-        for (auto&& [key, v] : *lt) {
-            const std::string name(key.str());
-            if (!std::regex_match(name, ident) || names.count(name))
-                return c.fail(&v, "cost.let." + name, show(v),
-                              "a term's name is a-z, then a-z, 0-9 or _, and not a parameter's or compute, workgroup_x, "
-                              "workgroup_y");
-        }
-        std::set<std::string> all = names;
-        for (auto&& [key, v] : *lt) all.insert(std::string(key.str()));
-        std::map<std::string, Expression> pending;
-        for (auto&& [key, v] : *lt) {
-            const std::string name(key.str());
-            if (!v.is_string()) return c.fail(&v, "cost.let." + name, show(v), "must be a formula in quotes");
-            auto parsed = Expression::parse(*v.value<std::string>(), all);
-            if (!parsed) return c.fail(&v, "cost.let." + name, "\"" + *v.value<std::string>() + "\"", parsed.error().message);
-            pending.emplace(name, *parsed);
-        }
-        // In an order where each term follows the terms it reads.
-        std::set<std::string> known = names;
-        while (!pending.empty()) {
-            auto ready = std::find_if(pending.begin(), pending.end(), [&](const auto& e) {
-                const auto used = e.second.names();
-                return std::all_of(used.begin(), used.end(), [&](const std::string& u) {
-                    return known.count(u) || !pending.count(u);
-                });
-            });
-            if (ready == pending.end())
-                return c.fail(lt->get(pending.begin()->first), "cost.let." + pending.begin()->first,
-                              "\"" + pending.begin()->second.text() + "\"", "the terms read each other in a circle");
-            known.insert(ready->first);
-            lets.emplace_back(ready->first, ready->second);
-            pending.erase(ready);
-        }
-        names = std::move(known);
-    }
-    std::vector<Expression> e;
-    for (const auto& key : keys) {
-        CAVITY_ASSIGN(const std::string formula, text(c, *t, "cost.", key, true));
-        auto parsed = Expression::parse(formula, names);
-        if (!parsed) return c.fail(t->get(key), "cost." + key, "\"" + formula + "\"", parsed.error().message);
-        e.push_back(*parsed);
-    }
-    k.cost = [e, lets](const ParamValues& given, const PassShape& shape) {
-        ParamValues v = given;
-        v["compute"] = shape.compute ? 1 : 0;
-        v["workgroup_x"] = shape.workgroup.x;
-        v["workgroup_y"] = shape.workgroup.y;
-        for (const auto& [name, formula] : lets) v[name] = formula.evaluate(v);
-        return Cost{e[0].evaluate(v), e[1].evaluate(v), e[2].evaluate(v), e[3].evaluate(v)};
     };
     return {};
 }
@@ -354,10 +294,13 @@ Status readExpectations(const toml::table& root, const Ctx& c, KernelDecl& k) {
             k.expectations[key] = "seed";
             continue;
         }
-        if (!v->is_number() || *v->value<double>() < 0 || *v->value<double>() > 1)
+        // An integer as TOML holds it (64 bits): value<double>() has none for
+        // one a double cannot hold exactly. NaN fails the range too.
+        const double x = !v->is_number() ? NAN : v->is_integer() ? double(*v->value<int64_t>()) : *v->value<double>();
+        if (!(x >= 0 && x <= 1))
             return c.fail(v, std::string("expectations.") + key, show(*v),
                           std::string("must be a number in 0..1") + (std::string(key) == "crease" ? ", or \"seed\"" : ""));
-        k.expectations[key] = std::to_string(*v->value<double>());
+        k.expectations[key] = std::to_string(x);
     }
     CAVITY_ASSIGN(const std::string gap, text(c, *t, "expectations.", "narrow_gap", false));
     if (!gap.empty() && gap != "layer" && gap != "seed")

@@ -54,6 +54,23 @@ private:
     const std::string& t_;
     const std::set<std::string>& names_;
     size_t i_ = 0;
+    // Bounds that keep parsing, evaluating and freeing the tree off the end
+    // of the stack: a formula is a few terms, not a program.
+    static constexpr int kMaxDepth = 64;
+    static constexpr int kMaxNodes = 2000;
+    int depth_ = 0, nodes_ = 0;
+
+    // Entered where the grammar nests: '(' , a call's arguments, unary minus.
+    struct Nest {
+        int& d;
+        explicit Nest(int& depth) : d(++depth) {}
+        ~Nest() { --d; }
+    };
+    Status room() {
+        if (depth_ > kMaxDepth) return fail("nested more than " + std::to_string(kMaxDepth) + " deep");
+        if (++nodes_ > kMaxNodes) return fail("more than " + std::to_string(kMaxNodes) + " terms");
+        return {};
+    }
 
     Error fail(const std::string& what) const {
         return badInput("column " + std::to_string(i_ + 1) + ": " + what);
@@ -90,6 +107,8 @@ private:
         }
     }
     Result<NodePtr> unary() {
+        const Nest nest(depth_);
+        CAVITY_TRY(room());
         if (eat('-')) {
             CAVITY_ASSIGN(NodePtr operand, unary());
             auto n = std::make_shared<Node>();

@@ -55,13 +55,25 @@ bool taken(const std::vector<KernelDecl>& registry, const std::string& name) {
 // keys "<name>/<path in the folder>", each labelled with its path on disk.
 Status loadFolder(const fs::path& folder, std::vector<KernelDecl>& registry) {
     const fs::path decl = folder / "kernel.toml";
-    if (!fs::is_regular_file(decl)) return badInput(folder.string() + ": no kernel.toml (a package folder holds its declaration)");
+    std::error_code ec;
+    if (!fs::is_regular_file(decl, ec))
+        return badInput(decl.string() + ": " + (ec ? ec.message() : std::string("not a file")) +
+                        " (a package folder holds its declaration, kernel.toml)");
     CAVITY_ASSIGN(const std::string text, readText(decl));
     std::map<std::string, std::string> glsl;   // path in the folder -> text
-    for (const auto& e : fs::recursive_directory_iterator(folder)) {
-        if (!e.is_regular_file() || e.path().extension() != ".glsl") continue;
-        CAVITY_ASSIGN(std::string body, readText(e.path()));
-        glsl[fs::relative(e.path(), folder).generic_string()] = std::move(body);
+    // A link in a circle or a folder that cannot be read is the package's
+    // error, said in one line, not an exception.
+    try {
+        for (const auto& e : fs::recursive_directory_iterator(folder)) {
+            if (e.path().extension() != ".glsl") continue;
+            if (!e.is_regular_file(ec))
+                return badInput(e.path().string() + ": " + (ec ? ec.message() : std::string("not a regular file")) +
+                                " (a package's GLSL files are plain files)");
+            CAVITY_ASSIGN(std::string body, readText(e.path()));
+            glsl[fs::relative(e.path(), folder).generic_string()] = std::move(body);
+        }
+    } catch (const fs::filesystem_error& e) {
+        return badInput(e.path1().string() + ": cannot be read (" + e.code().message() + ")");
     }
     PackageInfo info;
     DeclarationInput in{text, decl.string(), "", [&](const std::string& f) { return glsl.count(f) > 0; },
@@ -118,11 +130,16 @@ Status loadPackages(const std::string& dir) {
     const std::string canonical = fs::weakly_canonical(dir, ec).string();
     if (done.count(canonical)) return {};
     std::vector<fs::path> folders;
-    if (fs::exists(fs::path(dir) / "kernel.toml")) {
+    if (fs::exists(fs::symlink_status(fs::path(dir) / "kernel.toml", ec))) {
         folders.push_back(dir);
     } else {
-        for (const auto& e : fs::directory_iterator(dir, ec))
-            if (e.is_directory() && fs::exists(e.path() / "kernel.toml")) folders.push_back(e.path());
+        const auto at = [&](const fs::directory_entry& e) {
+            std::error_code e2;
+            return fs::exists(fs::symlink_status(e.path() / "kernel.toml", e2));
+        };
+        for (auto it = fs::directory_iterator(dir, ec); !ec && it != fs::directory_iterator(); it.increment(ec))
+            if (std::error_code e2; it->is_directory(e2) && at(*it)) folders.push_back(it->path());
+        if (ec) return badInput(dir + ": cannot be read (" + ec.message() + ")");
         if (folders.empty()) return badInput(dir + ": no kernel.toml in it or in any folder directly under it");
         std::sort(folders.begin(), folders.end());
     }

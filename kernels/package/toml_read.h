@@ -19,14 +19,23 @@ struct Ctx {
     const DeclarationInput& in;
     Error fail(const toml::node* at, const std::string& key, const std::string& value, const std::string& allowed) const {
         const auto line = at ? at->source().begin.line : 1;
-        return badInput(in.label + ":" + std::to_string(line) + ": " + key + (value.empty() ? "" : " = " + value) +
+        // A value is shown whole up to a line's worth; longer, its start.
+        const std::string shown = value.size() > 80 ? value.substr(0, 60) + "... (" + std::to_string(value.size()) + " characters)" : value;
+        return badInput(in.label + ":" + std::to_string(line) + ": " + key + (value.empty() ? "" : " = " + shown) +
                         ": " + allowed);
     }
 };
 
 inline std::string show(const toml::node& n) {
     std::ostringstream s;
-    if (n.is_table()) s << "{...}";
+    if (const auto* str = n.as_string()) {   // quoted, a control character escaped: one line
+        s << '"';
+        for (const char ch : str->get()) {
+            if (static_cast<unsigned char>(ch) < 0x20 || ch == 0x7f) s << "\\x" << "0123456789abcdef"[(ch >> 4) & 15] << "0123456789abcdef"[ch & 15];
+            else s << ch;
+        }
+        s << '"';
+    } else if (n.is_table()) s << "{...}";
     else if (const auto* a = n.as_array()) s << "[" << a->size() << " values]";
     else n.visit([&](auto&& v) { s << v; });
     return s.str();
@@ -56,8 +65,13 @@ inline Result<std::string> text(const Ctx& c, const toml::table& t, const std::s
     }
     if (!n->is_string()) return c.fail(n, where + key, show(*n), "must be a string");
     std::string value(*n->value<std::string>());
-    if (required && value.find_first_not_of(" \t\n") == std::string::npos)
-        return c.fail(n, where + key, show(*n), "must not be empty");
+    // Every string of a declaration is printed on one line of a table or
+    // a message: no line break, no terminal escape.
+    for (const char ch : value)
+        if (static_cast<unsigned char>(ch) < 0x20 || ch == 0x7f)
+            return c.fail(n, where + key, show(*n), "must be one line of printable text (no control characters)");
+    if (value.find_first_not_of(' ') == std::string::npos)
+        return c.fail(n, where + key, show(*n), required ? "must not be empty" : "must not be empty (leave the key out)");
     return value;
 }
 
@@ -79,5 +93,7 @@ Status readCost(const toml::table& root, const Ctx& c, KernelDecl& k);
 Status readPipeline(const toml::table& root, const Ctx& c, const KernelDecl& k);
 Status readExpectations(const toml::table& root, const Ctx& c, KernelDecl& k);
 Status readPaths(const toml::table& root, const Ctx& c, KernelDecl& k);   // declaration_paths.cpp
+// A name a new parameter or array may not take (reserved_names.cpp).
+bool reservedName(const std::string& name, bool asFlag);
 
 }  // namespace cavity::kernels::toml_read
