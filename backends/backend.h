@@ -125,6 +125,9 @@ struct ShaderSource {
     Stage stage = Stage::Compute;
     std::string glsl;
     std::vector<std::string> files;   // files[k] is "#line N k"'s source k
+    // A kernel of a package from disk: whatever it includes, a source that
+    // does not compile is the user's input (exit 2), not our bug.
+    bool fromUser = false;
 };
 
 struct ComputePipelineDesc {

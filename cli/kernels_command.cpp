@@ -129,7 +129,7 @@ int show(const std::string& name) {
     if (!k) return fail("cavity kernels show", badInput("'" + name + "': no such kernel (cavity kernels list)"));
     std::cout << k->name << " (" << roleName(k->role) << ", " << origin(*k) << "): " << k->summary << "\n";
     for (const auto& s : k->sources) std::cout << "source: " << s << "\n";
-    std::cout << "file: " << k->file << "\nparameters (default, allowed):\n";
+    std::cout << "file: " << kernels::sourceLabel(k->file) << "\nparameters (default, allowed):\n";
     for (const auto& p : k->params) std::cout << paramLine(p) << "\n";
     std::cout << "inputs:";
     for (const auto& i : k->inputs) std::cout << " " << i.name;
@@ -241,8 +241,9 @@ std::vector<std::string> checkOne(const kernels::KernelDecl& k) {
         for (const auto stage : {gpu::Stage::Compute, gpu::Stage::Fragment}) {
             if (stage == gpu::Stage::Fragment && computeOnly(k)) continue;
             auto src = kernels::assemble(k, stage, {}, &values);
-            if (!src) {
-                problems.push_back(src.error().message);
+            if (!src) {   // the same on every API: said once
+                if (std::find(problems.begin(), problems.end(), src.error().message) == problems.end())
+                    problems.push_back(src.error().message);
                 continue;
             }
             auto active = kernels::activeUniforms(*src, api);

@@ -212,7 +212,11 @@ Status expand(const std::string& name, const std::map<std::string, std::string>&
             const auto q0 = line.find('"'), q1 = line.rfind('"');
             if (q0 == std::string::npos || q1 <= q0)
                 return badInput(label + ":" + std::to_string(lineNo) + ": malformed #include");
-            CAVITY_TRY(expand(includeKey(name, line.substr(q0 + 1, q1 - q0 - 1)), overrides, seen, files, out));
+            const std::string path = line.substr(q0 + 1, q1 - q0 - 1), key = includeKey(name, path);
+            if (!overrides.count(key) && !sourceFile(key))
+                return badInput(label + ":" + std::to_string(lineNo) + ": #include \"" + path + "\": no such file beside " +
+                                "it nor under kernels/ (a package includes files of its own folder, or kernels/include/...)");
+            CAVITY_TRY(expand(key, overrides, seen, files, out));
             out += "#line " + std::to_string(lineNo + 1) + " " + std::to_string(index) + "\n";
             continue;
         }
@@ -297,6 +301,8 @@ Result<gpu::ShaderSource> assemble(const KernelDecl& k, gpu::Stage stage,
     src.name = k.name;
     src.stage = stage;
     src.files.push_back("<preamble of " + k.name + ">");
+    const PackageInfo* package = findPackage(k.name);
+    src.fromUser = package && !package->builtIn;
     std::ostringstream p;
     p << "#version 450\n";
     // CAVITY_UNROLL: SPIR-V's Unroll hint on a loop, where the compiler

@@ -231,6 +231,16 @@ def check_bad(cavity, root):
                                           r.stderr):
         failures += 1
         print(f"FAIL a GLSL error: exit {r.returncode}, {r.stderr!r}")
+    # An #include that is not there is said where it is written, once (not
+    # once for each API and stage, naming neither includer nor line).
+    pkg = os.path.join(root, "bad", "include_missing")
+    make(pkg, glsl='#include "nope.glsl"\n' + GLSL)
+    r = run([cavity, "kernels", "check", pkg])
+    said = [l for l in r.stderr.splitlines() if "nope.glsl" in l]
+    if r.returncode != 2 or len(said) != 1 or not re.search(
+            re.escape(os.path.join(pkg, "ring_ao.glsl")) + r':1: #include "nope\.glsl": no such file beside it', said[0]):
+        failures += 1
+        print(f"FAIL a missing #include: exit {r.returncode}, {r.stderr!r}")
     # A shader that compiles on one API only: gl_VertexIndex is Vulkan's word.
     pkg = os.path.join(root, "bad", "one_api")
     make(pkg, glsl=GLSL.replace("float occlusion = 0.0;", "float occlusion = 0.0 * float(gl_VertexIndex);"))
@@ -249,7 +259,7 @@ def check_bad(cavity, root):
         if r.returncode != 2 or "undeclared_thing" not in r.stderr:
             failures += 1
             print(f"FAIL run of a kernel that does not compile on {api}: exit {r.returncode}, {r.stderr!r}")
-    n = len(bad_packages()) + 4
+    n = len(bad_packages()) + 5
     print(f"bad packages: {n - failures} of {n} refused with one line naming the file")
     return failures
 

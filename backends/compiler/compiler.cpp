@@ -119,7 +119,7 @@ Status parseAndLink(glslang::TShader& shader, glslang::TProgram& program, const 
     // A shader of ours that does not compile is our bug; one that holds a
     // file the user gave (a replacement, a package from disk: its label is
     // not under kernels/) is the user's input.
-    const bool given = std::any_of(src.files.begin(), src.files.end(), [](const std::string& f) {
+    const bool given = src.fromUser || std::any_of(src.files.begin(), src.files.end(), [](const std::string& f) {
         return !f.empty() && f[0] != '<' && f.rfind("kernels/", 0) != 0;
     });
     const auto fail = [&](const std::string& what) { return given ? badInput(what) : internal(what); };

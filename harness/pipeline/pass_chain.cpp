@@ -1,3 +1,4 @@
+#include "package/package.h"
 #include "pipeline/namespace.h"
 #include "core/camera.h"
 #include "pipeline/meshes.h"
@@ -226,8 +227,17 @@ Status PassChain::bindInputs(Pass& pass, const PassSpec& spec, const RunConfig& 
         if (constant && !constants_.count(in.name)) CAVITY_TRY(createConstant(in.name, c.params));
         auto& table = constant ? constants_ : images_;
         auto it = table.find(in.name);
-        if (it == table.end())
-            return internal("pass '" + spec.name + "' reads image '" + in.name + "' before any pass writes it");
+        if (it == table.end()) {
+            // A package from disk that reads what this pipeline does not make
+            // (zlayers outside the layered build) is the user's declaration.
+            const std::string what = "pass '" + spec.name + "' (" + spec.kernel + ") reads image '" + in.name +
+                                     "' before any pass writes it";
+            const kernels::PackageInfo* package = kernels::findPackage(spec.kernel);
+            if (package && !package->builtIn)
+                return badInput(package->declaration + ": " + what + " (the inputs this pipeline provides: cavity "
+                                "kernels check)");
+            return internal(what);
+        }
         pass.binds.push_back({b++, it->second.image, {}, pass.kernel->inputs[i].sampler});
     }
     return {};
