@@ -96,8 +96,8 @@ std::string runSummary(const std::vector<measure::RunRecord>& runs, const std::v
     }
     std::string deviceList;
     for (const auto& d : devices) deviceList += (deviceList.empty() ? "" : ", ") + d;
-    std::string out = fmt::format("\n{} configurations on {}. AO pipeline ms (median; G-buffer left out):\n",
-                                  runs.size(), deviceList);
+    std::string out = fmt::format("\n{} configuration{} on {}. AO pipeline ms (median; G-buffer left out):\n",
+                                  runs.size(), runs.size() == 1 ? "" : "s", deviceList);
     const ShortNames names(runs);
     using A = TextTable::Align;
     TextTable table({{"kernel", A::Left}, {"clock", A::Left}, {"fastest", A::Left}, {"slowest", A::Left},

@@ -419,7 +419,8 @@ def main():
         assert r.returncode == 0 and "/ring_ao/" in r.stdout, r.stdout + r.stderr
         # A matrix value twice, or one no kernel of its group reads; quality
         # with a package's parameter for a kernel that does not declare it.
-        for params, said in (('{"ring_px": [3, 3]}', "twice"), ('{"ring_px": [3]}', "no kernel of the group reads it")):
+        for params, said in (('{"ring_px": [3, 3]}', "twice"), ('{"ring_px": [3]}', "no kernel of the group reads it"),
+                             ('{"ring_pxx": [3]}', "has 'ring_pxx' (did you mean ring_px?)")):
             bad = os.path.join(root, "bad_matrix")
             shutil.copytree(base, bad, dirs_exist_ok=True)
             json.dump({"mine": {"description": "d", "groups": [

@@ -1,3 +1,4 @@
+#include "nearest.h"
 #include "plan/matrix.h"
 
 #include "plan/axes.h"
@@ -83,10 +84,16 @@ Result<std::vector<std::pair<std::string, std::vector<double>>>> parseParams(con
     if (!g.contains("params")) return out;
     if (!g["params"].is_object()) return badInput(path + ": " + gw + ".params must be an object of lists");
     for (const auto& [name, values] : g["params"].items()) {
-        if (name == "samples" || name == "blur" || name == "scene" || !kernels::findParam(name))
-            return badInput(path + ": " + gw + ".params has '" + name +
-                            "' (a kernel parameter other than samples, blur and scene; see cavity run --help, and "
+        if (name == "samples" || name == "blur" || name == "scene" || !kernels::findParam(name)) {
+            std::vector<std::string> known;
+            for (const auto& p : kernels::paramDecls())
+                if (p.name != "samples" && p.name != "blur" && p.name != "scene") known.push_back(p.name);
+            const std::string near = kernels::findParam(name) ? "" : nearestWord(name, known);
+            return badInput(path + ": " + gw + ".params has '" + name + "'" +
+                            (near.empty() ? "" : " (did you mean " + near + "?)") +
+                            " (a kernel parameter other than samples, blur and scene; see cavity run --help, and "
                             "load the package that declares it with --kernels DIR)");
+        }
         if (!values.is_array() || values.empty())
             return badInput(path + ": " + gw + ".params." + name + " must be a non-empty list of numbers");
         // A number, or an enum's choice by name as on the command line.
@@ -101,6 +108,10 @@ Result<std::vector<std::pair<std::string, std::vector<double>>>> parseParams(con
                     return badInput(path + ": " + gw + ".params." + name + " has " + core::jsonText(v) + ": must be " +
                                     kernels::allowedValues(decl));
                 list.push_back(*parsed);
+                continue;
+            }
+            if (v.is_boolean() && decl.type == kernels::ParamType::Bool) {   // as kernel.toml takes it
+                list.push_back(v.get<bool>() ? 1 : 0);
                 continue;
             }
             if (!v.is_number())
