@@ -251,7 +251,7 @@ int main(int argc, char** argv) {
     // Kernel packages first (--kernels DIR, CAVITY_KERNELS): the sweep and the
     // flags then hold their kernels and parameters.
     if (const auto loaded = cavity::kernels::loadPackagesFromCommandLine(argc, argv); !loaded) {
-        std::cerr << "cavity_bench: " << loaded.error().message << "\n";
+        std::cerr << "cavity_bench: " << cavity::flags::printable(loaded.error().message) << "\n";
         return 2;
     }
     if (argc > 1 && std::string(argv[1]) == "--version") {
@@ -262,7 +262,7 @@ int main(int argc, char** argv) {
     bool help = false;
     auto options = parse(argc, argv, rest, help);
     if (!options) {
-        std::cerr << "cavity_bench: " << options.error().message << "\n";
+        std::cerr << "cavity_bench: " << cavity::flags::printable(options.error().message) << "\n";
         return 2;
     }
     if (help) return 0;
@@ -278,7 +278,7 @@ int main(int argc, char** argv) {
                       filter = benchmarkFlag(rest, "benchmark_filter"),
                       consoleFormat = benchmarkFlag(rest, "benchmark_format");
     if (const auto checked = checkBenchmarkFlags(rest, filter, out); !checked) {
-        std::cerr << "cavity_bench: " << checked.error().message << "\n";
+        std::cerr << "cavity_bench: " << cavity::flags::printable(checked.error().message) << "\n";
         return 2;
     }
     // Google Benchmark writes --benchmark_out as it goes: it writes a file
@@ -294,13 +294,13 @@ int main(int argc, char** argv) {
     if (benchmark::ReportUnrecognizedArguments(n, rest.data())) return 2;
     // A bad CAVITY_*_BARRIERS is the user's input, not a backend that failed.
     if (auto env = cavity::gpu::withEnvironment({}); !env) {
-        std::cerr << "cavity_bench: " << env.error().message << "\n";
+        std::cerr << "cavity_bench: " << cavity::flags::printable(env.error().message) << "\n";
         return 2;
     }
     options->filter = filter;
     auto registered = cavity::bench::registerSweep(*options);
     if (!registered) {
-        std::cerr << "cavity_bench: " << registered.error().message << "\n";
+        std::cerr << "cavity_bench: " << cavity::flags::printable(registered.error().message) << "\n";
         return static_cast<int>(registered.error().code);
     }
     // A JSON file gets one more entry per pass (<id>@<pass>), so that Google

@@ -46,7 +46,7 @@ int main(int argc, char** argv) {
     // CAVITY_KERNELS): every command then sees their kernels and parameters
     // as the built-ins'.
     if (const auto loaded = cavity::kernels::loadPackagesFromCommandLine(args); !loaded) {
-        std::cerr << "cavity: " << loaded.error().message << "\n";
+        std::cerr << "cavity: " << cavity::flags::printable(loaded.error().message) << "\n";
         return 2;
     }
     if (!args.empty() && args[0] == "--version") {

@@ -60,6 +60,9 @@ Result<std::string> defaultBaselines();
 int exitCode(const Error& e);
 // The edge of a command: prints "program: message" on stderr and returns
 // the error's exit code.
+// The message on one line, as every error is: a line break or a terminal
+// escape a user's value brought in is written as \xNN.
+std::string printable(const std::string& text);
 int fail(const std::string& program, const Error& e);
 
 }  // namespace cavity::flags

@@ -76,7 +76,7 @@ const flags::CommandSpec& renderSpec() {
 }
 
 int fail(const Error& e) {
-    std::cerr << "cavity_render: " << e.message << "\n";
+    std::cerr << "cavity_render: " << flags::printable(e.message) << "\n";
     return flags::exitCode(e);
 }
 
