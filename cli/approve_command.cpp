@@ -51,7 +51,8 @@ const CommandSpec& approveSpec() {
             {"--with-kernel-source", "", "the gate run replaced kernel sources (--kernel-source): also copy each file over "
                                          "its kernels/NAME or its package's file, so that the tree renders what is approved"},
             {"--by", "NAME", "who approves (default: $USER)"},
-            {"--baselines", "DIR", "folder with approvals.json (default: baselines/ of the checkout)"},
+            {"--baselines", "DIR", "folder with approvals.json (default: baselines/ of the checkout found from the working "
+                                   "directory up, else of the source tree this binary was built from)"},
             {"--store", "DIR|URL", "the image store the approved images are put into, under their digest (default "
                                    "$CAVITY_STORE, else <baselines>/store; docs/store.md)"},
         },

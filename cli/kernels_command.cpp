@@ -116,8 +116,10 @@ int list() {
     return 0;
 }
 
-std::string paramLine(const kernels::KernelParam& p) {
+std::string paramLine(const kernels::KernelDecl& k, const kernels::KernelParam& p) {
     std::string s = "  --" + p.name() + " " + kernels::valueText(*p.decl, p.def) + "  (" + kernels::allowedValues(*p.decl) + ")";
+    // Compiled in: each value is its own build of the shader.
+    if (std::find(k.compileTime.begin(), k.compileTime.end(), p.name()) != k.compileTime.end()) s += " [compiled in]";
     // This kernel's note on it, else what the parameter is (its help).
     if (!p.note.empty()) s += ": " + p.note;
     else if (!p.decl->help.empty()) s += ": " + p.decl->help;
@@ -130,7 +132,7 @@ int show(const std::string& name) {
     std::cout << k->name << " (" << roleName(k->role) << ", " << origin(*k) << "): " << k->summary << "\n";
     for (const auto& s : k->sources) std::cout << "source: " << s << "\n";
     std::cout << "file: " << kernels::sourceLabel(k->file) << "\nparameters (default, allowed):\n";
-    for (const auto& p : k->params) std::cout << paramLine(p) << "\n";
+    for (const auto& p : k->params) std::cout << paramLine(*k, p) << "\n";
     std::cout << "inputs:";
     for (const auto& i : k->inputs) std::cout << " " << i.name;
     std::cout << "\noutputs:";
