@@ -29,7 +29,9 @@ def main():
         text = text.replace('name = "slices"', 'name = "copy_slices"').replace('name = "multibounce"', 'name = "copy_bounce"')
         open(toml, "w").write(text)
         glsl = os.path.join(pkg, "gtao_copy", "gtao.glsl")
-        open(glsl, "w").write(open(glsl).read().replace("P.slices", "P.copy_slices").replace("P.multibounce", "P.copy_bounce"))
+        # Read before the write opens (and empties) the file.
+        code = open(glsl).read().replace("P.slices", "P.copy_slices").replace("P.multibounce", "P.copy_bounce")
+        open(glsl, "w").write(code)
         env = dict(os.environ, BUNDLE_BINARIES="cavity_bench", BUILD_DIR=build, BUNDLE_KERNELS=pkg)
         packed = run([os.path.join(source, "scripts", "bundle.sh"), out], env=env)
         assert packed.returncode == 0, packed.stderr

@@ -285,7 +285,11 @@ TEST_F(Compare, KnownShiftIsSlowerAndTheRestIsSame) {
 
     // And a pull request can gate on it.
     EXPECT_EQ(cavity("compare " + o + " " + n + " --fail-on-slower").code, 1);
-    EXPECT_EQ(cavity("compare " + o + " " + o + " --fail-on-slower").code, 0);
+    // An unchanged run (another file of the same samples) passes; one file
+    // given as both runs compares nothing and is refused.
+    const std::string same = write("old_again.json", benchmarkJson({before}, true));
+    EXPECT_EQ(cavity("compare " + o + " " + same + " --fail-on-slower").code, 0);
+    EXPECT_EQ(cavity("compare " + o + " " + o + " --fail-on-slower").code, 2);
     // A faster change is symmetric: swap the files.
     const Outcome back = cavity("compare " + n + " " + o + " --json " + out + " --fail-on-slower");
     EXPECT_EQ(back.code, 0) << back.output;
@@ -732,6 +736,8 @@ TEST_F(Compare, AFewSamplesOnAnotherClockAreLeftOut) {
 
 TEST_F(Compare, BadInputExitsTwoWithOneLineNamingIt) {
     const std::string good = write("good.json", benchmarkJson({fakeConfig(kId, 5, 1, 0)}));
+    // Two files (one file as both runs is refused): the flag errors below come first.
+    const std::string good2 = write("good2.json", benchmarkJson({fakeConfig(kId, 5, 1, 0)}));
     const std::string garbage = write("garbage.json", "{\n  \"benchmarks\": [\n    {\"name\": oops}\n  ]\n}\n");
     const std::string neither = write("neither.json", R"({"schema": "cavity.gate/1", "rows": []})");
     const std::string badUnit = write("unit.json", R"({"benchmarks": [{"name": "a/b", "run_type": "iteration",
@@ -748,17 +754,17 @@ TEST_F(Compare, BadInputExitsTwoWithOneLineNamingIt) {
                                    "JSON (benchmarks[])"},
         {good + " " + badUnit, "cavity compare: " + badUnit + ": benchmarks[0] a/b: time_unit min: must be ns, us, ms or s"},
         {good, "cavity compare: need two files, OLD.json NEW.json (have 1; see cavity compare --help)"},
-        {good + " " + good + " --alpha 1.5", "cavity compare: --alpha '1.5': must be a number in (0, 1)"},
-        {good + " " + good + " --alpha", "cavity compare: --alpha: missing value"},
-        {good + " " + good + " --min-change -1", "cavity compare: --min-change '-1': must be a percentage >= 0"},
-        {good + " " + good + " --json", "cavity compare: --json: missing value"},
-        {good + " " + good + " --bogus", "cavity compare: --bogus: unknown flag (see cavity compare --help)"},
-        {good + " " + good + " --json " + (dir / "no" / "such" / "v.json").string(),
+        {good + " " + good2 + " --alpha 1.5", "cavity compare: --alpha '1.5': must be a number in (0, 1)"},
+        {good + " " + good2 + " --alpha", "cavity compare: --alpha: missing value"},
+        {good + " " + good2 + " --min-change -1", "cavity compare: --min-change '-1': must be a percentage >= 0"},
+        {good + " " + good2 + " --json", "cavity compare: --json: missing value"},
+        {good + " " + good2 + " --bogus", "cavity compare: --bogus: unknown flag (see cavity compare --help)"},
+        {good + " " + good2 + " --json " + (dir / "no" / "such" / "v.json").string(),
          "cavity compare: --json " + (dir / "no" / "such" / "v.json").string() + ": cannot write"},
         // Onto a folder: exit 2 and nothing left behind (was exit 4 and a .tmp-<pid>).
-        {good + " " + good + " --json " + folder, "cavity compare: --json " + folder + ": is a folder"},
-        {good + " " + good + " --filter zzz", "cavity compare: --filter: matches no"},
-        {good + " " + good + " --filter '('", "cavity compare: --filter"},
+        {good + " " + good2 + " --json " + folder, "cavity compare: --json " + folder + ": is a folder"},
+        {good + " " + good2 + " --filter zzz", "cavity compare: --filter: matches no"},
+        {good + " " + good2 + " --filter '('", "cavity compare: --filter"},
     };
     for (const auto& [args, message] : cases) {
         const Outcome o = cavity("compare " + args + (args.find("--json") == std::string::npos ? " --json " + out : ""));

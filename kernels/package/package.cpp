@@ -79,6 +79,15 @@ Status loadFolder(const fs::path& folder, std::vector<KernelDecl>& registry) {
     DeclarationInput in{text, decl.string(), "", [&](const std::string& f) { return glsl.count(f) > 0; },
                         [&](const std::string& n) { return taken(registry, n); }, false};
     CAVITY_ASSIGN(KernelDecl k, readDeclaration(in, info));
+    // An output no code writes would stay as it was made, black, and a run
+    // would time and judge that image: refused before anything runs.
+    // (cavity kernels check says it again from the compiled shader.)
+    std::string code = sourceFile(k.file) ? *sourceFile(k.file) : std::string();
+    for (const auto& [path, body] : glsl) code += body;
+    for (const auto& o : k.outputs)
+        if (code.find("write_" + o.name) == std::string::npos)
+            return badInput(decl.string() + ": outputs: '" + o.name + "' is declared, but the package's GLSL never calls write_" +
+                            o.name + " (its image would stay black)");
     // Its files' keys start with its name, which no other kernel has.
     if (glsl.count(k.file)) k.file = k.name + "/" + k.file;
     info.folder = folder.string();
