@@ -6,6 +6,7 @@
 // killed at any point, it leaves the old file or the new one, and either
 // passes the same images.
 #include "cli.h"
+#include "gate_outputs.h"
 #include "core/digest.h"
 #include "plan/approvals.h"
 #include "plan/matrix.h"
@@ -32,7 +33,7 @@ const CommandSpec& migrateSpec() {
         "baseline images, or the --from folders (any .f32z under them: render folders, gate runs), and each is checked "
         "against its FNV-1a digest first. Nothing is written unless every digest is found (or --keep-unmigrated).",
         {
-            {"--baselines", "DIR", "folder with approvals.json (default: baselines/ of the checkout)"},
+            {"--baselines", "DIR", kBaselinesHelp},
             storeFlag(),
             storeCacheFlag(),
             {"--from", "DIR", "a render folder or gate run that holds images the store lacks (a fresh render of the "
@@ -184,6 +185,11 @@ int migrateCommand(const std::vector<std::string>& argv) {
     auto f = parseMigrate(*parsed);
     if (!f) return fail(program, f.error());
     const std::string path = (fs::path(f->root) / "approvals.json").string();
+    // loadApprovals reads a missing file as none; here that would be
+    // "nothing to do" about a folder that is not there.
+    if (std::error_code ec; !fs::is_regular_file(path, ec))
+        return fail(program, badInput("--baselines " + f->root + ": no approvals.json in it" +
+                                      (fs::is_directory(f->root, ec) ? "" : " (no such folder)")));
     auto approvals = plan::loadApprovals(path);
     if (!approvals) return fail(program, approvals.error());
     if (approvals->legacy == 0) {
@@ -208,9 +214,11 @@ int migrateCommand(const std::vector<std::string>& argv) {
                                          ": nothing written (--from a fresh render of them, or --keep-unmigrated)"));
     // The store gains each image under its SHA-256 name; then approvals.json.
     for (const auto& [fnv, one] : *found) {
+        // An object already there counts only if it is the image: one that
+        // is damaged is written again.
         auto there = (*s)->has(one.sha);
         if (!there) return fail(program, there.error());
-        if (*there) continue;
+        if (*there && store::getImage(**s, one.sha)) continue;
         std::string bytes = one.bytes;
         if (bytes.empty()) {
             auto image = readAny(one.path);

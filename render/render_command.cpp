@@ -10,6 +10,7 @@
 #include "measure/runner.h"
 #include "shard_sources.h"
 
+#include <mutex>
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -103,6 +104,8 @@ int worst(const RenderManifest& m) {
 
 struct JudgedHere {
     std::atomic<int> passed{0}, failed{0}, unjudged{0};
+    std::mutex mutex;
+    int storeCode = 0;                    // the first store failure (5, 6): the exit code
 };
 
 // --store: the gate's own judging of each image that is not approved by
@@ -111,8 +114,21 @@ struct JudgedHere {
 // writer keeps the files of those that failed.
 Status judgeHere(Rendering& r, const gate::Judge& judge, JudgedHere& tally) {
     CAVITY_ASSIGN(const gate::ConfigResult res, gate::judgeRendering(r, judge));
+    // The store failed for this configuration: its images are written
+    // unjudged, and the run ends with the store's exit code, as the gate's.
+    if (!res.error.empty()) {
+        tally.unjudged += int(r.images.size());
+        std::lock_guard<std::mutex> lock(tally.mutex);
+        std::fprintf(stderr, "cavity_render: %s: not judged here: %s\n", r.id.c_str(), res.error.c_str());
+        if (tally.storeCode == 0) tally.storeCode = res.errorCode;
+        return {};
+    }
     for (const auto& check : res.images) {
-        if (check.route == "unjudged") ++tally.unjudged;
+        // Approved by digest: decided, no file. Known bad: failed, written.
+        // Anything else not judged by tolerance here is left to the judge.
+        if (check.route == "digest") ++tally.passed;
+        else if (check.route == "negative") ++tally.failed;
+        else if (check.route != "tolerance") ++tally.unjudged;
         if (check.route != "tolerance") continue;
         RemoteCheck k;
         k.reference = check.reference;
@@ -306,12 +322,14 @@ int renderCommand(const std::vector<std::string>& argv) {
     for (const auto& f : failures) std::cerr << "cavity_render: " << gpu::apiName(f.api) << ": " << f.message << "\n";
     if (judge)
         std::printf("judged here against the device class's approved images: %d passed (no file), %d failed (written); "
-                    "%d without a reference of the class (written, for cavity gate judge)\n",
+                    "%d not judged here (no reference of the class, or the store failed: written, for cavity gate judge)\n",
                     tally.passed.load(), tally.failed.load(), tally.unjudged.load());
     std::printf("wrote %s: %zu configurations x %d repetitions of matrix %s, %d image files, %.1f MiB, %.1f s\n",
                 (fs::path(o->out) / "manifest.json").c_str(), writer.manifest().configs.size(), o->render.repeat,
                 matrix->name.c_str(), writer.filesWritten(), double(writer.bytesWritten()) / (1024.0 * 1024.0), seconds);
-    return worst(writer.manifest());
+    const int code = worst(writer.manifest());
+    if (code == 0 && tally.storeCode != 0) return tally.storeCode;
+    return code;
 }
 
 }  // namespace cavity::render

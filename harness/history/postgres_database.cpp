@@ -156,7 +156,10 @@ Status checkUrl(const std::string& url, const std::string& where) {
         std::string why = err ? firstLine(err) : "not a connection URL";
         PQfreemem(err);
         // libpq quotes the URL; the password stays out of the message.
-        for (size_t at; !url.empty() && (at = why.find(url)) != std::string::npos;) why.replace(at, url.size(), where);
+        // Searching on past each replacement: `where` is the URL itself when
+        // it holds no password.
+        for (size_t at = 0; !url.empty() && (at = why.find(url, at)) != std::string::npos; at += where.size())
+            why.replace(at, url.size(), where);
         return badInput("--db " + where + ": " + why);
     }
     std::unique_ptr<PQconninfoOption, void (*)(PQconninfoOption*)> guard(opts, PQconninfoFree);

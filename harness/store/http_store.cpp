@@ -150,6 +150,21 @@ Result<Limits> limits() {
     };
     CAVITY_TRY(read("CAVITY_STORE_TIMEOUT", 1, 86400, out.total));
     CAVITY_TRY(read("CAVITY_STORE_STALL", 1, 3600, out.stall));
+    // Credentials go into a request header: a line break in one would start
+    // a header of its own. Their values are never shown.
+    for (const char* name : {"CAVITY_STORE_TOKEN", "CAVITY_STORE_USER", "CAVITY_STORE_PASSWORD"}) {
+        const std::string v = env(name);
+        if (std::any_of(v.begin(), v.end(), [](char c) { return static_cast<unsigned char>(c) < 0x20 || c == 0x7f; }))
+            return badInput(std::string(name) + ": holds a control character (a line break?); its value is not shown");
+    }
+    if (!env("CAVITY_STORE_USER").empty() && env("CAVITY_STORE_TOKEN").empty() && env("CAVITY_STORE_PASSWORD").empty())
+        return badInput("CAVITY_STORE_USER is set without CAVITY_STORE_PASSWORD (basic authentication takes both)");
+    for (const char* name : {"CAVITY_STORE_NETRC", "CAVITY_STORE_CA"}) {
+        const std::string v = env(name);
+        std::error_code ec;
+        if (!v.empty() && (!std::filesystem::is_regular_file(v, ec) || !std::ifstream(v)))
+            return badInput(std::string(name) + "=" + v + ": not a readable file");
+    }
     return out;
 }
 
