@@ -3,6 +3,7 @@
 // stored matrices. A path no matrix compiles and judges is a place where a
 // defect changes no image the gate looks at.
 #include "cli.h"
+#include "gate_outputs.h"
 #include "core/json_file.h"
 #include "plan/coverage.h"
 
@@ -23,7 +24,7 @@ const CommandSpec& coverageSpec() {
         "parameter it reads, and each path its package declares under [[paths]] (a remainder, a table size, the "
         "smallest levels). Prints the count, or one line listing every path no configuration reaches.",
         {{"--matrix", "NAMES", "the matrices to count (comma-separated; default: every matrix in matrices.json)"},
-         {"--baselines", "DIR", "folder holding matrices.json (default: baselines/ of the repository)"},
+         {"--baselines", "DIR", kBaselinesHelp},
          {"--list", "", "print every path, and the first configuration that reaches it (or \"not reached\")"}},
         "",
         "",
@@ -60,6 +61,7 @@ int coverageCommand(const std::vector<std::string>& argv) {
         if (!doc) return fail(program, doc.error());
         if (!doc->is_object()) return fail(program, badInput(path + ": must be an object of matrices by name"));
         for (const auto& [name, m] : doc->items()) wanted.push_back(name);
+        if (wanted.empty()) return fail(program, badInput(path + ": holds no matrix (nothing to count coverage over)"));
     } else {
         auto list = splitList("--matrix", names);
         if (!list) return fail(program, list.error());

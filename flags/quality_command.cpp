@@ -366,8 +366,16 @@ int qualityCommand(const std::vector<std::string>& argv, const std::string& prog
         return 0;
     }
     if (auto o = gpu::withEnvironment(q->backend); !o) return failed(o.error());
-    if (!q->out.empty())
+    if (!q->out.empty()) {
         if (auto st = checkWritableDir("--out", q->out); !st) return failed(st.error());
+        // Both files are checked before anything is measured.
+        for (const char* name : {"quality.json", "quality.html"}) {
+            const std::string file = (std::filesystem::path(q->out) / name).string();
+            std::error_code ec;
+            if (std::filesystem::exists(std::filesystem::symlink_status(file, ec)) && !std::filesystem::is_regular_file(file, ec))
+                return failed(badInput("--out " + q->out + ": " + file + " exists and is not a file"));
+        }
+    }
     // The cost file is the user's input: read before the backend starts.
     std::map<std::pair<std::string, int>, double> costs;
     CostSource source;
@@ -389,6 +397,13 @@ int qualityCommand(const std::vector<std::string>& argv, const std::string& prog
     if (!rows) return failed(rows.error());
     if (!q->replaced.empty())
         if (auto st = markEdited(**gpu, *steps, *rows, parsed->has("--quiet")); !st) return failed(st.error());
+    // A cost file that times none of the kernels measured recommends
+    // nothing: "none fits" would read as a verdict.
+    if (!costs.empty() && std::none_of(rows->begin(), rows->end(), [&](const QualityRow& r) {
+            return costs.count({r.kernel, r.samples}) > 0;
+        }))
+        return failed(badInput("--cost " + q->cost + ": times none of the kernels measured at their sample counts "
+                               "(run it with the same --kernel and --samples)"));
     printQuality(q->options, *rows, costs);
     if (!costs.empty()) std::printf("%s\n", source.text.c_str());
     nlohmann::json doc = qualityJson(*q, device, *rows);
@@ -399,10 +414,12 @@ int qualityCommand(const std::vector<std::string>& argv, const std::string& prog
     if (q->out.empty()) return 0;
     std::error_code ec;
     std::filesystem::create_directories(q->out, ec);
+    // The page first, quality.json last: the record a reader takes the
+    // folder by is written when everything else is.
     const std::string path = (std::filesystem::path(q->out) / "quality.json").string();
-    if (auto st = writeJson(path, doc); !st) return failed(st.error());
     const std::string page = (std::filesystem::path(q->out) / "quality.html").string();
     if (auto st = core::writeFileAtomically(page, qualityPage(doc, *rows)); !st) return failed(st.error());
+    if (auto st = writeJson(path, doc); !st) return failed(st.error());
     std::printf("\nwrote %s and %s (every kernel's AO and error map beside the truth)\n", path.c_str(), page.c_str());
     return 0;
 }

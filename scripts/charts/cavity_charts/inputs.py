@@ -184,6 +184,8 @@ def benchmark_records(path, data):
             continue  # stddev, cv, BigO, RMS: not a time
         if not is_number(e.get("real_time")):
             raise bad(f"not Google Benchmark JSON (benchmarks[{i}] '{e['name']}' has no numeric 'real_time')")
+        if e["real_time"] < 0:  # as cavity compare and history ingest: never measured, the file is wrong
+            raise bad(f"benchmarks[{i}] '{e['name']}': real_time {e['real_time']}: a time must be >= 0")
         unit = e.get("time_unit", "ns")
         if unit not in TIME_UNIT_MS:
             raise bad(f"benchmarks[{i}] '{e['name']}': unknown time_unit '{unit}' (ns, us, ms or s)")
