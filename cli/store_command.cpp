@@ -63,7 +63,7 @@ int storeCommand(const std::vector<std::string>& argv) {
         std::cout << parsed->helpText;
         return 0;
     }
-    std::string root, cls;
+    std::string root, cls, filterText;
     store::StoreOptions so;
     std::optional<std::regex> filter;
     for (const auto& [flag, v] : parsed->values) {
@@ -75,6 +75,7 @@ int storeCommand(const std::vector<std::string>& argv) {
             auto f = parseFilter(flag, v);
             if (!f) return fail(program, f.error());
             filter = *f;
+            filterText = v;
         }
     }
     if (root.empty()) {
@@ -82,6 +83,10 @@ int storeCommand(const std::vector<std::string>& argv) {
         if (!found) return fail(program, found.error());
         root = *found;
     }
+    // loadApprovals reads a missing file as none: here that is a mistake.
+    if (std::error_code ec; !fs::is_regular_file(fs::path(root) / "approvals.json", ec))
+        return fail(program, badInput("--baselines " + root + ": no approvals.json in it" +
+                                      (fs::is_directory(root, ec) ? "" : " (no such folder)")));
     auto approvals = plan::loadApprovals((fs::path(root) / "approvals.json").string());
     if (!approvals) return fail(program, approvals.error());
     store::fillDefault(so, root);
@@ -94,13 +99,18 @@ int storeCommand(const std::vector<std::string>& argv) {
         if (digests.insert(a.digest).second) ++perClass[a.deviceClass];
     }
     if (digests.empty())
-        return fail(program, badInput("no approved image matches (--class '" + cls + "', --filter) in " + root + "/approvals.json"));
+        return fail(program, badInput("no approved image matches (--class '" + cls + "', --filter '" + filterText + "') in " +
+                                      root + "/approvals.json"));
     for (const auto& d : digests) {
         auto image = store::getImage(**s, d);
         if (!image) return fail(program, image.error());
     }
     for (const auto& [c, n] : perClass) std::cout << c << ": " << n << " images\n";
-    std::cout << digests.size() << " approved images in " << (*s)->where() << ", each with the digest it is filed under\n";
+    std::cout << digests.size() << " approved images in " << (*s)->where() << ", each with the digest it is filed under";
+    // An HTTP store's objects already in its cache are read from there (they
+    // were checked when fetched): this is not an audit of the server's copy.
+    const bool http = (*s)->where().rfind("http", 0) == 0;
+    std::cout << (http ? " (objects already in the cache were read from it, not fetched again)" : "") << "\n";
     return 0;
 }
 
