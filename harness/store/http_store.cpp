@@ -250,6 +250,11 @@ Result<std::unique_ptr<ImageStore>> httpStore(const std::string& url, const std:
         return badInput(source + ": credentials in the URL are refused (they would be printed with it); give them in "
                         "CAVITY_STORE_TOKEN, CAVITY_STORE_USER and CAVITY_STORE_PASSWORD, or a netrc file");
     if (host >= url.size() || url[host] == '/') return badInput(source + " " + url + ": no host in the URL");
+    // What libcurl would refuse at the first request (a port past 65535, a
+    // bracket left open) is the flag's value, not an outage.
+    std::unique_ptr<CURLU, void (*)(CURLU*)> parsed(curl_url(), curl_url_cleanup);
+    if (const CURLUcode c = curl_url_set(parsed.get(), CURLUPART_URL, url.c_str(), 0); c != CURLUE_OK)
+        return badInput(source + " " + url + ": not a usable URL (" + curl_url_strerror(c) + ")");
     if (const auto l = limits(); !l) return l.error();
     return std::unique_ptr<ImageStore>(std::make_unique<HttpStore>(url, cacheFolder(cacheDir)));
 }

@@ -80,7 +80,13 @@ Result<std::unique_ptr<ImageStore>> openStore(const StoreOptions& o) {
     if (at.empty()) return badInput(flag + ": empty (a folder, or an http:// or https:// URL)");
     if (at.rfind("http://", 0) == 0 || at.rfind("https://", 0) == 0) return httpStore(at, o.cache, flag);
     std::string root = at;
-    if (root.rfind("file://", 0) == 0) root = root.substr(7);
+    if (root.rfind("file://", 0) == 0) {
+        root = root.substr(7);
+        if (root.rfind("localhost/", 0) == 0) root = root.substr(9);
+        // file://HOST/path names another machine's file: only this one's.
+        if (root.empty() || root[0] != '/')
+            return badInput(flag + " " + at + ": a file:// URL takes an absolute path on this machine (file:///path)");
+    }
     else if (root.find("://") != std::string::npos)
         return badInput(flag + " " + at + ": unknown scheme (a folder, file://, http:// or https://)");
     std::error_code ec;
