@@ -100,6 +100,10 @@ Result<std::unique_ptr<Database>> openDatabase(const std::string& location, bool
     std::unique_ptr<Database> db;
     if (isPostgresUrl(location)) {
         CAVITY_ASSIGN(db, openPostgres(location));
+    } else if (const auto scheme = location.find("://"); scheme != std::string::npos && scheme > 0 &&
+               location.find('/') > scheme) {
+        return badInput("--db " + location.substr(0, scheme + 3) + "...: unknown scheme (an SQLite file, or a "
+                        "postgresql:// URL)");
     } else {
         CAVITY_ASSIGN(db, openSqlite(location, create));
     }
