@@ -185,6 +185,12 @@ Status checkUrl(const std::string& url, const std::string& where) {
             if (!whole(v, 0, 86400)) return badInput("--db " + where + ": connect_timeout=" + v + ": must be whole seconds, 0..86400");
         }
     }
+    // libpq reads these when the URL does not say; a bad one is the user's
+    // value, not a server that cannot be reached.
+    if (const char* t = std::getenv("PGCONNECT_TIMEOUT"); t && *t && !whole(t, 0, 86400))
+        return badInput(std::string("PGCONNECT_TIMEOUT=") + t + ": must be whole seconds, 0..86400");
+    if (const char* p = std::getenv("PGPORT"); p && *p && !whole(p, 1, 65535))
+        return badInput(std::string("PGPORT=") + p + ": must be a number, 1..65535");
     return {};
 }
 

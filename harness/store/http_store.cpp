@@ -256,6 +256,13 @@ Result<std::unique_ptr<ImageStore>> httpStore(const std::string& url, const std:
     if (const CURLUcode c = curl_url_set(parsed.get(), CURLUPART_URL, url.c_str(), 0); c != CURLUE_OK)
         return badInput(source + " " + url + ": not a usable URL (" + curl_url_strerror(c) + ")");
     if (const auto l = limits(); !l) return l.error();
+    // A cache named by the user that cannot hold a folder is their mistake
+    // (the default one is a convenience, used where it can be).
+    const std::string named = !cacheDir.empty() ? "--store-cache" : !env("CAVITY_STORE_CACHE").empty() ? "CAVITY_STORE_CACHE" : "";
+    std::error_code ec;
+    if (const std::string cache = cacheFolder(cacheDir);
+        !named.empty() && fs::exists(cache, ec) && !fs::is_directory(cache, ec))
+        return badInput(named + " " + cache + ": not a folder (where an HTTP store's objects are cached)");
     return std::unique_ptr<ImageStore>(std::make_unique<HttpStore>(url, cacheFolder(cacheDir)));
 }
 
