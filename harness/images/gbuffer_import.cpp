@@ -176,6 +176,7 @@ Result<GBufferImages> importGBuffer(const std::string& path, int width, int heig
     const float *px = plane("P.X"), *py = plane("P.Y"), *pz = plane("P.Z"), *zd = plane("Z");
     const float *nx = plane("N.X"), *ny = plane("N.Y"), *nz = plane("N.Z");
     const float* albedo[3] = {plane("albedo.R"), plane("albedo.G"), plane("albedo.B")};
+    size_t surfaces = 0;
     for (size_t i = 0; i < size_t(w) * size_t(h); ++i) {
         const int x = int(i % size_t(w)), y = int(i / size_t(w));
         float p[3];
@@ -217,7 +218,13 @@ Result<GBufferImages> importGBuffer(const std::string& path, int width, int heig
         }
         g.position.at(x, y, 3) = depth;
         g.albedo.at(x, y, 3) = 1.0f;
+        ++surfaces;
     }
+    // A frame of background alone has nothing to occlude: its AO would be
+    // timed and judged as a result.
+    if (surfaces == 0)
+        return cap.error("every pixel is background (" + std::string(hasP ? "P.Z >= 0" : "Z <= 0") +
+                         " everywhere): a capture needs surfaces to measure");
     return g;
 }
 
