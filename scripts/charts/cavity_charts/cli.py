@@ -123,7 +123,7 @@ def main(argv=None):
     try:
         os.makedirs(args.out, exist_ok=True)
     except OSError as e:
-        print(f"charts: {args.out}: cannot create the output folder ({e.strerror})", file=sys.stderr)
+        print(f"charts: --out {args.out!r}: cannot create the output folder ({e.strerror})", file=sys.stderr)
         return 2
     # charts a previous run wrote that this run may not: index.json must not disagree with the folder
     for name in CHART_NAMES:
