@@ -256,10 +256,8 @@ void addEditContext(const Options& o, const std::vector<RunConfig>& configs) {
         for (const auto& r : o.replaced) text += (text.empty() ? "" : "; ") + r.name + "=" + r.file + " (" + r.digest + ")";
         benchmark::AddCustomContext("cavity_kernel_sources", text);
     }
-    std::set<std::string> kernels;
-    for (const auto& c : configs) kernels.insert(c.kernel);
     std::string text;
-    for (const auto& p : measure::packagesUsed(kernels)) text += (text.empty() ? "" : "; ") + p.name + "=" + p.folder + " (" + p.digest + ")";
+    for (const auto& p : measure::packagesUsed(configs)) text += (text.empty() ? "" : "; ") + p.name + "=" + p.folder + " (" + p.digest + ")";
     if (!text.empty()) benchmark::AddCustomContext("cavity_kernel_packages", text);
 }
 

@@ -205,20 +205,6 @@ FlagSpec storeCacheFlag() {
 
 int exitCode(const Error& e) { return static_cast<int>(e.code); }
 
-std::string printable(const std::string& text) {
-    std::string out;
-    for (const char ch : text) {
-        if (static_cast<unsigned char>(ch) >= 0x20 && ch != 0x7f) {
-            out += ch;
-            continue;
-        }
-        out += "\\x";
-        out += "0123456789abcdef"[(ch >> 4) & 15];
-        out += "0123456789abcdef"[ch & 15];
-    }
-    return out;
-}
-
 int fail(const std::string& program, const Error& e) {
     std::cerr << program << ": " << printable(e.message) << "\n";
     return exitCode(e);

@@ -3,6 +3,7 @@
 // what is allowed (the flags themselves are declared and parsed in flags.h).
 #pragma once
 
+#include "printable.h"
 #include "imports.h"
 #include "pipeline/pipeline.h"
 #include "flags.h"
@@ -60,9 +61,7 @@ Result<std::string> defaultBaselines();
 int exitCode(const Error& e);
 // The edge of a command: prints "program: message" on stderr and returns
 // the error's exit code.
-// The message on one line, as every error is: a line break or a terminal
-// escape a user's value brought in is written as \xNN.
-std::string printable(const std::string& text);
+using cavity::printable;   // base/printable.h: a message on one line
 int fail(const std::string& program, const Error& e);
 
 }  // namespace cavity::flags

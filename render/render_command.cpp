@@ -286,9 +286,7 @@ int renderCommand(const std::vector<std::string>& argv) {
     header.filter = o->filter;
     header.repeat = o->render.repeat;
     header.replaced = o->replaced;
-    std::set<std::string> kernelsRendered;
-    for (const auto& c : selected) kernelsRendered.insert(c.kernel);
-    header.packages = measure::packagesUsed(kernelsRendered);
+    header.packages = measure::packagesUsed(selected);
     // Images approved by digest for this device are not written: a clean
     // render of a known device sends back its manifest alone.
     auto approvals = plan::loadApprovals((fs::path(o->baselines) / "approvals.json").string());

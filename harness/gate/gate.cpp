@@ -143,9 +143,7 @@ Result<GateRun> runGate(const GateOptions& o) {
     GateRun run;
     run.matrix = o.matrix;
     run.replaced = o.replaced;
-    std::set<std::string> kernelsJudged;
-    for (const auto& c : configs) kernelsJudged.insert(c.kernel);
-    run.packages = measure::packagesUsed(kernelsJudged);
+    run.packages = measure::packagesUsed(configs);
     run.strict = o.strict;
     run.shardIndex = o.shardIndex;
     run.shardCount = o.shardCount;

@@ -242,6 +242,12 @@ std::vector<PackageUsed> packagesUsed(const std::set<std::string>& kernels) {
     return out;
 }
 
+std::vector<PackageUsed> packagesUsed(const std::vector<RunConfig>& configs) {
+    std::set<std::string> kernels;
+    for (const auto& c : configs) kernels.insert(c.kernel);
+    return packagesUsed(kernels);
+}
+
 nlohmann::json packagesJson(const std::vector<PackageUsed>& packages) {
     nlohmann::json out = nlohmann::json::array();
     for (const auto& p : packages) out.push_back({{"name", p.name}, {"folder", p.folder}, {"digest", p.digest}});

@@ -79,6 +79,8 @@ struct PackageUsed {
 
 // The packages from disk (not built in) that hold one of `kernels`.
 std::vector<PackageUsed> packagesUsed(const std::set<std::string>& kernels);
+// ... that hold the kernel of one of `configs`.
+std::vector<PackageUsed> packagesUsed(const std::vector<RunConfig>& configs);
 // As results.json, render manifests and gate.json write them:
 // [{"name", "folder", "digest"}].
 nlohmann::json packagesJson(const std::vector<PackageUsed>& packages);

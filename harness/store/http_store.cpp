@@ -6,6 +6,7 @@
 // token or a password, and nginx from Debian is a real server the tests can
 // start (docs/store.md).
 #include "store/store.h"
+#include "printable.h"
 
 #include "core/json_file.h"
 
@@ -153,8 +154,7 @@ Result<Limits> limits() {
     // Credentials go into a request header: a line break in one would start
     // a header of its own. Their values are never shown.
     for (const char* name : {"CAVITY_STORE_TOKEN", "CAVITY_STORE_USER", "CAVITY_STORE_PASSWORD"}) {
-        const std::string v = env(name);
-        if (std::any_of(v.begin(), v.end(), [](char c) { return static_cast<unsigned char>(c) < 0x20 || c == 0x7f; }))
+        if (hasControlChar(env(name)))
             return badInput(std::string(name) + ": holds a control character (a line break?); its value is not shown");
     }
     if (!env("CAVITY_STORE_USER").empty() && env("CAVITY_STORE_TOKEN").empty() && env("CAVITY_STORE_PASSWORD").empty())

@@ -3,6 +3,7 @@
 // the file, the line, the key, the value and what is allowed.
 #pragma once
 
+#include "printable.h"
 #include "package/declaration.h"
 
 #include <toml++/toml.h>
@@ -28,14 +29,8 @@ struct Ctx {
 
 inline std::string show(const toml::node& n) {
     std::ostringstream s;
-    if (const auto* str = n.as_string()) {   // quoted, a control character escaped: one line
-        s << '"';
-        for (const char ch : str->get()) {
-            if (static_cast<unsigned char>(ch) < 0x20 || ch == 0x7f) s << "\\x" << "0123456789abcdef"[(ch >> 4) & 15] << "0123456789abcdef"[ch & 15];
-            else s << ch;
-        }
-        s << '"';
-    } else if (n.is_table()) s << "{...}";
+    if (const auto* str = n.as_string()) s << '"' << printable(str->get()) << '"';   // quoted, on one line
+    else if (n.is_table()) s << "{...}";
     else if (const auto* a = n.as_array()) s << "[" << a->size() << " values]";
     else n.visit([&](auto&& v) { s << v; });
     return s.str();
@@ -67,9 +62,8 @@ inline Result<std::string> text(const Ctx& c, const toml::table& t, const std::s
     std::string value(*n->value<std::string>());
     // Every string of a declaration is printed on one line of a table or
     // a message: no line break, no terminal escape.
-    for (const char ch : value)
-        if (static_cast<unsigned char>(ch) < 0x20 || ch == 0x7f)
-            return c.fail(n, where + key, show(*n), "must be one line of printable text (no control characters)");
+    if (hasControlChar(value))
+        return c.fail(n, where + key, show(*n), "must be one line of printable text (no control characters)");
     if (value.find_first_not_of(' ') == std::string::npos)
         return c.fail(n, where + key, show(*n), required ? "must not be empty" : "must not be empty (leave the key out)");
     return value;
