@@ -178,7 +178,7 @@ const Prepared& prepare(const Scene& scene) {
     p.base.height = kH;
     p.base.gbufferFile = file.string();
     if (g) p.base.gbufferImages = std::make_shared<const GBufferImages>(std::move(*g));
-    fs::remove(file);
+    fs::remove_all(dir);
     return cache.emplace(scene.name, std::move(p)).first->second;
 }
 

@@ -549,6 +549,7 @@ TEST(Gate, HtmlReportOpensInHeadlessChromiumWithFailuresFirst) {
     const auto t0 = text.find("<title>"), t1 = text.find("</title>");
     ASSERT_NE(t0, std::string::npos);
     EXPECT_EQ(text.substr(t0 + 7, t1 - t0 - 7), "Cavity gate ci: " + std::to_string(failing(run).size()) + " failed");
+    fs::remove_all(o.out);
 }
 
 }  // namespace
