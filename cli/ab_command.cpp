@@ -7,15 +7,22 @@
 // sequential runs put all of it on one.
 #include "cli.h"
 #include "core/json_file.h"
+#include "core/json_input.h"
 #include "measure/results.h"
 #include "measure/runner.h"
 #include "report/compare_report.h"
+#include "staging.h"
 
 #include <algorithm>
 #include <filesystem>
 #include <sstream>
 #include <iostream>
 #include <optional>
+#include <regex>
+#include <set>
+
+#include <csignal>
+#include <cstring>
 
 #include <sys/wait.h>
 #include <unistd.h>
@@ -70,6 +77,7 @@ Result<std::string> benchBinary(const std::string& flag, const std::string& path
 // was not sent to a log file.
 struct BenchExit {
     int code = 0;
+    std::string how;   // "exit 3", "killed by signal 11 (Segmentation fault)"
     std::string output;
 };
 
@@ -108,12 +116,14 @@ Result<BenchExit> spawnBench(const std::string& exe, const std::vector<std::stri
     int status = 0;
     ::waitpid(pid, &status, 0);
     e.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    if (WIFSIGNALED(status)) e.how = "killed by signal " + std::to_string(WTERMSIG(status)) + " (" + ::strsignal(WTERMSIG(status)) + ")";
+    else e.how = "exit " + std::to_string(e.code);
     return e;
 }
 
 Status runBench(const std::string& exe, const std::vector<std::string>& args, const std::string& log) {
     CAVITY_ASSIGN(const BenchExit e, spawnBench(exe, args, log));
-    if (e.code != 0) return internal(exe + " failed (exit " + std::to_string(e.code) + "); see " + log);
+    if (e.code != 0) return internal(exe + " failed (" + e.how + "); see " + log);
     return {};
 }
 
@@ -128,26 +138,54 @@ Result<std::string> checkSide(const std::string& exe, const std::string& flag, s
     std::istringstream lines(e.output);
     for (std::string l; std::getline(lines, l);)
         if (!l.empty()) last = l;
-    const std::string why = flag + " " + exe + ": " + (last.empty() ? "exit " + std::to_string(e.code) : last);
+    const std::string why = flag + " " + exe + ": " + (last.empty() ? e.how : last);
     if (e.code == 2) return badInput(why);
     return internal(why);
 }
 
-// The iteration entries of every round's file, each round one repetition.
+// The iteration entries of every round's file, each round one repetition. A
+// round is a process's own output, so what is wrong with one is a failed
+// process (exit 4), said with the file: missing (the process wrote
+// elsewhere), not cavity_bench's JSON, or no iteration measured.
 Result<json> mergeRounds(const std::vector<std::string>& files) {
     json merged = {{"benchmarks", json::array()}};
     for (size_t r = 0; r < files.size(); ++r) {
-        CAVITY_ASSIGN(const json doc, readJsonFile(files[r]));
-        if (!doc.contains("benchmarks")) return internal(files[r] + ": no benchmarks");
-        if (r == 0 && doc.contains("context")) merged["context"] = doc["context"];
-        for (json b : doc["benchmarks"]) {
-            if (b.value("run_type", "iteration") != "iteration") continue;
+        auto doc = readJsonFile(files[r]);
+        if (!doc) return internal(doc.error().message);
+        const auto& bench = doc->is_object() && doc->contains("benchmarks") ? (*doc)["benchmarks"] : json();
+        if (!bench.is_array()) return internal(files[r] + ": not cavity_bench JSON (no list of benchmarks)");
+        if (r == 0 && doc->contains("context") && (*doc)["context"].is_object()) merged["context"] = (*doc)["context"];
+        size_t measured = 0;
+        for (json b : bench) {
+            if (!b.is_object()) return internal(files[r] + ": a benchmark entry is not an object: " + core::shortDump(b));
+            const json kind = b.contains("run_type") ? b["run_type"] : json("iteration");
+            if (!kind.is_string()) return internal(files[r] + ": run_type = " + core::shortDump(kind) + ": must be a string");
+            if (kind.get<std::string>() != "iteration") continue;
             b["repetition_index"] = r;
             b["repetitions"] = files.size();
             merged["benchmarks"].push_back(std::move(b));
+            ++measured;
         }
+        if (measured == 0) return internal(files[r] + ": the process measured nothing (no iteration entries)");
     }
     return merged;
+}
+
+// What an earlier ab left in --out goes (a run of more rounds left more
+// files), and this one's moves in.
+Status movedIn(const fs::path& staging, const std::string& out) {
+    std::error_code ec;
+    const std::regex ours("(a|b)(_[0-9]+)?\\.(json|log)|compare\\.json");
+    for (const auto& e : fs::directory_iterator(out, ec))
+        if (e.is_regular_file() && std::regex_match(e.path().filename().string(), ours)) fs::remove(e.path(), ec);
+    std::vector<fs::path> made;
+    for (const auto& e : fs::directory_iterator(staging, ec)) made.push_back(e.path());
+    for (const auto& p : made) {
+        fs::rename(p, fs::path(out) / p.filename(), ec);
+        if (ec) return badInput("--out " + out + ": cannot move " + p.filename().string() + " in: " + ec.message());
+    }
+    fs::remove_all(staging, ec);
+    return {};
 }
 
 struct AbFlags {
@@ -181,7 +219,17 @@ Result<AbFlags> parseAb(const ParsedFlags& p) {
         } else if (flag == "--bench-args" || flag == "--a-args" || flag == "--b-args") {
             auto& to = flag == "--bench-args" ? f.benchArgs : f.sideArgs[flag == "--a-args" ? 0 : 1];
             std::istringstream words(v);
-            for (std::string w; words >> w;) to.push_back(w);
+            for (std::string w; words >> w;) {
+                // ab sets these itself: one repetition a process, written where it reads it.
+                static const std::set<std::string> own = {"--benchmark_out", "--benchmark_out_format",
+                                                          "--benchmark_repetitions", "--benchmark_filter",
+                                                          "--benchmark_list_tests", "--benchmark_enable_random_interleaving"};
+                if (own.count(w.substr(0, w.find('='))))
+                    return badInput(flag + " " + w + ": cavity ab sets " + w.substr(0, w.find('=')) +
+                                    " itself (use --filter and --rounds)");
+                to.push_back(w);
+            }
+            if (to.empty()) return badInput(flag + " '" + v + "': no flags in it");
         } else if (flag == "--min-change" && v != "auto") {
             f.thresholds.autoMinChange = false;
             CAVITY_ASSIGN(f.thresholds.minChangePct,
@@ -215,23 +263,30 @@ int abCommand(const std::vector<std::string>& argv) {
         if (f->list) std::cout << (side == 0 ? "A: " : "B: ") << (side == 0 ? f->a : f->b) << "\n" << *listed;
     }
     if (f->list) return 0;
+    // Every round, the merged sides and the comparison are written under a
+    // staging folder and replace what --out held only once all are there: a
+    // failed or killed ab leaves --out as it was (a failed process's log
+    // stays in the staging folder it names, until the next ab there).
     std::error_code ec;
     fs::create_directories(f->out, ec);
     if (ec) return fail(program, badInput("--out " + f->out + ": cannot be created: " + ec.message()));
+    const fs::path staging = stagingDir(f->out);
+    fs::create_directories(staging, ec);
+    if (ec) return fail(program, badInput("--out " + f->out + ": cannot be written: " + ec.message()));
     std::vector<std::string> files[2];
     for (int r = 0; r < f->rounds; ++r) {
         // A B, then B A: a drift within a round falls on both sides alike.
         for (int k = 0; k < 2; ++k) {
             const int side = r % 2 == 0 ? k : 1 - k;
             const std::string name = std::string(side == 0 ? "a" : "b") + "_" + std::to_string(r);
-            const std::string out = (fs::path(f->out) / (name + ".json")).string();
+            const std::string out = (staging / (name + ".json")).string();
             std::vector<std::string> args = {"--benchmark_repetitions=1", "--benchmark_enable_random_interleaving=true",
                                              "--benchmark_out=" + out, "--benchmark_out_format=json"};
             if (!f->filter.empty()) args.push_back("--benchmark_filter=" + f->filter);
             args.insert(args.end(), f->benchArgs.begin(), f->benchArgs.end());
             args.insert(args.end(), f->sideArgs[side].begin(), f->sideArgs[side].end());
             std::cerr << "cavity ab: round " << r + 1 << "/" << f->rounds << ": " << (side == 0 ? "A" : "B") << "\n";
-            if (auto st = runBench(side == 0 ? f->a : f->b, args, (fs::path(f->out) / (name + ".log")).string()); !st)
+            if (auto st = runBench(side == 0 ? f->a : f->b, args, (staging / (name + ".log")).string()); !st)
                 return fail(program, st.error());
             files[side].push_back(out);
         }
@@ -240,16 +295,16 @@ int abCommand(const std::vector<std::string>& argv) {
     for (int side = 0; side < 2; ++side) {
         auto merged = mergeRounds(files[side]);
         if (!merged) return fail(program, merged.error());
-        const std::string path = (fs::path(f->out) / (side == 0 ? "a.json" : "b.json")).string();
+        const std::string path = (staging / (side == 0 ? "a.json" : "b.json")).string();
         if (auto st = writeJson(path, *merged); !st) return fail(program, st.error());
         auto sets = loadSampleSets(path);
         if (!sets) return fail(program, sets.error());
         sides[side] = std::move(*sets);
     }
     const auto rows = compareAll(*sides[0], *sides[1], f->thresholds);
-    if (auto st = writeJson((fs::path(f->out) / "compare.json").string(), compareJson(rows, *sides[0], *sides[1], f->thresholds));
-        !st)
+    if (auto st = writeJson((staging / "compare.json").string(), compareJson(rows, *sides[0], *sides[1], f->thresholds)); !st)
         return fail(program, st.error());
+    if (auto st = movedIn(staging, f->out); !st) return fail(program, st.error());
     std::cout << compareTable(rows, *sides[0], *sides[1], f->thresholds);
     const bool anySlower = std::any_of(rows.begin(), rows.end(), [](const auto& r) { return r.verdict == "slower"; });
     return f->failOnSlower && anySlower ? 1 : 0;

@@ -153,11 +153,13 @@ int merge(const std::vector<std::string>& argv) {
     gate::GateRun merged;
     std::set<std::pair<std::string, int>> seen;
     std::map<int, std::string> shards;   // index -> its folder
+    std::map<std::string, std::string> owner;   // configuration id -> its shard's folder
     for (const auto& d : dirs) {
         auto run = loadGateJson(d);
         if (!run) return fail("cavity gate merge", run.error());
         if (merged.matrix.empty()) {
             merged.matrix = run->matrix;
+            merged.filter = run->filter;
             merged.replaced = run->replaced;
             merged.packages = run->packages;
             merged.strict = run->strict;
@@ -168,6 +170,12 @@ int merge(const std::vector<std::string>& argv) {
         else if (measure::packagesJson(merged.packages) != measure::packagesJson(run->packages))
             return fail("cavity gate merge", badInput(d + ": judged kernel packages " + core::jsonText(measure::packagesJson(run->packages)) +
                                                       ", unlike the shards before it (gate every shard with the same --kernels)"));
+        else if (merged.filter != run->filter)
+            return fail("cavity gate merge", badInput(d + ": --filter '" + run->filter + "', unlike the shards before it ('" +
+                                                      merged.filter + "'): gate every shard with one filter"));
+        else if (render::replacedJson(merged.replaced) != render::replacedJson(run->replaced))
+            return fail("cavity gate merge", badInput(d + ": kernel sources " + core::jsonText(render::replacedJson(run->replaced)) +
+                                                      ", unlike the shards before it (gate every shard with the same --kernel-source)"));
         else if (merged.strict != run->strict)
             return fail("cavity gate merge", badInput(d + ": --strict " + (run->strict ? "given" : "not given") +
                                                       ", unlike the shards before it (gate every shard alike)"));
@@ -182,8 +190,17 @@ int merge(const std::vector<std::string>& argv) {
         merged.seconds = std::max(merged.seconds, run->seconds);
         merged.renderSeconds = std::max(merged.renderSeconds, run->renderSeconds);
         for (auto& e : run->backendErrors) merged.backendErrors.push_back(e);
-        for (auto& r : run->results)
+        // A configuration is in one shard: one in two is a folder copied or
+        // mislabelled, whose own shard's results are then missing.
+        std::set<std::string> mine;
+        for (auto& r : run->results) {
+            if (!mine.count(r.id) && owner.count(r.id))
+                return fail("cavity gate merge", badInput(d + ": " + r.id + " is also in " + owner[r.id] +
+                                                          " (a configuration belongs to one shard)"));
+            mine.insert(r.id);
+            owner[r.id] = d;
             if (seen.insert({r.id, r.repetition}).second) merged.results.push_back(std::move(r));
+        }
     }
     if (shards.size() != size_t(merged.shardCount)) {
         std::string missing;

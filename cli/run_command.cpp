@@ -1,6 +1,7 @@
 // `cavity run`: a sweep of configurations on one or both backends, with
 // images, results.json and a timing table on stdout.
 #include "run_sweep.h"
+#include "staging.h"
 #include "run_summary.h"
 #include "report/run_page.h"
 #include "pipeline/config_id.h"
@@ -13,7 +14,6 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <map>
 #include <memory>
@@ -21,7 +21,6 @@
 #include <regex>
 #include <set>
 
-#include <unistd.h>
 
 namespace cavity::cli {
 
@@ -115,29 +114,8 @@ void runOnBackend(gpu::Backend& gpu, gpu::Api api, const std::vector<RunConfig>&
     }
 }
 
-// The images are written under a staging folder in --out, and move to
-// their places only once every configuration has run (movedIn): a run that
-// fails or is killed leaves what --out held as it was. A staging folder
-// whose process is gone is a killed run's, and goes.
-bool processRuns(const std::string& pid) {
-    // A zombie (state Z: killed, not yet reaped) has ended too.
-    std::ifstream stat("/proc/" + pid + "/stat");
-    std::string line;
-    if (!std::getline(stat, line)) return false;
-    const auto paren = line.rfind(')');
-    return paren != std::string::npos && paren + 2 < line.size() && line[paren + 2] != 'Z' && line[paren + 2] != 'X';
-}
-
-std::filesystem::path stagingDir(const std::string& out) {
-    namespace fs = std::filesystem;
-    std::error_code ec;
-    for (const auto& e : fs::directory_iterator(out, ec)) {
-        const std::string name = e.path().filename().string();
-        if (name.rfind(".partial-", 0) == 0 && !processRuns(name.substr(9))) fs::remove_all(e.path(), ec);
-    }
-    return fs::path(out) / (".partial-" + std::to_string(::getpid()));
-}
-
+// The images are written under a staging folder in --out (staging.h), and
+// move to their places only once every configuration has run.
 Status movedIn(const std::filesystem::path& staging, const std::string& out, const RunOutcome& outcome) {
     namespace fs = std::filesystem;
     std::error_code ec;

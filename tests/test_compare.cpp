@@ -752,7 +752,7 @@ TEST_F(Compare, BadInputExitsTwoWithOneLineNamingIt) {
         {neither + " " + good, "cavity compare: " + neither +
                                    ": neither a cavity results.json (schema cavity.results/1) nor Google Benchmark "
                                    "JSON (benchmarks[])"},
-        {good + " " + badUnit, "cavity compare: " + badUnit + ": benchmarks[0] a/b: time_unit min: must be ns, us, ms or s"},
+        {good + " " + badUnit, "cavity compare: " + badUnit + ": benchmarks[0] a/b: time_unit \"min\": must be ns, us, ms or s"},
         {good, "cavity compare: need two files, OLD.json NEW.json (have 1; see cavity compare --help)"},
         {good + " " + good2 + " --alpha 1.5", "cavity compare: --alpha '1.5': must be a number in (0, 1)"},
         {good + " " + good2 + " --alpha", "cavity compare: --alpha: missing value"},

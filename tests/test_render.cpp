@@ -299,7 +299,8 @@ TEST_F(TwoStep, EveryRepetitionIsJudgedAndMatchingOnesStoreNoImages) {
 TEST_F(TwoStep, APlantedBugFailsThroughTheSplit) {
     auto matrix = plan::loadMatrix((base / "matrices.json").string(), "ci");
     ASSERT_TRUE(matrix) << matrix.error().message;
-    auto entries = plan::selectEntries(*matrix, 0, 1, "^corner/alchemy/n16/b4/full/160x90/vk/compute$");
+    const std::string filter = "^corner/alchemy/n16/b4/full/160x90/vk/compute$";
+    auto entries = plan::selectEntries(*matrix, 0, 1, filter);
     ASSERT_TRUE(entries && entries->size() == 1u);
     render::RenderOptions ro;
     std::string broken = *kernels::sourceFile("ao/alchemy/ssao_alchemy.glsl");
@@ -312,6 +313,7 @@ TEST_F(TwoStep, APlantedBugFailsThroughTheSplit) {
     header.matrix = matrix->name;
     header.matrixHash = matrix->hash;
     header.gitCommit = gitCommit();
+    header.filter = filter;
     render::FolderWriter writer(dir.string(), header);
     ASSERT_TRUE(writer.begin().ok());
     std::vector<render::BackendFailure> failures;

@@ -41,8 +41,40 @@ bool msPerUnit(const std::string& unit, double& factor) {
     return true;
 }
 
-std::string stringOr(const json& b, const char* key, const std::string& fallback) {
-    return b.contains(key) && b[key].is_string() ? b[key].get<std::string>() : fallback;
+// A string field, or `fallback` where it is absent; any other type is the
+// file's error, said with `where`.
+Result<std::string> stringOr(const json& b, const char* key, const std::string& fallback, const std::string& where) {
+    if (!b.contains(key)) return fallback;
+    if (!b[key].is_string()) return badInput(where + ": " + key + " = " + core::shortDump(b[key]) + ": must be a string");
+    return b[key].get<std::string>();
+}
+
+// Longer than any pass: a time past this was not measured.
+constexpr double kMaxMs = 1e7;
+
+// An iteration entry's unit (as ms per unit), time and counts, checked:
+// Google Benchmark always writes the unit, and a guess would be off by a
+// factor of up to 10^9.
+Result<double> iterationFields(const json& b, const std::string& where) {
+    if (!b.contains("time_unit")) return badInput(where + ": time_unit: missing (ns, us, ms or s)");
+    CAVITY_ASSIGN(const std::string unit, stringOr(b, "time_unit", "", where));
+    double factor = 0;
+    if (!msPerUnit(unit, factor)) return badInput(where + ": time_unit " + core::shortDump(unit) + ": must be ns, us, ms or s");
+    // A NaN (written as a bare NaN, read as null) is no time either: an
+    // iteration without error_occurred must have measured one.
+    if (!b.contains("real_time") || !b["real_time"].is_number())
+        return badInput(where + ": real_time: must be a number (" +
+                        (b.contains("real_time") ? "NaN or " + std::string(b["real_time"].type_name()) : std::string("missing")) +
+                        " in an iteration without error_occurred)");
+    for (const char* key : {"repetition_index", "iterations"})
+        if (b.contains(key)) {
+            const json& v = b[key];
+            const double x = v.is_number() ? v.get<double>() : NAN, least = key[0] == 'i' ? 1 : 0;
+            if (!std::isfinite(x) || x != std::floor(x) || x < least || x > 1e9)
+                return badInput(where + ": " + key + " = " + core::shortDump(v) + ": must be a whole number >= " +
+                                (least > 0 ? "1" : "0"));
+        }
+    return factor;
 }
 
 }  // namespace
@@ -69,53 +101,59 @@ Result<SampleSets> readBenchmarkJson(const json& doc, const std::string& path) {
     SampleSets out;
     out.path = path;
     out.format = "google-benchmark";
-    if (doc.contains("context") && doc["context"].is_object())
-        out.softwareRenderer = doc["context"].value("cavity_software_renderer", "") == "true";
+    if (doc.contains("context") && doc["context"].is_object()) {
+        CAVITY_ASSIGN(const std::string software,
+                      stringOr(doc["context"], "cavity_software_renderer", "false", path + ": context"));
+        if (software != "true" && software != "false")
+            return badInput(path + ": context: cavity_software_renderer = " + core::shortDump(software) + ": must be true or false");
+        out.softwareRenderer = software == "true";
+    }
     const json& benchmarks = doc["benchmarks"];
     for (size_t i = 0; i < benchmarks.size(); ++i) {
         const json& b = benchmarks[i];
         const std::string where = path + ": benchmarks[" + std::to_string(i) + "]";
         if (!b.is_object()) return badInput(where + ": must be an object");
-        const std::string name = stringOr(b, "run_name", stringOr(b, "name", ""));
+        CAVITY_ASSIGN(const std::string shortName, stringOr(b, "name", "", where));
+        CAVITY_ASSIGN(const std::string name, stringOr(b, "run_name", shortName, where));
         if (name.empty()) return badInput(where + ": has no name");
+        if (b.contains("error_occurred") && !b["error_occurred"].is_boolean())
+            return badInput(where + " " + name + ": error_occurred = " + core::shortDump(b["error_occurred"]) +
+                            ": must be true or false");
         if (b.value("error_occurred", false)) {
             ++out.skippedErrors;
             continue;
         }
         // Older Google Benchmark wrote no run_type; its aggregates still carry aggregate_name.
-        const std::string runType = stringOr(b, "run_type", b.contains("aggregate_name") ? "aggregate" : "iteration");
+        CAVITY_ASSIGN(const std::string runType,
+                      stringOr(b, "run_type", b.contains("aggregate_name") ? "aggregate" : "iteration", where));
+        if (runType != "iteration" && runType != "aggregate")
+            return badInput(where + " " + name + ": run_type " + core::shortDump(runType) + ": must be iteration or aggregate");
         if (runType != "iteration") continue;
         if (name.find('@') != std::string::npos) {
             ++out.skippedMirrors;
             continue;
         }
-        const std::string unit = stringOr(b, "time_unit", "ns");
-        double factor = 0;
-        if (!msPerUnit(unit, factor))
-            return badInput(where + " " + name + ": time_unit " + unit + ": must be ns, us, ms or s");
-        // A NaN (written as a bare NaN, read as null) is no time either: an
-        // iteration without error_occurred must have measured one.
-        if (!b.contains("real_time") || !b["real_time"].is_number())
-            return badInput(where + " " + name + ": real_time: must be a number (" +
-                            (b.contains("real_time") ? "NaN or " + std::string(b["real_time"].type_name()) : std::string("missing")) +
-                            " in an iteration without error_occurred)");
-
+        CAVITY_ASSIGN(const double factor, iterationFields(b, where + " " + name));
         const std::string id = configurationIdOf(name);
-        const std::string clock = clockOfLabel(stringOr(b, "label", ""));
+        CAVITY_ASSIGN(const std::string label, stringOr(b, "label", "", where));
+        const std::string clock = clockOfLabel(label);
         // The repetition's median SM clock (cavity_bench writes it where NVML reads one).
         const double smMhz =
             b.contains("sm_mhz_median") && b["sm_mhz_median"].is_number() ? b["sm_mhz_median"].get<double>() : NAN;
         // A negative or infinite time was never measured: the file is wrong.
         const auto time = [&](const std::string& key, double ms) -> Status {
-            if (std::isfinite(ms) && ms >= 0) return {};
-            return badInput(where + " " + name + ": " + key + " " + std::to_string(ms) + " ms: a time must be finite and >= 0");
+            if (std::isfinite(ms) && ms >= 0 && ms <= kMaxMs) return {};
+            return badInput(where + " " + name + ": " + key + " " + core::shortDump(ms) +
+                            " ms: a time must be finite, >= 0 and at most 1e7 ms");
         };
         CAVITY_TRY(time("real_time", b["real_time"].get<double>() * factor));
         out.at(id, kPipelinePass).add(b["real_time"].get<double>() * factor, clock, smMhz);
         for (const auto& [key, value] : b.items()) {
             if (key.size() <= 8 || key.rfind("pass_", 0) != 0 || !endsWith(key, "_ms")) continue;
             SampleSet& pass = out.at(id, key.substr(5, key.size() - 8));
-            if (!value.is_number()) continue;
+            if (!value.is_number())
+                return badInput(where + " " + name + ": " + key + " = " + core::shortDump(value) +
+                                ": must be a number (a NaN is written as null)");
             CAVITY_TRY(time(key, value.get<double>()));
             pass.add(value.get<double>(), clock, smMhz);
         }

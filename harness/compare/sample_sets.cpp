@@ -70,8 +70,13 @@ Result<SampleSets> readResultsJson(const json& doc, const std::string& path, boo
     for (const auto& r : runs) {
         CAVITY_ASSIGN(const std::string id, r.str("id"));
         CAVITY_ASSIGN(const std::string clock, r.str("clock"));
-        if (r.raw().contains("device") && r.raw()["device"].is_object())
-            out.softwareRenderer |= r.raw()["device"].value("software_renderer", false);
+        if (r.has("device")) {
+            CAVITY_ASSIGN(const JsonObject device, r.object("device"));
+            if (device.has("software_renderer")) {
+                CAVITY_ASSIGN(const bool software, device.boolean("software_renderer"));
+                out.softwareRenderer |= software;
+            }
+        }
         // The run's median SM clock, where NVML read one (gpu_clocks is null otherwise).
         double smMhz = NAN;
         const json& clocks = r.raw().contains("gpu_clocks") ? r.raw()["gpu_clocks"] : json();

@@ -1,6 +1,7 @@
 #include "core/json_input.h"
 
 #include <cmath>
+#include <iomanip>
 #include <sstream>
 
 namespace cavity::core {
@@ -25,11 +26,15 @@ std::string shortDump(const json& v) {
 
 namespace {
 
-std::string rangeText(double lo, double hi) {
+// Whole bounds in full (0..16384, 0..9007199254740992), others as %g.
+std::string boundText(double x) {
     std::ostringstream s;
-    s << lo << ".." << hi;
+    if (x == std::floor(x) && std::fabs(x) < 1e16) s << std::fixed << std::setprecision(0);
+    s << x;
     return s.str();
 }
+
+std::string rangeText(double lo, double hi) { return boundText(lo) + ".." + boundText(hi); }
 
 }  // namespace
 

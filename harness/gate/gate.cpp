@@ -142,6 +142,7 @@ Result<GateRun> runGate(const GateOptions& o) {
     CAVITY_TRY(checkSourcesUsed(o.replaced, configs));
     GateRun run;
     run.matrix = o.matrix;
+    run.filter = o.filter;
     run.replaced = o.replaced;
     run.packages = measure::packagesUsed(configs);
     run.strict = o.strict;

@@ -126,6 +126,7 @@ struct GateOptions {
 
 struct GateRun {
     std::string matrix;
+    std::string filter;   // the selection's --filter ("" all): shards merge only with one filter
     int shardIndex = 0, shardCount = 1;
     std::vector<ConfigResult> results;
     std::vector<std::string> backendErrors;   // backends that could not start

@@ -6,6 +6,7 @@
 #include "core/json_input.h"
 
 #include <cmath>
+#include <set>
 
 namespace cavity::gate {
 
@@ -56,7 +57,12 @@ json toJson(const GateRun& run) {
                            {"deterministic", r.deterministic}, {"error", r.error},
                            {"error_code", r.errorCode}, {"images", images}, {"timings", timings}});
     }
-    return {{"schema", "cavity.gate/1"}, {"matrix", run.matrix}, {"shard", {run.shardIndex, run.shardCount}}, {"strict", run.strict},
+    // How many configurations the results hold, so that a reader finds
+    // results lost from a damaged or hand-edited file (fromJson).
+    std::set<std::string> ids;
+    for (const auto& r : run.results) ids.insert(r.id);
+    return {{"schema", "cavity.gate/1"}, {"matrix", run.matrix}, {"filter", run.filter}, {"configurations", ids.size()},
+            {"shard", {run.shardIndex, run.shardCount}}, {"strict", run.strict},
             {"seconds", run.seconds}, {"render_seconds", run.renderSeconds}, {"exit_code", run.exitCode()}, {"counts", run.counts()},
             {"backend_errors", run.backendErrors}, {"kernel_sources", render::replacedJson(run.replaced)},
             {"kernel_packages", measure::packagesJson(run.packages)},
@@ -182,7 +188,7 @@ Result<metrics::Report> metricsFromJson(const json& j, const std::string& where)
 }
 
 Result<GateRun> fromJson(const json& j, const std::string& path) {
-    if (!j.is_object() || j.value("schema", "") != "cavity.gate/1")
+    if (!j.is_object() || !j.contains("schema") || j["schema"] != "cavity.gate/1")
         return badInput(path + ": not a cavity gate.json (schema cavity.gate/1)");
     CAVITY_ASSIGN(const JsonObject top, JsonObject::of(path, "", j));
     GateRun run;
@@ -204,10 +210,19 @@ Result<GateRun> fromJson(const json& j, const std::string& path) {
     if (top.has("kernel_packages")) {   // absent before packages were recorded
         CAVITY_ASSIGN(run.packages, measure::parsePackages(top.raw()["kernel_packages"], path));
     }
+    CAVITY_ASSIGN(run.filter, top.str("filter", ""));   // absent before shards were checked: all
     CAVITY_ASSIGN(const auto results, top.objects("results"));
+    std::set<std::string> ids;
     for (const auto& rj : results) {
         CAVITY_ASSIGN(auto r, readResult(rj));
+        ids.insert(r.id);
         run.results.push_back(std::move(r));
+    }
+    if (top.has("configurations")) {
+        CAVITY_ASSIGN(const int count, top.integer("configurations", 0, 1 << 30));
+        if (size_t(count) != ids.size())
+            return top.bad("configurations", "the results hold " + std::to_string(ids.size()) +
+                                                 " configurations (the file lost some, or was edited)");
     }
     return run;
 }

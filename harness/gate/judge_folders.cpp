@@ -117,6 +117,24 @@ Status checkEntries(const Folder& f, const std::vector<RunConfig>& all, std::map
     return {};
 }
 
+// A folder holds every configuration its manifest's filter and shard select
+// on each API that started: one left out (a damaged or hand-edited manifest)
+// would otherwise never be judged, and the verdict would still read "all
+// passed".
+Status checkComplete(const Folder& f, const Matrix& matrix) {
+    const auto& m = f.m;
+    CAVITY_ASSIGN(const auto selected, plan::selectEntries(matrix, m.shardIndex, m.shardCount, m.filter));
+    std::set<size_t> have;
+    for (const auto& c : m.configs) have.insert(c.index);
+    for (const auto& e : selected)
+        if (m.devices.count(gpu::apiName(e.config.api)) && !have.count(e.index))
+            return badInput(f.path + ": " + configId(e.config) + " (entry " + std::to_string(e.index) + ") is missing: shard " +
+                            std::to_string(m.shardIndex) + "/" + std::to_string(m.shardCount) +
+                            (m.filter.empty() ? "" : " of filter " + m.filter) + " selects it, and " +
+                            gpu::apiName(e.config.api) + " started");
+    return {};
+}
+
 // Every stored image inflates to the recorded shape and digest. The pixels
 // are dropped again: a 1920x1080 matrix does not fit in memory at once.
 Status checkFiles(const Folder& f) {
@@ -199,6 +217,7 @@ GateRun runHeader(const std::vector<Folder>& folders, const Matrix& matrix, doub
         run.shardIndex = folders.front().m.shardIndex;
         run.shardCount = folders.front().m.shardCount;
     }
+    run.filter = folders.front().m.filter;
     run.replaced = folders.front().m.replaced;
     run.packages = folders.front().m.packages;
     rendered = 0;
@@ -346,6 +365,7 @@ Result<GateRun> judgeFolders(const std::vector<std::string>& dirs, const JudgeOp
     std::map<std::string, std::string> owner;
     CAVITY_ASSIGN(const auto approved, plan::loadApprovals((fs::path(baselines) / "approvals.json").string()));
     for (const auto& f : folders) CAVITY_TRY(checkEntries(f, all, owner, approved));
+    for (const auto& f : folders) CAVITY_TRY(checkComplete(f, matrix));
     for (const auto& f : folders) CAVITY_TRY(checkFiles(f));
     std::vector<RunConfig> configs;
     for (const auto& f : folders)

@@ -115,9 +115,9 @@ Result<RunFile> readRunFile(const std::string& path) {
     RunFile out;
     out.path = path;
     out.digest = digestText(fnv1a64(text.data(), text.size())) + "/" + std::to_string(text.size());
-    if (doc.is_object() && doc.value("schema", "") == "cavity.results/1") {
+    if (doc.is_object() && doc.contains("schema") && doc["schema"] == "cavity.results/1") {
         CAVITY_TRY(readResults(doc, out));
-    } else if (doc.is_object() && doc.value("schema", "") == "cavity.gate/1") {
+    } else if (doc.is_object() && doc.contains("schema") && doc["schema"] == "cavity.gate/1") {
         CAVITY_TRY(readGate(doc, out));
     } else if (doc.is_object() && doc.contains("benchmarks") && doc["benchmarks"].is_array()) {
         CAVITY_TRY(readBenchmark(doc, out));

@@ -88,6 +88,7 @@ Status readBenchmark(const json& doc, RunFile& out) {
     std::map<std::string, std::vector<std::pair<double, double>>> clocks;
     for (const auto& b : doc["benchmarks"]) {
         const std::string name = text(b, "run_name").empty() ? text(b, "name") : text(b, "run_name");
+        // readBenchmarkJson checked every entry's types.
         if (!b.is_object() || b.value("error_occurred", false) || name.find('@') != std::string::npos) continue;
         if (text(b, "run_type") != "" && text(b, "run_type") != "iteration") continue;
         if (!b.contains("run_type") && b.contains("aggregate_name")) continue;
@@ -122,7 +123,8 @@ Status readResults(const json& doc, RunFile& out) {
         run.device = text(dev, "name");
         run.driver = text(dev, "driver");
         run.apiVersion = text(dev, "api_version");
-        run.software = dev.is_object() && dev.value("software_renderer", false);
+        // readResultsJson checked its type.
+        run.software = dev.is_object() && dev.contains("software_renderer") && dev["software_renderer"] == true;
         run.mode = text(r.contains("timing") ? r["timing"] : json(), "mode");
         const json& clocks = r.contains("gpu_clocks") ? r["gpu_clocks"] : json();
         auto median = [&](const char* key) { return number(clocks.is_object() && clocks.contains(key) ? clocks[key] : json(), "median"); };

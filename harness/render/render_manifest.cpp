@@ -1,5 +1,6 @@
 #include "render/render_manifest.h"
 
+#include "core/json_input.h"
 #include "measure/results.h"
 
 #include <cmath>
@@ -37,12 +38,96 @@ json toJson(const RenderEntry& r) {
             {"deterministic", r.deterministic}, {"timings", timings}, {"images", images}};
 }
 
+// The manifest's parts, each field read for its type and range
+// (core/json_input.h): a manifest is a file a user can damage or edit.
+using core::JsonObject;
+constexpr double kMaxMs = 1e7;             // a pass of about three hours
+constexpr int kMaxSide = 16384;            // an image side: the largest texture the backends make
+constexpr double kMaxBytes = 9007199254740992.0;   // 2^53: a file size a double holds exactly
+
 // One timing of a manifest; the interval and the statistics are absent from
 // older ones.
-PassTime readPassTime(const json& t) {
-    auto num = [&](const char* k) { return t.contains(k) && t.at(k).is_number() ? t.at(k).get<double>() : NAN; };
-    auto stats = measure::shaderStatsFromJson(t.contains("shader_stats") ? t.at("shader_stats") : json());
-    return {t.at("pass"), t.at("median_ms"), t.at("clock"), num("ci_low_ms"), num("ci_high_ms"), std::move(stats)};
+Result<PassTime> readPassTime(const JsonObject& t) {
+    PassTime p;
+    CAVITY_ASSIGN(p.pass, t.str("pass"));
+    if (p.pass.empty()) return t.bad("pass", "must name a pass");
+    CAVITY_ASSIGN(p.medianMs, t.number("median_ms", 0, kMaxMs));
+    CAVITY_ASSIGN(p.clock, t.str("clock"));
+    if (p.clock != "gpu-timestamp" && p.clock != "wall") return t.bad("clock", "must be gpu-timestamp or wall");
+    auto optional = [&](const char* key) -> Result<double> {
+        if (!t.has(key)) return NAN;
+        CAVITY_ASSIGN(const auto v, t.numberOrNull(key, 0, kMaxMs));
+        return v ? *v : NAN;
+    };
+    CAVITY_ASSIGN(p.lowMs, optional("ci_low_ms"));
+    CAVITY_ASSIGN(p.highMs, optional("ci_high_ms"));
+    p.shaderStats = measure::shaderStatsFromJson(t.has("shader_stats") ? t.raw().at("shader_stats") : json());
+    return p;
+}
+
+Result<ImageEntry> readImage(const JsonObject& ij) {
+    ImageEntry i;
+    CAVITY_ASSIGN(i.name, ij.str("name"));
+    if (!ij.has("file")) return ij.bad("file", "missing (a file name, or null)");
+    if (!ij.raw().at("file").is_null()) {
+        CAVITY_ASSIGN(i.file, ij.str("file"));
+    }
+    CAVITY_ASSIGN(i.stored.width, ij.integer("width", 1, kMaxSide));
+    CAVITY_ASSIGN(i.stored.height, ij.integer("height", 1, kMaxSide));
+    CAVITY_ASSIGN(i.stored.channels, ij.integer("channels", 1, 4));
+    CAVITY_ASSIGN(i.stored.digest, ij.str("digest"));
+    CAVITY_ASSIGN(const double bytes, ij.number("bytes", 0, kMaxBytes));
+    if (bytes != std::floor(bytes)) return ij.bad("bytes", "must be a whole number of bytes");
+    i.stored.bytes = uint64_t(bytes);
+    if (ij.has("judged")) {
+        CAVITY_ASSIGN(const JsonObject k, ij.object("judged"));
+        RemoteCheck c;
+        CAVITY_ASSIGN(c.reference, k.str("reference"));
+        CAVITY_ASSIGN(c.referenceDigest, k.str("reference_digest"));
+        CAVITY_ASSIGN(c.passed, k.boolean("passed"));
+        CAVITY_ASSIGN(c.failures, k.strings("failures"));
+        CAVITY_ASSIGN(const JsonObject metrics, k.object("metrics"));
+        CAVITY_ASSIGN(const JsonObject tolerance, k.object("tolerance"));
+        c.metrics = metrics.raw();
+        c.tolerance = tolerance.raw();
+        i.judged = std::move(c);
+    }
+    return i;
+}
+
+Result<RenderEntry> readRender(const JsonObject& rj) {
+    RenderEntry r;
+    CAVITY_ASSIGN(r.repetition, rj.integer("repetition", 0, 1000000));
+    CAVITY_ASSIGN(r.error, rj.str("error"));
+    CAVITY_ASSIGN(r.errorCode, rj.integer("error_code", 0, 255));
+    CAVITY_ASSIGN(r.deterministic, rj.boolean("deterministic"));
+    CAVITY_ASSIGN(const auto timings, rj.objects("timings"));
+    for (const auto& t : timings) {
+        CAVITY_ASSIGN(auto p, readPassTime(t));
+        r.timings.push_back(std::move(p));
+    }
+    CAVITY_ASSIGN(const auto images, rj.objects("images"));
+    for (const auto& ij : images) {
+        CAVITY_ASSIGN(auto i, readImage(ij));
+        r.images.push_back(std::move(i));
+    }
+    return r;
+}
+
+Result<ConfigEntry> readConfig(const JsonObject& cj) {
+    ConfigEntry c;
+    CAVITY_ASSIGN(c.id, cj.str("id"));
+    CAVITY_ASSIGN(const int index, cj.integer("index", 0, 1 << 30));
+    c.index = size_t(index);
+    CAVITY_ASSIGN(c.key, cj.str("baseline_key"));
+    CAVITY_ASSIGN(c.api, cj.str("api"));
+    CAVITY_ASSIGN(c.device, cj.str("device"));
+    CAVITY_ASSIGN(const auto renders, cj.objects("renders"));
+    for (const auto& rj : renders) {
+        CAVITY_ASSIGN(auto r, readRender(rj));
+        c.renders.push_back(std::move(r));
+    }
+    return c;
 }
 
 }  // namespace
@@ -97,65 +182,48 @@ Result<RenderManifest> parseManifest(const json& j, const std::string& path) {
     if (!j.is_object() || !j.contains("schema") || j["schema"] != kRenderSchema)
         return badInput(path + ": not a render manifest (schema must be " + std::string(kRenderSchema) + ", found " +
                         (j.is_object() && j.contains("schema") ? core::jsonText(j["schema"]) : std::string("none")) + ")");
-    if (j.value("image_format", "") != kImageFormat)
-        return badInput(path + ": image_format " + j.value("image_format", "(none)") + " (this build reads " +
-                        kImageFormat + ")");
+    CAVITY_ASSIGN(const JsonObject top, JsonObject::of(path, "", j));
+    CAVITY_ASSIGN(const std::string format, top.str("image_format"));
+    if (format != kImageFormat)
+        return badInput(path + ": image_format " + core::shortDump(j["image_format"]) + " (this build reads " + kImageFormat + ")");
     RenderManifest m;
-    // nlohmann's messages name the missing key or the wrong type; the
-    // configuration named in front says where.
-    std::string where = "the top level";
-    try {
-        m.matrix = j.at("matrix");
-        m.matrixHash = j.at("matrix_hash");
-        m.gitCommit = j.at("git_commit");
-        m.createdUtc = j.at("created_utc");
-        m.command = j.at("command");
-        m.shardIndex = j.at("shard").at(0);
-        m.shardCount = j.at("shard").at(1);
-        m.filter = j.at("filter");
-        m.repeat = j.at("repeat");
-        m.seconds = j.at("seconds");
-        for (const auto& [api, d] : j.at("devices").items())
-            m.devices[api] = {api, d.at("name"), d.at("driver"), d.at("api_version"), d.at("vendor"),
-                              d.at("software_renderer"), d.value("uuid", std::string())};
-        for (const auto& e : j.at("backend_errors")) m.backendErrors.push_back({e.at("api"), e.at("code"), e.at("message")});
-        for (const auto& cj : j.at("configurations")) {
-            ConfigEntry c;
-            where = "a configuration";
-            c.id = cj.at("id");
-            where = c.id;
-            c.index = cj.at("index");
-            c.key = cj.at("baseline_key");
-            c.api = cj.at("api");
-            c.device = cj.at("device");
-            for (const auto& rj : cj.at("renders")) {
-                RenderEntry r;
-                r.repetition = rj.at("repetition");
-                r.error = rj.at("error");
-                r.errorCode = rj.at("error_code");
-                r.deterministic = rj.at("deterministic");
-                for (const auto& t : rj.at("timings")) r.timings.push_back(readPassTime(t));
-                for (const auto& ij : rj.at("images")) {
-                    ImageEntry i;
-                    i.name = ij.at("name");
-                    if (!ij.at("file").is_null()) i.file = ij.at("file");
-                    i.stored = {ij.at("width"), ij.at("height"), ij.at("channels"), ij.at("digest"), ij.at("bytes")};
-                    if (ij.contains("judged")) {
-                        const json& k = ij.at("judged");
-                        i.judged = RemoteCheck{k.at("reference"), k.at("reference_digest"), k.at("passed"),
-                                               k.at("failures"), k.at("metrics"), k.at("tolerance")};
-                        if (!i.judged->metrics.is_object() || !i.judged->tolerance.is_object())
-                            return badInput(path + ": malformed at " + where + ": judged." + i.name +
-                                            ": metrics and tolerance must be objects");
-                    }
-                    r.images.push_back(std::move(i));
-                }
-                c.renders.push_back(std::move(r));
-            }
-            m.configs.push_back(std::move(c));
-        }
-    } catch (const json::exception& e) {
-        return badInput(path + ": malformed at " + where + ": " + e.what());
+    CAVITY_ASSIGN(m.matrix, top.str("matrix"));
+    CAVITY_ASSIGN(m.matrixHash, top.str("matrix_hash"));
+    CAVITY_ASSIGN(m.gitCommit, top.str("git_commit"));
+    CAVITY_ASSIGN(m.createdUtc, top.str("created_utc"));
+    CAVITY_ASSIGN(m.command, top.str("command"));
+    CAVITY_ASSIGN(const auto shard, top.integers("shard", 0, 1 << 20));
+    if (shard.size() != 2) return top.bad("shard", "must be [I, N]");
+    m.shardIndex = shard[0];
+    m.shardCount = shard[1];
+    CAVITY_ASSIGN(m.filter, top.str("filter"));
+    CAVITY_ASSIGN(m.repeat, top.integer("repeat", 1, 1000000));
+    CAVITY_ASSIGN(m.seconds, top.number("seconds", 0, 1e9));
+    CAVITY_ASSIGN(const JsonObject devices, top.object("devices"));
+    for (const auto& [api, raw] : devices.raw().items()) {
+        CAVITY_ASSIGN(const JsonObject d, JsonObject::of(path, "devices." + api, raw));
+        gpu::DeviceInfo info;
+        info.api = api;
+        CAVITY_ASSIGN(info.deviceName, d.str("name"));
+        CAVITY_ASSIGN(info.driver, d.str("driver"));
+        CAVITY_ASSIGN(info.apiVersion, d.str("api_version"));
+        CAVITY_ASSIGN(info.vendor, d.str("vendor"));
+        CAVITY_ASSIGN(info.softwareRenderer, d.boolean("software_renderer"));
+        CAVITY_ASSIGN(info.uuid, d.str("uuid", ""));
+        m.devices[api] = std::move(info);
+    }
+    CAVITY_ASSIGN(const auto errors, top.objects("backend_errors"));
+    for (const auto& e : errors) {
+        BackendError b;
+        CAVITY_ASSIGN(b.api, e.str("api"));
+        CAVITY_ASSIGN(b.code, e.integer("code", 0, 255));
+        CAVITY_ASSIGN(b.message, e.str("message"));
+        m.backendErrors.push_back(std::move(b));
+    }
+    CAVITY_ASSIGN(const auto configs, top.objects("configurations"));
+    for (const auto& cj : configs) {
+        CAVITY_ASSIGN(auto c, readConfig(cj));
+        m.configs.push_back(std::move(c));
     }
     // Absent before --kernel-source was recorded: nothing replaced.
     if (j.contains("kernel_sources")) {

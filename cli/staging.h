@@ -1,0 +1,15 @@
+// Outputs written under a staging folder inside --out and moved to their
+// places only once the command has everything: a command that fails or is
+// killed leaves what --out held as it was.
+#pragma once
+
+#include <filesystem>
+#include <string>
+
+namespace cavity::cli {
+
+// --out/.partial-PID, after removing the staging folders whose process is
+// gone (a killed command's). The caller creates it.
+std::filesystem::path stagingDir(const std::string& out);
+
+}  // namespace cavity::cli
