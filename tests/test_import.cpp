@@ -31,6 +31,7 @@
 
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -46,11 +47,11 @@ constexpr int kW = 160, kH = 90;
 using Channels = std::vector<std::pair<std::string, std::vector<float>>>;
 
 // One EXR with the named planes (each width x height floats, rows top down).
-void writeExr(const fs::path& path, int w, int h, const Channels& channels) {
+void writeExr(const fs::path& path, int w, int h, const Channels& channels, const char* compression = "zip") {
     OIIO::ImageSpec spec(w, h, int(channels.size()), OIIO::TypeDesc::FLOAT);
     spec.channelnames.clear();
     for (const auto& c : channels) spec.channelnames.push_back(c.first);
-    spec.attribute("compression", "zip");
+    spec.attribute("compression", compression);
     std::vector<float> px(size_t(w) * h * channels.size());
     for (size_t c = 0; c < channels.size(); ++c)
         for (size_t i = 0; i < size_t(w) * h; ++i) px[i * channels.size() + c] = channels[c].second[i];
@@ -309,6 +310,40 @@ TEST_F(ImportCli, BadInputExitsTwoWithOneLineAndWritesNothing) {
     const std::string png = (dir / "capture.png").string();
     ASSERT_TRUE(writeImage(png, HostImage(kSw, kSh, 4, 0.5f)).ok());
 
+    // The plane, uncompressed (a chunk a row), with both windows' last row
+    // moved to 16383 and the offset table grown to match: a header of 16384
+    // rows over a file that holds 18 (it once allocated them all, then failed).
+    const std::string cut = (dir / "cut.exr").string();
+    {
+        writeExr(cut, kSw, kSh, planeCapture(false), "none");
+        std::ifstream in(cut, std::ios::binary);
+        std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        for (const std::string window : {"dataWindow", "displayWindow"}) {
+            const std::string tag = window + std::string("\0box2i\0", 7);
+            const size_t at = bytes.find(tag);
+            ASSERT_NE(at, std::string::npos) << window;
+            const int32_t last = 16383;   // yMax: after the size (4) and xMin, yMin, xMax
+            std::memcpy(&bytes[at + tag.size() + 4 + 12], &last, 4);
+        }
+        // The table starts where its first offset, less the table, points.
+        size_t table = 0;
+        for (size_t p = 0; p + 8 <= bytes.size() && !table; ++p) {
+            uint64_t v;
+            std::memcpy(&v, &bytes[p], 8);
+            if (v == p + 8 * kSh) table = p;
+        }
+        ASSERT_NE(table, 0u);
+        const uint64_t grown = 8 * (16384 - kSh);
+        for (int row = 0; row < kSh; ++row) {
+            uint64_t v;
+            std::memcpy(&v, &bytes[table + 8 * row], 8);
+            v += grown;
+            std::memcpy(&bytes[table + 8 * row], &v, 8);
+        }
+        bytes.insert(table + 8 * kSh, std::string(grown, '\0'));
+        std::ofstream(cut, std::ios::binary | std::ios::trunc) << bytes;
+    }
+
     const std::string absent = (dir / "absent.exr").string();
     const std::string head = "cavity run: --gbuffer-file ";
     std::vector<BadCase> cases = {
@@ -323,6 +358,8 @@ TEST_F(ImportCli, BadInputExitsTwoWithOneLineAndWritesNothing) {
          head + infFile + ": channel Z is inf at pixel (5, 0): must be finite"},
         {"zero normal", "--gbuffer import --gbuffer-file " + zeroFile,
          head + zeroFile + ": channels N.X, N.Y, N.Z are (0, 0, 0) at pixel (7, 0), a surface pixel"},
+        {"header past the file", "--gbuffer import --gbuffer-file " + cut,
+         head + cut + ": cut short: its header says 32x16384, which needs at least 262144 bytes, and the file has "},
         {"not an EXR", "--gbuffer import --gbuffer-file " + png,
          head + png + ": is a png file: must be a multi-channel OpenEXR file"},
         {"file without import", "--gbuffer-file " + good, head + good + ": only used with --gbuffer import"},

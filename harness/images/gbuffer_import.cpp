@@ -116,6 +116,24 @@ Result<Capture> open(const std::string& path) {
                         std::to_string(s.x) + ", " + std::to_string(s.y) + ") differs from the display window " +
                         std::to_string(s.full_width) + "x" + std::to_string(s.full_height) + " at (" +
                         std::to_string(s.full_x) + ", " + std::to_string(s.full_y) + "): they must be the same");
+    // An OpenEXR file holds an offset table of 8 bytes a chunk after its
+    // header and at least 8 more a chunk (its position and size): a header
+    // whose size needs more than the file has is cut short or edited, and is
+    // refused before the pixels are allocated (a 400-byte file claiming
+    // 16384x16384 once took 4 GB, then failed).
+    const std::string compression = s.get_string_attribute("compression", "zip");
+    const int lines = compression == "none" || compression == "rle" || compression == "zips" ? 1
+                      : compression == "zip" || compression == "pxr24"                      ? 16
+                      : compression == "dwab"                                               ? 256
+                                                                                            : 32;
+    const uint64_t chunks = s.tile_width > 0 ? uint64_t((s.width + s.tile_width - 1) / s.tile_width) *
+                                                   uint64_t((s.height + s.tile_height - 1) / std::max(1, s.tile_height))
+                                             : uint64_t((s.height + lines - 1) / lines);
+    const auto bytes = fs::file_size(path, ec);
+    if (!ec && bytes < 16 * chunks)
+        return badInput(head + "cut short: its header says " + std::to_string(s.width) + "x" + std::to_string(s.height) +
+                        ", which needs at least " + std::to_string(16 * chunks) + " bytes, and the file has " +
+                        std::to_string(bytes));
     return Capture(path, std::move(in));
 }
 
