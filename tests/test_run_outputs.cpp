@@ -76,7 +76,7 @@ std::string halfOverFull(const std::vector<json>& runs) {
 TEST(RunOutputs, SummaryReadsAsResultsJsonAndThePageShowsEveryConfiguration) {
     const fs::path dir = fs::temp_directory_path() / ("cavity_run_outputs_" + std::to_string(::getpid()));
     fs::remove_all(dir);
-    const Outcome o = runBinary(CAVITY_EXE, "run --backend all --scene corner --kernel alchemy,hemisphere --blur 0,4 "
+    const Outcome o = runBinary(CAVITY_EXE, "run --backend all --scene corner --kernel alchemy,hemisphere --radius 0.5,1 "
                                             "--resolution full,half --res 64x36 --frames 3 --warmup 1 --quiet --out " +
                                                 dir.string(),
                                 "", "2>/dev/null");
@@ -123,6 +123,14 @@ TEST(RunOutputs, SummaryReadsAsResultsJsonAndThePageShowsEveryConfiguration) {
     std::set<std::string> ids;
     for (const auto& r : doc["runs"]) ids.insert(r["id"].get<std::string>());
     EXPECT_EQ(cardIds, ids);
+    // Each card's title names its configuration (the id without its
+    // kernel, the section's heading): no two of a kernel alike, as no two
+    // bars of its chart (their labels come from it).
+    std::set<std::string> titles;
+    const std::regex title("data-id=\"[^/\"]+/([^/\"]+)/[^\"]*\"><div class=\"title\">([^<]+)</div>");
+    for (std::sregex_iterator it(dom.begin(), dom.end(), title), end; it != end; ++it)
+        EXPECT_TRUE(titles.insert((*it)[1].str() + ": " + (*it)[2].str()).second) << "two cards titled " << (*it)[2];
+    EXPECT_EQ(titles.size(), ids.size());
     int images = 0;
     const std::regex img("<img src=\"([^\"]+)\"");
     for (std::sregex_iterator it(dom.begin(), dom.end(), img), end; it != end; ++it, ++images)

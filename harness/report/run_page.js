@@ -19,8 +19,11 @@
     if (!byKernel.has(c.kernel)) byKernel.set(c.kernel, []);
     byKernel.get(c.kernel).push(c);
   }
-  // The configuration without its kernel and API (those are the chart and the series).
-  const label = c => [c.scene, 'n' + c.samples, 'b' + c.blur, c.resolution, c.size, c.stage].join(' ');
+  // The configuration's id without its kernel and API (those are the chart
+  // and the series): every parameter the id names stays, so configurations
+  // that differ only in a kernel's own parameter get a bar each.
+  const parts = c => c.id.split('/').filter((part, i) => i !== 1 && part !== c.api);
+  const label = c => parts(c).join(' ');
   const palette = ['#3465a4', '#cc0000', '#4e9a06', '#c4a000', '#75507b', '#ce5c00', '#06989a', '#555753'];
 
   // Whiskers from each bar's min to its p90 (Chart.js has no error bars).
@@ -52,11 +55,14 @@
 
   const charts = document.getElementById('charts');
   for (const [kernel, list] of byKernel) {
-    const labels = [...new Set(list.map(label))].sort();
+    // A bar's label is what sets it apart; what every bar shares goes above.
+    const shared = parts(list[0]).filter(p => list.every(c => parts(c).includes(p)));
+    const barLabel = c => parts(c).filter(p => !shared.includes(p)).join(' ') || label(c);
+    const labels = [...new Set(list.map(barLabel))].sort((a, b) => a.localeCompare(b, 'en', { numeric: true }));
     const series = [...new Set(list.map(c => c.api))].sort();
     const clocks = [...new Set(list.map(c => c.api + ': ' + c.clock))].sort().join(', ');
     const card = el('div', 'card chart');
-    card.appendChild(el('div', 'title', kernel));
+    card.appendChild(el('div', 'title', kernel + (shared.length > 1 || labels.length > 1 ? ' · ' + shared.join(' ') : '')));
     card.appendChild(el('div', 'sub', 'AO pipeline, ms (G-buffer left out) · ' + clocks));
     const plot = el('div', 'plot');
     plot.style.height = (60 + labels.length * series.length * 16) + 'px';
@@ -65,7 +71,7 @@
     card.appendChild(plot);
     charts.appendChild(card);
     const datasets = series.slice(0, palette.length).map((api, i) => {
-      const rows = labels.map(l => list.find(c => c.api === api && label(c) === l));
+      const rows = labels.map(l => list.find(c => c.api === api && barLabel(c) === l));
       return {
         label: api, backgroundColor: palette[i] + 'b0', borderColor: palette[i], borderWidth: 1,
         data: rows.map(c => (c ? c.pipeline.median : null)), stats: rows.map(c => (c ? c.pipeline : null))
@@ -76,7 +82,7 @@
       data: { labels, datasets },
       options: {
         indexAxis: 'y', animation: false, maintainAspectRatio: false,
-        scales: { x: { beginAtZero: true, title: { display: true, text: 'ms' } } },
+        scales: { x: { beginAtZero: true, title: { display: true, text: 'ms' } }, y: { ticks: { autoSkip: false } } },
         plugins: { legend: { position: 'top' } }
       },
       plugins: [whiskers]

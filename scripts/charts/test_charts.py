@@ -48,8 +48,17 @@ def run_charts(*args):
 class ParseId(unittest.TestCase):
     def test_plain_id(self):
         c = charts.parse_id("corner/alchemy/n16/b4/full/1920x1080/vk/compute")
-        self.assertEqual(c, {"scene": "corner", "kernel": "alchemy", "samples": 16, "blur": 4, "res": "full",
-                             "size": (1920, 1080), "api": "vk", "stage": "compute"})
+        self.assertEqual(c, {"scene": "corner", "kernel": "alchemy", "samples": 16, "blur": 4, "params": "",
+                             "res": "full", "size": (1920, 1080), "api": "vk", "stage": "compute"})
+
+    def test_kernel_parameters_stay_in_the_configuration(self):
+        # Two configurations that differ only in a kernel's own parameter are
+        # two configurations (they were merged into one, samples and all).
+        a = charts.parse_id("corner/hbao/n16/b0/directions=2/attenuation=none/full/160x90/vk/compute/manual_time")
+        b = charts.parse_id("corner/hbao/n16/b0/directions=8/attenuation=none/full/160x90/vk/compute/manual_time")
+        self.assertEqual(a["params"], "directions=2/attenuation=none")
+        self.assertNotEqual(charts.config_id(a), charts.config_id(b))
+        self.assertEqual(charts.config_id(b), "corner/hbao/n16/b0/directions=8/attenuation=none/full/160x90/vk/compute")
 
     def test_manual_time_and_iterations(self):
         for name in ("corner/alchemy/n16/b4/full/1920x1080/vk/compute/manual_time",

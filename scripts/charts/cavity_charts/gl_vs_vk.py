@@ -17,7 +17,7 @@ def api_pairs(records):
     """[(gl record, vk record)] for configurations measured on both APIs."""
     by = {}
     for r in records:
-        by[(r["scene"], r["kernel"], r["samples"], r["blur"], r["res"], r["size"], r["stage"], r["api"])] = r
+        by[(r["scene"], r["kernel"], r["samples"], r["blur"], r["params"], r["res"], r["size"], r["stage"], r["api"])] = r
     out = []
     for k, r in sorted(by.items(), key=lambda kv: kv[1]["id"]):
         if k[-1] == "gl" and k[:-1] + ("vk",) in by:

@@ -19,7 +19,10 @@ import cavity_json
 
 from . import spread
 
-DIMS = ("scene", "kernel", "samples", "blur", "res", "size", "api", "stage")
+# params: a kernel's own parameters as the id names them ("directions=8/
+# falloff=0.5"; "" at their defaults), so that configurations differing only
+# there stay apart.
+DIMS = ("scene", "kernel", "samples", "blur", "params", "res", "size", "api", "stage")
 TIME_UNIT_MS = {"ns": 1e-6, "us": 1e-3, "ms": 1.0, "s": 1e3}
 
 
@@ -31,7 +34,7 @@ class BadInput(Exception):
 # Parsing
 
 ID_RE = re.compile(r"^(?P<scene>[^/]+)/(?P<kernel>[^/]+)/n(?P<samples>\d+)/b(?P<blur>\d+)/"
-                   r"(?P<res>full|half)/(?P<w>\d+)x(?P<h>\d+)/(?P<api>gl|vk)/(?P<stage>compute|fragment)$")
+                   r"(?P<params>(?:[^/=]+=[^/]+/)*)(?P<res>full|half)/(?P<w>\d+)x(?P<h>\d+)/(?P<api>gl|vk)/(?P<stage>compute|fragment)$")
 # Google Benchmark's own name parts: /iterations:50, /repeats:3, /threads:1,
 # /min_time:..., /min_warmup_time:..., /manual_time, /real_time.
 GB_PART_RE = re.compile(r"/(?:manual_time|real_time|process_time|(?:iterations|repeats|threads|min_time|"
@@ -66,7 +69,7 @@ def parse_id(name, counters=None, aggregate_name=None):
     m = ID_RE.match(s)
     if m:
         return {"scene": m["scene"], "kernel": m["kernel"], "samples": int(m["samples"]),
-                "blur": int(m["blur"]), "res": m["res"], "size": (int(m["w"]), int(m["h"])),
+                "blur": int(m["blur"]), "params": m["params"].rstrip("/"), "res": m["res"], "size": (int(m["w"]), int(m["h"])),
                 "api": m["api"], "stage": m["stage"]}
     counters = counters or {}
     parts = [p for p in s.split("/") if p]
@@ -79,6 +82,7 @@ def parse_id(name, counters=None, aggregate_name=None):
         elif re.fullmatch(r"\d+x\d+", p): cfg["size"] = tuple(int(v) for v in p.split("x"))
         elif p in ("gl", "vk"): cfg["api"] = p
         elif p in ("compute", "fragment"): cfg["stage"] = p
+        elif "=" in p: cfg["params"] = (cfg["params"] + "/" if "params" in cfg else "") + p
         else: rest.append(p)
 
     def num(key):
@@ -91,6 +95,7 @@ def parse_id(name, counters=None, aggregate_name=None):
     if "stage" not in cfg and num("fragment") is not None: cfg["stage"] = "fragment" if num("fragment") else "compute"
     if "size" not in cfg and num("width") is not None and num("height") is not None:
         cfg["size"] = (int(num("width")), int(num("height")))
+    cfg.setdefault("params", "")
     if len(rest) >= 2:
         cfg.setdefault("scene", rest[0])
         cfg.setdefault("kernel", rest[1])
@@ -101,7 +106,8 @@ def parse_id(name, counters=None, aggregate_name=None):
 
 def config_id(cfg):
     w, h = cfg["size"]
-    return (f"{cfg['scene']}/{cfg['kernel']}/n{cfg['samples']}/b{cfg['blur']}/{cfg['res']}/"
+    params = cfg["params"] + "/" if cfg.get("params") else ""
+    return (f"{cfg['scene']}/{cfg['kernel']}/n{cfg['samples']}/b{cfg['blur']}/{params}{cfg['res']}/"
             f"{w}x{h}/{cfg['api']}/{cfg['stage']}")
 
 

@@ -62,6 +62,8 @@ def fixed_line(fixed):
         elif d == "api": out.append(API_NAMES.get(v, v))
         elif d == "stage": out.append(f"{v} stage")
         elif d == "scene": out.append(f"scene {v}")
+        elif d == "params":
+            if v: out.append(v.replace("/", " "))
         else: out.append(str(v))
     if "left_out" in fixed:
         left, total = fixed["left_out"]
