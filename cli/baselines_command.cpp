@@ -67,7 +67,7 @@ std::string budgetOnlyHint(const gate::GateRun& run, bool filtered, const std::s
 // The files a run rendered in place of kernels/ (--kernel-source), each
 // read and checked to be what was rendered, with where it goes in the tree
 // beside `root`. A run with replaced sources is refused without
-// --with-kernel-source: its images are not what kernels/ renders, and
+// --with-kernel-source: its images are not what the tree renders, and
 // accepting them alone would leave tree and baselines disagreeing.
 Result<SourceCopies> kernelSourceCopies(const gate::GateRun& run, const std::string& root, const std::string& from,
                                         bool take) {
@@ -77,7 +77,7 @@ Result<SourceCopies> kernelSourceCopies(const gate::GateRun& run, const std::str
     for (const auto& r : run.replaced) names += (names.empty() ? "" : ", ") + kernels::sourceLabel(r.name);
     if (!take)
         return badInput("--from " + from + ": rendered with " + names + " replaced (--kernel-source): its images are "
-                        "not what kernels/ renders; pass --with-kernel-source to copy the edits into kernels/ with the "
+                        "not what those files render; pass --with-kernel-source to copy the edits over them with the "
                         "baselines, or copy them yourself and run the gate again");
     std::error_code ec;
     const fs::path tree = fs::absolute(root, ec).lexically_normal().parent_path() / "kernels";

@@ -55,7 +55,7 @@ Result<std::string> sourceKey(const std::string& name) {
     if (found.size() > 1) {
         std::string list;
         for (const auto& f : found) list += (list.empty() ? "" : ", ") + f;
-        return badInput(name + ": more than one kernel source of that name (" + list + "); give its path under kernels/");
+        return badInput(name + ": more than one kernel source of that name (" + list + "); give one of those, or the file's path");
     }
     return badInput(name + ": no kernel source of that name (a .glsl file under kernels/ or in a --kernels package)");
 }
@@ -213,9 +213,18 @@ Status expand(const std::string& name, const std::map<std::string, std::string>&
             if (q0 == std::string::npos || q1 <= q0)
                 return badInput(label + ":" + std::to_string(lineNo) + ": malformed #include");
             const std::string path = line.substr(q0 + 1, q1 - q0 - 1), key = includeKey(name, path);
+            // A package's files are those inside its folder: "..", an
+            // absolute path and a link out of it are not followed
+            // (docs/packages.md), and saying "no such file" of one that
+            // exists would send its author looking for the wrong thing.
+            const bool outward = !path.empty() && (path[0] == '/' || path.rfind("../", 0) == 0 ||
+                                                   path.find("/../") != std::string::npos);
             if (!overrides.count(key) && !sourceFile(key))
-                return badInput(label + ":" + std::to_string(lineNo) + ": #include \"" + path + "\": no such file beside " +
-                                "it nor under kernels/ (a package includes files of its own folder, or kernels/include/...)");
+                return badInput(label + ":" + std::to_string(lineNo) + ": #include \"" + path + "\": " +
+                                (outward ? "a path out of the folder (absolute, or through ..) is not followed: a package "
+                                           "includes files of its own folder, or kernels/include/..."
+                                         : "no such file beside it nor under kernels/ (a package includes files of its "
+                                           "own folder, not links out of it, or kernels/include/...)"));
             CAVITY_TRY(expand(key, overrides, seen, files, out));
             out += "#line " + std::to_string(lineNo + 1) + " " + std::to_string(index) + "\n";
             continue;

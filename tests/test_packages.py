@@ -241,6 +241,16 @@ def check_bad(cavity, root):
             re.escape(os.path.join(pkg, "ring_ao.glsl")) + r':1: #include "nope\.glsl": no such file beside it', said[0]):
         failures += 1
         print(f"FAIL a missing #include: exit {r.returncode}, {r.stderr!r}")
+    # An #include out of the package's folder, of a file that is there: said
+    # as not followed (it read "no such file", sending its author looking).
+    pkg = os.path.join(root, "bad", "include_outward")
+    make(pkg, glsl='#include "../outside.glsl"\n' + GLSL)
+    with open(os.path.join(root, "bad", "outside.glsl"), "w") as f:
+        f.write("float outside() { return 1.0; }\n")
+    r = run([cavity, "kernels", "check", pkg])
+    if r.returncode != 2 or '#include "../outside.glsl": a path out of the folder' not in r.stderr:
+        failures += 1
+        print(f"FAIL an #include out of the folder: exit {r.returncode}, {r.stderr!r}")
     # A shader that compiles on one API only: gl_VertexIndex is Vulkan's word.
     pkg = os.path.join(root, "bad", "one_api")
     make(pkg, glsl=GLSL.replace("float occlusion = 0.0;", "float occlusion = 0.0 * float(gl_VertexIndex);"))

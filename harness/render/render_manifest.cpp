@@ -1,6 +1,7 @@
 #include "render/render_manifest.h"
 
 #include "core/json_input.h"
+#include "kernel.h"
 #include "measure/results.h"
 
 #include <cmath>
@@ -134,7 +135,10 @@ Result<ConfigEntry> readConfig(const JsonObject& cj) {
 
 json replacedJson(const std::vector<ReplacedSource>& replaced) {
     json out = json::array();
-    for (const auto& r : replaced) out.push_back({{"name", r.name}, {"file", r.file}, {"digest", r.digest}});
+    // path: where the file lives as a user finds it (kernels/... for a
+    // built-in, the package's folder for one from disk), for the reports.
+    for (const auto& r : replaced)
+        out.push_back({{"name", r.name}, {"path", kernels::sourceLabel(r.name)}, {"file", r.file}, {"digest", r.digest}});
     return out;
 }
 

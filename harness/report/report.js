@@ -44,7 +44,7 @@
     // What was judged instead of the committed kernels (--kernel-source).
     for (const r of gate.kernel_sources || [])
       document.getElementById('controls').append(el('div', {class: 'replaced'},
-        'kernel source replaced: ', el('code', {}, 'kernels/' + r.name), ' by ', el('code', {}, r.file), ' (' + r.digest + ')'));
+        'kernel source replaced: ', el('code', {}, r.path || 'kernels/' + r.name), ' by ', el('code', {}, r.file), ' (' + r.digest + ')'));
   }
 
   // Thumbnails of what a passing configuration rendered and its worst
