@@ -75,7 +75,8 @@ TEST_F(Cli, BadInputExitsTwoWithOneLineAndWritesNothing) {
         {"--kernel sdf_classic --strength -1", "cavity run: --strength -1: must be a number in 0..100"},
         {"--kernel ground_truth --rays 512", "cavity run: --rays 512: must be an integer in 1024..65536"},
         {"--kernel ground_truth --rays many", "cavity run: --rays 'many': must be an integer in 1024..65536"},
-        {"--kernel nope", "cavity run: --kernel nope: unknown kernel (have: " + aoList() + ")"},
+        {"--kernel nope", "cavity run: --kernel nope: unknown kernel (have: " + aoList() +
+                                 "; a package's: load it with --kernels DIR or CAVITY_KERNELS)"},
         {"--samples 0", "cavity run: --samples 0: must be an integer in 1..256"},
         {"--samples 257", "cavity run: --samples 257: must be an integer in 1..256"},
         {"--radius 0", "cavity run: --radius 0: must be a number > 0"},

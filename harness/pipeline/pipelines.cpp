@@ -265,7 +265,8 @@ Status validate(const RunConfig& c) {
     const auto* k = kernels::find(c.kernel);
     // "reference" kernels (the ground truth) run in the AO slot when named;
     // sweeps over "every AO kernel" leave them out (they are slow by design).
-    if (!k || (k->role != kernels::Role::Ao && k->role != kernels::Role::Reference)) return badInput("--kernel " + c.kernel + ": unknown kernel (have: " + aoKernelNames() + ")");
+    if (!k || (k->role != kernels::Role::Ao && k->role != kernels::Role::Reference)) return badInput("--kernel " + c.kernel + ": unknown kernel (have: " + aoKernelNames() +
+                        "; a package's: load it with --kernels DIR or CAVITY_KERNELS)");
     if (c.width < 1 || c.height < 1 || c.width > kMaxResolution || c.height > kMaxResolution)
         return badInput("--res " + std::to_string(c.width) + "x" + std::to_string(c.height) +
                         ": must be WIDTHxHEIGHT with each in 1.." + std::to_string(kMaxResolution));
