@@ -71,6 +71,17 @@ std::string budgetOnlyHint(const gate::GateRun& run, bool filtered, const std::s
 // accepting them alone would leave tree and baselines disagreeing.
 Result<SourceCopies> kernelSourceCopies(const gate::GateRun& run, const std::string& root, const std::string& from,
                                         bool take) {
+    // A package edited since the gate: its baselines would show images its
+    // files no longer render, and the next gate would fail them.
+    for (const auto& p : run.packages) {
+        const auto now = measure::packagesUsed(std::set<std::string>{p.name});
+        if (now.empty())
+            return badInput("--from " + from + ": judged kernel package " + p.name + " from " + p.folder +
+                            ", which is not loaded: load it with --kernels " + p.folder);
+        if (now[0].digest != p.digest)
+            return badInput("--from " + from + ": judged kernel package " + p.name + " at " + p.digest + ", and its files (" +
+                            now[0].folder + ") are now " + now[0].digest + ": run the gate again, then accept its images");
+    }
     SourceCopies out;
     if (run.replaced.empty()) return out;
     std::string names;

@@ -469,6 +469,17 @@ def main():
         assert open(os.path.join(pkg, "ring_ao.glsl")).read() == open(edited).read()
         fourth = run(gate + ["--out", os.path.join(root, "gate4"), "--store", os.path.join(root, "store")])
         assert fourth.returncode == 0, fourth.stdout + fourth.stderr
+        # A package edited after its gate: its images are not accepted (they
+        # are not what its files render now).
+        kept = open(os.path.join(pkg, "ring_ao.glsl")).read()
+        with open(os.path.join(pkg, "ring_ao.glsl"), "a") as f:
+            f.write("// edited after the gate\n")
+        for accept in (["update"], ["approve", "--why", "x", "--store", os.path.join(root, "store")]):
+            r = run([cavity, "baselines", *accept, "--kernels", pkg, "--from", os.path.join(root, "gate4"), "--baselines",
+                     base, "--filter", "/ring_ao/"])
+            assert r.returncode == 2 and "run the gate again" in r.stderr, accept + [r.stdout + r.stderr]
+        with open(os.path.join(pkg, "ring_ao.glsl"), "w") as f:
+            f.write(kept)
 
         # One package named through two paths loads once; a file is no folder.
         r = run([cavity, "kernels", "list", "--kernels", os.path.dirname(pkg), "--kernels", pkg])
