@@ -33,6 +33,7 @@
 #include <iostream>
 #include <memory>
 #include <regex>
+#include <set>
 
 namespace {
 
@@ -195,8 +196,24 @@ cavity::Status checkBenchmarkFlags(const std::vector<char*>& args, const std::st
         const std::string prefix = std::string("--") + name + "=";
         return std::any_of(args.begin(), args.end(), [&](const char* a) { return std::strncmp(a, prefix.c_str(), prefix.size()) == 0; });
     };
+    // Given twice, Google Benchmark takes the last: a wrapper's flag (cavity
+    // ab's --benchmark_out) would be overridden without a word.
+    std::set<std::string> seen;
+    for (const char* a : args) {
+        const std::string arg = a, name = arg.substr(0, arg.find('='));
+        if (!seen.insert(name).second) return cavity::badInput(name + ": given twice");
+    }
     if (given("benchmark_filter") && filter.empty())
         return cavity::badInput("--benchmark_filter='': empty; give a regular expression (or leave the flag out for every benchmark)");
+    // A minimum time is seconds above 0 (Google Benchmark 1.7 reads a bare
+    // number, and ran a negative or unreadable one as its default).
+    for (const char* name : {"benchmark_min_time", "benchmark_min_warmup_time"})
+        if (given(name)) {
+            const std::string v = benchmarkFlag(args, name);
+            static const std::regex form("[0-9]*\\.?[0-9]+(e[+-]?[0-9]+)?");
+            if (!std::regex_match(v, form) || std::strtod(v.c_str(), nullptr) <= 0)
+                return cavity::badInput(std::string("--") + name + "='" + v + "': must be a number of seconds above 0");
+        }
     // Google Benchmark takes a repetition count below 1 as a vector size
     // (and throws), and 0 as a run that measured nothing.
     if (given("benchmark_repetitions"))
