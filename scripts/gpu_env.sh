@@ -31,7 +31,8 @@ smi_stop() { [ -n "${SMI_PID:-}" ] && kill "$SMI_PID" 2>/dev/null; wait "$SMI_PI
 # One cavity_bench run of the gpu sweep, its configurations' repetitions
 # interleaved, with the clocks sampled beside it: $OUT/NAME.json, .txt, .err
 # and .clocks.csv. The caller sets filter, reps and maxt (and start, for the
-# elapsed seconds it prints); later flags override earlier ones.
+# elapsed seconds it prints); the flags given may not repeat these (cavity_bench
+# refuses a flag given twice).
 #   bench NAME [more cavity_bench flags...]
 bench() {
   local name=$1; shift

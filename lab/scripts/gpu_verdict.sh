@@ -24,11 +24,11 @@ bench a1 || exit 1
 # their cost curve at 512 and 2048, one guess per target, one measured
 # refinement of each guess, then the runs that are judged.
 all=ao:512,blur:512,composite:512
-bench cal512 --plant "$all" --benchmark_repetitions=3
-bench cal2048 --plant "${all//512/2048}" --benchmark_repetitions=3
+reps=3 bench cal512 --plant "$all"
+reps=3 bench cal2048 --plant "${all//512/2048}"
 calibrate guess5.json ao 0.05 && calibrate guess10.json ao,blur,composite 0.10 || exit 1
-bench r5 --plant-file "$OUT/guess5.json" --benchmark_repetitions=3
-bench r10 --plant-file "$OUT/guess10.json" --benchmark_repetitions=3
+reps=3 bench r5 --plant-file "$OUT/guess5.json"
+reps=3 bench r10 --plant-file "$OUT/guess10.json"
 calibrate plant5.json ao 0.05 --point-file "$OUT/guess5.json:$OUT/r5.json" &&
   calibrate plant10.json ao,blur,composite 0.10 --point-file "$OUT/guess10.json:$OUT/r10.json" &&
   calibrate plant2.json ao 0.02 --point-file "$OUT/guess5.json:$OUT/r5.json" || exit 1
