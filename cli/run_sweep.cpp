@@ -94,6 +94,8 @@ Result<bool> sweepFlag(Sweep& s, const std::string& flag, const std::string& v) 
         CAVITY_ASSIGN(const auto items, splitList(flag, v));
         for (const auto& r : items) {
             CAVITY_ASSIGN(auto wh, parseResolution("--res", r));
+            if (std::find(s.sizes.begin(), s.sizes.end(), wh) != s.sizes.end())
+                return badInput(flag + " '" + v + "': " + r + " is a size given twice");
             s.sizes.push_back(wh);
         }
     } else if (flag == "--gbuffer") {
