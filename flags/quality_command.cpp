@@ -267,6 +267,24 @@ Status markEdited(gpu::Backend& gpu, std::vector<QualityStep> steps, std::vector
     return {};
 }
 
+// The parameters set for every kernel measured, as the command line gives
+// them: an enum by its choice's name, not its index.
+nlohmann::json switchesJson(const kernels::ParamValues& switches) {
+    nlohmann::json out = nlohmann::json::object();
+    for (const auto& [name, value] : switches) {
+        const auto* decl = kernels::findParam(name);
+        if (decl && decl->type == kernels::ParamType::Enum) out[name] = kernels::valueText(*decl, value);
+        else out[name] = value;
+    }
+    return out;
+}
+
+std::set<std::string> measuredKernels(const std::vector<QualityRow>& rows) {
+    std::set<std::string> out;
+    for (const auto& r : rows) out.insert(r.kernel);
+    return out;
+}
+
 nlohmann::json qualityJson(const QualityRequest& q, const std::string& device, const std::vector<QualityRow>& rows) {
     const auto& o = q.options;
     nlohmann::json doc = {{"schema", "cavity.quality/1"},
@@ -279,7 +297,8 @@ nlohmann::json qualityJson(const QualityRequest& q, const std::string& device, c
                           {"resolution", o.half ? "half" : "full"},
                           {"reach", o.sharedReach ? "shared" : "seed"},
                           {"radius", o.sharedReach ? nlohmann::json(o.radius) : nlohmann::json(nullptr)},
-                          {"switches", o.switches},
+                          {"switches", switchesJson(o.switches)},
+                          {"kernel_packages", measure::packagesJson(measure::packagesUsed(measuredKernels(rows)))},
                           {"kernel_sources", nlohmann::json::array()},
                           {"rows", nlohmann::json::array()}};
     for (const auto& r : q.replaced) doc["kernel_sources"].push_back({{"name", r.name}, {"file", r.file}, {"digest", r.digest}});

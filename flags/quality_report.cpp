@@ -28,6 +28,12 @@ void printQuality(const QualityOptions& o, std::vector<QualityRow> rows,
         std::printf("reach: shared, every kernel and the truth at R = %g\n", o.radius);
     else
         std::printf("reach: seed, each kernel at its own default reach, the truth at R = 0.5\n");
+    if (!o.switches.empty()) {
+        std::string set;
+        for (const auto& [name, value] : o.switches)
+            if (const auto* decl = kernels::findParam(name)) set += " --" + name + " " + kernels::valueText(*decl, value);
+        std::printf("set for every kernel that declares it:%s\n", set.c_str());
+    }
     using A = TextTable::Align;
     // Each scene's rows, most accurate first.
     std::stable_sort(rows.begin(), rows.end(), [](const QualityRow& a, const QualityRow& b) {

@@ -398,9 +398,13 @@ def main():
         assert r.returncode == 0 and re.search(r"corner\s+ring_ao\s+8\s+0\.\d+", r.stdout), r.stdout + r.stderr
         # ... at a value of its own parameter: the row measures it (another MAE).
         r3 = run([cavity, "quality", "--kernels", pkg, "--kernel", "ring_ao", "--samples", "8", "--scene", "corner",
-                  "--res", "64x36", "--ring_px", "12"])
+                  "--res", "64x36", "--ring_px", "12", "--out", os.path.join(root, "quality3")])
         mae = lambda out: re.search(r"corner\s+ring_ao\s+8\s+(0\.\d+)", out).group(1)
         assert r3.returncode == 0 and mae(r3.stdout) != mae(r.stdout), r3.stdout + r3.stderr
+        # ... and says so: on stdout, and in quality.json with the package.
+        assert "set for every kernel that declares it: --ring_px 12" in r3.stdout, r3.stdout
+        q = json.load(open(os.path.join(root, "quality3", "quality.json")))
+        assert q["switches"] == {"ring_px": 12} and q["kernel_packages"] == packages, q
         r = run([bench, "--kernels", pkg, "--sweep", "cpu", "--benchmark_filter=/ring_ao/", "--benchmark_list_tests"])
         assert r.returncode == 0 and "/ring_ao/" in r.stdout, r.stdout + r.stderr
         one = next(l for l in r.stdout.split() if "/vk/" in l)
