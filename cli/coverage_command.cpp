@@ -9,6 +9,7 @@
 
 #include <filesystem>
 #include <iostream>
+#include <set>
 
 namespace cavity::cli {
 
@@ -24,13 +25,15 @@ const CommandSpec& coverageSpec() {
         "parameter it reads, and each path its package declares under [[paths]] (a remainder, a table size, the "
         "smallest levels). Prints the count, or one line listing every path no configuration reaches.",
         {{"--matrix", "NAMES", "the matrices to count (comma-separated; default: every matrix in matrices.json)"},
+         {"--kernel", "NAMES", "only these kernels' paths (comma-separated; default: every kernel; your packages' in "
+                               "a folder of baselines of your own)"},
          {"--baselines", "DIR", kBaselinesHelp},
          {"--list", "", "print every path, and the first configuration that reaches it (or \"not reached\")"}},
         "",
         "",
         "\nExit codes: 0 every path is reached, 1 some path is not (listed on one line), 2 bad input.",
         {"cavity kernels coverage", "cavity kernels coverage --matrix ci,gpu-cpu --list",
-         "cavity --kernels my_kernels/ kernels coverage"}};
+         "cavity --kernels my_kernels/ kernels coverage --kernel my_ao"}};
     return spec;
 }
 
@@ -45,10 +48,22 @@ int coverageCommand(const std::vector<std::string>& argv) {
         return 0;
     }
     std::string root, names;
+    std::set<std::string> only;   // --kernel: empty, every kernel
     for (const auto& [flag, value] : parsed->values) {
         if (flag == "--baselines") root = value;
         else if (flag == "--matrix") names = value;
+        else if (flag == "--kernel") {
+            auto list = splitList(flag, value);
+            if (!list) return fail(program, list.error());
+            for (const auto& k : *list) {
+                if (!kernels::find(k))
+                    return fail(program, badInput("--kernel " + k + ": unknown kernel (a package's: load it with "
+                                                  "--kernels DIR or CAVITY_KERNELS)"));
+                only.insert(k);
+            }
+        }
     }
+    const auto counted = [&](const std::string& kernel) { return only.empty() || only.count(kernel) > 0; };
     if (root.empty()) {
         auto found = defaultBaselines();
         if (!found) return fail(program, found.error());
@@ -77,19 +92,25 @@ int coverageCommand(const std::vector<std::string>& argv) {
         list += (list.empty() ? "" : ", ") + name;
         matrices.push_back(std::move(*m));
     }
-    size_t declared = 0;
-    for (const auto& k : kernels::all()) declared += plan::declaredPaths(k).size();
-    const auto missing = plan::uncovered(matrices);
+    size_t declared = 0, kernelCount = 0;
+    for (const auto& k : kernels::all())
+        if (counted(k.name)) {
+            declared += plan::declaredPaths(k).size();
+            ++kernelCount;
+        }
+    auto missing = plan::uncovered(matrices);
+    std::erase_if(missing, [&](const plan::CodePath& p) { return !counted(p.kernel); });
     if (parsed->has("--list")) {
         const auto reached = plan::reachedBy(matrices);
         for (const auto& k : kernels::all())
             for (const auto& p : plan::declaredPaths(k)) {
+                if (!counted(k.name)) continue;
                 const auto at = reached.find(p.text());
                 std::cout << p.text() << "  " << (at == reached.end() ? "not reached" : at->second) << "\n";
             }
     }
     if (missing.empty()) {
-        std::cout << program << ": all " << declared << " paths of " << kernels::all().size()
+        std::cout << program << ": all " << declared << " paths of " << kernelCount
                   << " kernels are compiled and judged by " << list << " (" << configs << " configurations)\n";
         return 0;
     }

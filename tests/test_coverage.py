@@ -93,6 +93,15 @@ def main():
         json.dump(mine, open(os.path.join(base, "matrices.json"), "w"))
         r = coverage(cavity, "kernels", "coverage", "--baselines", base, "--matrix", "ci,gpu-cpu,mine", env=env)
         check(r.returncode == 0, "the package's matrix with a wide ring: every path reached", r)
+        # A package's own baselines, with the package's matrix alone: --kernel
+        # counts its paths, not the built-ins' that matrix never runs.
+        json.dump({"mine": mine["mine"]}, open(os.path.join(base, "matrices.json"), "w"))
+        r = coverage(cavity, "kernels", "coverage", "--baselines", base, "--kernel", "ring_ao", env=env)
+        check(r.returncode == 0 and re.match(r"cavity kernels coverage: all \d+ paths of 1 kernels", r.stdout),
+              "--kernel ring_ao over the package's matrix: its paths alone", r)
+        r = coverage(cavity, "kernels", "coverage", "--baselines", base, env=env)
+        check(r.returncode == 1 and "alchemy:" in r.stderr, "without --kernel the built-ins count, and are holes", r)
+        json.dump(mine, open(os.path.join(base, "matrices.json"), "w"))
 
         # Bad input: one line, exit 2.
         r = coverage(cavity, "kernels", "coverage", "--matrix", "ci,nope")
