@@ -37,6 +37,18 @@ const CommandSpec& coverageSpec() {
     return spec;
 }
 
+// --kernel's names, each a kernel that is loaded.
+Result<std::set<std::string>> kernelNames(const std::string& flag, const std::string& value) {
+    CAVITY_ASSIGN(const auto list, splitList(flag, value));
+    std::set<std::string> out;
+    for (const auto& k : list) {
+        if (!kernels::find(k))
+            return badInput(flag + " " + k + ": unknown kernel (a package's: load it with --kernels DIR or CAVITY_KERNELS)");
+        out.insert(k);
+    }
+    return out;
+}
+
 }  // namespace
 
 int coverageCommand(const std::vector<std::string>& argv) {
@@ -53,14 +65,9 @@ int coverageCommand(const std::vector<std::string>& argv) {
         if (flag == "--baselines") root = value;
         else if (flag == "--matrix") names = value;
         else if (flag == "--kernel") {
-            auto list = splitList(flag, value);
+            auto list = kernelNames(flag, value);
             if (!list) return fail(program, list.error());
-            for (const auto& k : *list) {
-                if (!kernels::find(k))
-                    return fail(program, badInput("--kernel " + k + ": unknown kernel (a package's: load it with "
-                                                  "--kernels DIR or CAVITY_KERNELS)"));
-                only.insert(k);
-            }
+            only = std::move(*list);
         }
     }
     const auto counted = [&](const std::string& kernel) { return only.empty() || only.count(kernel) > 0; };

@@ -9,11 +9,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 #include <cstring>
 #include <set>
-#include <limits>
 #include <sstream>
 
 namespace cavity::kernels {
@@ -213,18 +210,13 @@ Status expand(const std::string& name, const std::map<std::string, std::string>&
             if (q0 == std::string::npos || q1 <= q0)
                 return badInput(label + ":" + std::to_string(lineNo) + ": malformed #include");
             const std::string path = line.substr(q0 + 1, q1 - q0 - 1), key = includeKey(name, path);
-            // A package's files are those inside its folder: "..", an
-            // absolute path and a link out of it are not followed
-            // (docs/packages.md), and saying "no such file" of one that
-            // exists would send its author looking for the wrong thing.
-            const bool outward = !path.empty() && (path[0] == '/' || path.rfind("../", 0) == 0 ||
-                                                   path.find("/../") != std::string::npos);
+            // Paths out of a package's folder are not followed (docs/packages.md): say so, not "no such file".
+            const bool outside = path.rfind("/", 0) == 0 || path.rfind("../", 0) == 0 || path.find("/../") != std::string::npos;
             if (!overrides.count(key) && !sourceFile(key))
                 return badInput(label + ":" + std::to_string(lineNo) + ": #include \"" + path + "\": " +
-                                (outward ? "a path out of the folder (absolute, or through ..) is not followed: a package "
-                                           "includes files of its own folder, or kernels/include/..."
-                                         : "no such file beside it nor under kernels/ (a package includes files of its "
-                                           "own folder, not links out of it, or kernels/include/...)"));
+                                (outside ? "a path out of the folder (absolute, or through ..) is not followed"
+                                         : "no such file beside it nor under kernels/") +
+                                " (a package includes files of its own folder, not links out of it, or kernels/include/...)");
             CAVITY_TRY(expand(key, overrides, seen, files, out));
             out += "#line " + std::to_string(lineNo + 1) + " " + std::to_string(index) + "\n";
             continue;
