@@ -124,6 +124,9 @@ def bad_packages():
          r"params\[1\]\.name = radious: no parameter of that name \(did you mean radius\?\)"),
         ("harness parameter declared otherwise", lambda d: w(d, "kernel.toml", sub(t, 'name = "radius"\n', 'name = "radius"\ntype = "int"\nmin = 1\nmax = 9\nhelp = "h"\n')),
          r"params\[1\]\.type = \"int\": 'radius' is declared already, as a number > 0"),
+        # The same type, another range: said at the key that differs.
+        ("harness parameter's range redeclared", lambda d: w(d, "kernel.toml", sub(t, 'name = "samples"\n', 'name = "samples"\ntype = "int"\nmin = 1\nmax = 64\nunit = "samples"\nhelp = "h"\n')),
+         r"params\[0\]\.max = 64: 'samples' is declared already, as an integer in 1\.\.256"),
         ("duplicate enum choice", lambda d: w(d, "kernel.toml", sub(sub(t, 'type = "int"', 'type = "enum"\nchoices = ["near", "near"]'), "default = 4\nmin = 1\nmax = 32\n", 'default = "near"\n')),
          r"params\[2\]\.choices = \"near\": each choice must be a distinct name"),
         # A choice is one segment of a configuration id, a path under --out.

@@ -148,9 +148,16 @@ Status readParam(const Ctx& c, const toml::table& t, size_t i, KernelDecl& k, Pa
         // One declaration a name, whoever made it: another package's kernel
         // may declare it again only as it stands.
         CAVITY_ASSIGN(const ParamDecl again, newParam(c, t, where, name));
-        if (again.type != decl->type || again.min != decl->min || again.max != decl->max ||
-            again.minExclusive != decl->minExclusive || again.choices != decl->choices || again.unit != decl->unit)
-            return c.fail(t.get("type"), where + "type", show(*t.get("type")),
+        // Said at the first key that differs, so that the line is the one to change.
+        const char* differs = again.type != decl->type                                            ? "type"
+                              : again.min != decl->min || again.minExclusive != decl->minExclusive ? "min"
+                              : again.max != decl->max                                             ? "max"
+                              : again.choices != decl->choices                                     ? "choices"
+                              : again.unit != decl->unit                                           ? "unit"
+                                                                                                   : nullptr;
+        const char* at = differs && t.get(differs) ? differs : "type";
+        if (differs)
+            return c.fail(t.get(at), where + at, show(*t.get(at)),
                           "'" + name + "' is declared already, as " + allowedValues(*decl) +
                               " (cavity run --help): declare it exactly so, set only its default and note, or "
                               "name a parameter of your own");
