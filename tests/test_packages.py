@@ -254,6 +254,14 @@ def check_bad(cavity, root):
     if r.returncode != 2 or '#include "../outside.glsl": a path out of the folder' not in r.stderr:
         failures += 1
         print(f"FAIL an #include out of the folder: exit {r.returncode}, {r.stderr!r}")
+    # A package inside a package: refused, not read as the outer one's files.
+    pkg = os.path.join(root, "bad", "nested")
+    make(pkg)
+    make(os.path.join(pkg, "inner"), toml=TOML.replace('"ring_ao"', '"ring_inner"'))
+    r = run([cavity, "kernels", "check", pkg])
+    if r.returncode != 2 or "inner/kernel.toml: a package inside the package" not in r.stderr:
+        failures += 1
+        print(f"FAIL a nested package: exit {r.returncode}, {r.stderr!r}")
     # A shader that compiles on one API only: gl_VertexIndex is Vulkan's word.
     pkg = os.path.join(root, "bad", "one_api")
     make(pkg, glsl=GLSL.replace("float occlusion = 0.0;", "float occlusion = 0.0 * float(gl_VertexIndex);"))

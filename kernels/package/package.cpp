@@ -65,6 +65,11 @@ Status loadFolder(const fs::path& folder, std::vector<KernelDecl>& registry) {
     // error, said in one line, not an exception.
     try {
         for (const auto& e : fs::recursive_directory_iterator(folder)) {
+            // A package inside a package would be read as the outer one's
+            // files and never loaded: said, not left unseen.
+            if (e.path().filename() == "kernel.toml" && e.path().parent_path() != folder)
+                return badInput(e.path().string() + ": a package inside the package " + folder.string() +
+                                " is not loaded; put it beside it (a folder of packages is read one level deep)");
             if (e.path().extension() != ".glsl") continue;
             if (!e.is_regular_file(ec))
                 return badInput(e.path().string() + ": " + (ec ? ec.message() : std::string("not a regular file")) +
