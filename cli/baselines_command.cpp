@@ -5,6 +5,7 @@
 #include "core/digest.h"
 #include "core/json_file.h"
 #include "package/package.h"
+#include "render/image_file.h"
 
 #include <algorithm>
 #include <filesystem>
@@ -132,6 +133,22 @@ Status copyKernelSources(const SourceCopies& copies, const gate::GateRun& run) {
 
 namespace {
 int updateCommand(const std::vector<std::string>& argv);
+
+// The new image beside a gate.json is the one that gate judged: its float
+// bits (written before the image file, gate_judge.cpp) have the digest
+// gate.json records. A gate killed after it began writing images, and
+// before its gate.json, leaves files the older gate.json does not describe.
+Status judgedPixels(const std::string& newExact, const std::string& digest, const std::string& from) {
+    const fs::path bits = fs::path(newExact).replace_extension(".f32z");
+    std::ifstream in(bits, std::ios::binary);
+    if (!in || digest.empty()) return {};   // an output written before the bits were kept
+    const std::string bytes((std::istreambuf_iterator<char>(in)), {});
+    CAVITY_ASSIGN(const HostImage image, render::decodeImage(bytes, bits.string()));
+    if (const std::string now = core::imageDigestLike(image, digest); now != digest)
+        return badInput("--from " + from + ": " + bits.string() + " has digest " + now + ", not the " + digest +
+                        " its gate.json judged (a gate into that folder was interrupted): run the gate again");
+    return {};
+}
 }  // namespace
 
 int baselinesCommand(const std::vector<std::string>& argv) {
@@ -203,6 +220,7 @@ int updateCommand(const std::vector<std::string>& argv) {
                             badInput("--from " + from + ": " + r.id + " " + i.image + " was judged against an approved " +
                                      "image of its device class (" + i.reference + "), which a baseline file does not " +
                                      "replace: accept it with cavity baselines approve --from " + from + " --why ..."));
+            if (auto st = judgedPixels(i.newExact, i.digest, from); !st) return fail("cavity baselines update", st.error());
             const fs::path target = fs::path("images") / r.key / (i.image + fs::path(i.newExact).extension().string());
             writes.push_back({i.newExact, target});
             std::ostringstream line;

@@ -17,6 +17,9 @@ import subprocess
 import sys
 import tempfile
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from baselines_copy import drop_cpu_approvals  # noqa: E402
+
 NAME = "corner/alchemy/n16/b4/full/160x90/vk/compute/iterations:1/manual_time"
 
 
@@ -132,9 +135,34 @@ def main():
         ok = subprocess.run([cavity, "gate", "merge", "s0", "s1", "--out", "out"], capture_output=True, text=True, cwd=tmp)
         if ok.returncode != 0:
             failures.append(f"merge of the two shards as judged: exit {ok.returncode}\n{ok.stderr}")
+
+        # A gate output whose images are not what its gate.json judged (a
+        # later gate into the folder, killed before its own gate.json; here
+        # the older gate.json put back): update refuses, baselines unchanged.
+        # Without the CPU's approvals every image is written.
+        shutil.copytree(baselines, os.path.join(tmp, "bl"))
+        drop_cpu_approvals(os.path.join(tmp, "bl"))
+        one = ["gate", "--baselines", "bl", "--matrix", "ci", "--filter", "^corner/alchemy/n16/b4/full/160x90/vk/compute$",
+               "--out", "g", "--quiet", "--retries", "0"]
+        subprocess.run([cavity, *one], cwd=tmp, check=True, capture_output=True, timeout=300)
+        older = open(os.path.join(tmp, "g", "gate.json")).read()
+        shader = open(os.path.join(source, "kernels", "ao", "alchemy", "ssao_alchemy.glsl")).read()
+        with open(os.path.join(tmp, "edit.glsl"), "w") as f:
+            f.write(shader.replace("- P.bias", "- 0.5 * P.bias", 1))
+        subprocess.run([cavity, *one, "--kernel-source", "ssao_alchemy.glsl=edit.glsl"], cwd=tmp, capture_output=True,
+                       timeout=300)
+        with open(os.path.join(tmp, "g", "gate.json"), "w") as f:
+            f.write(older)
+        images = os.path.join(tmp, "bl", "images", "corner", "alchemy", "n16", "b4", "full", "160x90")
+        kept = {n: open(os.path.join(images, n), "rb").read() for n in os.listdir(images)}
+        check("update of images gate.json did not judge", [cavity, "baselines", "update", "--from", "g", "--baselines", "bl",
+                                                          "--filter", "/vk/compute$"], ["ao.new.f32z", "run the gate again"],
+              tmp, "bl/.update-staging")
+        if "- P.bias" not in shader or {n: open(os.path.join(images, n), "rb").read() for n in os.listdir(images)} != kept:
+            failures.append("update of images gate.json did not judge: the baselines changed (or the edit did not apply)")
     if failures:
         sys.exit("\n".join(failures))
-    print(f"{2 * len(BENCH) + len(MANIFEST) + len(merges) + 1} cases")
+    print(f"{2 * len(BENCH) + len(MANIFEST) + len(merges) + 2} cases")
 
 
 if __name__ == "__main__":

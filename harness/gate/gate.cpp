@@ -120,6 +120,11 @@ bool worthRetrying(const ConfigResult& r) {
 
 }  // namespace
 
+void dropStaleReports(const std::string& out) {
+    std::error_code ec;
+    for (const char* name : kReportFiles) fs::remove(fs::path(out) / name, ec);
+}
+
 Result<GateRun> runGate(const GateOptions& o) {
     const auto start = std::chrono::steady_clock::now();
     CAVITY_ASSIGN(Matrix matrix, loadMatrix((fs::path(o.baselines) / "matrices.json").string(), o.matrix));
@@ -154,6 +159,7 @@ Result<GateRun> runGate(const GateOptions& o) {
     ro.overrides = o.overrides;
     int attempt = 0;
     std::map<std::string, size_t> where;   // id -> index in run.results
+    dropStaleReports(o.out);
     Progress progress(entries.size(), o.quiet, "gate: ");
     auto sink = [&](render::Rendering&& rendering) -> Status {
         if (attempt == 0 && flaky && std::regex_search(rendering.id, *flaky)) perturbForTest(rendering);

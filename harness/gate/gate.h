@@ -153,6 +153,14 @@ struct GateRun {
 // renders and judges each configuration in turn.
 Result<GateRun> runGate(const GateOptions& o);
 
+// The reports a gate output folder holds; gate.json is the one the other
+// commands read, so it is written last (report/gate_report.h).
+inline constexpr const char* kReportFiles[] = {"index.html", "summary.md", "junit.xml", "status.json", "gate.json"};
+// Removes an earlier run's reports from `out` before its images are
+// overwritten: a run killed after that point leaves images and no verdict,
+// never an old verdict over new images.
+void dropStaleReports(const std::string& out);
+
 nlohmann::json toJson(const GateRun& run);
 // The pieces of gate.json that render folders also carry (RemoteCheck).
 nlohmann::json toleranceJson(const Tolerance& t);

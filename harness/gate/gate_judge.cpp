@@ -210,12 +210,14 @@ Result<ImageCheck> judgeImage(const CheckedImage& ci, const HostImage* now, cons
         fs::create_directories(dir, ec);
         check.newExact = (dir / (ci.name + ".new" + ci.extension)).string();
         check.newPng = (dir / (ci.name + ".new.png")).string();
-        CAVITY_TRY(writeImage(check.newExact, *now));
-        if (ci.extension != ".png") CAVITY_TRY(writeImage(check.newPng, *now, Encoding::Preview));
         // The very float bits, for `cavity baselines approve` to put into the
         // image store: an 8-bit PNG read back need not give the bits a
-        // driver's readback gave (GL and Vulkan convert differently).
+        // driver's readback gave (GL and Vulkan convert differently). First,
+        // so that update and approve, which check them against gate.json's
+        // digest, see any new image a killed run left.
         if (auto bits = render::writeImageFile((dir / (ci.name + ".new.f32z")).string(), *now, 1); !bits) return bits.error();
+        CAVITY_TRY(writeImage(check.newExact, *now));
+        if (ci.extension != ".png") CAVITY_TRY(writeImage(check.newPng, *now, Encoding::Preview));
     }
     const Approval* a = j.approvals.find(r.key, ci.name, digest, deviceClass(r.device));
     // An approval made before SHA-256 names the image by its FNV-1a digest.

@@ -371,6 +371,7 @@ Result<GateRun> judgeFolders(const std::vector<std::string>& dirs, const JudgeOp
     for (const auto& f : folders)
         for (const auto& c : f.m.configs) configs.push_back(all[c.index]);
     CAVITY_ASSIGN(Judge judge, prepareJudge(baselines, configs, o.out, o.store));
+    dropStaleReports(o.out);
     judge.enforceCpuBudgets = o.enforceCpuBudgets;
     const auto items = gateOrder(folders);
     double rendered = 0;

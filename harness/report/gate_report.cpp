@@ -4,6 +4,7 @@
 #include "measure/results.h"
 
 #include <filesystem>
+#include <map>
 
 namespace cavity::report {
 
@@ -35,16 +36,22 @@ nlohmann::json commitStatus(const GateRun& run, const std::string& reportUrl) {
             {"context", "cavity/gate/" + run.matrix}};
 }
 
+// Every report is made before any is written, each is written whole under
+// its own name, and gate.json (what update, approve and merge read) goes
+// last: a kill between the writes leaves no new gate.json beside older
+// pages, and never a new verdict that the pages beside it contradict.
 Status writeReports(const GateRun& run, const std::string& outDir, const std::string& reportUrl) {
     const fs::path out(outDir);
     std::error_code ec;
     fs::create_directories(out, ec);
-    CAVITY_TRY(writeJson((out / "gate.json").string(), toJson(run)));
-    CAVITY_TRY(writeFileAtomically((out / "junit.xml").string(), junitXml(run)));
-    CAVITY_TRY(writeFileAtomically((out / "summary.md").string(), summaryMarkdown(run, reportUrl.empty() ? "index.html" : reportUrl)));
-    CAVITY_TRY(writeJson((out / "status.json").string(), commitStatus(run, reportUrl)));
     CAVITY_ASSIGN(const std::string html, reportHtml(run, (out / "charts").string()));
-    CAVITY_TRY(writeFileAtomically((out / "index.html").string(), html));
+    const std::map<std::string, std::string> text = {
+        {"index.html", html},
+        {"summary.md", summaryMarkdown(run, reportUrl.empty() ? "index.html" : reportUrl)},
+        {"junit.xml", junitXml(run)},
+        {"status.json", core::jsonText(commitStatus(run, reportUrl), 2) + "\n"},
+        {"gate.json", core::jsonText(toJson(run), 2) + "\n"}};
+    for (const char* name : gate::kReportFiles) CAVITY_TRY(writeFileAtomically((out / name).string(), text.at(name)));
     return {};
 }
 
