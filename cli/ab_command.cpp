@@ -171,19 +171,31 @@ Result<json> mergeRounds(const std::vector<std::string>& files) {
     return merged;
 }
 
-// What an earlier ab left in --out goes (a run of more rounds left more
-// files), and this one's moves in.
+// This run's files move in, each replacing its namesake whole (the rounds
+// first, compare.json last), and only then do an earlier ab's files that
+// this one did not write go (a run of more rounds left more): a kill
+// between the moves leaves every file whole, never the earlier results
+// deleted with nothing in their place.
 Status movedIn(const fs::path& staging, const std::string& out) {
     std::error_code ec;
-    const std::regex ours("(a|b)(_[0-9]+)?\\.(json|log)|compare\\.json");
-    for (const auto& e : fs::directory_iterator(out, ec))
-        if (e.is_regular_file() && std::regex_match(e.path().filename().string(), ours)) fs::remove(e.path(), ec);
     std::vector<fs::path> made;
     for (const auto& e : fs::directory_iterator(staging, ec)) made.push_back(e.path());
+    const auto rank = [](const fs::path& p) {
+        const std::string n = p.filename().string();
+        return n == "compare.json" ? 2 : n.find('_') == std::string::npos ? 1 : 0;   // rounds, sides, comparison
+    };
+    std::stable_sort(made.begin(), made.end(), [&](const fs::path& a, const fs::path& b) { return rank(a) < rank(b); });
+    std::set<std::string> names;
     for (const auto& p : made) {
         fs::rename(p, fs::path(out) / p.filename(), ec);
         if (ec) return badInput("--out " + out + ": cannot move " + p.filename().string() + " in: " + ec.message());
+        names.insert(p.filename().string());
     }
+    const std::regex ours("(a|b)(_[0-9]+)?\\.(json|log)|compare\\.json");
+    for (const auto& e : fs::directory_iterator(out, ec))
+        if (e.is_regular_file() && std::regex_match(e.path().filename().string(), ours) &&
+            !names.count(e.path().filename().string()))
+            fs::remove(e.path(), ec);
     fs::remove_all(staging, ec);
     return {};
 }
@@ -302,6 +314,12 @@ int abCommand(const std::vector<std::string>& argv) {
         sides[side] = std::move(*sets);
     }
     const auto rows = compareAll(*sides[0], *sides[1], f->thresholds);
+    // Two sides with nothing in common (--a-args '--backend gl' against
+    // --b-args '--backend vk') compared nothing: not "0 slower", exit 0.
+    if (std::none_of(rows.begin(), rows.end(), [](const auto& r) { return r.verdict != "new" && r.verdict != "gone"; }))
+        return fail(program, badInput("A and B measured no configuration and pass in common (" + std::to_string(rows.size()) +
+                                      " on one side only): give both sides the same selection; their runs are in " +
+                                      staging.string()));
     if (auto st = writeJson((staging / "compare.json").string(), compareJson(rows, *sides[0], *sides[1], f->thresholds)); !st)
         return fail(program, st.error());
     if (auto st = movedIn(staging, f->out); !st) return fail(program, st.error());

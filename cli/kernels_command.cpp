@@ -293,7 +293,10 @@ int check(const std::string& dir) {
     // A built-in one is named by its folder in the repository (kernels/ao/
     // <name>), which is relative: from any working folder, a path that ends
     // so is it.
-    std::string given = fs::absolute(dir).lexically_normal().string();
+    std::error_code ec;
+    if (dir.empty()) return fail("cavity kernels check", badInput("DIR '': empty; give a package's folder"));
+    std::string given = fs::absolute(dir, ec).lexically_normal().string();
+    if (ec) return fail("cavity kernels check", badInput(dir + ": " + ec.message()));
     while (given.size() > 1 && given.back() == '/') given.pop_back();
     const auto endsWith = [&](const std::string& tail) {
         return given.size() > tail.size() && given.compare(given.size() - tail.size() - 1, std::string::npos, "/" + tail) == 0;

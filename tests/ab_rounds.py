@@ -20,6 +20,8 @@ mode = os.environ.get("FAKE_MODE", "ok")
 args = sys.argv[1:]
 out = next((a.split("=", 1)[1] for a in args if a.startswith("--benchmark_out=")), None)
 name = "corner/alchemy/n16/b4/full/160x90/gl/compute/iterations:1/manual_time"
+if "--other" in args:   # a side that measures another configuration
+    name = name.replace("/gl/", "/vk/")
 if "--benchmark_list_tests=true" in args:
     print(name)
     sys.exit(0)
@@ -90,13 +92,17 @@ def main():
                 failures.append(f"{mode}: exit {r.returncode}, expected 4 and one line with '{said}':\n{r.stderr}")
             if tree(out) != before:
                 failures.append(f"{mode}: --out changed: {sorted(os.listdir(out))}")
+        # Two sides with no configuration in common compared nothing: exit 2.
+        r = ab("ok", "--b-args", "--other")
+        if r.returncode != 2 or "no configuration and pass in common" not in r.stderr or tree(out) != before:
+            failures.append(f"sides with nothing in common: exit {r.returncode}\n{r.stderr}")
         for flag in ("--benchmark_out=x.json", "--benchmark_repetitions=3", "--benchmark_filter=x"):
             r = ab("ok", "--bench-args", "--frames 2 " + flag)
             if r.returncode != 2 or flag.split("=")[0] not in r.stderr or r.stderr.count("\n") != 1:
                 failures.append(f"--bench-args {flag}: exit {r.returncode}\n{r.stderr}")
     if failures:
         sys.exit("\n".join(failures))
-    print(f"{len(cases) + 3} cases")
+    print(f"{len(cases) + 4} cases")
 
 
 if __name__ == "__main__":
