@@ -75,8 +75,9 @@ def keep_only(files, pattern):
     import re
     try:
         keep = re.compile(pattern)
-    except re.error as e:
-        raise BadInput(f"charts: --filter {pattern!r}: not a regular expression ({e})")
+    except (re.error, RecursionError, OverflowError) as e:   # nested past what re compiles
+        shown = pattern if len(pattern) <= 60 else pattern[:57] + "..."
+        raise BadInput(f"charts: --filter {shown!r}: not a regular expression ({str(e) or type(e).__name__})")
     for f in files:
         f["records"] = {k: r for k, r in f["records"].items() if keep.search(r["id"])}
     if not files[-1]["records"]:

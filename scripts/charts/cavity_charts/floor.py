@@ -35,8 +35,9 @@ def main(argv):
     try:
         try:
             keep = re.compile(args.filter)
-        except re.error as e:
-            raise BadInput(f"charts floor: --filter {args.filter!r}: not a regular expression ({e})")
+        except (re.error, RecursionError, OverflowError) as e:   # nested past what re compiles
+            shown = args.filter if len(args.filter) <= 60 else args.filter[:57] + "..."
+            raise BadInput(f"charts floor: --filter {shown!r}: not a regular expression ({str(e) or type(e).__name__})")
         rows = [r for path in args.results for r in load_floor_rows(path) if keep.search(r["id"])]
         if not rows:
             raise BadInput(f"charts floor: --filter {args.filter!r} matches no configuration")
