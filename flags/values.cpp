@@ -1,4 +1,5 @@
 #include "values.h"
+#include "core/regex_guard.h"
 #include "core/digest.h"
 
 #include "kernel.h"
@@ -64,6 +65,9 @@ Status addKernelSource(const std::string& value, SourceOverrides& overrides, std
 }
 
 Result<std::regex> parseFilter(const std::string& flag, const std::string& text) {
+    if (const std::string nested = core::nestedQuantifier(text); !nested.empty())
+        return badInput(flag + " " + text + ": " + nested + " repeats a group that repeats itself, which std::regex "
+                        "takes exponential time to miss with; drop the outer repeat");
     try {
         return std::regex(text);
     } catch (const std::regex_error& e) {

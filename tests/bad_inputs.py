@@ -188,6 +188,10 @@ CASES = [
     Case("samples-duplicate-item", "cavity", RUN + ["--samples", "8,8"], ["--samples", "8", "twice"]),
     Case("flag-twice", "cavity", RUN + ["--samples", "8", "--samples", "16"], ["--samples", "twice"]),
     Case("gate-filter-nomatch", "cavity", GATE[:-4] + ["--filter", "nomatch", "--out", "out"], ["--filter", "nomatch", "matches none"]),
+    # A repeated group that repeats itself: std::regex backtracks for minutes on a miss.
+    Case("gate-filter-nested-repeat", "cavity", GATE[:-4] + ["--filter", "(.*)*zzz", "--out", "out"],
+         ["--filter", "(.*)*", "repeats a group"]),
+    Case("run-filter-nested-repeat", "cavity", RUN + ["--filter", "(a+)+zzz"], ["--filter", "(a+)+", "repeats a group"]),
     Case("matrices-negative-frames", "cavity", GATE, ["matrices.json", "frames", "-1"], setup=edit_json("matrices.json", frames_negative)),
     Case("bench-iterations-0", "cavity_bench", ["--iterations", "0"], ["--iterations", "0"]),
     Case("bench-iterations-abc", "cavity_bench", ["--iterations", "abc"], ["--iterations", "abc"]),

@@ -1,5 +1,6 @@
 #include "nearest.h"
 #include "plan/matrix.h"
+#include "core/regex_guard.h"
 
 #include "plan/axes.h"
 
@@ -211,6 +212,9 @@ bool inShard(size_t index, int shardIndex, int shardCount) {
 Result<std::vector<MatrixEntry>> selectEntries(const Matrix& m, int shardIndex, int shardCount,
                                                const std::string& filter) {
     std::optional<std::regex> re;
+    if (const std::string nested = core::nestedQuantifier(filter); !nested.empty())
+        return badInput("--filter " + filter + ": " + nested + " repeats a group that repeats itself, which std::regex "
+                        "takes exponential time to miss with; drop the outer repeat");
     if (!filter.empty()) {
         try {
             re.emplace(filter);
