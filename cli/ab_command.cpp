@@ -21,7 +21,6 @@
 #include <regex>
 #include <set>
 
-#include <csignal>
 #include <cstring>
 
 #include <sys/wait.h>

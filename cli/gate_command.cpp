@@ -192,13 +192,10 @@ int merge(const std::vector<std::string>& argv) {
         for (auto& e : run->backendErrors) merged.backendErrors.push_back(e);
         // A configuration is in one shard: one in two is a folder copied or
         // mislabelled, whose own shard's results are then missing.
-        std::set<std::string> mine;
         for (auto& r : run->results) {
-            if (!mine.count(r.id) && owner.count(r.id))
-                return fail("cavity gate merge", badInput(d + ": " + r.id + " is also in " + owner[r.id] +
+            if (const auto [at, fresh] = owner.emplace(r.id, d); !fresh && at->second != d)
+                return fail("cavity gate merge", badInput(d + ": " + r.id + " is also in " + at->second +
                                                           " (a configuration belongs to one shard)"));
-            mine.insert(r.id);
-            owner[r.id] = d;
             if (seen.insert({r.id, r.repetition}).second) merged.results.push_back(std::move(r));
         }
     }

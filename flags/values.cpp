@@ -65,9 +65,7 @@ Status addKernelSource(const std::string& value, SourceOverrides& overrides, std
 }
 
 Result<std::regex> parseFilter(const std::string& flag, const std::string& text) {
-    if (const std::string nested = core::nestedQuantifier(text); !nested.empty())
-        return badInput(flag + " " + text + ": " + nested + " repeats a group that repeats itself, which std::regex "
-                        "takes exponential time to miss with; drop the outer repeat");
+    if (const std::string why = core::nestedQuantifierError(flag, text); !why.empty()) return badInput(why);
     try {
         return std::regex(text);
     } catch (const std::regex_error& e) {

@@ -49,17 +49,15 @@ Result<std::string> stringOr(const json& b, const char* key, const std::string& 
     return b[key].get<std::string>();
 }
 
-// Longer than any pass: a time past this was not measured.
-constexpr double kMaxMs = 1e7;
-
 // An iteration entry's unit (as ms per unit), time and counts, checked:
 // Google Benchmark always writes the unit, and a guess would be off by a
 // factor of up to 10^9.
 Result<double> iterationFields(const json& b, const std::string& where) {
     if (!b.contains("time_unit")) return badInput(where + ": time_unit: missing (ns, us, ms or s)");
-    CAVITY_ASSIGN(const std::string unit, stringOr(b, "time_unit", "", where));
+    const json& unit = b["time_unit"];
     double factor = 0;
-    if (!msPerUnit(unit, factor)) return badInput(where + ": time_unit " + core::shortDump(unit) + ": must be ns, us, ms or s");
+    if (!unit.is_string() || !msPerUnit(unit.get<std::string>(), factor))
+        return badInput(where + ": time_unit " + core::shortDump(unit) + ": must be ns, us, ms or s");
     // A NaN (written as a bare NaN, read as null) is no time either: an
     // iteration without error_occurred must have measured one.
     if (!b.contains("real_time") || !b["real_time"].is_number())
@@ -142,7 +140,7 @@ Result<SampleSets> readBenchmarkJson(const json& doc, const std::string& path) {
             b.contains("sm_mhz_median") && b["sm_mhz_median"].is_number() ? b["sm_mhz_median"].get<double>() : NAN;
         // A negative or infinite time was never measured: the file is wrong.
         const auto time = [&](const std::string& key, double ms) -> Status {
-            if (std::isfinite(ms) && ms >= 0 && ms <= kMaxMs) return {};
+            if (std::isfinite(ms) && ms >= 0 && ms <= measure::kMaxRecordedMs) return {};
             return badInput(where + " " + name + ": " + key + " " + core::shortDump(ms) +
                             " ms: a time must be finite, >= 0 and at most 1e7 ms");
         };

@@ -6,41 +6,48 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 namespace cavity::core {
 
 // The first quantified group with a quantifier inside ("(.*)*", "(a+){2,}"),
 // or "" where there is none. Escapes and character classes are skipped.
 inline std::string nestedQuantifier(const std::string& re) {
-    size_t depthStart[256] = {};           // where each open group starts
-    int depth = 0;
-    bool inner[256] = {};
+    struct Group {
+        size_t start;
+        bool repeats;   // holds a quantifier
+    };
+    std::vector<Group> open;
     for (size_t i = 0; i < re.size(); ++i) {
         const char c = re[i];
-        if (c == '\\') { ++i; continue; }
-        if (c == '[') {                    // a class: up to its closing ]
+        if (c == '\\') {
+            ++i;
+        } else if (c == '[') {             // a class: up to its closing ]
             size_t j = i + 1;
             if (j < re.size() && re[j] == '^') ++j;
             if (j < re.size() && re[j] == ']') ++j;
             while (j < re.size() && re[j] != ']') j += re[j] == '\\' ? 2 : 1;
             i = j;
-            continue;
-        }
-        if (c == '(' && depth < 255) {
-            depthStart[++depth] = i;
-            inner[depth] = false;
-        } else if ((c == '*' || c == '+' || c == '{') && depth > 0) {
-            inner[depth] = true;
-        } else if (c == ')' && depth > 0) {
-            const bool held = inner[depth];
-            const size_t from = depthStart[depth];
-            --depth;
+        } else if (c == '(') {
+            open.push_back({i, false});
+        } else if ((c == '*' || c == '+' || c == '{') && !open.empty()) {
+            open.back().repeats = true;
+        } else if (c == ')' && !open.empty()) {
+            const Group g = open.back();
+            open.pop_back();
             const char next = i + 1 < re.size() ? re[i + 1] : '\0';
-            if (held && (next == '*' || next == '+' || next == '{')) return re.substr(from, i + 2 - from);
-            if (held && depth > 0) inner[depth] = true;
+            if (g.repeats && (next == '*' || next == '+' || next == '{')) return re.substr(g.start, i + 2 - g.start);
+            if (g.repeats && !open.empty()) open.back().repeats = true;
         }
     }
     return "";
+}
+
+// The one-line refusal of such a pattern given with `flag`, or "".
+inline std::string nestedQuantifierError(const std::string& flag, const std::string& re) {
+    const std::string nested = nestedQuantifier(re);
+    return nested.empty() ? "" : flag + " " + re + ": " + nested + " repeats a group that repeats itself, which std::regex "
+                                 "takes exponential time to miss with; drop the outer repeat";
 }
 
 }  // namespace cavity::core

@@ -73,6 +73,10 @@ std::string utcTimestamp();
 // A kernel package from disk (--kernels, CAVITY_KERNELS) whose kernel a run
 // used: the folder it was loaded from and a digest of its kernel.toml and
 // GLSL, so that a verdict or a time is never taken for another version's.
+// Longer than any pass or frame (about three hours): a time past it in a
+// record (results, render manifests, benchmark JSON) was not measured.
+constexpr double kMaxRecordedMs = 1e7;
+
 struct PackageUsed {
     std::string name, folder, digest;
 };

@@ -212,9 +212,7 @@ bool inShard(size_t index, int shardIndex, int shardCount) {
 Result<std::vector<MatrixEntry>> selectEntries(const Matrix& m, int shardIndex, int shardCount,
                                                const std::string& filter) {
     std::optional<std::regex> re;
-    if (const std::string nested = core::nestedQuantifier(filter); !nested.empty())
-        return badInput("--filter " + filter + ": " + nested + " repeats a group that repeats itself, which std::regex "
-                        "takes exponential time to miss with; drop the outer repeat");
+    if (const std::string why = core::nestedQuantifierError("--filter", filter); !why.empty()) return badInput(why);
     if (!filter.empty()) {
         try {
             re.emplace(filter);

@@ -42,7 +42,6 @@ json toJson(const RenderEntry& r) {
 // The manifest's parts, each field read for its type and range
 // (core/json_input.h): a manifest is a file a user can damage or edit.
 using core::JsonObject;
-constexpr double kMaxMs = 1e7;             // a pass of about three hours
 constexpr int kMaxSide = 16384;            // an image side: the largest texture the backends make
 constexpr double kMaxBytes = 9007199254740992.0;   // 2^53: a file size a double holds exactly
 
@@ -52,12 +51,12 @@ Result<PassTime> readPassTime(const JsonObject& t) {
     PassTime p;
     CAVITY_ASSIGN(p.pass, t.str("pass"));
     if (p.pass.empty()) return t.bad("pass", "must name a pass");
-    CAVITY_ASSIGN(p.medianMs, t.number("median_ms", 0, kMaxMs));
+    CAVITY_ASSIGN(p.medianMs, t.number("median_ms", 0, measure::kMaxRecordedMs));
     CAVITY_ASSIGN(p.clock, t.str("clock"));
     if (p.clock != "gpu-timestamp" && p.clock != "wall") return t.bad("clock", "must be gpu-timestamp or wall");
     auto optional = [&](const char* key) -> Result<double> {
         if (!t.has(key)) return NAN;
-        CAVITY_ASSIGN(const auto v, t.numberOrNull(key, 0, kMaxMs));
+        CAVITY_ASSIGN(const auto v, t.numberOrNull(key, 0, measure::kMaxRecordedMs));
         return v ? *v : NAN;
     };
     CAVITY_ASSIGN(p.lowMs, optional("ci_low_ms"));
