@@ -341,6 +341,26 @@ TEST(Gate, AChangeWithinToleranceIsReportedAsChanged) {
     fs::remove_all(o.out);
 }
 
+// The colour is 8-bit: a readback and the PNG reader may turn the same step
+// into floats a last bit apart, which must not read as a change (a baseline
+// accepted from this very render would then fail --strict). A whole step
+// does; the float images change at any difference.
+TEST(Gate, ChangedMeansAWholeStepForTheEightBitColour) {
+    const auto check = [](const std::string& image, double maxAbs) {
+        gate::ImageCheck i;
+        i.image = image;
+        i.metrics = metrics::Report{};
+        i.metrics->maxAbs = maxAbs;
+        return i.changed();
+    };
+    EXPECT_FALSE(check("color", 0.0));
+    EXPECT_FALSE(check("color", 6e-8));
+    EXPECT_TRUE(check("color", 1.0 / 255.0));
+    EXPECT_TRUE(check("ao", 6e-8));
+    EXPECT_TRUE(check("ao_blur", 6e-8));
+    EXPECT_FALSE(check("ao", 0.0));
+}
+
 TEST(Gate, UnchangedBuildPassesTwiceOnBothApis) {
     REQUIRE_BACKENDS();
     for (int round = 0; round < 2; ++round) {
