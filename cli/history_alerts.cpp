@@ -92,6 +92,13 @@ int historyAlerts(const std::vector<std::string>& argv) {
     if (!q) return fail(spec.program, q.error());
     auto series = matchingSeries(*q);
     if (!series) return fail(spec.program, series.error());
+    // --since past every run judges nothing: "0 change points" would read
+    // as a clean history.
+    if (!q->since.empty() && std::none_of(series->begin(), series->end(), [&](const history::Series& s) {
+            return std::any_of(s.points.begin(), s.points.end(), [&](const history::Point& p) { return p.date >= q->since; });
+        }))
+        return fail(spec.program, badInput("--since " + q->since + ": no run of the series matched in " + q->db->where() +
+                                           " is from then on (nothing to judge)"));
     const auto alerts = history::findAlerts(*series, q->detector, q->since);
     TextTable t({{"configuration"}, {"pass"}, {"device"}, {"commit"}, {"after"}, {"change", TextTable::Align::Right},
                  {"p", TextTable::Align::Right}, {"before ms", TextTable::Align::Right}, {"after ms", TextTable::Align::Right},

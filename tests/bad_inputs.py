@@ -47,16 +47,16 @@ def render_shard(shard):
     return setup
 
 
-def results_with_null(name):
+def results_with_null(name, value=None):
     """A setup that runs a one-configuration `cavity run` and writes its
-    results.json as NAME with one frame time null (a NaN)."""
+    results.json as NAME with one frame time VALUE (null: a NaN)."""
     def setup(tmp):
         cavity = os.path.abspath(sys.argv[1])
         subprocess.run([cavity, "run", "--kernel", "alchemy", "--frames", "3", "--warmup", "0", "--res", "64x36",
                         "--backend", "vk", "--out", "run"], cwd=tmp, check=True, capture_output=True)
         with open(os.path.join(tmp, "run", "results.json")) as f:
             doc = json.load(f)
-        doc["runs"][0]["frame"]["samples_ms"][1] = None
+        doc["runs"][0]["frame"]["samples_ms"][1] = value
         with open(os.path.join(tmp, name), "w") as f:
             json.dump(doc, f)
         shutil.rmtree(os.path.join(tmp, "run"))
@@ -296,6 +296,9 @@ CASES = [
          setup=edit_json("approvals.json", lambda d: d["approvals"][0].update(api="metal"))),
     Case("history-ingest-null-sample", "cavity", ["history", "ingest", "--db", "h.sqlite", "--commit", "abcd1234", "bad.json"],
          ["bad.json", "samples_ms", "null"], setup=results_with_null("bad.json")),
+    # A time past any pass's (about three hours) was never measured.
+    Case("history-ingest-huge-sample", "cavity", ["history", "ingest", "--db", "h.sqlite", "--commit", "abcd1234", "bad.json"],
+         ["bad.json", "samples_ms", "1000000000000"], setup=results_with_null("bad.json", 1e12)),
     Case("bench-out-no-folder", "cavity_bench", ["--benchmark_out=nosuch/x.json"], ["--benchmark_out=nosuch/x.json", "does not exist"]),
     Case("bench-out-folder", "cavity_bench", ["--benchmark_out=prev"], ["--benchmark_out=prev", "is a folder"],
          setup=replace_with_folder("prev")),

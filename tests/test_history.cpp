@@ -202,6 +202,10 @@ TEST_F(History, BadInputsAreOneLineAndWriteNothing) {
     nan["benchmarks"][3]["real_time"] = nullptr;
     refused(ingest + commit + good + " " + write("nan.json", nan.dump()), "nan.json");
     refused(ingest + commit + write("broken.json", "{\"benchmarks\": [") , "broken.json: does not parse");
+    json numberDate = benchDoc(0, 8);
+    numberDate["context"]["date"] = 1764892800;
+    refused(ingest + commit + write("numdate.json", numberDate.dump()), "numdate.json: context.date 1764892800: must be");
+
     refused("history ingest --db " + dir_.string() + commit + good, "is a folder");
     refused("history ingest --db " + (dir_ / "no/such/folder/h.sqlite").string() + commit + good, "does not exist");
     refused("history ingest --db ''" + commit + good, "--db");
@@ -221,6 +225,7 @@ TEST_F(History, BadInputsAreOneLineAndWriteNothing) {
     refused("history show --db " + db_ + " --id '('", "--id (: not a regular expression");
     refused("history show --db " + db_ + " --pass nosuch", "matches --pass nosuch");
     refused("history show --db " + db_ + " --since deadbeef", "--since deadbeef: no run of that commit");
+    refused("history alerts --db " + db_ + " --since 2030-01-01", "--since 2030-01-01T00:00:00Z: no run of the series");
     refused("history show --db " + db_ + " --until 2026-13-01", "--until 2026-13-01: neither a date");
     refused("history alerts --db " + db_ + " --alpha nan", "--alpha 'nan': must be a number in (0, 0.5]");
     refused("history alerts --db " + db_ + " --alpha 0", "--alpha '0'");
@@ -255,6 +260,10 @@ TEST_F(History, ShowTablesAndJson) {
     EXPECT_EQ(since.output.find(commitOf(0).substr(0, 12)), std::string::npos) << since.output;
     EXPECT_NE(since.output.find(commitOf(1).substr(0, 12)), std::string::npos) << since.output;
     EXPECT_EQ(since.output.find(commitOf(2).substr(0, 12)), std::string::npos) << since.output;
+    // --device is a part of the name in any case.
+    const Outcome device = cavity("history show --db " + db_ + " --id '/gl/' --pass ao --device h200/pcie");
+    ASSERT_EQ(device.code, 0) << device.output;
+    EXPECT_NE(device.output.find("NVIDIA H200/PCIe/SSE2"), std::string::npos) << device.output;
 }
 
 TEST_F(History, AlertsFindThePlantedStep) {
@@ -326,6 +335,32 @@ TEST_F(History, AShortIdIsTheSameCommit) {
     EXPECT_EQ(points[4]["runs"], 2);
     // commitOf(i) all begin "abc000": a prefix of ten commits.
     refused("history ingest --db " + db_ + " --commit abc000 " + bench(11), "--commit abc000: begins 10 commits");
+}
+
+// A short id stored first, then its full id: the full id takes the short
+// one's place, so the same file under the full id is already stored, and
+// a new file of it is a second run of one commit.
+TEST_F(History, AFullIdAfterItsShortIdIsTheSameCommit) {
+    history(4, 20);
+    const std::string full = commitOf(4);
+    const std::string first = write("first.json", benchDoc(4, 20).dump(1));
+    ASSERT_EQ(cavity("history ingest --db " + db_ + " --commit " + full.substr(0, 12) + " --parent " +
+                     commitOf(3) + " " + first).code, 0);
+    const long long samples = count("samples");
+    const Outcome again = cavity("history ingest --db " + db_ + " --commit " + full + " " + first);
+    ASSERT_EQ(again.code, 0) << again.output;
+    EXPECT_NE(again.output.find("already stored"), std::string::npos) << again.output;
+    EXPECT_EQ(count("samples"), samples);
+    ASSERT_EQ(cavity("history ingest --db " + db_ + " --commit " + full + " " +
+                     write("second.json", benchDoc(4, 20).dump(2))).code, 0);
+    const std::string out = (dir_ / "show.json").string();
+    ASSERT_EQ(cavity("history show --db " + db_ + " --id '" + kId + "' --pass ao --json " + out).code, 0);
+    std::ifstream f(out);
+    const json j = json::parse(f);
+    const auto& points = j["series"][0]["points"];
+    ASSERT_EQ(points.size(), 5u) << j.dump(1);
+    EXPECT_EQ(points[4]["commit"], full);
+    EXPECT_EQ(points[4]["runs"], 2);
 }
 
 // --fail-on-slower asks whether a series is slower now: a slowdown that was

@@ -48,7 +48,7 @@ namespace {
 // sample that was never a time tells nothing about the change. A series with
 // no time at all would compare as a fall to nothing, so it is bad input.
 Status addSamples(SampleSet& s, const JsonObject& owner, const std::string& clock, double smMhz, bool everySample) {
-    CAVITY_ASSIGN(const auto samples, owner.numbers("samples_ms", 0, 1e12, !everySample));
+    CAVITY_ASSIGN(const auto samples, owner.numbers("samples_ms", 0, measure::kMaxRecordedMs, !everySample));
     size_t added = 0;
     for (double v : samples)
         if (std::isfinite(v)) {

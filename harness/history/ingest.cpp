@@ -63,9 +63,21 @@ Result<int64_t> insertRun(Database& db, const RunFile& file, const RunInfo& info
 
 // A short id (under 40 digits) that begins exactly one longer commit the
 // database holds is that commit: the same commit is never stored twice under
-// two names. A prefix of several is refused.
+// two names. A prefix of several is refused. A full id whose short form was
+// stored first takes that short form's place, in the runs and as a parent,
+// so that the file stored under both names is stored once.
 Result<std::string> storedForm(Database& db, const std::string& flag, const std::string& sha) {
-    if (sha.empty() || sha.size() >= 40) return sha;
+    if (sha.empty()) return sha;
+    if (sha.size() >= 40) {
+        CAVITY_ASSIGN(const auto shorter, db.query("SELECT DISTINCT commit_sha FROM runs WHERE length(commit_sha) < ? "
+                                                   "AND substr(?, 1, length(commit_sha)) = commit_sha",
+                                                   {int64_t(sha.size()), sha}));
+        for (const auto& r : shorter) {
+            CAVITY_TRY(db.exec("UPDATE runs SET commit_sha = ? WHERE commit_sha = ?", {sha, *r[0]}));
+            CAVITY_TRY(db.exec("UPDATE runs SET parent_sha = ? WHERE parent_sha = ?", {sha, *r[0]}));
+        }
+        return sha;
+    }
     CAVITY_ASSIGN(const auto rows, db.query("SELECT DISTINCT commit_sha FROM runs WHERE commit_sha LIKE ? AND length(commit_sha) > ?",
                                             {sha + "%", int64_t(sha.size())}));
     if (rows.size() > 1)

@@ -58,6 +58,16 @@ void addSets(const compare::SampleSets& sets, RunFile& out, const std::function<
     }
 }
 
+// The run's own date: absent is "" (the ingest takes the time it stores
+// it). One that is not a string is bad input, not silently today; the
+// string's form is checked with every format's (readRunFile).
+Result<std::string> dateOf(const json& obj, const char* key, const std::string& path, const std::string& where) {
+    if (!obj.is_object() || !obj.contains(key) || obj[key].is_null()) return std::string();
+    if (obj[key].is_string()) return obj[key].get<std::string>();
+    return badInput(path + ": " + where + " " + obj[key].dump().substr(0, 40) +
+                    ": must be an ISO 8601 date string (2026-11-30T12:00:00Z) or absent");
+}
+
 bool looksSoftware(const std::string& device) {
     for (const char* word : {"llvmpipe", "lavapipe", "softpipe", "SwiftShader"})
         if (device.find(word) != std::string::npos) return true;
@@ -78,7 +88,7 @@ Status readBenchmark(const json& doc, RunFile& out) {
     CAVITY_ASSIGN(const auto sets, compare::readBenchmarkJson(doc, out.path));
     out.format = "google-benchmark";
     const json& ctx = doc.contains("context") ? doc["context"] : json();
-    out.date = text(ctx, "date");
+    CAVITY_ASSIGN(out.date, dateOf(ctx, "date", out.path, "context.date"));
     out.device = text(ctx, "cavity_device");
     out.driver = text(ctx, "cavity_driver");
     out.api = text(ctx, "cavity_api_versions");
@@ -108,7 +118,7 @@ Status readBenchmark(const json& doc, RunFile& out) {
 Status readResults(const json& doc, RunFile& out) {
     CAVITY_ASSIGN(const auto sets, compare::readResultsJson(doc, out.path, true));
     out.format = "cavity-results";
-    out.date = text(doc, "created_utc");
+    CAVITY_ASSIGN(out.date, dateOf(doc, "created_utc", out.path, "created_utc"));
     out.cavityVersion = text(doc, "git_commit");
     struct Run {
         std::string device, driver, apiVersion, mode;

@@ -3,6 +3,7 @@
 #include "history/run_file.h"
 #include "stats/stats.h"
 
+#include <cctype>
 #include <algorithm>
 #include <cmath>
 #include <functional>
@@ -159,7 +160,12 @@ Result<std::vector<Series>> selectedSeries(Database& db, const SeriesFilter& f, 
     for (const auto& r : keyRows) {
         const Key k{*r[1], *r[2], *r[3], *r[4]};
         if (f.id && !std::regex_search(k.config, *f.id)) continue;
-        if (!f.device.empty() && k.device.find(f.device) == std::string::npos) continue;
+        // --device h200 finds "NVIDIA H200": a part of the name, in any case.
+        const auto lower = [](std::string t) {
+            for (char& ch : t) ch = char(std::tolower(static_cast<unsigned char>(ch)));
+            return t;
+        };
+        if (!f.device.empty() && lower(k.device).find(lower(f.device)) == std::string::npos) continue;
         wanted.push_back({k, *r[0]});
     }
     std::sort(wanted.begin(), wanted.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
