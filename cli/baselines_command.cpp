@@ -167,6 +167,20 @@ int baselinesCommand(const std::vector<std::string>& argv) {
 
 namespace {
 
+// A filter that chose only configurations that errored accepts nothing:
+// "0 baseline files updated" would read as if they were accepted.
+Status onlyErrored(const gate::GateRun& run, const std::optional<std::regex>& filter, const std::string& filterText,
+                   bool nothingWritten) {
+    if (!filter || !nothingWritten) return {};
+    std::vector<std::string> errored;
+    for (const auto& r : run.results)
+        if (std::regex_search(r.id, *filter) && !r.error.empty()) errored.push_back(r.id + " (" + r.error.substr(0, 80) + ")");
+    if (errored.empty()) return {};
+    return badInput("--filter " + filterText + ": " + std::to_string(errored.size()) +
+                    " selected configurations rendered no image, e.g. " + errored[0] +
+                    "; nothing updated, the baselines left as they were");
+}
+
 int updateCommand(const std::vector<std::string>& argv) {
     std::string from = "out/gate", filterText, root;
     auto parsed = parseFlags(updateSpec(), std::vector<std::string>(argv.begin() + 1, argv.end()));
@@ -232,6 +246,7 @@ int updateCommand(const std::vector<std::string>& argv) {
             said.push_back(line.str() + ")");
         }
     }
+    if (auto st = onlyErrored(*run, filter, filterText, writes.empty()); !st) return fail("cavity baselines update", st.error());
     // All or nothing (harness/gate/baseline_update.h).
     if (auto st = gate::applyBaselineUpdate(root, writes); !st) return fail("cavity baselines update", st.error());
     for (const auto& line : said) std::cout << line << "\n";

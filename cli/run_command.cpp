@@ -1,5 +1,6 @@
 // `cavity run`: a sweep of configurations on one or both backends, with
 // images, results.json and a timing table on stdout.
+#include "core/shell_words.h"
 #include "run_sweep.h"
 #include "staging.h"
 #include "run_summary.h"
@@ -175,10 +176,11 @@ std::vector<measure::PackageUsed> packagesRun(const RunOutcome& out) {
 
 // results.json, table.txt and index.html, then the summary that names them.
 Status writeResults(const Sweep& s, const RunOutcome& out, const std::vector<std::string>& argv) {
-    std::string command = "cavity run";
+    std::vector<std::string> args;
     const auto packages = packagesRun(out);
-    for (const auto& p : packages) command += " --kernels " + p.folder;
-    for (const auto& a : argv) command += " " + a;
+    for (const auto& p : packages) args.insert(args.end(), {"--kernels", p.folder});
+    args.insert(args.end(), argv.begin(), argv.end());
+    const std::string command = core::commandLine("cavity run", args);
     std::error_code ec;
     std::filesystem::create_directories(s.out, ec);
     const std::filesystem::path dir(s.out);

@@ -1,4 +1,5 @@
 #include "render_command.h"
+#include "core/shell_words.h"
 
 #include "kernel.h"
 
@@ -81,10 +82,13 @@ int fail(const Error& e) {
     return flags::exitCode(e);
 }
 
-std::string joined(const std::vector<std::string>& argv) {
-    std::string s = "cavity_render";
-    for (const auto& a : argv) s += " " + a;
-    return s;
+// The command that renders this again: the packages main loaded (--kernels
+// or CAVITY_KERNELS) first, as `cavity run` records them.
+std::string joined(const std::vector<measure::PackageUsed>& packages, const std::vector<std::string>& argv) {
+    std::vector<std::string> args;
+    for (const auto& p : packages) args.insert(args.end(), {"--kernels", p.folder});
+    args.insert(args.end(), argv.begin(), argv.end());
+    return core::commandLine("cavity_render", args);
 }
 
 // The gate's precedence (gate::GateRun::exitCode): bad input, then a
@@ -280,13 +284,13 @@ int renderCommand(const std::vector<std::string>& argv) {
     header.matrixHash = matrix->hash;
     header.gitCommit = gitCommit();
     header.createdUtc = utcTimestamp();
-    header.command = joined(argv);
+    header.packages = measure::packagesUsed(selected);
+    header.command = joined(header.packages, argv);
     header.shardIndex = o->shardIndex;
     header.shardCount = o->shardCount;
     header.filter = o->filter;
     header.repeat = o->render.repeat;
     header.replaced = o->replaced;
-    header.packages = measure::packagesUsed(selected);
     // Images approved by digest for this device are not written: a clean
     // render of a known device sends back its manifest alone.
     auto approvals = plan::loadApprovals((fs::path(o->baselines) / "approvals.json").string());

@@ -17,6 +17,7 @@ here with a kernel.toml and its GLSL, no rebuild of Cavity.
 import json
 import os
 import re
+import shlex
 import shutil
 import subprocess
 import sys
@@ -111,7 +112,13 @@ def bad_packages():
         ("no summary", lambda d: w(d, "kernel.toml", re.sub(r"summary = .*\n", "", t)), r"summary: missing"),
         ("role", lambda d: w(d, "kernel.toml", sub(t, 'role = "ao"', 'role = "blur"')), r":3: role = blur: must be ao"),
         ("missing GLSL file", lambda d: os.remove(f"{d}/ring_ao.glsl"), r":4: file = ring_ao\.glsl: no such file"),
-        ("file outside", lambda d: w(d, "kernel.toml", sub(t, '"ring_ao.glsl"', '"../x.glsl"')), r"file = \.\./x\.glsl"),
+        ("file outside", lambda d: w(d, "kernel.toml", sub(t, '"ring_ao.glsl"', '"../x.glsl"')),
+         r"file = \.\./x\.glsl: must name a file in the package's folder by its own name"),
+        ("file is not GLSL", lambda d: w(d, "kernel.toml", sub(t, '"ring_ao.glsl"', '"kernel.toml"')),
+         r"file = kernel\.toml: must name the kernel's GLSL source"),
+        ("file through a link out", lambda d: (os.rename(f"{d}/ring_ao.glsl", f"{d}/../ring_ao_outside.glsl"),
+                                               os.symlink(os.path.abspath(f"{d}/../ring_ao_outside.glsl"), f"{d}/ring_ao.glsl")),
+         r"file = ring_ao\.glsl: no such file .*a link out of the folder"),
         ("duplicate parameter", lambda d: w(d, "kernel.toml", t + '\n[[params]]\nname = "radius"\n'),
          r"params\[3\]\.name = radius: declared twice"),
         ("default out of range", lambda d: w(d, "kernel.toml", sub(t, "default = 4", "default = 40")),
@@ -122,6 +129,9 @@ def bad_packages():
          r"params\[2\]\.name = ring_px: no parameter of that name; a new one needs its type"),
         ("misspelt harness parameter", lambda d: w(d, "kernel.toml", sub(t, 'name = "radius"\n', 'name = "radious"\n')),
          r"params\[1\]\.name = radious: no parameter of that name \(did you mean radius\?\)"),
+        # Another type is said at its type, before any key the new type lacks.
+        ("harness parameter retyped", lambda d: w(d, "kernel.toml", sub(t, 'name = "radius"\n', 'name = "radius"\ntype = "int"\n')),
+         r"params\[1\]\.type = \"int\": 'radius' is declared already"),
         ("harness parameter declared otherwise", lambda d: w(d, "kernel.toml", sub(t, 'name = "radius"\n', 'name = "radius"\ntype = "int"\nmin = 1\nmax = 9\nhelp = "h"\n')),
          r"params\[1\]\.type = \"int\": 'radius' is declared already, as a number > 0"),
         # The same type, another range: said at the key that differs.
@@ -280,7 +290,25 @@ def check_bad(cavity, root):
         if r.returncode != 2 or "undeclared_thing" not in r.stderr:
             failures += 1
             print(f"FAIL run of a kernel that does not compile on {api}: exit {r.returncode}, {r.stderr!r}")
-    n = len(bad_packages()) + 5
+    # A gate whose configuration did not compile has no image to accept:
+    # `baselines update` of it says so, exit 2, and writes nothing.
+    base = os.path.join(root, "compile_error_baselines")
+    os.makedirs(base)
+    for f in ("manifest.json", "budgets.json"):
+        shutil.copy(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "baselines", f), base)
+    json.dump({"mine": {"description": "d", "groups": [
+        {"scenes": ["corner"], "kernels": ["ring_ao"], "samples": [8], "blurs": [4], "resolutions": ["full"],
+         "sizes": ["64x36"], "apis": ["vk"], "stages": ["compute"]}]}}, open(os.path.join(base, "matrices.json"), "w"))
+    kernels = os.path.join(root, "compile_error")
+    run([cavity, "gate", "--kernels", kernels, "--matrix", "mine", "--baselines", base, "--quiet", "--retries", "0",
+         "--out", os.path.join(root, "compile_error_gate")])
+    before = sorted(os.listdir(base))
+    r = run([cavity, "baselines", "update", "--kernels", kernels, "--from", os.path.join(root, "compile_error_gate"),
+             "--baselines", base, "--filter", "ring_ao"])
+    if r.returncode != 2 or "1 selected configurations rendered no image" not in r.stderr or sorted(os.listdir(base)) != before:
+        failures += 1
+        print(f"FAIL baselines update of a configuration that did not compile: exit {r.returncode}, {r.stderr!r}")
+    n = len(bad_packages()) + 6
     print(f"bad packages: {n - failures} of {n} refused with one line naming the file")
     return failures
 
@@ -366,6 +394,16 @@ def main():
         r = run([cavity, "kernels", "check", pkg])
         assert r.returncode == 0, r.stdout + r.stderr
         assert "--ring_px" in r.stdout and "CPU reference: none" in r.stdout, r.stdout
+        # A float range given as the largest float's shortest text (it reads
+        # back a hair above FLT_MAX) is that float.
+        wide = os.path.join(root, "wide", "ring_ao")
+        make(wide, toml=sub(sub(TOML, 'type = "int"', 'type = "float"'), "min = 1\nmax = 32",
+                            "min = -3.4028235e38\nmax = 3.4028235e38"), glsl=GLSL.replace("P.ring_px", "int(P.ring_px)"))
+        r = run([cavity, "kernels", "check", wide])
+        assert r.returncode == 0, r.stdout + r.stderr
+        # ... named as shell completion writes it, with a trailing slash.
+        r = run([cavity, "kernels", "check", pkg + "/"])
+        assert r.returncode == 0, r.stdout + r.stderr
 
         # cavity run on both APIs, found through CAVITY_KERNELS.
         env = dict(os.environ, CAVITY_KERNELS=os.path.dirname(pkg))
@@ -374,6 +412,11 @@ def main():
                  "--frames", "2", "--out", out], env=env)
         assert r.returncode == 0, r.stderr
         results = json.load(open(os.path.join(out, "results.json")))
+        # The recorded command runs the same again: the package's folder
+        # (given by CAVITY_KERNELS) in it, each word as a shell reads it.
+        assert shlex.split(results["command"]) == [
+            "cavity", "run", "--kernels", pkg, "--kernel", "ring_ao", "--ring_px", "3", "--backend", "all", "--res",
+            "64x36", "--frames", "2", "--out", out], results["command"]
         ids = sorted({c["id"] for c in results["configs"]} if "configs" in results else
                      {c["id"] for c in results.get("runs", [])})
         for api in ("gl", "vk"):
@@ -444,12 +487,17 @@ def main():
         assert r.returncode == 0 and "/ring_ao/" in r.stdout, r.stdout + r.stderr
         # A matrix value twice, or one no kernel of its group reads; quality
         # with a package's parameter for a kernel that does not declare it.
-        for params, said in (('{"ring_px": [3, 3]}', "twice"), ('{"ring_px": [3]}', "no kernel of the group reads it"),
-                             ('{"ring_pxx": [3]}', "has 'ring_pxx' (did you mean ring_px?)")):
+        # A value written twice in two forms ([0, false]) is twice too, and a
+        # key of the group's own under params is sent to that key.
+        for params, said, kernel in (('{"ring_px": [3, 3]}', "twice", "ring_ao"),
+                                     ('{"ring_px": [3]}', "no kernel of the group reads it", "alchemy"),
+                                     ('{"ring_pxx": [3]}', "has 'ring_pxx' (did you mean ring_px?)", "alchemy"),
+                                     ('{"exact": [0, false]}', "params.exact has false twice", "alchemy_fast"),
+                                     ('{"blur": [2]}', "in the group's own key 'blurs'", "alchemy")):
             bad = os.path.join(root, "bad_matrix")
             shutil.copytree(base, bad, dirs_exist_ok=True)
             json.dump({"mine": {"description": "d", "groups": [
-                {"scenes": ["corner"], "kernels": ["ring_ao" if said == "twice" else "alchemy"], "samples": [8],
+                {"scenes": ["corner"], "kernels": [kernel], "samples": [8],
                  "blurs": [4], "params": json.loads(params), "resolutions": ["full"], "sizes": ["64x36"],
                  "apis": ["vk"], "stages": ["compute"]}]}}, open(os.path.join(bad, "matrices.json"), "w"))
             r = run([cavity, "gate", "--kernels", pkg, "--matrix", "mine", "--baselines", bad, "--list"])

@@ -1,3 +1,4 @@
+#include "core/shell_words.h"
 #include "history/chart.h"
 #include "core/chart_library.h"
 #include "core/json_file.h"
@@ -51,12 +52,6 @@ std::string onPath(const std::string& program) {
     return "";
 }
 
-std::string shellQuoted(const std::string& s) {
-    std::string out = "'";
-    for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    return out + "'";
-}
-
 }  // namespace
 
 std::string axisLabel(const Series& s) {
@@ -99,10 +94,10 @@ std::string screenshot(const std::string& html, const std::string& png, size_t c
     }
     // Two columns of charts at 1300 px (the page's grid: 560 px and up); each row about 372 px.
     const size_t height = std::min<size_t>(120 + (charts + 1) / 2 * 372, 16000);
-    const std::string cmd = "timeout 120 " + shellQuoted(chromium) +
+    const std::string cmd = "timeout 120 " + core::shellWord(chromium) +
                             " --headless=new --no-sandbox --disable-gpu --hide-scrollbars --virtual-time-budget=5000"
-                            " --window-size=1300," + std::to_string(height) + " --screenshot=" + shellQuoted(png) +
-                            " " + shellQuoted("file://" + fs::absolute(html).string()) + " >/dev/null 2>&1";
+                            " --window-size=1300," + std::to_string(height) + " --screenshot=" + core::shellWord(png) +
+                            " " + core::shellWord("file://" + fs::absolute(html).string()) + " >/dev/null 2>&1";
     std::error_code ec;
     fs::remove(png, ec);
     const int rc = std::system(cmd.c_str());

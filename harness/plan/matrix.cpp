@@ -11,6 +11,7 @@
 #include "plan/sweep.h"
 
 #include <algorithm>
+#include <map>
 #include <optional>
 #include <regex>
 #include <set>
@@ -85,7 +86,11 @@ Result<std::vector<std::pair<std::string, std::vector<double>>>> parseParams(con
     if (!g.contains("params")) return out;
     if (!g["params"].is_object()) return badInput(path + ": " + gw + ".params must be an object of lists");
     for (const auto& [name, values] : g["params"].items()) {
-        if (name == "samples" || name == "blur" || name == "scene" || !kernels::findParam(name)) {
+        const std::map<std::string, std::string> ownKey = {{"samples", "samples"}, {"blur", "blurs"}, {"scene", "scenes"}};
+        if (ownKey.count(name))
+            return badInput(path + ": " + gw + ".params has '" + name + "': give it in the group's own key '" +
+                            ownKey.at(name) + "', not under params");
+        if (!kernels::findParam(name)) {
             std::vector<std::string> known;
             for (const auto& p : kernels::paramDecls())
                 if (p.name != "samples" && p.name != "blur" && p.name != "scene") known.push_back(p.name);
@@ -101,24 +106,25 @@ Result<std::vector<std::pair<std::string, std::vector<double>>>> parseParams(con
         const kernels::ParamDecl& decl = *kernels::findParam(name);
         std::vector<double> list;
         for (const auto& v : values) {
-            if (std::count(values.begin(), values.end(), v) > 1)
-                return badInput(path + ": " + gw + ".params." + name + " has " + core::jsonText(v) + " twice");
             if (v.is_string() && decl.type == kernels::ParamType::Enum) {
                 auto parsed = kernels::parseValue(decl, v.get<std::string>());
                 if (!parsed)
                     return badInput(path + ": " + gw + ".params." + name + " has " + core::jsonText(v) + ": must be " +
                                     kernels::allowedValues(decl));
                 list.push_back(*parsed);
-                continue;
-            }
-            if (v.is_boolean() && decl.type == kernels::ParamType::Bool) {   // as kernel.toml takes it
+            } else if (v.is_boolean() && decl.type == kernels::ParamType::Bool) {   // as kernel.toml takes it
                 list.push_back(v.get<bool>() ? 1 : 0);
-                continue;
-            }
-            if (!v.is_number())
+            } else if (v.is_number()) {
+                list.push_back(v.get<double>());
+            } else {
                 return badInput(path + ": " + gw + ".params." + name + " has " + core::jsonText(v) + ": must be " +
                                 kernels::allowedValues(decl));
-            list.push_back(v.get<double>());
+            }
+            // [0, "none"] or [true, 1]: one value written twice, which
+            // would run its configurations twice under one id.
+            if (std::count(list.begin(), list.end(), list.back()) > 1)
+                return badInput(path + ": " + gw + ".params." + name + " has " + core::jsonText(v) +
+                                " twice (another entry names the same value)");
         }
         out.emplace_back(name, std::move(list));
     }

@@ -47,7 +47,10 @@ Result<double> number(const Ctx& c, const toml::table& t, const std::string& whe
 // The range a declared int or float may span: what the shader's 32-bit
 // uniform holds.
 Status checkRange(const Ctx& c, const toml::table& t, const std::string& where, const ParamDecl& p) {
-    const double limit = p.type == ParamType::Int ? 2147483647.0 : double(std::numeric_limits<float>::max());
+    // A float bound that rounds to the largest float is that float: the
+    // shortest text of FLT_MAX (3.4028235e38) reads back a little above it.
+    const double limit = p.type == ParamType::Int ? 2147483647.0
+                                                  : double(std::numeric_limits<float>::max()) * (1.0 + std::ldexp(1.0, -25));
     for (const char* key : {"min", "max"}) {
         const double v = std::string(key) == "min" ? p.min : p.max;
         if (p.type == ParamType::Int && v != std::floor(v))
@@ -126,6 +129,32 @@ Result<double> defaultValue(const Ctx& c, const toml::node& n, const ParamDecl& 
     return n.is_integer() ? double(*n.value<int64_t>()) : *n.value<double>();
 }
 
+// One declaration a name, whoever made it: another package's kernel may
+// declare it again only as it stands. Its type first: a line that changes
+// it is the one to mend, not a key the new type lacks.
+Status checkRedeclared(const Ctx& c, const toml::table& t, const std::string& where, const std::string& name,
+                       const ParamDecl& decl) {
+    const auto otherwise = [&](const char* at) {
+        return c.fail(t.get(at), where + at, show(*t.get(at)),
+                      "'" + name + "' is declared already, as " + allowedValues(decl) +
+                          " (cavity run --help): declare it exactly so, set only its default and note, or "
+                          "name a parameter of your own");
+    };
+    const auto* typeText = t.get("type")->as_string();
+    const auto ty = typeText ? paramTypes().find(typeText->get()) : paramTypes().end();
+    if (ty != paramTypes().end() && ty->second != decl.type) return otherwise("type");
+    CAVITY_ASSIGN(const ParamDecl again, newParam(c, t, where, name));
+    // Said at the first key that differs, so that the line is the one to change.
+    const char* differs = again.type != decl.type                                           ? "type"
+                          : again.min != decl.min || again.minExclusive != decl.minExclusive ? "min"
+                          : again.max != decl.max                                            ? "max"
+                          : again.choices != decl.choices                                    ? "choices"
+                          : again.unit != decl.unit                                          ? "unit"
+                                                                                             : nullptr;
+    if (differs) return otherwise(t.get(differs) ? differs : "type");
+    return {};
+}
+
 struct ParamsOut {
     std::deque<ParamDecl> added;   // new declarations, registered only when the file is good
 };
@@ -145,22 +174,7 @@ Status readParam(const Ctx& c, const toml::table& t, size_t i, KernelDecl& k, Pa
     const ParamDecl* decl = findParam(name);
     const bool fresh = !decl, redeclared = !fresh && t.get("type");
     if (redeclared) {
-        // One declaration a name, whoever made it: another package's kernel
-        // may declare it again only as it stands.
-        CAVITY_ASSIGN(const ParamDecl again, newParam(c, t, where, name));
-        // Said at the first key that differs, so that the line is the one to change.
-        const char* differs = again.type != decl->type                                            ? "type"
-                              : again.min != decl->min || again.minExclusive != decl->minExclusive ? "min"
-                              : again.max != decl->max                                             ? "max"
-                              : again.choices != decl->choices                                     ? "choices"
-                              : again.unit != decl->unit                                           ? "unit"
-                                                                                                   : nullptr;
-        const char* at = differs && t.get(differs) ? differs : "type";
-        if (differs)
-            return c.fail(t.get(at), where + at, show(*t.get(at)),
-                          "'" + name + "' is declared already, as " + allowedValues(*decl) +
-                              " (cavity run --help): declare it exactly so, set only its default and note, or "
-                              "name a parameter of your own");
+        CAVITY_TRY(checkRedeclared(c, t, where, name, *decl));
     } else if (!fresh) {
         for (const char* key : {"min", "max", "unit", "help", "choices"})
             if (t.get(key))

@@ -101,9 +101,15 @@ Status readTop(const toml::table& root, const Ctx& c, KernelDecl& k) {
     // that several kernels share (hemisphere_cosine runs hemisphere's body).
     const bool shared = !c.in.hasFile(file) && sourceFile(file) && file.size() > 5 &&
                         file.compare(file.size() - 5, 5, ".glsl") == 0;
-    if (file.empty() || file.find("..") != std::string::npos || file[0] == '/' || (!c.in.hasFile(file) && !shared))
+    if (file.empty() || file.find("..") != std::string::npos || file[0] == '/')
         return c.fail(root.get("file"), "file", file,
-                      "no such file in the package's folder (the kernel's GLSL) nor under kernels/");
+                      "must name a file in the package's folder by its own name (no '..', not an absolute path)");
+    const bool glsl = file.size() > 5 && file.compare(file.size() - 5, 5, ".glsl") == 0;
+    if (!glsl) return c.fail(root.get("file"), "file", file, "must name the kernel's GLSL source, a .glsl file");
+    if (!c.in.hasFile(file) && !shared)
+        return c.fail(root.get("file"), "file", file,
+                      "no such file in the package's folder (the kernel's GLSL) nor under kernels/ (a file "
+                      "reached through a link out of the folder is not the package's)");
     k.file = shared ? file : c.in.keyPrefix + file;
     CAVITY_ASSIGN(k.reference, text(c, root, "", "reference", false));
     if (!k.reference.empty() && !std::regex_match(k.reference, ident))

@@ -143,9 +143,13 @@ Status loadPackages(const std::string& dir) {
     static std::set<std::string> done;
     const std::string canonical = fs::weakly_canonical(dir, ec).string();
     if (done.count(canonical)) return {};
+    // "pkgs/mine/" (as shell completion writes it) is the folder "pkgs/mine":
+    // its kernel.toml's parent is compared with it below.
+    fs::path base = fs::path(dir).lexically_normal();
+    if (base.filename().empty() && base.has_relative_path()) base = base.parent_path();
     std::vector<fs::path> folders;
-    if (fs::exists(fs::symlink_status(fs::path(dir) / "kernel.toml", ec))) {
-        folders.push_back(dir);
+    if (fs::exists(fs::symlink_status(base / "kernel.toml", ec))) {
+        folders.push_back(base);
     } else {
         const auto at = [&](const fs::directory_entry& e) {
             std::error_code e2;
