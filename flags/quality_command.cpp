@@ -17,6 +17,7 @@
 #include "plan/sweep.h"
 #include "package/package.h"
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -430,7 +431,17 @@ int qualityCommand(const std::vector<std::string>& argv, const std::string& prog
         doc["recommendation"] = recommend(*q, *rows, costs, source);
         doc["cost_source"] = {{"text", source.text}, {"software_renderer", source.softwareRenderer}};
     }
-    if (q->out.empty()) return 0;
+    // An AO of NaN or infinity has no error to rank: the table and the
+    // files still say so, and the exit code fails it as `cavity run` does.
+    const auto nonFinite = [&] {
+        int n = 0;
+        for (const auto& r : *rows)
+            if (!std::isfinite(r.meanAbsError) || !std::isfinite(r.meanAo))
+                ++n, std::fprintf(stderr, "%s: %s/%s/n%d: the AO holds NaN or infinity (MAE %g)\n", program.c_str(),
+                                  r.scene.c_str(), r.kernel.c_str(), r.samples, r.meanAbsError);
+        return n ? 1 : 0;
+    };
+    if (q->out.empty()) return nonFinite();
     std::error_code ec;
     std::filesystem::create_directories(q->out, ec);
     // The page first, quality.json last: the record a reader takes the
@@ -440,7 +451,7 @@ int qualityCommand(const std::vector<std::string>& argv, const std::string& prog
     if (auto st = core::writeFileAtomically(page, qualityPage(doc, *rows)); !st) return failed(st.error());
     if (auto st = writeJson(path, doc); !st) return failed(st.error());
     std::printf("\nwrote %s and %s (every kernel's AO and error map beside the truth)\n", path.c_str(), page.c_str());
-    return 0;
+    return nonFinite();
 }
 
 }  // namespace cavity::flags

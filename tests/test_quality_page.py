@@ -75,6 +75,27 @@ class QualityPage(unittest.TestCase):
                         self.assertIn(f'id="{kind}-{scene}-{r["kernel"]}/n16"', dom)
             self.assertIn("cannot be told from alchemy/n16", dom)
 
+    def test_an_ao_of_nan_fails_and_says_where(self):
+        # An edited kernel that writes NaN: its row has no error to rank, so
+        # the run exits 1 naming the row, and still writes its files.
+        src = open(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "kernels", "ao", "alchemy",
+                                "ssao_alchemy.glsl")).read()
+        self.assertIn("write_ao(pixel, vec4(A, 0.0, 0.0, 0.0));", src)
+        with tempfile.TemporaryDirectory() as tmp:
+            edited = os.path.join(tmp, "nan.glsl")
+            with open(edited, "w") as f:
+                f.write(src.replace("write_ao(pixel, vec4(A, 0.0, 0.0, 0.0));",
+                                    "write_ao(pixel, vec4(uintBitsToFloat(0x7fc00000u), 0.0, 0.0, 0.0));"))
+            out = os.path.join(tmp, "q")
+            p = subprocess.run([os.path.join(BUILD, "harness", "cavity"), "quality", "--kernel", "alchemy",
+                                "--samples", "8", "--scene", "corner", "--res", "64x36", "--quiet",
+                                "--kernel-source", "ssao_alchemy.glsl=" + edited, "--out", out],
+                               capture_output=True, text=True, timeout=600)
+            self.assertEqual(p.returncode, 1, p.stdout + p.stderr)
+            self.assertIn("corner/alchemy/n8: the AO holds NaN or infinity", p.stderr)
+            self.assertTrue(os.path.exists(os.path.join(out, "quality.json")))
+            self.assertTrue(os.path.exists(os.path.join(out, "quality.html")))
+
 
 if __name__ == "__main__":
     BUILD = sys.argv.pop(1)
