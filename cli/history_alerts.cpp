@@ -7,6 +7,9 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <memory>
+#include <map>
+#include <functional>
 #include <cstdio>
 #include <iostream>
 
@@ -78,6 +81,28 @@ std::string bisectLine(const history::Alert& a) {
     return line;
 }
 
+// Whether a point or an alert is at or after --since: a date by its
+// commit's first run, a commit by its place in the history's order (a
+// commit after its parent may carry an older date).
+using AtOrAfter = std::function<bool(const std::string& commit, const std::string& date)>;
+Result<AtOrAfter> sinceTest(HistoryQuery& q) {
+    if (q.since.commit.empty()) {
+        const std::string date = q.since.date;
+        return AtOrAfter([date](const std::string&, const std::string& d) { return date.empty() || d >= date; });
+    }
+    CAVITY_ASSIGN(const auto order, history::commitOrder(*q.db));
+    auto rank = std::make_shared<std::map<std::string, size_t>>();
+    for (size_t i = 0; i < order.size(); ++i) (*rank)[order[i]] = i;
+    // The stored id may be the short form of the full id the order names.
+    const std::string& since = q.since.commit;
+    const auto at = std::find_if(order.begin(), order.end(), [&](const std::string& c) { return c.rfind(since, 0) == 0; });
+    const size_t first = size_t(at - order.begin());
+    return AtOrAfter([rank, first](const std::string& commit, const std::string&) {
+        const auto it = rank->find(commit);
+        return it != rank->end() && it->second >= first;
+    });
+}
+
 }  // namespace
 
 int historyAlerts(const std::vector<std::string>& argv) {
@@ -92,14 +117,17 @@ int historyAlerts(const std::vector<std::string>& argv) {
     if (!q) return fail(spec.program, q.error());
     auto series = matchingSeries(*q);
     if (!series) return fail(spec.program, series.error());
+    auto atOrAfter = sinceTest(*q);
+    if (!atOrAfter) return fail(spec.program, atOrAfter.error());
     // --since past every run judges nothing: "0 change points" would read
     // as a clean history.
-    if (!q->since.empty() && std::none_of(series->begin(), series->end(), [&](const history::Series& s) {
-            return std::any_of(s.points.begin(), s.points.end(), [&](const history::Point& p) { return p.date >= q->since; });
+    if (std::none_of(series->begin(), series->end(), [&](const history::Series& s) {
+            return std::any_of(s.points.begin(), s.points.end(), [&](const history::Point& p) { return (*atOrAfter)(p.commit, p.date); });
         }))
-        return fail(spec.program, badInput("--since " + q->since + ": no run of the series matched in " + q->db->where() +
-                                           " is from then on (nothing to judge)"));
-    const auto alerts = history::findAlerts(*series, q->detector, q->since);
+        return fail(spec.program, badInput("--since " + q->since.date + q->since.commit + ": no run of the series matched in " +
+                                           q->db->where() + " is from then on (nothing to judge)"));
+    auto alerts = history::findAlerts(*series, q->detector);
+    std::erase_if(alerts, [&](const history::Alert& a) { return !(*atOrAfter)(a.commit, a.date); });
     TextTable t({{"configuration"}, {"pass"}, {"device"}, {"commit"}, {"after"}, {"change", TextTable::Align::Right},
                  {"p", TextTable::Align::Right}, {"before ms", TextTable::Align::Right}, {"after ms", TextTable::Align::Right},
                  {"commits", TextTable::Align::Right}, {"sure"}});

@@ -27,7 +27,7 @@ struct HistoryQuery {
     std::unique_ptr<history::Database> db;
     history::SeriesFilter filter;
     history::DetectorOptions detector;
-    std::string since;   // normalized --since (the alerts' bound)
+    history::Bound since;   // --since resolved (the alerts' bound)
 };
 
 // Reads the shared flags from `parsed` (others are left to the caller),

@@ -23,9 +23,9 @@ std::vector<FlagSpec> historyFilterFlags(bool until) {
         {"--id", "REGEX", "only configuration ids that match (searched)", "Filters"},
         {"--pass", "P", "only this pass (ao, blur, composite, frame, pipeline, ...)", "Filters"},
         {"--device", "D", "only devices whose name contains D (\"H200\", \"llvmpipe\")", "Filters"},
-        {"--since", "DATE|SHA", "only runs from this date, or from this commit's first run, on", "Filters"},
+        {"--since", "DATE|SHA", "only runs from this date, or from this commit in the history's order, on", "Filters"},
     };
-    if (until) out.push_back({"--until", "DATE|SHA", "only runs up to this date (a day: all of it), or this commit's last run", "Filters"});
+    if (until) out.push_back({"--until", "DATE|SHA", "only runs up to this date (a day: all of it), or up to this commit in the history's order", "Filters"});
     return out;
 }
 
@@ -66,7 +66,9 @@ Result<HistoryQuery> historyQuery(const ParsedFlags& parsed) {
         CAVITY_ASSIGN(q.since, history::resolveBound(*q.db, "--since", since, true));
     }
     if (!until.empty()) {
-        CAVITY_ASSIGN(q.filter.until, history::resolveBound(*q.db, "--until", until, false));
+        CAVITY_ASSIGN(const history::Bound b, history::resolveBound(*q.db, "--until", until, false));
+        q.filter.until = b.date;
+        q.filter.untilCommit = b.commit;
     }
     return q;
 }
@@ -78,8 +80,8 @@ Result<std::vector<history::Series>> matchingSeries(HistoryQuery& q) {
         if (!q.filter.idText.empty()) f += " --id " + q.filter.idText;
         if (!q.filter.pass.empty()) f += " --pass " + q.filter.pass;
         if (!q.filter.device.empty()) f += " --device " + q.filter.device;
-        if (!q.filter.since.empty()) f += " --since " + q.filter.since;
-        if (!q.filter.until.empty()) f += " --until " + q.filter.until;
+        if (!q.filter.since.empty() || !q.filter.sinceCommit.empty()) f += " --since " + q.filter.since + q.filter.sinceCommit;
+        if (!q.filter.until.empty() || !q.filter.untilCommit.empty()) f += " --until " + q.filter.until + q.filter.untilCommit;
         return badInput("no series in " + q.db->where() + " matches" + (f.empty() ? " (the database holds no run)" : f));
     }
     return series;
@@ -117,7 +119,8 @@ int prepare(const CommandSpec& spec, const std::vector<std::string>& argv, Parse
     auto query = historyQuery(parsed);
     if (!query) return fail(spec.program, query.error());
     q = std::move(*query);
-    q.filter.since = q.since;
+    q.filter.since = q.since.date;
+    q.filter.sinceCommit = q.since.commit;
     return 0;
 }
 

@@ -297,6 +297,35 @@ TEST_F(History, AlertsFindThePlantedStep) {
     EXPECT_EQ(cavity("history alerts --db " + db_ + " --since " + commitOf(9) + " --fail-on-slower").code, 0);
 }
 
+// Dates against the graph (each commit dated a day before its parent, as a
+// rebase can leave them): --since and --until by commit bound by the
+// commits' places in the history, not their dates.
+TEST_F(History, BoundsByCommitFollowTheHistorysOrder) {
+    for (int i = 0; i < 16; ++i) {
+        char date[40];
+        std::snprintf(date, sizeof date, "2026-11-%02dT10:00:00Z", 28 - i);
+        std::string args = "history ingest --db " + db_ + " --commit " + commitOf(i) + " --date " + date;
+        if (i > 0) args += " --parent " + commitOf(i - 1);
+        const Outcome o = cavity(args + " " + bench(i, 8));
+        ASSERT_EQ(o.code, 0) << o.output;
+    }
+    const std::string out = (dir_ / "show.json").string();
+    const Outcome o = cavity("history show --db " + db_ + " --id '" + kId + "' --pass ao --since " + commitOf(8) +
+                             " --until " + commitOf(11) + " --json " + out);
+    ASSERT_EQ(o.code, 0) << o.output;
+    std::ifstream f(out);
+    const json j = json::parse(f);
+    const auto& points = j["series"][0]["points"];
+    ASSERT_EQ(points.size(), 4u) << j.dump(1);
+    for (int i = 0; i < 4; ++i) EXPECT_EQ(points[i]["commit"], commitOf(8 + i));
+    // The step is at commit 8: from commit 9 on there is none to report.
+    const Outcome all = cavity("history alerts --db " + db_ + " --pass ao");
+    EXPECT_NE(all.output.find("1 change points"), std::string::npos) << all.output;
+    const Outcome later = cavity("history alerts --db " + db_ + " --pass ao --since " + commitOf(9));
+    EXPECT_EQ(later.code, 0) << later.output;
+    EXPECT_NE(later.output.find("0 change points"), std::string::npos) << later.output;
+}
+
 // Every run on one date, ingested in a shuffled order: the parents put the
 // commits in order, and the step is named at its commit.
 TEST_F(History, CommitsAreOrderedByTheirParents) {

@@ -3,6 +3,7 @@
 #include "history/run_file.h"
 #include "stats/stats.h"
 
+#include <cstdint>
 #include <cctype>
 #include <algorithm>
 #include <cmath>
@@ -182,7 +183,7 @@ struct RunRow {
     std::string date;
 };
 
-// The runs within --since / --until, by row id.
+// The runs within --since / --until (dates, or commits' places), by row id.
 Result<std::unordered_map<int64_t, RunRow>> selectedRuns(Database& db, const SeriesFilter& f,
                                                          const std::function<size_t(const std::string&)>& rankOf) {
     std::unordered_map<int64_t, RunRow> runs;
@@ -190,8 +191,11 @@ Result<std::unordered_map<int64_t, RunRow>> selectedRuns(Database& db, const Ser
     std::vector<Param> params;
     if (!f.since.empty()) sql += " AND run_date >= ?", params.push_back(f.since);
     if (!f.until.empty()) sql += " AND run_date <= ?", params.push_back(f.until);
+    const size_t first = f.sinceCommit.empty() ? 0 : rankOf(f.sinceCommit);
+    const size_t last = f.untilCommit.empty() ? SIZE_MAX : rankOf(f.untilCommit);
     CAVITY_TRY(db.forEach(sql, params, [&](const Row& r) -> Status {
-        runs[std::stoll(*r[0])] = {rankOf(*r[1]), *r[2]};
+        const size_t rank = rankOf(*r[1]);
+        if (rank >= first && rank <= last) runs[std::stoll(*r[0])] = {rank, *r[2]};
         return {};
     }));
     return runs;
@@ -267,14 +271,13 @@ Result<std::vector<Series>> loadSeries(Database& db, const SeriesFilter& f) {
     return out;
 }
 
-Result<std::string> resolveBound(Database& db, const std::string& flag, const std::string& value, bool since) {
+Result<Bound> resolveBound(Database& db, const std::string& flag, const std::string& value, bool since) {
     const std::string given = flag + " " + value;
     if (value.empty()) return badInput(flag + " '': must be a date (2026-11-30, 2026-11-30T12:00:00Z) or a commit");
     if (isCommit(value)) {
-        CAVITY_ASSIGN(const auto rows, db.query("SELECT commit_sha, min(run_date), max(run_date) FROM runs WHERE commit_sha "
-                                                "LIKE ? GROUP BY commit_sha", {value + "%"}));
+        CAVITY_ASSIGN(const auto rows, db.query("SELECT DISTINCT commit_sha FROM runs WHERE commit_sha LIKE ?", {value + "%"}));
         if (rows.size() > 1) return badInput(given + ": names " + std::to_string(rows.size()) + " commits (give more digits)");
-        if (rows.size() == 1) return *rows[0][since ? 1 : 2];
+        if (rows.size() == 1) return Bound{"", *rows[0][0]};
         if (value.find('-') == std::string::npos)
             return badInput(given + ": no run of that commit in " + db.where() + " (a date or a commit with runs is expected)");
     }
@@ -282,7 +285,7 @@ Result<std::string> resolveBound(Database& db, const std::string& flag, const st
     if (date.empty()) return badInput(given + ": neither a date (2026-11-30, 2026-11-30T12:00:00Z) nor a commit of 4..64 hex digits");
     // A bare day given as --until takes in the whole day.
     if (!since && value.size() == 10) date = date.substr(0, 10) + "T23:59:59Z";
-    return date;
+    return Bound{date, ""};
 }
 
 }  // namespace cavity::history

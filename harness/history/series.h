@@ -18,6 +18,15 @@ struct SeriesFilter {
     std::string pass;               // exact; "" all
     std::string device;             // a part of the device name; "" all
     std::string since, until;       // normalized dates, inclusive; "" open
+    // A bound given as a commit: its place in commitOrder, not its date
+    // (a commit after its parent may carry an older date). Stored ids.
+    std::string sinceCommit, untilCommit;
+};
+
+// --since / --until as resolveBound reads them: a date, or a commit.
+struct Bound {
+    std::string date;     // normalized; "" when a commit was given
+    std::string commit;   // the stored id; "" when a date was given
 };
 
 struct Point {
@@ -46,10 +55,10 @@ Result<std::vector<Series>> loadSeries(Database& db, const SeriesFilter& filter)
 Result<std::vector<std::string>> commitOrder(Database& db);
 
 // --since / --until: a date (normalizeDate's forms) or a commit (4..40 hex
-// digits, a prefix of one run's commit) whose first (since) or last (until)
-// run's date it stands for. Bad input for a date that does not parse, a commit
-// the database has no run of, or a prefix of two commits.
-Result<std::string> resolveBound(Database& db, const std::string& flag, const std::string& value, bool since);
+// digits, a prefix of one run's commit), which bounds by its place in the
+// history's order. Bad input for a date that does not parse, a commit the
+// database has no run of, or a prefix of two commits.
+Result<Bound> resolveBound(Database& db, const std::string& flag, const std::string& value, bool since);
 
 // The 95% interval of a sample's median from order statistics (the
 // binomial(n, 1/2) distribution of how many values lie below it): the
