@@ -228,6 +228,19 @@ int finished(const std::string& program, const gate::GateRun& run) {
     return code;
 }
 
+// The reports and new images go beside the references otherwise: a
+// baselines folder is a tree under review, and its images/ holds the
+// references themselves.
+Status outsideBaselines(const std::string& out, const std::string& baselines) {
+    std::error_code ec;
+    const fs::path o = fs::weakly_canonical(out, ec), b = fs::weakly_canonical(baselines, ec);
+    const auto rel = o.lexically_relative(b);
+    if (!rel.empty() && *rel.begin() != "..")
+        return badInput("--out " + out + ": is " + (rel == "." ? "" : "inside ") + "the baselines folder " + baselines +
+                        " (give a folder of its own, e.g. out/gate)");
+    return {};
+}
+
 // Nothing is written unless every folder is whole (judge_folders.h).
 int judge(const std::vector<std::string>& argv) {
     std::string expectationsDir, reportUrl;
@@ -250,6 +263,7 @@ int judge(const std::vector<std::string>& argv) {
         if (!found) return fail("cavity gate judge", found.error());
         baselines = *found;
     }
+    if (auto st = outsideBaselines(o.out, baselines); !st) return fail("cavity gate judge", st.error());
     if (auto st = gate::recoverBaselineUpdate(baselines); !st) return fail("cavity gate judge", st.error());
     auto expectations =
         gate::loadExpectations(expectationsDir.empty() ? (fs::path(baselines) / "expectations").string() : expectationsDir);
@@ -343,6 +357,7 @@ int gateCommand(const std::vector<std::string>& argv) {
         for (const auto& e : *entries) std::cout << configId(e.config) << "\n";
         return 0;
     }
+    if (auto st = outsideBaselines(o.out, o.baselines); !st) return fail("cavity gate", st.error());
     if (auto st = gate::recoverBaselineUpdate(o.baselines); !st) return fail("cavity gate", st.error());
     auto run = gate::runGate(o);
     if (!run) return fail("cavity gate", run.error());

@@ -4,6 +4,7 @@
 #include "history_command.h"
 #include "history/ingest.h"
 #include "history/run_file.h"
+#include "printable.h"
 
 #include <algorithm>
 #include <iostream>
@@ -74,8 +75,13 @@ Result<std::pair<std::string, history::RunInfo>> ingestFlags(const ParsedFlags& 
             if (info.date.empty())
                 return badInput("--date " + v + ": must be an ISO 8601 date (2026-11-30, 2026-11-30T12:00:00Z, "
                                 "2026-11-30T12:00:00+02:00)");
-        } else if (flag == "--branch") info.branch = v;
-        else if (flag == "--build-type") info.buildType = v;
+        } else if (flag == "--branch" || flag == "--build-type") {
+            // Printed in every table and chart label: one line of text.
+            if (hasControlChar(v) || v.size() > 200)
+                return badInput(flag + " " + printable(v.substr(0, 60)) + ": must be one line of printable text, at most 200 "
+                                "characters");
+            (flag == "--branch" ? info.branch : info.buildType) = v;
+        }
     }
     if (db.empty()) return badInput("--db: missing (an SQLite file or a postgresql:// URL)");
     if (info.commit.empty()) return badInput("--commit: missing (the commit the files measured, e.g. $(git rev-parse HEAD))");

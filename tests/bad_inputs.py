@@ -332,6 +332,10 @@ CASES = [
                      % ("corner/alchemy/n16/b4/full/32x18/vk/compute", 1))),
     Case("history-gz-cut-short", "cavity", ["history", "ingest", "--db", "h.sqlite", "--commit", "beef0001", "a.json.gz"],
          ["a.json.gz", "cut short"], setup=gzip_cut_short("a.json.gz")),
+    # Reports and new images beside the references would mix with them.
+    Case("gate-out-is-baselines", "cavity", GATE[:-2] + ["--out", "baselines"], ["--out", "baselines", "is the baselines folder"]),
+    Case("gate-out-in-baselines", "cavity", GATE[:-2] + ["--out", "baselines/out"],
+         ["--out", "baselines/out", "is inside the baselines folder"]),
     # The image store (docs/store.md).
     Case("store-is-file", "cavity", GATE + ["--store", "prev"], ["--store", "prev", "not a folder"], setup=write("prev", "x")),
     Case("store-empty", "cavity", GATE + ["--store", ""], ["--store", "empty"]),

@@ -193,6 +193,7 @@ TEST_F(History, BadInputsAreOneLineAndWriteNothing) {
     refused(ingest + commit + "--parent 12 " + good, "--parent 12");
     refused(ingest + commit + "--date yesterday " + good, "--date yesterday: must be an ISO 8601 date");
     refused(ingest + commit + "--date 2026-02-30 " + good, "--date 2026-02-30");
+    refused(ingest + commit + "--branch \"$(printf 'a\\nb')\" " + good, "--branch a\\x0ab: must be one line of printable text");
     refused(ingest + commit, "no FILE given");
     refused(ingest + commit + (dir_ / "missing.json").string(), "missing.json: cannot be read (no such file)");
     refused(ingest + commit + dir_.string(), "is a folder");
