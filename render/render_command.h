@@ -36,7 +36,8 @@ Result<RenderCommand> parseRenderFlags(const std::vector<std::string>& argv);
 // Validates, renders, writes DIR; returns the process exit code: 0 every
 // configuration rendered, 2 bad input (nothing written), 3 a backend did
 // not start, 4 a configuration failed on the GPU (3 and 4 still write the
-// folder, with the errors in the manifest for the judge to report).
+// folder, with the errors in the manifest for the judge to report); with
+// --store, 5 or 6 as the gate's store errors.
 int renderCommand(const std::vector<std::string>& argv);
 
 }  // namespace cavity::render

@@ -339,6 +339,10 @@ CASES = [
     # The image store (docs/store.md).
     Case("store-is-file", "cavity", GATE + ["--store", "prev"], ["--store", "prev", "not a folder"], setup=write("prev", "x")),
     Case("store-empty", "cavity", GATE + ["--store", ""], ["--store", "empty"]),
+    # A variable set to a space is a mistake, not a folder named " ".
+    Case("store-env-blank", "cavity", GATE, ["CAVITY_STORE", "' '", "blank"], env={"CAVITY_STORE": " "}),
+    Case("store-cache-env-blank", "cavity", GATE + ["--store", "http://127.0.0.1:9/x"], ["CAVITY_STORE_CACHE", "blank"],
+         env={"CAVITY_STORE_CACHE": " "}),
     Case("store-scheme", "cavity", GATE + ["--store", "s3://bucket/x"], ["--store", "s3://bucket/x", "unknown scheme"]),
     Case("store-credentials-in-url", "cavity", ["store", "check", "--baselines", "baselines", "--store",
                                                 "https://u:secret@example.invalid/x"], ["--store", "credentials in the URL"]),

@@ -261,6 +261,9 @@ Result<std::unique_ptr<ImageStore>> httpStore(const std::string& url, const std:
     const std::string named = !cacheDir.empty() ? "--store-cache" : !env("CAVITY_STORE_CACHE").empty() ? "CAVITY_STORE_CACHE" : "";
     std::error_code ec;
     if (const std::string cache = cacheFolder(cacheDir);
+        !named.empty() && (cache.find_first_not_of(" \t") == std::string::npos || hasControlChar(cache)))
+        return badInput(named + " '" + printable(cache) + "': blank or with a control character (a folder)");
+    if (const std::string cache = cacheFolder(cacheDir);
         !named.empty() && fs::exists(cache, ec) && !fs::is_directory(cache, ec))
         return badInput(named + " " + cache + ": not a folder (where an HTTP store's objects are cached)");
     return std::unique_ptr<ImageStore>(std::make_unique<HttpStore>(url, cacheFolder(cacheDir)));

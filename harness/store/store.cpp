@@ -1,4 +1,5 @@
 #include "store/store.h"
+#include "printable.h"
 
 #include "core/digest.h"
 #include "core/json_file.h"
@@ -78,6 +79,10 @@ Result<std::unique_ptr<ImageStore>> openStore(const StoreOptions& o) {
     const std::string& at = o.location;
     const std::string& flag = o.source;
     if (at.empty()) return badInput(flag + ": empty (a folder, or an http:// or https:// URL)");
+    // " " would be a folder named by a space: a variable set by mistake.
+    if (at.find_first_not_of(" \t") == std::string::npos || hasControlChar(at))
+        return badInput(flag + " '" + printable(at) + "': blank or with a control character (a folder, or an http:// or "
+                        "https:// URL)");
     if (at.rfind("http://", 0) == 0 || at.rfind("https://", 0) == 0) return httpStore(at, o.cache, flag);
     std::string root = at;
     if (root.rfind("file://", 0) == 0) {
