@@ -1,4 +1,5 @@
 #include "measure/results.h"
+#include "measure/build_version.h"
 
 #include "core/json_file.h"
 
@@ -6,6 +7,7 @@
 #include "core/digest.h"
 #include "package/package.h"
 
+#include <set>
 #include <chrono>
 #include <cmath>
 #include <ctime>
@@ -23,7 +25,7 @@ namespace cavity::measure {
 
 using nlohmann::json;
 
-std::string gitCommit() { return CAVITY_GIT_COMMIT; }
+std::string gitCommit() { return buildCommit(); }
 
 std::string utcTimestamp() {
     const std::time_t t = std::time(nullptr);
@@ -240,6 +242,13 @@ std::vector<PackageUsed> packagesUsed(const std::set<std::string>& kernels) {
                        core::digestText(core::fnv1a64(text.data(), text.size()))});
     }
     return out;
+}
+
+std::vector<PackageUsed> packagesLoaded() {
+    std::set<std::string> all;
+    for (const auto& p : kernels::packages())
+        if (!p.builtIn) all.insert(p.name);
+    return packagesUsed(all);
 }
 
 std::vector<PackageUsed> packagesUsed(const std::vector<RunConfig>& configs) {
