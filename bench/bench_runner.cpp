@@ -244,7 +244,7 @@ std::vector<RunConfig> selected(const std::vector<RunConfig>& configs, const std
 
 // What the run changed on purpose, beside its numbers: a planted slowdown,
 // edited kernels; and which packages from disk its kernels came from.
-void addEditContext(const Options& o, const std::vector<RunConfig>& configs) {
+void addEditContext(const Options& o) {
     if (!o.plant.empty() || !o.plantById.empty()) {
         std::string text;
         for (const auto& [pass, fmas] : o.plant) text += (text.empty() ? "" : ",") + pass + ":" + std::to_string(fmas);
@@ -257,7 +257,7 @@ void addEditContext(const Options& o, const std::vector<RunConfig>& configs) {
         benchmark::AddCustomContext("cavity_kernel_sources", text);
     }
     std::string text;
-    for (const auto& p : measure::packagesUsed(configs)) text += (text.empty() ? "" : "; ") + p.name + "=" + p.folder + " (" + p.digest + ")";
+    for (const auto& p : measure::packagesLoaded()) text += (text.empty() ? "" : "; ") + p.name + "=" + p.folder + " (" + p.digest + ")";
     if (!text.empty()) benchmark::AddCustomContext("cavity_kernel_packages", text);
 }
 
@@ -322,7 +322,7 @@ Result<int> registerSweep(const Options& o) {
     const auto configs = benchmarkSweep(cpu ? cpuSweep() : gpuSweep(), started);
     CAVITY_TRY(checkPlants(o, configs));
     CAVITY_TRY(checkSourcesUsed(o.replaced, selected(configs, o.filter)));
-    addEditContext(o, selected(configs, o.filter));
+    addEditContext(o);
     for (const auto& c : configs) {
         const auto planted = o.plantById.find(configId(c));
         Bench b{c, timing, planted == o.plantById.end() ? o.plant : planted->second, o.overrides};

@@ -91,6 +91,12 @@ Result<SourceCopies> kernelSourceCopies(const gate::GateRun& run, const std::str
         return badInput("--from " + from + ": rendered with " + names + " replaced (--kernel-source): its images are "
                         "not what those files render; pass --with-kernel-source to copy the edits over them with the "
                         "baselines, or copy them yourself and run the gate again");
+    // An edit that did not render everywhere (a compile error, say) is not
+    // one the baselines can show: copying it would replace a working file.
+    for (const auto& r : run.results)
+        if (!r.error.empty())
+            return badInput("--with-kernel-source: " + r.id + " did not render with the edit (" + r.error.substr(0, 100) +
+                            "); nothing copied, no baseline changed");
     std::error_code ec;
     const fs::path tree = fs::absolute(root, ec).lexically_normal().parent_path() / "kernels";
     for (const auto& r : run.replaced) {
@@ -101,8 +107,9 @@ Result<SourceCopies> kernelSourceCopies(const gate::GateRun& run, const std::str
         const fs::path target = inTree ? tree / r.name : fs::path(label);
         if (!fs::is_regular_file(target, ec))
             return badInput("--with-kernel-source: " + label + " is not a file" +
-                            (inTree ? " of " + tree.string() + " (a package from disk: load it with --kernels DIR and "
-                                      "the edit is copied into its folder)"
+                            (inTree ? " of " + tree.string() + ", the kernels/ beside --baselines " + root +
+                                          " (a built-in kernel's edit goes to the source tree cavity is built from: "
+                                          "give that tree's baselines/, or copy the edit there yourself)"
                                     : std::string()));
         std::ifstream in(r.file, std::ios::binary);
         if (!in) return badInput("--with-kernel-source: " + r.file + " (for " + label + "): cannot be read");

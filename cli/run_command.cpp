@@ -166,18 +166,10 @@ RunOutcome runPlan(const Sweep& s, const std::vector<gpu::Api>& apis, const std:
     return out;
 }
 
-// The packages from disk whose kernels ran (--kernels, CAVITY_KERNELS), so
-// that the command results.json records can be run again.
-std::vector<measure::PackageUsed> packagesRun(const RunOutcome& out) {
-    std::set<std::string> kernels;
-    for (const auto& r : out.runs) kernels.insert(r.config.kernel);
-    return measure::packagesUsed(kernels);
-}
-
 // results.json, table.txt and index.html, then the summary that names them.
 Status writeResults(const Sweep& s, const RunOutcome& out, const std::vector<std::string>& argv) {
     std::vector<std::string> args;
-    const auto packages = packagesRun(out);
+    const auto packages = measure::packagesLoaded();
     for (const auto& p : packages) args.insert(args.end(), {"--kernels", p.folder});
     args.insert(args.end(), argv.begin(), argv.end());
     const std::string command = core::commandLine("cavity run", args);

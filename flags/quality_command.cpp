@@ -280,12 +280,6 @@ nlohmann::json switchesJson(const kernels::ParamValues& switches) {
     return out;
 }
 
-std::set<std::string> measuredKernels(const std::vector<QualityRow>& rows) {
-    std::set<std::string> out;
-    for (const auto& r : rows) out.insert(r.kernel);
-    return out;
-}
-
 nlohmann::json qualityJson(const QualityRequest& q, const std::string& device, const std::vector<QualityRow>& rows) {
     const auto& o = q.options;
     nlohmann::json doc = {{"schema", "cavity.quality/1"},
@@ -299,7 +293,7 @@ nlohmann::json qualityJson(const QualityRequest& q, const std::string& device, c
                           {"reach", o.sharedReach ? "shared" : "seed"},
                           {"radius", o.sharedReach ? nlohmann::json(o.radius) : nlohmann::json(nullptr)},
                           {"switches", switchesJson(o.switches)},
-                          {"kernel_packages", measure::packagesJson(measure::packagesUsed(measuredKernels(rows)))},
+                          {"kernel_packages", measure::packagesJson(measure::packagesLoaded())},
                           {"kernel_sources", nlohmann::json::array()},
                           {"rows", nlohmann::json::array()}};
     for (const auto& r : q.replaced) doc["kernel_sources"].push_back({{"name", r.name}, {"file", r.file}, {"digest", r.digest}});

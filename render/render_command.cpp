@@ -285,7 +285,7 @@ int renderCommand(const std::vector<std::string>& argv) {
     header.matrixHash = matrix->hash;
     header.gitCommit = gitCommit();
     header.createdUtc = utcTimestamp();
-    header.packages = measure::packagesUsed(selected);
+    header.packages = measure::packagesLoaded();
     header.command = joined(header.packages, argv);
     header.shardIndex = o->shardIndex;
     header.shardCount = o->shardCount;

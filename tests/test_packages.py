@@ -308,7 +308,23 @@ def check_bad(cavity, root):
     if r.returncode != 2 or "1 selected configurations rendered no image" not in r.stderr or sorted(os.listdir(base)) != before:
         failures += 1
         print(f"FAIL baselines update of a configuration that did not compile: exit {r.returncode}, {r.stderr!r}")
-    n = len(bad_packages()) + 6
+    # ... nor is an edit that did not compile copied over the package's
+    # file by --with-kernel-source (it would replace the working one).
+    good = os.path.join(root, "copy_guard")
+    make(os.path.join(good, "ring_ao"))
+    broken = os.path.join(root, "broken_edit.glsl")
+    with open(broken, "w") as f:
+        f.write(GLSL.replace("float occlusion = 0.0;", "float occlusion = undeclared_thing;"))
+    run([cavity, "gate", "--kernels", good, "--matrix", "mine", "--baselines", base, "--quiet", "--retries", "0",
+         "--kernel-source", "ring_ao.glsl=" + broken, "--out", os.path.join(root, "copy_guard_gate")])
+    original = open(os.path.join(good, "ring_ao", "ring_ao.glsl")).read()
+    r = run([cavity, "baselines", "update", "--kernels", good, "--from", os.path.join(root, "copy_guard_gate"),
+             "--baselines", base, "--with-kernel-source"])
+    if (r.returncode != 2 or "did not render with the edit" not in r.stderr
+            or open(os.path.join(good, "ring_ao", "ring_ao.glsl")).read() != original):
+        failures += 1
+        print(f"FAIL --with-kernel-source of an edit that did not compile: exit {r.returncode}, {r.stderr!r}")
+    n = len(bad_packages()) + 7
     print(f"bad packages: {n - failures} of {n} refused with one line naming the file")
     return failures
 
@@ -567,6 +583,23 @@ def main():
         r = run([cavity, "gate", "judge", "--kernels", pkg, "--baselines", base, "--out", os.path.join(root, "judged"),
                  os.path.join(root, "shard0"), os.path.join(root, "shard1")])
         assert r.returncode == 2 and "(render every shard with the same --kernels)" in r.stderr, r.stderr
+        # ... while shards of one version are, though one holds only a
+        # built-in kernel; and each manifest's command loads the package.
+        mixed = json.load(open(os.path.join(base, "matrices.json")))
+        mixed["mixed"] = {"description": "a built-in and the package", "groups": [
+            {"scenes": ["corner"], "kernels": ["alchemy", "ring_ao"], "samples": [8], "blurs": [4],
+             "resolutions": ["full"], "sizes": ["64x36"], "apis": ["vk"], "stages": ["compute"]}]}
+        json.dump(mixed, open(os.path.join(base, "matrices.json"), "w"))
+        for shard in (0, 1):
+            r = run([render, "--kernels", pkg, "--matrix", "mixed", "--baselines", base, "--shard", f"{shard}/2",
+                     "--out", os.path.join(root, f"mixed{shard}")])
+            assert r.returncode == 0, r.stderr
+            manifest = json.load(open(os.path.join(root, f"mixed{shard}", "manifest.json")))
+            assert shlex.split(manifest["command"])[1:3] == ["--kernels", pkg], manifest["command"]
+        r = run([cavity, "gate", "judge", "--kernels", pkg, "--baselines", base, "--out", os.path.join(root, "judged_mixed"),
+                 os.path.join(root, "mixed0"), os.path.join(root, "mixed1")])
+        assert "render every shard" not in r.stderr and os.path.exists(os.path.join(root, "judged_mixed", "gate.json")), \
+            r.stdout + r.stderr
 
         failures += check_flag_names(cavity, bench, render, root)
         failures += check_disagreement(cavity, root)

@@ -164,7 +164,7 @@ Result<GateRun> runGate(const GateOptions& o) {
     run.matrix = o.matrix;
     run.filter = o.filter;
     run.replaced = o.replaced;
-    run.packages = measure::packagesUsed(configs);
+    run.packages = measure::packagesLoaded();
     run.strict = o.strict;
     run.shardIndex = o.shardIndex;
     run.shardCount = o.shardCount;

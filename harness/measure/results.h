@@ -85,6 +85,11 @@ struct PackageUsed {
 std::vector<PackageUsed> packagesUsed(const std::set<std::string>& kernels);
 // ... that hold the kernel of one of `configs`.
 std::vector<PackageUsed> packagesUsed(const std::vector<RunConfig>& configs);
+// Every package loaded from disk: what a record names. A kernel may read a
+// parameter another package declares, so the command that runs it again
+// loads them all; and every shard of one matrix, whatever kernels it
+// holds, names the same packages.
+std::vector<PackageUsed> packagesLoaded();
 // As results.json, render manifests and gate.json write them:
 // [{"name", "folder", "digest"}].
 nlohmann::json packagesJson(const std::vector<PackageUsed>& packages);
