@@ -27,11 +27,26 @@ namespace cavity::cli {
 
 namespace fs = std::filesystem;
 
+// gate.json names its images as the gate wrote them, relative to where it
+// ran (or absolute). Read from `dir`, they are `dir`'s own images/: a gate
+// folder downloaded from CI, moved, or named from another directory is read
+// whole, and never the images of the folder it was copied from.
+std::string inFolder(const std::string& dir, const std::string& recorded) {
+    const auto at = recorded.rfind("images/");
+    if (recorded.empty() || at == std::string::npos || (at > 0 && recorded[at - 1] != '/')) return recorded;
+    return (fs::path(dir) / recorded.substr(at)).string();
+}
+
 Result<gate::GateRun> loadGateJson(const std::string& dir) {
     const std::string path = (fs::path(dir) / "gate.json").string();
     if (!fs::exists(path)) return badInput(path + ": cannot be read (run `cavity gate --out " + dir + "` first)");
     CAVITY_ASSIGN(const nlohmann::json j, readJsonFile(path));
-    return gate::fromJson(j, path);
+    CAVITY_ASSIGN(gate::GateRun run, gate::fromJson(j, path));
+    for (auto& r : run.results)
+        for (auto& i : r.images)
+            for (std::string* p : {&i.newExact, &i.newPng, &i.diffPng})
+                *p = inFolder(dir, *p);
+    return run;
 }
 
 namespace {

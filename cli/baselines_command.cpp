@@ -253,6 +253,10 @@ int updateCommand(const std::vector<std::string>& argv) {
             said.push_back(line.str() + ")");
         }
     }
+    if (filter && std::none_of(run->results.begin(), run->results.end(),
+                               [&](const gate::ConfigResult& r) { return std::regex_search(r.id, *filter); }))
+        return fail("cavity baselines update", badInput("--filter " + filterText + ": matches no configuration of " + from +
+                                                        " (nothing updated, the baselines left as they were)"));
     if (auto st = onlyErrored(*run, filter, filterText, writes.empty()); !st) return fail("cavity baselines update", st.error());
     // All or nothing (harness/gate/baseline_update.h).
     if (auto st = gate::applyBaselineUpdate(root, writes); !st) return fail("cavity baselines update", st.error());

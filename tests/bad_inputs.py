@@ -332,6 +332,13 @@ CASES = [
                      % ("corner/alchemy/n16/b4/full/32x18/vk/compute", 1))),
     Case("history-gz-cut-short", "cavity", ["history", "ingest", "--db", "h.sqlite", "--commit", "beef0001", "a.json.gz"],
          ["a.json.gz", "cut short"], setup=gzip_cut_short("a.json.gz")),
+    # A matrix list that selects nothing, or names a value twice.
+    Case("matrix-empty-samples", "cavity", ["gate", "--matrix", "ci", "--baselines", "baselines", "--list"],
+         ["matrices.json", "ci.groups[0].samples is empty"],
+         setup=edit_json("matrices.json", lambda d: d["ci"]["groups"][0].update(samples=[]))),
+    Case("matrix-samples-twice", "cavity", ["gate", "--matrix", "ci", "--baselines", "baselines", "--list"],
+         ["matrices.json", "samples has 4 twice"],
+         setup=edit_json("matrices.json", lambda d: d["ci"]["groups"][0].update(samples=[4, 4.0]))),
     # Reports and new images beside the references would mix with them.
     Case("gate-out-is-baselines", "cavity", GATE[:-2] + ["--out", "baselines"], ["--out", "baselines", "is the baselines folder"]),
     Case("gate-out-in-baselines", "cavity", GATE[:-2] + ["--out", "baselines/out"],

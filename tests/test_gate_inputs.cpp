@@ -418,7 +418,16 @@ TEST_F(GateInputs, UpdateRewritesOnlyTheSelectedEntries) {
                   fs::copy_options::overwrite_existing);
     ASSERT_EQ(gate().code, 1);
     const auto before = checksums(base);
-    const Outcome u = run("baselines update --from " + (dir / "out").string() + " --baselines " + base.string());
+    // A filter that matches nothing updates nothing, and says so (exit 2).
+    const Outcome none = run("baselines update --from " + (dir / "out").string() + " --baselines " + base.string() +
+                             " --filter no_such_configuration");
+    EXPECT_EQ(none.code, 2) << none.output;
+    EXPECT_NE(none.output.find("--filter no_such_configuration: matches no configuration"), std::string::npos) << none.output;
+    EXPECT_EQ(checksums(base), before);
+    // A gate folder moved after the gate (an artifact downloaded from CI)
+    // is read from where it is now.
+    fs::rename(dir / "out", dir / "moved");
+    const Outcome u = run("baselines update --from " + (dir / "moved").string() + " --baselines " + base.string());
     ASSERT_EQ(u.code, 0) << u.output;
     EXPECT_NE(u.output.find("updated " + victim.string()), std::string::npos) << u.output;
     const auto after = checksums(base);
@@ -551,9 +560,11 @@ TEST_F(GateInputs, KilledUpdatesLeaveTheOldSetOrTheNewSet) {
         kill(pid, SIGKILL);
         int status = 0;
         waitpid(pid, &status, 0);
-        // The next command that reads the baselines finishes or drops what the kill interrupted.
+        // The next command that reads the baselines finishes or drops what
+        // the kill interrupted (this one, whose filter matches nothing,
+        // then refuses: exit 2, nothing more written).
         ASSERT_EQ(run("baselines update --from " + (dir / "out").string() + " --baselines " + base.string() +
-                      " --filter no-configuration-matches-this").code, 0);
+                      " --filter no-configuration-matches-this").code, 2);
         const auto now = checksums(images);
         const bool isOld = now == oldSet, isNew = now == newSet;
         EXPECT_TRUE(isOld || isNew) << "trial " << trial << ": a mix of old and new baselines";

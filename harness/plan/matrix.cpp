@@ -135,6 +135,15 @@ Result<MatrixGroup> parseGroup(const std::string& path, const std::string& gw, c
     CAVITY_TRY(onlyKeys(path, gw, g, {"scenes", "kernels", "samples", "blurs", "params", "resolutions", "sizes", "apis", "stages"}));
     for (const char* key : {"scenes", "kernels", "blurs", "resolutions", "sizes", "apis", "stages"})
         if (!g.contains(key)) return badInput(path + ": " + gw + " lacks '" + key + "'");
+    // An empty list selects nothing, and a gate of nothing is no verdict;
+    // a value twice ([4, 4.0]) would be one configuration written twice.
+    for (const char* key : {"scenes", "kernels", "samples", "blurs", "resolutions", "sizes", "apis", "stages"}) {
+        if (!g.contains(key) || !g[key].is_array()) continue;
+        if (g[key].empty()) return badInput(path + ": " + gw + "." + key + " is empty (a non-empty list is expected)");
+        for (const auto& v : g[key])
+            if (std::count(g[key].begin(), g[key].end(), v) > 1)
+                return badInput(path + ": " + gw + "." + key + " has " + core::jsonText(v) + " twice");
+    }
     MatrixGroup grp;
     CAVITY_ASSIGN(const JsonObject gf, JsonObject::of(path, gw, g));
     CAVITY_ASSIGN(grp.scenes, gf.strings("scenes"));
