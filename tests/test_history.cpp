@@ -206,6 +206,12 @@ TEST_F(History, BadInputsAreOneLineAndWriteNothing) {
     json numberDate = benchDoc(0, 8);
     numberDate["context"]["date"] = 1764892800;
     refused(ingest + commit + write("numdate.json", numberDate.dump()), "numdate.json: context.date 1764892800: must be");
+    json clock = benchDoc(0, 8);
+    clock["benchmarks"][0]["sm_mhz_median"] = "fast";
+    refused(ingest + commit + write("clock.json", clock.dump()), "clock.json: " + clock["benchmarks"][0]["name"].get<std::string>() +
+                                                                 ": sm_mhz_median \"fast\": must be a clock in MHz");
+    numberDate["context"]["date"] = "";
+    refused(ingest + commit + write("emptydate.json", numberDate.dump()), "emptydate.json: context.date \"\": must be");
 
     refused("history ingest --db " + dir_.string() + commit + good, "is a folder");
     refused("history ingest --db " + (dir_ / "no/such/folder/h.sqlite").string() + commit + good, "does not exist");
@@ -380,7 +386,15 @@ TEST_F(History, AFullIdAfterItsShortIdIsTheSameCommit) {
     const Outcome again = cavity("history ingest --db " + db_ + " --commit " + full + " " + first);
     ASSERT_EQ(again.code, 0) << again.output;
     EXPECT_NE(again.output.find("already stored"), std::string::npos) << again.output;
+    EXPECT_NE(again.output.find("its short id now reads as this full id"), std::string::npos) << again.output;
     EXPECT_EQ(count("samples"), samples);
+    {
+        auto db = history::openSqlite(db_, false);
+        ASSERT_TRUE(db.ok());
+        auto rows = (*db)->query("SELECT count(*) FROM runs WHERE commit_sha = ?", {full});
+        ASSERT_TRUE(rows.ok());
+        EXPECT_EQ(*(*rows)[0][0], "1") << "the short id was not replaced by the full one";
+    }
     ASSERT_EQ(cavity("history ingest --db " + db_ + " --commit " + full + " " +
                      write("second.json", benchDoc(4, 20).dump(2))).code, 0);
     const std::string out = (dir_ / "show.json").string();

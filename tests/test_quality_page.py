@@ -93,6 +93,9 @@ class QualityPage(unittest.TestCase):
                                capture_output=True, text=True, timeout=600)
             self.assertEqual(p.returncode, 1, p.stdout + p.stderr)
             self.assertIn("corner/alchemy/n8: the AO holds NaN or infinity", p.stderr)
+            # ... and its largest error is not a finite pixel's.
+            row = json.load(open(os.path.join(out, "quality.json")))["rows"][0]
+            self.assertIsNone(row["max_abs"], row)
             self.assertTrue(os.path.exists(os.path.join(out, "quality.json")))
             self.assertTrue(os.path.exists(os.path.join(out, "quality.html")))
 

@@ -66,12 +66,13 @@ Result<int64_t> insertRun(Database& db, const RunFile& file, const RunInfo& info
 // two names. A prefix of several is refused. A full id whose short form was
 // stored first takes that short form's place, in the runs and as a parent,
 // so that the file stored under both names is stored once.
-Result<std::string> storedForm(Database& db, const std::string& flag, const std::string& sha) {
+Result<std::string> storedForm(Database& db, const std::string& flag, const std::string& sha, bool& renamed) {
     if (sha.empty()) return sha;
     if (sha.size() >= 40) {
         CAVITY_ASSIGN(const auto shorter, db.query("SELECT DISTINCT commit_sha FROM runs WHERE length(commit_sha) < ? "
                                                    "AND substr(?, 1, length(commit_sha)) = commit_sha",
                                                    {int64_t(sha.size()), sha}));
+        renamed |= !shorter.empty();
         for (const auto& r : shorter) {
             CAVITY_TRY(db.exec("UPDATE runs SET commit_sha = ? WHERE commit_sha = ?", {sha, *r[0]}));
             CAVITY_TRY(db.exec("UPDATE runs SET parent_sha = ? WHERE parent_sha = ?", {sha, *r[0]}));
@@ -118,8 +119,9 @@ Result<Ingested> ingest(Database& db, const RunFile& file, const RunInfo& info) 
     Transaction t(db);
     CAVITY_TRY(t.begin());
     RunInfo resolved = info;
-    CAVITY_ASSIGN(resolved.commit, storedForm(db, "--commit", info.commit));
-    CAVITY_ASSIGN(resolved.parent, storedForm(db, "--parent", info.parent));
+    bool renamed = false;
+    CAVITY_ASSIGN(resolved.commit, storedForm(db, "--commit", info.commit, renamed));
+    CAVITY_ASSIGN(resolved.parent, storedForm(db, "--parent", info.parent, renamed));
     CAVITY_TRY(checkParent(db, resolved));
     CAVITY_ASSIGN(out.runId, insertRun(db, file, resolved));
     if (out.runId == 0) {
@@ -127,7 +129,12 @@ Result<Ingested> ingest(Database& db, const RunFile& file, const RunInfo& info) 
                                                 {file.digest, resolved.commit}));
         out.alreadyThere = true;
         CAVITY_ASSIGN(out.runId, firstInt(seen, "run"));
-        return out;   // the transaction rolls back: it wrote nothing
+        // The file is there; a short id it was stored under now reads as
+        // the full one given. Otherwise the transaction rolls back: it
+        // wrote nothing.
+        out.renamed = renamed;
+        if (renamed) CAVITY_TRY(t.commit());
+        return out;
     }
     std::map<std::string, int64_t> configs;
     for (const auto& s : file.series) {

@@ -18,7 +18,8 @@ struct RunInfo {
 
 struct Ingested {
     int64_t runId = 0;
-    bool alreadyThere = false;   // the same content was ingested for this commit before: nothing written
+    bool alreadyThere = false;   // the same content was ingested for this commit before: no run written
+    bool renamed = false;        // a short id stored before now reads as the full id given
     size_t passes = 0, samples = 0;
 };
 

@@ -59,11 +59,11 @@ void addSets(const compare::SampleSets& sets, RunFile& out, const std::function<
 }
 
 // The run's own date: absent is "" (the ingest takes the time it stores
-// it). One that is not a string is bad input, not silently today; the
-// string's form is checked with every format's (readRunFile).
+// it). One that is not a string, or is empty, is bad input, not silently
+// today; the string's form is checked with every format's (readRunFile).
 Result<std::string> dateOf(const json& obj, const char* key, const std::string& path, const std::string& where) {
     if (!obj.is_object() || !obj.contains(key) || obj[key].is_null()) return std::string();
-    if (obj[key].is_string()) return obj[key].get<std::string>();
+    if (obj[key].is_string() && !obj[key].get<std::string>().empty()) return obj[key].get<std::string>();
     return badInput(path + ": " + where + " " + obj[key].dump().substr(0, 40) +
                     ": must be an ISO 8601 date string (2026-11-30T12:00:00Z) or absent");
 }
@@ -102,6 +102,13 @@ Status readBenchmark(const json& doc, RunFile& out) {
         if (!b.is_object() || b.value("error_occurred", false) || name.find('@') != std::string::npos) continue;
         if (text(b, "run_type") != "" && text(b, "run_type") != "iteration") continue;
         if (!b.contains("run_type") && b.contains("aggregate_name")) continue;
+        // A clock that is there is a clock: a string or a negative one is a
+        // damaged file, not a run whose clock was not read.
+        for (const char* key : {"sm_mhz_median", "mem_mhz_median"})
+            if (b.contains(key) && !b[key].is_null() &&
+                !(b[key].is_number() && std::isfinite(b[key].get<double>()) && b[key].get<double>() >= 0))
+                return badInput(out.path + ": " + name + ": " + key + " " + b[key].dump().substr(0, 40) +
+                                ": must be a clock in MHz (a number >= 0) or absent");
         clocks[compare::configurationIdOf(name)].push_back({number(b, "sm_mhz_median"), number(b, "mem_mhz_median")});
     }
     addSets(sets, out, [&](PassSeries& s) {

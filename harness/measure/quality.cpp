@@ -92,7 +92,9 @@ QualityRow compareToTruth(const HostImage& ao, const GroundTruth& truth) {
             sum += e;
             sumAo += a;
             sumTruth += t;
-            r.maxAbsError = std::max(r.maxAbsError, e);
+            // A NaN pixel makes the largest error NaN: std::max would pass
+            // it over and report the largest finite one.
+            r.maxAbsError = std::isnan(e) || std::isnan(r.maxAbsError) ? e + r.maxAbsError : std::max(r.maxAbsError, e);
             ++r.pixels;
         }
     if (r.pixels) {
