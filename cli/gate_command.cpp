@@ -210,6 +210,7 @@ int merge(const std::vector<std::string>& argv) {
     }
     merged.shardCount = 1;   // the whole matrix
     if (auto st = checkWritableDir("--out", out); !st) return fail("cavity gate merge", st.error());
+    merged.out = out;
     if (auto st = report::writeReports(merged, out, reportUrl); !st) return fail("cavity gate merge", st.error());
     std::cout << report::summaryMarkdown(merged, reportUrl.empty() ? "index.html" : reportUrl);
     return merged.exitCode();
@@ -273,6 +274,7 @@ int judge(const std::vector<std::string>& argv) {
     run->strict = strict;
     run->applyStrict();
     gate::applyExpectations(*run, *expectations);
+    run->out = o.out;
     if (auto st = report::writeReports(*run, o.out, reportUrl); !st) return fail("cavity gate judge", st.error());
     std::cout << report::summaryMarkdown(*run, reportUrl.empty() ? "index.html" : reportUrl);
     std::cout << "\nreport: " << (fs::path(o.out) / "index.html").string() << "\n";
@@ -361,6 +363,7 @@ int gateCommand(const std::vector<std::string>& argv) {
     if (auto st = gate::recoverBaselineUpdate(o.baselines); !st) return fail("cavity gate", st.error());
     auto run = gate::runGate(o);
     if (!run) return fail("cavity gate", run.error());
+    run->out = o.out;
     if (auto st = report::writeReports(*run, o.out, parsed->reportUrl); !st) return fail("cavity gate", st.error());
     std::cout << report::summaryMarkdown(*run, parsed->reportUrl.empty() ? "index.html" : parsed->reportUrl);
     std::cout << "\nreport: " << (fs::path(o.out) / "index.html").string() << "\n";

@@ -534,7 +534,10 @@ def main():
         # file (where the package lives, not into kernels/) with the digests.
         summary = open(os.path.join(root, "gate3", "summary.md")).read()
         assert "`" + os.path.join(pkg, "ring_ao.glsl") + "`" in summary, summary
-        assert "`cavity baselines approve --from <gate output>" in summary, summary
+        # ... by a command that runs as printed: this folder, the package,
+        # and the edit (--with-kernel-source).
+        assert ("`cavity baselines approve --from " + os.path.join(root, "gate3") + " --kernels " + pkg +
+                " --with-kernel-source --why ...`") in summary, summary
         listed = lambda d: sorted(os.listdir(d)) if os.path.isdir(d) else []
         before = listed(os.path.join(base, "images", "corner", "ring_ao", "n8", "b4", "full", "64x36"))
         r = run([cavity, "baselines", "update", "--kernels", pkg, "--from", os.path.join(root, "gate3"), "--baselines",

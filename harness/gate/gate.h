@@ -137,6 +137,9 @@ struct GateRun {
     // --strict: a configuration that changed (any pixel, within tolerance
     // or not) fails the run, as Mesa's trace checksums do.
     bool strict = false;
+    // The folder the reports are written to (not in gate.json): the accept
+    // commands the reports print name it. "" prints a placeholder.
+    std::string out;
     // 0 all pass (flaky, expected-fail and known-flake included), 1 a
     // regression or an unexpected pass, 2 bad input (a baseline missing or
     // unreadable), 3 a backend could not start.

@@ -40,8 +40,11 @@ nlohmann::json commitStatus(const GateRun& run, const std::string& reportUrl) {
 // its own name, and gate.json (what update, approve and merge read) goes
 // last: a kill between the writes leaves no new gate.json beside older
 // pages, and never a new verdict that the pages beside it contradict.
-Status writeReports(const GateRun& run, const std::string& outDir, const std::string& reportUrl) {
+Status writeReports(const GateRun& judged, const std::string& outDir, const std::string& reportUrl) {
     const fs::path out(outDir);
+    // The accept commands the reports print name this folder.
+    GateRun run = judged;
+    run.out = outDir;
     std::error_code ec;
     fs::create_directories(out, ec);
     CAVITY_ASSIGN(const std::string html, reportHtml(run, (out / "charts").string()));

@@ -167,7 +167,8 @@ nlohmann::json reportData(const GateRun& run, const std::string& chartsDir) {
         if (!shared.count(size_t(r - run.results.data()))) order.push_back(r - run.results.data());
     for (size_t k = 0; k < run.results.size(); ++k) {
         const auto& r = run.results[k];
-        nlohmann::json v = {{"label", r.label()}, {"note", verdictNote(r)}, {"card", k}, {"same", nlohmann::json::array()}};
+        nlohmann::json v = {{"label", r.label()}, {"note", verdictNote(r, "", acceptArgs(run))}, {"card", k},
+                            {"same", nlohmann::json::array()}};
         if (const auto at = shared.find(k); at != shared.end()) v["card"] = at->second;
         results.push_back(std::move(v));
     }
@@ -178,7 +179,7 @@ nlohmann::json reportData(const GateRun& run, const std::string& chartsDir) {
         std::string both = r.id;
         const std::string api = std::string("/") + gpu::apiName(r.config.api) + "/";
         if (const auto at = both.find(api); at != std::string::npos) both.replace(at, api.size(), "/(gl|vk)/");
-        results[card]["note"] = verdictNote(r, both);
+        results[card]["note"] = verdictNote(r, both, acceptArgs(run));
     }
     return {{"gate", toJson(run)},
             {"view",

@@ -130,12 +130,23 @@ std::string cell(std::string s) {
 // The non-fatal verdicts, one line per kind: "- flaky: `id`, `id` and 3 more".
 std::vector<std::string> notedLines(const GateRun& run) {
     std::map<std::string, std::vector<std::string>> byVerdict;
-    for (const auto* r : ordered(run))
-        if (!r->fatal() && r->verdict() != "pass") byVerdict[r->verdict()].push_back(r->label());
+    for (const auto* r : ordered(run)) {
+        if (r->fatal() || r->verdict() == "pass") continue;
+        std::string label = r->label() + "`";
+        // A change within tolerance: by how much, as its card says.
+        const gate::ImageCheck* most = nullptr;
+        for (const auto& i : r->images)
+            if (i.changed() && (!most || i.metrics->maxAbs > most->metrics->maxAbs)) most = &i;
+        if (most)
+            label += " (" + most->image + " max |d| " + num(most->metrics->maxAbs, 3) + ", " +
+                     num(100 * most->metrics->overThresholdShare, 3) + "% of pixels over " +
+                     num(most->tolerance.pixelThreshold, 3) + ")";
+        byVerdict[r->verdict()].push_back(label);
+    }
     std::vector<std::string> lines;
     for (const auto& [verdict, labels] : byVerdict) {
         std::string line = "- " + verdict + ": ";
-        for (size_t i = 0; i < labels.size() && i < 3; ++i) line += (i ? ", `" : "`") + labels[i] + "`";
+        for (size_t i = 0; i < labels.size() && i < 3; ++i) line += (i ? ", `" : "`") + labels[i];
         if (labels.size() > 3) line += " and " + std::to_string(labels.size() - 3) + " more";
         lines.push_back(line);
     }
@@ -249,11 +260,11 @@ std::string summaryMarkdown(const GateRun& run, const std::string& reportUrl) {
     for (const auto& r : run.results)
         for (const auto& i : r.images)
             if (!i.passed() || i.changed()) (i.baseline.rfind("store:", 0) == 0 ? byApproval : byFile) = true;
-    std::string accept = "`cavity baselines update --from <gate output>`";
+    std::string accept = "`cavity baselines update " + acceptArgs(run) + "`";
     if (byApproval)
         accept = std::string(byFile ? accept + " (images judged against the stored baselines) and " : "") +
-                 "`cavity baselines approve --from <gate output> --why ...` (images judged against a device class's approved "
-                 "references)";
+                 "`cavity baselines approve " + acceptArgs(run) + " --why ...` (images judged against a device class's "
+                 "approved references)";
     lines.push_back("[Full report](" + reportUrl + "): every configuration with its images and heat-maps. Accept intended "
                     "changes with " + accept + ".");
     std::ostringstream m;

@@ -1,3 +1,4 @@
+#include "core/shell_words.h"
 #include "report/verdict_text.h"
 
 #include <algorithm>
@@ -66,8 +67,16 @@ std::string joined(const std::vector<std::string>& lines) {
     return s;
 }
 
-std::string verdictNote(const ConfigResult& r, const std::string& idPattern) {
+std::string acceptArgs(const GateRun& run) {
+    std::string s = "--from " + (run.out.empty() ? std::string("<gate output>") : core::shellWord(run.out));
+    for (const auto& p : run.packages) s += " --kernels " + core::shellWord(p.folder);
+    if (!run.replaced.empty()) s += " --with-kernel-source";
+    return s;
+}
+
+std::string verdictNote(const ConfigResult& r, const std::string& idPattern, const std::string& accept) {
     const std::string v = r.verdict();
+    const std::string args = accept.empty() ? "" : accept + " ";
     const std::string id = idPattern.empty() ? r.id : idPattern;
     if (v == "flaky")
         return "flaky: passed on attempt " + std::to_string(r.attempts) + ", attempt 1 failed: " + joined(r.firstFailures);
@@ -78,8 +87,8 @@ std::string verdictNote(const ConfigResult& r, const std::string& idPattern) {
     // A failure that is the intended result of a change is accepted one
     // configuration at a time, by the command the card prints.
     if (v == "fail" && r.error.empty())
-        return "to accept this configuration alone: cavity baselines update --filter '^" + id +
-               "$' (its images become the baselines), or cavity baselines approve --filter '^" + id +
+        return "to accept this configuration alone: cavity baselines update " + args + "--filter '^" + id +
+               "$' (its images become the baselines), or cavity baselines approve " + args + "--filter '^" + id +
                "$' --why '...' (its digests approved for this device class)";
     if (v == "changed") {
         std::string s = "changed within tolerance:";
@@ -89,7 +98,7 @@ std::string verdictNote(const ConfigResult& r, const std::string& idPattern) {
                      num(100 * i.metrics->overThresholdShare, 3) + "% of pixels over " +
                      num(i.tolerance.pixelThreshold, 3) + ";";
         s.pop_back();
-        return s + " (to make it the reference: cavity baselines update --filter '^" + id + "$')";
+        return s + " (to make it the reference: cavity baselines update " + args + "--filter '^" + id + "$')";
     }
     return "";
 }

@@ -28,7 +28,12 @@ std::string joined(const std::vector<std::string>& lines);
 // that accepts its configuration alone); empty otherwise.
 // `idPattern`: the regex the printed commands select with, when a card
 // stands for more than this configuration (empty: its own id, escaped as is).
-std::string verdictNote(const ConfigResult& r, const std::string& idPattern = "");
+// `accept`: acceptArgs(run), the flags the accept commands need.
+std::string verdictNote(const ConfigResult& r, const std::string& idPattern = "", const std::string& accept = "");
+// The flags `baselines update` and `approve` need to accept this run's
+// images: --from its folder, --with-kernel-source when sources were
+// replaced, and --kernels for each package it loaded.
+std::string acceptArgs(const GateRun& run);
 // "3 passed, 1 flaky, ...": every verdict that occurred, in a fixed order.
 std::string countsText(const GateRun& run);
 
