@@ -147,12 +147,18 @@ Result<std::vector<std::string>> commitOrder(Database& db) {
 
 namespace {
 
+// A software renderer's "GPU" timestamps are the host's clock, as its wall
+// clock is, and which of the two a run trusted changes from run to run
+// (measure/clock_decision.h): one series, on the host's wall clock, so that
+// a configuration's history is not split in two.
+constexpr const char* kClock = "CASE WHEN p.software_renderer != 0 THEN 'wall' ELSE p.clock END";
+
 // The series the filter selects, in key order, each empty, with
 // (configuration row id, pass, device, clock) -> its index.
 using SeriesIndex = std::map<std::tuple<std::string, std::string, std::string, std::string>, size_t>;
 Result<std::vector<Series>> selectedSeries(Database& db, const SeriesFilter& f, SeriesIndex& seriesOf) {
     std::string keys =
-        "SELECT DISTINCT p.configuration_id, c.config_id, p.pass, p.device, p.clock FROM passes p "
+        "SELECT DISTINCT p.configuration_id, c.config_id, p.pass, p.device, " + std::string(kClock) + " FROM passes p "
         "JOIN configurations c ON p.configuration_id = c.id";
     std::vector<Param> keyParams;
     if (!f.pass.empty()) keys += " WHERE p.pass = ?", keyParams.push_back(f.pass);
@@ -239,7 +245,7 @@ Result<std::vector<Series>> loadSeries(Database& db, const SeriesFilter& f) {
     CAVITY_ASSIGN(const auto runs, selectedRuns(db, f, rankOf));
     // A pass row to its series and run.
     std::unordered_map<int64_t, std::pair<uint32_t, int64_t>> passes;
-    std::string sql = "SELECT id, configuration_id, pass, device, clock, software_renderer, run_id FROM passes";
+    std::string sql = "SELECT id, configuration_id, pass, device, " + std::string(kClock) + ", software_renderer, run_id FROM passes p";
     std::vector<Param> params;
     if (!f.pass.empty()) sql += " WHERE pass = ?", params.push_back(f.pass);
     CAVITY_TRY(db.forEach(sql, params, [&](const Row& r) -> Status {
