@@ -37,8 +37,10 @@
     document.getElementById('controls').append(
       el('b', {}, 'Cavity gate'), ' matrix ', el('code', {}, gate.matrix), shard,
       ' · ' + gate.results.length + ' configurations · ',
-      el('span', {class: failed ? 'bad' : ''}, failed + ' failed'),
-      ' · ' + view.counts + ' · ' + (gate.render_seconds > 0
+      // The counts by verdict ("6 failed", "4 passed, 1 changed"), red when
+      // any failed: the failures once, not twice.
+      el('span', {class: failed ? 'bad' : ''}, view.counts || failed + ' failed'),
+      ' · ' + (gate.render_seconds > 0
         ? 'rendered in ' + num(gate.render_seconds, 3) + ' s, judged in ' + num(gate.seconds - gate.render_seconds, 3) + ' s'
         : num(gate.seconds, 3) + ' s') + ' · zoom ', zoom, ' ', el('span', {id: 'zv'}, '2x'));
     // What was judged instead of the committed kernels (--kernel-source).
@@ -63,7 +65,7 @@
   function metricsTable(i) {
     const table = el('table', {}, el('tr', {}, el('th', {class: 'l'}, 'metric'), el('th', {}, 'value'), el('th', {}, 'tolerance')));
     const m = i.metrics, t = i.tolerance;
-    if (!m) return table;
+    if (!m) return null;   // no image judged by metrics (a baseline missing, an approved digest)
     // upper: the value must stay at or under the tolerance; else at or over it.
     const row = (name, v, tol, upper, unit = '') => {
       const bad = upper ? v > tol : v < tol;
@@ -98,11 +100,12 @@
     const threshold = i.tolerance.pixel_threshold;
     // Signed, saturating at the per-pixel threshold: full colour is a
     // pixel counted over it; blue went darker, orange lighter.
-    row.append(el('figure', {class: 'zoomable'}, el('figcaption', {}, 'new - baseline'),
-                  view.images[i.diff_png] ? image(i.diff_png, 'z') : null,
-                  el('div', {class: 'scale', style: 'background:' + view.heat_scale}),
-                  el('div', {class: 'scalelabels'}, el('span', {}, '≤ -' + num(threshold) + ' darker'), el('span', {}, '0'),
-                     el('span', {}, '≥ +' + num(threshold) + ' lighter'))));
+    // The scale only under a heat-map (a missing baseline has none).
+    if (view.images[i.diff_png])
+      row.append(el('figure', {class: 'zoomable'}, el('figcaption', {}, 'new - baseline'), image(i.diff_png, 'z'),
+                    el('div', {class: 'scale', style: 'background:' + view.heat_scale}),
+                    el('div', {class: 'scalelabels'}, el('span', {}, '≤ -' + num(threshold) + ' darker'), el('span', {}, '0'),
+                       el('span', {}, '≥ +' + num(threshold) + ' lighter'))));
     if (baseline) {
       const top = el('div', {class: 'top'}, image(i.baseline_png, 'z'));
       const slider = el('input', {type: 'range', min: '0', max: '100', value: '50'});
@@ -110,7 +113,8 @@
       row.append(el('figure', {class: 'zoomable'}, el('figcaption', {}, 'baseline ◀ slider ▶ new'),
                     el('div', {class: 'cmp'}, image(i.new_png, 'z'), top), slider));
     }
-    row.append(metricsTable(i));
+    const table = metricsTable(i);
+    if (table) row.append(table);
     const out = [row];
     for (const f of i.failures) out.push(el('div', {class: 'bad'}, i.image + ': ' + f));
     return out;
@@ -122,7 +126,10 @@
                                     el('th', {}, 'clock')));
     const interval = (t) => t.ci_low_ms === undefined || t.ci_low_ms === null ? 'too few frames'
                                                                                : num(t.ci_low_ms) + ' to ' + num(t.ci_high_ms);
-    const clock = (t) => t.clock === 'wall' ? 'wall clock' + (t.advisory ? ', CPU renderer' : '') : 'GPU timestamps';
+    // A software renderer's timestamps are the host's clock (advisory: its
+    // budgets are reported, not enforced).
+    const clock = (t) => t.clock === 'wall' ? 'wall clock' + (t.advisory ? ', CPU renderer' : '')
+                                            : t.advisory ? 'host timestamps, CPU renderer' : 'GPU timestamps';
     for (const t of r.timings)
       table.append(el('tr', {}, el('td', {class: 'l'}, t.pass), el('td', {class: t.passed ? '' : 'bad'}, num(t.median_ms)),
                       el('td', {}, interval(t)),

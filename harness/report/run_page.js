@@ -82,7 +82,11 @@
       data: { labels, datasets },
       options: {
         indexAxis: 'y', animation: false, maintainAspectRatio: false,
-        scales: { x: { beginAtZero: true, title: { display: true, text: 'ms' } }, y: { ticks: { autoSkip: false } } },
+        // The axis reaches the whiskers' ends (the 90th percentiles), not
+        // only the bars' medians.
+        scales: { x: { beginAtZero: true, suggestedMax: Math.max(0, ...datasets.flatMap(d => d.stats.map(s => (s ? s.p90 : 0)))),
+                       title: { display: true, text: 'ms' } },
+                  y: { ticks: { autoSkip: false } } },
         plugins: { legend: { position: 'top' } }
       },
       plugins: [whiskers]
