@@ -417,6 +417,16 @@ def main():
                             "min = -3.4028235e38\nmax = 3.4028235e38"), glsl=GLSL.replace("P.ring_px", "int(P.ring_px)"))
         r = run([cavity, "kernels", "check", wide])
         assert r.returncode == 0, r.stdout + r.stderr
+        # A file named "./ring_ao.glsl", or through a link inside the folder,
+        # is the package's own.
+        dotted = os.path.join(root, "dotted", "ring_ao")
+        make(dotted, toml=sub(TOML, '"ring_ao.glsl"', '"./ring_ao.glsl"'))
+        linked = os.path.join(root, "linked", "ring_ao")
+        make(linked, toml=sub(TOML, '"ring_ao.glsl"', '"main.glsl"'))
+        os.symlink("ring_ao.glsl", os.path.join(linked, "main.glsl"))
+        for folder in (dotted, linked):
+            r = run([cavity, "kernels", "check", folder])
+            assert r.returncode == 0, r.stdout + r.stderr
         # ... named as shell completion writes it, with a trailing slash.
         r = run([cavity, "kernels", "check", pkg + "/"])
         assert r.returncode == 0, r.stdout + r.stderr

@@ -6,6 +6,7 @@
 #include "package/expression.h"
 #include "screen_space_tables.h"
 
+#include <filesystem>
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -96,7 +97,9 @@ Status readTop(const toml::table& root, const Ctx& c, KernelDecl& k) {
         return c.fail(root.get("role"), "role", role,
                       "must be ao, reference, gbuffer, pyramid, downsample, upsample, blur, indirect or composite");
     k.role = r->second;
-    CAVITY_ASSIGN(const std::string file, text(c, root, "", "file", true));
+    CAVITY_ASSIGN(const std::string given, text(c, root, "", "file", true));
+    // "./my_ao.glsl" is "my_ao.glsl".
+    const std::string file = given.rfind("./", 0) == 0 ? std::filesystem::path(given).lexically_normal().generic_string() : given;
     // The package's own file, or as for an #include a source under kernels/
     // that several kernels share (hemisphere_cosine runs hemisphere's body).
     const bool shared = !c.in.hasFile(file) && sourceFile(file) && file.size() > 5 &&

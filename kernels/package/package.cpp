@@ -61,6 +61,7 @@ Status loadFolder(const fs::path& folder, std::vector<KernelDecl>& registry) {
                         " (a package folder holds its declaration, kernel.toml)");
     CAVITY_ASSIGN(const std::string text, readText(decl));
     std::map<std::string, std::string> glsl;   // path in the folder -> text
+    const fs::path inside = fs::weakly_canonical(folder, ec);
     // A link in a circle or a folder that cannot be read is the package's
     // error, said in one line, not an exception.
     try {
@@ -74,8 +75,12 @@ Status loadFolder(const fs::path& folder, std::vector<KernelDecl>& registry) {
             if (!e.is_regular_file(ec))
                 return badInput(e.path().string() + ": " + (ec ? ec.message() : std::string("not a regular file")) +
                                 " (a package's GLSL files are plain files)");
+            // Named by its own path in the folder (a link too); a link
+            // that leads out of the folder is not the package's file.
+            const auto target = fs::weakly_canonical(e.path(), ec).lexically_relative(inside);
+            if (target.empty() || *target.begin() == "..") continue;
             CAVITY_ASSIGN(std::string body, readText(e.path()));
-            glsl[fs::relative(e.path(), folder).generic_string()] = std::move(body);
+            glsl[e.path().lexically_relative(folder).generic_string()] = std::move(body);
         }
     } catch (const fs::filesystem_error& e) {
         return badInput(e.path1().string() + ": cannot be read (" + e.code().message() + ")");
