@@ -121,6 +121,8 @@ def main():
             "results-lost": (lambda g: g.update(results=[]), ["s1x/gate.json", "configurations"]),
             "another-shards-results": (lambda g: g.update(results=other["results"]), ["s1x", "also in s0"]),
             "another-filter": (lambda g: g.update(filter="/vk/"), ["s1x", "--filter"]),
+            "verdict-bogus": (lambda g: g["results"][0].update(verdict="bogus"), ["s1x/gate.json", "verdict", "must be one of"]),
+            "verdict-number": (lambda g: g["results"][0].update(verdict=3), ["s1x/gate.json", "verdict"]),
             "another-source": (lambda g: g.update(kernel_sources=[{"name": "a.glsl", "file": "/e.glsl", "digest": "sha256:0"}]),
                                ["s1x", "kernel sources"]),
         }

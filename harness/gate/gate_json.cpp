@@ -177,6 +177,16 @@ Result<ConfigResult> readResult(const JsonObject& rj) {
         }
         r.timings.push_back(t);
     }
+    // The verdict is recomputed from the above; one written that is no
+    // verdict at all is a damaged file, not a detail to pass over.
+    if (rj.has("verdict")) {
+        CAVITY_ASSIGN(const std::string v, rj.str("verdict"));
+        static const std::set<std::string> known = {"pass", "changed", "fail", "error", "flaky", "expected-fail",
+                                                    "known-flake", "unexpected-pass"};
+        if (!known.count(v))
+            return rj.bad("verdict", "must be one of pass, changed, fail, error, flaky, expected-fail, known-flake, "
+                                     "unexpected-pass");
+    }
     return r;
 }
 
