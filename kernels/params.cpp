@@ -148,11 +148,15 @@ std::vector<ParamDecl> declare() {
 
 std::string number(double x) {
     // A whole number up to 2^53 in full (2147483647, not 2.14748e+09),
-    // anything else as printf's %g does.
+    // anything else in the shortest text that reads back as the same value
+    // (a float's as a float): %g's six digits printed 3.4028236e38 as
+    // 3.40282e+38, the bound it was refused against.
     if (std::isfinite(x) && x == std::floor(x) && std::fabs(x) < 9007199254740992.0) return std::to_string((long long)x);
-    std::ostringstream s;
-    s << x;
-    return s.str();
+    char buf[64];
+    const bool isFloat = std::isfinite(x) && std::fabs(x) <= double(std::numeric_limits<float>::max()) &&
+                         double(float(x)) == x;
+    const auto r = isFloat ? std::to_chars(buf, buf + sizeof buf, float(x)) : std::to_chars(buf, buf + sizeof buf, x);
+    return std::string(buf, r.ptr);
 }
 
 bool isIntegral(ParamType t) { return t != ParamType::Float; }

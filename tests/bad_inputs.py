@@ -332,6 +332,9 @@ CASES = [
                      % ("corner/alchemy/n16/b4/full/32x18/vk/compute", 1))),
     Case("history-gz-cut-short", "cavity", ["history", "ingest", "--db", "h.sqlite", "--commit", "beef0001", "a.json.gz"],
          ["a.json.gz", "cut short"], setup=gzip_cut_short("a.json.gz")),
+    # A value just past a bound is printed as given, not rounded onto it.
+    Case("radius-past-float", "cavity", ["run", "--kernel", "alchemy", "--radius", "3.4028236e38", "--list"],
+         ["--radius 3.4028236e+38", "<= 100"]),
     # A matrix list that selects nothing, or names a value twice.
     Case("matrix-empty-samples", "cavity", ["gate", "--matrix", "ci", "--baselines", "baselines", "--list"],
          ["matrices.json", "ci.groups[0].samples is empty"],
