@@ -152,6 +152,10 @@ struct GateRun {
     std::map<std::string, int> counts() const;
 };
 
+// Every verdict() there is, in the order the reports count them.
+inline constexpr const char* kVerdicts[] = {"fail", "error", "unexpected-pass", "flaky", "known-flake", "expected-fail",
+                                           "changed", "pass"};
+
 // Validates every input file first (exit 2 before any GPU work), then
 // renders and judges each configuration in turn.
 Result<GateRun> runGate(const GateOptions& o);

@@ -5,7 +5,9 @@
 #include "render/render_manifest.h"
 #include "core/json_input.h"
 
+#include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <set>
 
 namespace cavity::gate {
@@ -181,11 +183,11 @@ Result<ConfigResult> readResult(const JsonObject& rj) {
     // verdict at all is a damaged file, not a detail to pass over.
     if (rj.has("verdict")) {
         CAVITY_ASSIGN(const std::string v, rj.str("verdict"));
-        static const std::set<std::string> known = {"pass", "changed", "fail", "error", "flaky", "expected-fail",
-                                                    "known-flake", "unexpected-pass"};
-        if (!known.count(v))
-            return rj.bad("verdict", "must be one of pass, changed, fail, error, flaky, expected-fail, known-flake, "
-                                     "unexpected-pass");
+        if (std::find(std::begin(kVerdicts), std::end(kVerdicts), v) == std::end(kVerdicts)) {
+            std::string names;
+            for (const char* k : kVerdicts) names += (names.empty() ? "" : ", ") + std::string(k);
+            return rj.bad("verdict", "must be one of " + names);
+        }
     }
     return r;
 }

@@ -31,11 +31,10 @@ std::vector<Alert> seriesAlerts(const Series& s, const DetectorOptions& options)
     return out;
 }
 
-std::vector<Alert> findAlerts(const std::vector<Series>& series, const DetectorOptions& options, const std::string& since) {
+std::vector<Alert> findAlerts(const std::vector<Series>& series, const DetectorOptions& options) {
     std::vector<Alert> out;
     for (const auto& s : series)
-        for (auto& a : seriesAlerts(s, options))
-            if (since.empty() || a.date >= since) out.push_back(std::move(a));
+        for (auto& a : seriesAlerts(s, options)) out.push_back(std::move(a));
     return out;
 }
 

@@ -27,10 +27,9 @@ struct Alert {
     bool slower() const { return changePct > 0; }
 };
 
-// Change points of each series, in the series' order; an alert whose commit
-// is dated before `since` (normalized, "" none) is left out, the series
-// before it still being read to find it.
-std::vector<Alert> findAlerts(const std::vector<Series>& series, const DetectorOptions& options, const std::string& since = "");
+// Change points of each series, in the series' order (`alerts --since`
+// keeps those at or after its bound; the whole series is read to find them).
+std::vector<Alert> findAlerts(const std::vector<Series>& series, const DetectorOptions& options);
 
 // --fail-on-slower's question: is any series slower now than before its
 // newest change point? A slowdown that a later change point undid (a

@@ -106,7 +106,7 @@ std::string verdictNote(const ConfigResult& r, const std::string& idPattern, con
 std::string countsText(const GateRun& run) {
     const auto c = run.counts();
     std::string s;
-    for (const char* v : {"fail", "error", "unexpected-pass", "flaky", "known-flake", "expected-fail", "changed", "pass"}) {
+    for (const char* v : gate::kVerdicts) {
         const auto it = c.find(v);
         if (it == c.end()) continue;
         const std::string word = std::string(v) == "pass"      ? "passed unchanged"
