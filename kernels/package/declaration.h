@@ -22,6 +22,10 @@ struct DeclarationInput {
     // One of the harness's own packages (kernels/ao/, kernels/passes/): it
     // may declare a pass of the pipeline, not only an AO estimator.
     bool builtIn = false;
+    // Whether the cost formulas are tried over the parameters' ranges. The
+    // harness's own packages skip it at every start (under the sanitizers it
+    // was a fifth of a command's start); a test tries them once instead.
+    bool checkCounts = true;
 };
 
 // The declaration, with the parameters it adds declared (ParamDecl) only

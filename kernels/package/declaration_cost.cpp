@@ -128,6 +128,7 @@ Status readCost(const toml::table& root, const Ctx& c, KernelDecl& k) {
         for (const auto& [name, formula] : lets) v[name] = formula.evaluate(v);
         return Cost{e[0].evaluate(v), e[1].evaluate(v), e[2].evaluate(v), e[3].evaluate(v)};
     };
+    if (!c.in.checkCounts) return {};
     return checkCounts(*t, c, k, keys);
 }
 

@@ -203,7 +203,7 @@ void appendBuiltInPackages(std::vector<KernelDecl>& registry) {
         PackageInfo info;
         DeclarationInput in{text, "kernels/" + key, folder + "/",
                             [&](const std::string& f) { return files.count(folder + "/" + f) > 0; },
-                            [&](const std::string& n) { return taken(registry, n); }, true};
+                            [&](const std::string& n) { return taken(registry, n); }, true, false};
         auto k = readDeclaration(in, info);
         if (!k) throw std::logic_error("built-in kernel package: " + k.error().message);
         info.folder = "kernels/" + folder;
