@@ -223,16 +223,21 @@ int updateCommand(const std::vector<std::string>& argv) {
     std::set<std::string> done;
     std::vector<gate::BaselineWrite> writes;
     std::vector<std::string> said;
+    // With the edits copied into the tree, the images they changed within
+    // tolerance are taken too: else the tree would render images the
+    // baselines do not hold, and every later gate would read "changed".
+    const bool takeChanged = !sources->empty();
     for (const auto& r : run->results) {
         // Without a filter, what failed the gate: an expected failure or a
         // known flake is not accepted as the new baseline by default.
-        const bool selected = filter ? std::regex_search(r.id, *filter) : r.verdict() == "fail";
+        const bool selected = filter ? std::regex_search(r.id, *filter)
+                                     : r.verdict() == "fail" || (takeChanged && r.changed());
         if (!selected || !r.error.empty() || done.count(r.key)) continue;
         done.insert(r.key);
         for (const auto& i : r.images) {
             // A selected configuration rewrites the images that failed (all of
             // them when chosen by --filter): passing ones keep their bytes.
-            if (!filter && i.passed()) continue;
+            if (!filter && i.passed() && !(takeChanged && i.changed())) continue;
             // Judged against an approved image of the device's class: the gate
             // compares with that reference before any baseline file, so writing
             // one would change nothing the next gate sees.

@@ -259,6 +259,7 @@ int judge(const std::vector<std::string>& argv) {
     o.enforceCpuBudgets = p.has("--enforce-cpu-budgets");
     const bool strict = p.has("--strict");
     if (auto st = checkExpectationsFlag(expectationsDir); !st) return fail("cavity gate judge", st.error());
+    const std::string givenBaselines = baselines;
     if (baselines.empty()) {
         auto found = defaultBaselines();
         if (!found) return fail("cavity gate judge", found.error());
@@ -275,6 +276,7 @@ int judge(const std::vector<std::string>& argv) {
     run->applyStrict();
     gate::applyExpectations(*run, *expectations);
     run->out = o.out;
+    run->baselines = givenBaselines;
     if (auto st = report::writeReports(*run, o.out, reportUrl); !st) return fail("cavity gate judge", st.error());
     std::cout << report::summaryMarkdown(*run, reportUrl.empty() ? "index.html" : reportUrl);
     std::cout << "\nreport: " << (fs::path(o.out) / "index.html").string() << "\n";
@@ -339,6 +341,7 @@ int gateCommand(const std::vector<std::string>& argv) {
     }
     gate::GateOptions& o = parsed->options;
     const bool list = parsed->list;
+    const std::string givenBaselines = o.baselines;
     if (o.baselines.empty()) {
         auto found = defaultBaselines();
         if (!found) return fail("cavity gate", found.error());
@@ -364,6 +367,7 @@ int gateCommand(const std::vector<std::string>& argv) {
     auto run = gate::runGate(o);
     if (!run) return fail("cavity gate", run.error());
     run->out = o.out;
+    run->baselines = givenBaselines;
     if (auto st = report::writeReports(*run, o.out, parsed->reportUrl); !st) return fail("cavity gate", st.error());
     std::cout << report::summaryMarkdown(*run, parsed->reportUrl.empty() ? "index.html" : parsed->reportUrl);
     std::cout << "\nreport: " << (fs::path(o.out) / "index.html").string() << "\n";

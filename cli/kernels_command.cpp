@@ -301,15 +301,26 @@ int check(const std::string& dir) {
     const auto endsWith = [&](const std::string& tail) {
         return given.size() > tail.size() && given.compare(given.size() - tail.size() - 1, std::string::npos, "/" + tail) == 0;
     };
-    for (const auto& p : kernels::packages()) {
-        std::error_code ec;
-        if (fs::equivalent(p.folder, dir, ec) || (p.builtIn && endsWith(p.folder))) chosen.push_back(p);
-    }
+    // The package of that folder, or each package inside a folder of them,
+    // loaded already (CAVITY_KERNELS, --kernels) or loaded now.
+    const auto choose = [&] {
+        const fs::path root = fs::weakly_canonical(dir, ec);
+        for (const auto& p : kernels::packages()) {
+            std::error_code e2;
+            const fs::path folder = fs::weakly_canonical(p.folder, e2);
+            const auto rel = folder.lexically_relative(root);
+            const bool inside = !e2 && !rel.empty() && *rel.begin() != "..";
+            if ((!p.builtIn && inside) || (p.builtIn && (endsWith(p.folder) || fs::equivalent(p.folder, dir, e2))))
+                chosen.push_back(p);
+        }
+    };
+    choose();
     if (chosen.empty()) {
-        const size_t before = kernels::packages().size();
         if (const auto s = kernels::loadPackages(dir); !s) return fail("cavity kernels check", s.error());
-        chosen.assign(kernels::packages().begin() + long(before), kernels::packages().end());
+        choose();
     }
+    if (chosen.empty())
+        return fail("cavity kernels check", badInput(dir + ": no kernel package in it (a folder holding kernel.toml, or a folder of them)"));
     int bad = 0;
     for (const auto& info : chosen) {
         const auto* k = kernels::find(info.name);

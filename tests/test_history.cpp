@@ -170,6 +170,30 @@ TEST_F(History, MigratesAnOlderDatabaseAndRefusesANewerOne) {
     refused("history ingest --db " + db_ + " --commit " + commitOf(5) + " " + bench(5), "schema version 99");
 }
 
+// A schema_version edited by hand or damaged crashed every command (a
+// negative version indexed the migrations; text threw from std::stoi), or
+// re-ran the first migration over the tables: now one line and exit 2.
+TEST_F(History, ADamagedSchemaVersionIsRefusedWithOneLine) {
+    history(1);
+    const std::vector<std::pair<std::string, std::string>> damages = {
+        {"UPDATE schema_version SET version = -1", "holds '-1'"},
+        {"UPDATE schema_version SET version = 'abc'", "holds 'abc'"},
+        {"UPDATE schema_version SET version = 99999999999", "holds '99999999999'"},
+        {"UPDATE schema_version SET version = 0", "holds '0'"},
+        {"UPDATE schema_version SET version = 1.5", "holds '1.5'"},
+        {"DELETE FROM schema_version", "holds 0 rows"}};
+    for (const auto& [sql, said] : damages) {
+        {
+            auto db = history::openSqlite(db_, false);
+            ASSERT_TRUE(db.ok());
+            ASSERT_TRUE((*db)->exec("DELETE FROM schema_version").ok());
+            ASSERT_TRUE((*db)->exec("INSERT INTO schema_version (version) VALUES (2)").ok());
+            ASSERT_TRUE((*db)->exec(sql).ok()) << sql;
+        }
+        refused("history alerts --db " + db_, said);
+    }
+}
+
 TEST_F(History, AFailureHalfwayLeavesNothing) {
     auto file = history::readRunFile(bench(0));
     ASSERT_TRUE(file.ok()) << file.error().message;

@@ -148,6 +148,11 @@ def bad_packages():
          r"params\[2\]\.name = frames: is reserved"),
         ("parameter named like a GLSL word", lambda d: w(d, "kernel.toml", sub(t, 'name = "ring_px"', 'name = "uniform"')),
          r"params\[2\]\.name = uniform: is reserved"),
+        # Compute shaders' word and a matrix shape: they broke the generated code.
+        ("parameter named like a compute word", lambda d: w(d, "kernel.toml", sub(t, 'name = "ring_px"', 'name = "shared"')),
+         r"params\[2\]\.name = shared: is reserved"),
+        ("parameter named like a matrix shape", lambda d: w(d, "kernel.toml", sub(t, 'name = "ring_px"', 'name = "mat3x2"')),
+         r"params\[2\]\.name = mat3x2: is reserved"),
         ("array named like a parameter", lambda d: w(d, "kernel.toml", t + '\n[[arrays]]\nname = "ring_px"\nvec4 = 4\nderive = "spiral"\n'),
          r"arrays\[0\]\.name = ring_px: is taken by a parameter"),
         ("int default given as a bool", lambda d: w(d, "kernel.toml", sub(t, "default = 4", "default = true")),
@@ -387,15 +392,20 @@ def check_disagreement(cavity, root):
 
 
 def check_unknown_reference(cavity, root):
-    """A reference line naming no registered CPU reference: check names it."""
-    pkg = os.path.join(root, "unknown_reference")
-    make(pkg, toml=TOML.replace('file = "ring_ao.glsl"', 'file = "ring_ao.glsl"\nreference = "my_ao"', 1))
-    r = run([cavity, "kernels", "check", pkg])
-    line = [l for l in r.stderr.splitlines() if "reference = my_ao" in l]
-    ok = r.returncode == 2 and line and "kernel.toml" in line[0] and "no CPU reference of that name" in line[0]
-    if not ok:
-        print(f"FAIL check did not catch an unknown reference name: {r.returncode} {r.stderr!r}")
-    return 0 if ok else 1
+    """A reference line in a user's package, naming no CPU reference or a
+    built-in's: refused with the line, since only the harness's own kernels
+    have a C++ twin (a borrowed one read "CPU reference: yes")."""
+    failures = 0
+    for name in ("my_ao", "alchemy"):
+        pkg = os.path.join(root, "reference_" + name, "ring_ao")
+        make(pkg, toml=TOML.replace('file = "ring_ao.glsl"', f'file = "ring_ao.glsl"\nreference = "{name}"', 1))
+        r = run([cavity, "kernels", "check", pkg])
+        line = [l for l in r.stderr.splitlines() if f"reference = {name}" in l]
+        ok = r.returncode == 2 and line and "kernel.toml" in line[0] and "only the harness's own kernels" in line[0]
+        if not ok:
+            failures += 1
+            print(f"FAIL a package's reference = {name} was not refused: {r.returncode} {r.stderr!r}")
+    return failures
 
 
 def main():
@@ -544,9 +554,10 @@ def main():
         # file (where the package lives, not into kernels/) with the digests.
         summary = open(os.path.join(root, "gate3", "summary.md")).read()
         assert "`" + os.path.join(pkg, "ring_ao.glsl") + "`" in summary, summary
-        # ... by a command that runs as printed: this folder, the package,
-        # and the edit (--with-kernel-source).
-        assert ("`cavity baselines approve --from " + os.path.join(root, "gate3") + " --kernels " + pkg +
+        # ... by a command that runs as printed: this folder, the baselines
+        # the gate was given, the package, and the edit (--with-kernel-source).
+        assert ("`cavity baselines approve --from " + os.path.join(root, "gate3") + " --baselines " + base +
+                " --kernels " + pkg +
                 " --with-kernel-source --why ...`") in summary, summary
         listed = lambda d: sorted(os.listdir(d)) if os.path.isdir(d) else []
         before = listed(os.path.join(base, "images", "corner", "ring_ao", "n8", "b4", "full", "64x36"))

@@ -153,7 +153,9 @@ Result<std::vector<double>> JsonObject::numbers(const std::string& key, double l
             continue;
         }
         const double x = e.is_number() ? e.get<double>() : NAN;
-        if (!std::isfinite(x) || x < lo || x > hi) return bad(key, allowed + "; " + shortDump(e) + " is not");
+        // A bare NaN or Infinity reads as null (json_file.h): named as both.
+        const std::string shown = e.is_null() ? "null (or a NaN or Infinity)" : shortDump(e);
+        if (!std::isfinite(x) || x < lo || x > hi) return bad(key, allowed + "; " + shown + " is not");
         out.push_back(x);
     }
     return out;

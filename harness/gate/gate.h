@@ -140,6 +140,9 @@ struct GateRun {
     // The folder the reports are written to (not in gate.json): the accept
     // commands the reports print name it. "" prints a placeholder.
     std::string out;
+    // The --baselines folder given (not in gate.json), which the accept
+    // commands name too; "" when the default was found, which they find.
+    std::string baselines;
     // 0 all pass (flaky, expected-fail and known-flake included), 1 a
     // regression or an unexpected pass, 2 bad input (a baseline missing or
     // unreadable), 3 a backend could not start.

@@ -1,5 +1,8 @@
 #include "history/schema.h"
 
+#include "printable.h"
+
+#include <algorithm>
 #include <functional>
 
 namespace cavity::history {
@@ -73,9 +76,27 @@ Error tooNew(const Database& db, int version) {
 Result<int> schemaVersion(Database& db) {
     CAVITY_ASSIGN(const bool exists, hasVersionTable(db));
     if (!exists) return 0;
-    CAVITY_ASSIGN(const auto rows, db.query("SELECT max(version) FROM schema_version"));
-    if (rows.empty() || !rows[0][0]) return 0;
-    return std::stoi(*rows[0][0]);
+    // A committed database holds one row of 1 or more (the first migration
+    // writes the table and its version in one transaction): anything else
+    // was written by hand or damaged, and no migration can be trusted on it.
+    CAVITY_ASSIGN(const auto rows, db.query("SELECT version FROM schema_version"));
+    const std::string text = rows.size() == 1 && rows[0][0] ? *rows[0][0] : "";
+    const bool digits = !text.empty() && text.size() <= 6 &&
+                        std::all_of(text.begin(), text.end(), [](char ch) { return ch >= '0' && ch <= '9'; });
+    if (!digits || std::stoi(text) < 1) {
+        std::string held = "NULL";
+        if (rows.size() != 1) {
+            held = std::to_string(rows.size());
+            held += " rows";
+        } else if (rows[0][0]) {
+            held = "'";
+            held += printable(text);
+            held += "'";
+        }
+        return badInput("--db " + db.where() + ": table schema_version holds " + held +
+                        ", not one version of 1 or more: the database is damaged or not a Cavity results database");
+    }
+    return std::stoi(text);
 }
 
 Status migrate(Database& db, int target) {

@@ -69,6 +69,7 @@ std::string joined(const std::vector<std::string>& lines) {
 
 std::string acceptArgs(const GateRun& run) {
     std::string s = "--from " + (run.out.empty() ? std::string("<gate output>") : core::shellWord(run.out));
+    if (!run.baselines.empty()) s += " --baselines " + core::shellWord(run.baselines);
     for (const auto& p : run.packages) s += " --kernels " + core::shellWord(p.folder);
     if (!run.replaced.empty()) s += " --with-kernel-source";
     return s;

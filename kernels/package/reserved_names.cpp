@@ -4,6 +4,7 @@
 // words alone).
 #include "package/toml_read.h"
 
+#include <regex>
 #include <set>
 #include <string>
 
@@ -31,10 +32,18 @@ bool reservedName(const std::string& name, bool asFlag) {
         "public", "readonly", "resource", "restrict", "return", "sample", "sampler", "sampler2d", "short", "sizeof",
         "smooth", "static", "struct", "subroutine", "superp", "switch", "template", "texture", "this", "true",
         "typedef", "uimage2d", "uint", "union", "uniform", "unsigned", "using", "usampler2d", "uvec2", "uvec3",
-        "uvec4", "varying", "vec2", "vec3", "vec4", "void", "volatile", "while", "writeonly"};
+        "uvec4", "varying", "vec2", "vec3", "vec4", "void", "volatile", "while", "writeonly", "shared",
+        "subpassinput", "subpassinputms", "isubpassinput", "isubpassinputms", "usubpassinput", "usubpassinputms"};
+    // The matrix types of every shape (mat2x3, dmat4x4) and the sampler,
+    // texture and image types of every dimension (usampler2darray,
+    // image1d, texturecube).
+    static const std::regex families(
+        "d?mat[234]x[234]|[iu]?(sampler|texture|image)(1d|2d|3d|cube|2drect|buffer|1darray|2darray|cubearray|2dms|"
+        "2dmsarray)|sampler(1d|2d|2drect|cube|1darray|2darray|cubearray)shadow|samplershadow");
     // GLSL keeps gl_ names and any name with two underscores in a row.
     if (asFlag && (flags.count(name) || name.rfind("benchmark_", 0) == 0)) return true;
-    return glsl.count(name) || name.rfind("gl_", 0) == 0 || name.find("__") != std::string::npos;
+    return glsl.count(name) || std::regex_match(name, families) || name.rfind("gl_", 0) == 0 ||
+           name.find("__") != std::string::npos;
 }
 
 }  // namespace cavity::kernels::toml_read
