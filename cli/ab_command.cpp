@@ -310,6 +310,9 @@ int abCommand(const std::vector<std::string>& argv) {
         if (auto st = writeJson(path, *merged); !st) return fail(program, st.error());
         auto sets = loadSampleSets(path);
         if (!sets) return fail(program, sets.error());
+        // Named where it will be once the staging folder is moved in, as
+        // compare.json and the table record it.
+        sets->path = (fs::path(f->out) / (side == 0 ? "a.json" : "b.json")).string();
         sides[side] = std::move(*sets);
     }
     const auto rows = compareAll(*sides[0], *sides[1], f->thresholds);

@@ -57,7 +57,6 @@ std::string pText(double p) {
 // may still move (its last commits).
 std::string sureText(const history::Alert& a) {
     std::string out = a.pValue < 1e-6 ? "certain" : a.pValue < 1e-4 ? "very likely" : "likely";
-    if (a.hostClock) out += ", host clock";
     if (a.provisional)
         out += ", provisional: " + std::to_string(a.commitsAfter) + " commit" + (a.commitsAfter == 1 ? "" : "s") + " after it";
     return out;
@@ -128,7 +127,7 @@ int historyAlerts(const std::vector<std::string>& argv) {
                                            q->db->where() + " is from then on (nothing to judge)"));
     auto alerts = history::findAlerts(*series, q->detector);
     std::erase_if(alerts, [&](const history::Alert& a) { return !(*atOrAfter)(a.commit, a.date); });
-    TextTable t({{"configuration"}, {"pass"}, {"device"}, {"commit"}, {"after"}, {"change", TextTable::Align::Right},
+    TextTable t({{"configuration"}, {"pass"}, {"device"}, {"commit"}, {"previous"}, {"change", TextTable::Align::Right},
                  {"p", TextTable::Align::Right}, {"before ms", TextTable::Align::Right}, {"after ms", TextTable::Align::Right},
                  {"commits", TextTable::Align::Right}, {"sure"}});
     json out = json::array();

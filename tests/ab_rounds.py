@@ -9,6 +9,7 @@ are refused in --bench-args (exit 2) before anything runs.
     ab_rounds.py CAVITY
 """
 import hashlib
+import json
 import os
 import subprocess
 import sys
@@ -80,6 +81,13 @@ def main():
         first = ab("ok")
         if first.returncode != 0 or not os.path.exists(os.path.join(out, "b_2.json")):
             sys.exit(f"a good ab: exit {first.returncode}\n{first.stderr}")
+        # The files compare.json and the table name are where they end up,
+        # not in the staging folder ab removed.
+        compared = json.load(open(os.path.join(out, "compare.json")))
+        for side in ("old", "new"):
+            named = compared[side]["file"]
+            if not os.path.isfile(named) or ".partial-" in named or ".partial-" in first.stdout:
+                failures.append(f"compare.json {side}.file = {named}: not the file in --out")
         before = tree(out)
         cases = {"signal": "killed by signal 11", "nofile": "a_1.json: cannot be read",
                  "empty": "a_1.json: the process measured nothing", "aggregates": "a_1.json: the process measured nothing",
