@@ -314,6 +314,11 @@ TEST(Gate, AChangeWithinToleranceIsReportedAsChanged) {
         if (i.image == "color") {
             EXPECT_EQ(i.route, "tolerance");
             EXPECT_TRUE(i.changed());
+            // Its reference and heat-map are written, as for a failure: the
+            // card (and --strict's failure of it) shows what changed, not
+            // "baseline missing".
+            EXPECT_TRUE(fs::is_regular_file(i.baselinePng)) << "'" << i.baselinePng << "'";
+            EXPECT_TRUE(fs::is_regular_file(i.diffPng)) << "'" << i.diffPng << "'";
         }
     const std::string summary = report::summaryMarkdown(run);
     EXPECT_NE(summary.find("changed within tolerance"), std::string::npos) << summary;

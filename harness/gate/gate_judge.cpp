@@ -122,9 +122,10 @@ Status judgeAgainst(ImageCheck& check, const CheckedImage& ci, const HostImage& 
     mo.differingDelta = int(tol.differingDelta);
     CAVITY_ASSIGN(check.metrics, metrics::compare(base, now, mo));
     check.failures = verdict(*check.metrics, tol, ci.perceptual);
-    // The report shows a passing image as a thumbnail of the new one alone;
-    // the reference and the heat-map are for the images that failed.
-    if (check.passed() || !writeFiles) return {};
+    // The report shows an unchanged image as a thumbnail of the new one
+    // alone; the reference and the heat-map are for the images that failed
+    // or changed within tolerance (which --strict fails after this).
+    if ((check.passed() && !check.changed()) || !writeFiles) return {};
     check.baselinePng = (dir / (ci.name + ".baseline.png")).string();
     check.diffPng = (dir / (ci.name + ".diff.png")).string();
     CAVITY_TRY(writeImage(check.baselinePng, base, Encoding::Preview));
