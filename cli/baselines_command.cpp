@@ -188,6 +188,15 @@ Status onlyErrored(const gate::GateRun& run, const std::optional<std::regex>& fi
                     "; nothing updated, the baselines left as they were");
 }
 
+// Without a filter, what failed the gate: an expected failure or a known
+// flake is not accepted as the new baseline by default. With the edits
+// copied into the tree (--with-kernel-source), the configurations they
+// changed within tolerance too: else the tree would render images the
+// baselines do not hold, and every later gate would read "changed".
+bool selectedForUpdate(const gate::ConfigResult& r, const std::optional<std::regex>& filter, bool takeChanged) {
+    return filter ? std::regex_search(r.id, *filter) : r.verdict() == "fail" || (takeChanged && r.changed());
+}
+
 int updateCommand(const std::vector<std::string>& argv) {
     std::string from = "out/gate", filterText, root;
     auto parsed = parseFlags(updateSpec(), std::vector<std::string>(argv.begin() + 1, argv.end()));
@@ -223,16 +232,9 @@ int updateCommand(const std::vector<std::string>& argv) {
     std::set<std::string> done;
     std::vector<gate::BaselineWrite> writes;
     std::vector<std::string> said;
-    // With the edits copied into the tree, the images they changed within
-    // tolerance are taken too: else the tree would render images the
-    // baselines do not hold, and every later gate would read "changed".
     const bool takeChanged = !sources->empty();
     for (const auto& r : run->results) {
-        // Without a filter, what failed the gate: an expected failure or a
-        // known flake is not accepted as the new baseline by default.
-        const bool selected = filter ? std::regex_search(r.id, *filter)
-                                     : r.verdict() == "fail" || (takeChanged && r.changed());
-        if (!selected || !r.error.empty() || done.count(r.key)) continue;
+        if (!selectedForUpdate(r, filter, takeChanged) || !r.error.empty() || done.count(r.key)) continue;
         done.insert(r.key);
         for (const auto& i : r.images) {
             // A selected configuration rewrites the images that failed (all of

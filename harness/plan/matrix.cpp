@@ -208,10 +208,16 @@ Result<Matrix> loadMatrix(const std::string& path, const std::string& name) {
         Matrix one;
         one.groups = {grp};
         const auto configs = one.expand();
-        for (const auto& [name, values] : grp.params)
+        // Samples too: "samples": [8] for kernels without a sample count ran
+        // their one configuration under an id that says n16.
+        std::vector<std::string> given;
+        if (grp.samplesGiven) given.push_back("samples");
+        for (const auto& [name, values] : grp.params) given.push_back(name);
+        for (const auto& name : given)
             if (!configs.empty() && std::none_of(configs.begin(), configs.end(),
                                                  [&](const RunConfig& c) { return pipeline::pipelineReads(c, name); }))
-                return badInput(path + ": " + gw + ".params." + name + ": no kernel of the group reads it");
+                return badInput(path + ": " + gw + (name == "samples" ? ".samples" : ".params." + name) +
+                                ": no kernel of the group reads it");
         matrix.groups.push_back(std::move(grp));
     }
     for (const auto& c : matrix.expand()) {

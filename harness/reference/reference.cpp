@@ -2,6 +2,9 @@
 // goes in and comes out, so each ref_*.cpp can assume a well-formed context.
 #include "reference/refs.h"
 
+#include "package/package.h"
+
+#include <algorithm>
 #include <cmath>
 
 namespace cavity::reference {
@@ -63,7 +66,12 @@ std::vector<RefEntry> allRefs() {
 
 bool hasReference(const std::string& kernel) {
     const auto* k = kernels::find(kernel);
-    return k && isReference(k->reference);
+    if (!k || !isReference(k->reference)) return false;
+    // A reference is C++ kept equal to the built-in shader it names: a
+    // user's package (a copy of a built-in one keeps its reference line)
+    // runs other code, so it has none.
+    const auto& loaded = kernels::packages();
+    return std::any_of(loaded.begin(), loaded.end(), [&](const auto& p) { return p.name == kernel && p.builtIn; });
 }
 
 bool isReference(const std::string& name) {

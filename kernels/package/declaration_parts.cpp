@@ -118,13 +118,6 @@ Status readTop(const toml::table& root, const Ctx& c, KernelDecl& k) {
     if (!k.reference.empty() && !std::regex_match(k.reference, ident))
         return c.fail(root.get("reference"), "reference", k.reference,
                       "must name a CPU reference as harness/reference/ registers it (a-z, then a-z, 0-9 or _)");
-    // A reference is C++ compiled into the harness and kept equal to the
-    // built-in shader it names: a package of the user's borrowing one would
-    // be labelled as checked against a twin that runs other code.
-    if (!k.reference.empty() && !c.in.builtIn)
-        return c.fail(root.get("reference"), "reference", k.reference,
-                      "only the harness's own kernels have a CPU reference (C++, in harness/reference/); a package "
-                      "of yours is gated by approved digests: remove the line");
     CAVITY_TRY(readWorkgroup(root, c, k));
     CAVITY_TRY(readFlag(root, c, "whole_workgroups", k.wholeWorkgroups));
     return readFlag(root, c, "interleaved", k.interleaved);
