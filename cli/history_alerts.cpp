@@ -125,7 +125,9 @@ int historyAlerts(const std::vector<std::string>& argv) {
         }))
         return fail(spec.program, badInput("--since " + q->since.date + q->since.commit + ": no run of the series matched in " +
                                            q->db->where() + " is from then on (nothing to judge)"));
-    auto alerts = history::findAlerts(*series, q->detector);
+    auto parents = history::commitParents(*q->db);
+    if (!parents) return fail(spec.program, parents.error());
+    auto alerts = history::findAlerts(*series, q->detector, &*parents);
     std::erase_if(alerts, [&](const history::Alert& a) { return !(*atOrAfter)(a.commit, a.date); });
     TextTable t({{"configuration"}, {"pass"}, {"device"}, {"commit"}, {"previous"}, {"change", TextTable::Align::Right},
                  {"p", TextTable::Align::Right}, {"before ms", TextTable::Align::Right}, {"after ms", TextTable::Align::Right},

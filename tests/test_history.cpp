@@ -378,6 +378,31 @@ TEST_F(History, CommitsAreOrderedByTheirParents) {
     EXPECT_EQ(j["alerts"][0]["previous_commit"], commitOf(7));
 }
 
+// A branch off commit 5 whose run falls between commits 7 and 8: the order
+// places it before the step, yet the step's previous commit (the bisect
+// range's good end) is 7, its parent, not the other branch's tip, which is
+// not its ancestor (scripts/bisect.sh refused that range).
+TEST_F(History, ThePreviousCommitIsAnAncestor) {
+    for (int i = 0; i < 16; ++i) {
+        std::string args = "history ingest --db " + db_ + " --commit " + commitOf(i);
+        if (i > 0) args += " --parent " + commitOf(i - 1);
+        const Outcome o = cavity(args + " " + bench(i, 8));
+        ASSERT_EQ(o.code, 0) << o.output;
+    }
+    const Outcome side = cavity("history ingest --db " + db_ + " --commit " + commitOf(40) + " --parent " + commitOf(5) +
+                                " --date 2026-11-08T18:00:00Z " + write("side.json", benchDoc(4, 8).dump()));
+    ASSERT_EQ(side.code, 0) << side.output;
+    const std::string out = (dir_ / "alerts.json").string();
+    ASSERT_EQ(cavity("history alerts --db " + db_ + " --pass ao --json " + out).code, 0);
+    std::ifstream f(out);
+    const json j = json::parse(f);
+    ASSERT_EQ(j["alerts"].size(), 1u) << j.dump(2);
+    EXPECT_EQ(j["alerts"][0]["commit"], commitOf(8));
+    EXPECT_EQ(j["alerts"][0]["previous_commit"], commitOf(7));
+    const Outcome bisect = cavity("history alerts --db " + db_ + " --pass ao --bisect");
+    EXPECT_NE(bisect.output.find("scripts/bisect.sh " + commitOf(7) + " " + commitOf(8)), std::string::npos) << bisect.output;
+}
+
 // A 12-digit id is the commit whose full id it begins; a prefix of two is refused.
 TEST_F(History, AShortIdIsTheSameCommit) {
     history(10, 20);

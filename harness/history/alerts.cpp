@@ -1,8 +1,27 @@
 #include "history/alerts.h"
 
+#include <set>
+
 namespace cavity::history {
 
-std::vector<Alert> seriesAlerts(const Series& s, const DetectorOptions& options) {
+namespace {
+
+// The nearest ancestor of points[index] among points[0..index), walking the
+// parent links; "" where the links do not reach one.
+std::string measuredAncestor(const Series& s, size_t index, const std::map<std::string, std::string>& parents) {
+    std::set<std::string> before;
+    for (size_t i = 0; i < index; ++i) before.insert(s.points[i].commit);
+    std::set<std::string> seen;
+    for (auto it = parents.find(s.points[index].commit); it != parents.end() && seen.insert(it->second).second;
+         it = parents.find(it->second))
+        if (before.count(it->second)) return it->second;
+    return "";
+}
+
+}  // namespace
+
+std::vector<Alert> seriesAlerts(const Series& s, const DetectorOptions& options,
+                                const std::map<std::string, std::string>* parents) {
     std::vector<double> medians;
     for (const auto& p : s.points) medians.push_back(p.median);
     std::vector<Alert> out;
@@ -17,6 +36,9 @@ std::vector<Alert> seriesAlerts(const Series& s, const DetectorOptions& options)
         a.commit = s.points[c.index].commit;
         a.date = s.points[c.index].date;
         a.previousCommit = s.points[c.index - 1].commit;
+        if (parents)
+            if (const std::string ancestor = measuredAncestor(s, c.index, *parents); !ancestor.empty())
+                a.previousCommit = ancestor;
         a.changePct = c.change() * 100;
         a.pValue = c.pValue;
         a.before = c.meanBefore;
@@ -31,10 +53,11 @@ std::vector<Alert> seriesAlerts(const Series& s, const DetectorOptions& options)
     return out;
 }
 
-std::vector<Alert> findAlerts(const std::vector<Series>& series, const DetectorOptions& options) {
+std::vector<Alert> findAlerts(const std::vector<Series>& series, const DetectorOptions& options,
+                              const std::map<std::string, std::string>* parents) {
     std::vector<Alert> out;
     for (const auto& s : series)
-        for (auto& a : seriesAlerts(s, options)) out.push_back(std::move(a));
+        for (auto& a : seriesAlerts(s, options, parents)) out.push_back(std::move(a));
     return out;
 }
 

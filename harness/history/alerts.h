@@ -29,7 +29,12 @@ struct Alert {
 
 // Change points of each series, in the series' order (`alerts --since`
 // keeps those at or after its bound; the whole series is read to find them).
-std::vector<Alert> findAlerts(const std::vector<Series>& series, const DetectorOptions& options);
+// With `parents` (commitParents), an alert's previous commit is the
+// nearest ancestor of its commit that the series measured, not the point
+// before it in the order, which may be another branch's tip: the
+// bisect range it prints must run from an ancestor.
+std::vector<Alert> findAlerts(const std::vector<Series>& series, const DetectorOptions& options,
+                              const std::map<std::string, std::string>* parents = nullptr);
 
 // --fail-on-slower's question: is any series slower now than before its
 // newest change point? A slowdown that a later change point undid (a
@@ -37,6 +42,7 @@ std::vector<Alert> findAlerts(const std::vector<Series>& series, const DetectorO
 bool slowerNow(const std::vector<Alert>& alerts);
 
 // Change points of one series (the chart marks them).
-std::vector<Alert> seriesAlerts(const Series& s, const DetectorOptions& options);
+std::vector<Alert> seriesAlerts(const Series& s, const DetectorOptions& options,
+                                const std::map<std::string, std::string>* parents = nullptr);
 
 }  // namespace cavity::history

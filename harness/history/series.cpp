@@ -88,9 +88,10 @@ std::map<std::string, std::string> canonicalCommits(const std::map<std::string, 
     return out;
 }
 
-}  // namespace
-
-Result<std::vector<std::string>> commitOrder(Database& db) {
+// Each commit in its canonical form (a short id stands for the one full id
+// it begins), with its parent resolved to a canonical commit of the
+// database ("" where the parent has no run or names two).
+Result<std::map<std::string, CommitRow>> mergedCommits(Database& db) {
     CAVITY_ASSIGN(const auto rows, db.query("SELECT commit_sha, parent_sha, min(run_date), min(id) FROM runs "
                                             "GROUP BY commit_sha, parent_sha"));
     std::map<std::string, CommitRow> commits;
@@ -109,20 +110,36 @@ Result<std::vector<std::string>> commitOrder(Database& db) {
         if (m.firstRun == 0 || row.firstRun < m.firstRun) m.firstRun = row.firstRun;
         if (m.parent.empty() && !row.parent.empty()) m.parent = row.parent;
     }
+    // A parent named by a prefix of two commits gets no edge.
+    for (auto& [sha, row] : merged) {
+        if (row.parent.empty() || merged.count(row.parent)) continue;
+        row.parent = onlyCommitStartingWith(merged, row.parent);
+    }
+    for (auto& [sha, row] : merged)
+        if (row.parent == sha) row.parent.clear();
+    return merged;
+}
+
+}  // namespace
+
+Result<std::map<std::string, std::string>> commitParents(Database& db) {
+    CAVITY_ASSIGN(const auto merged, mergedCommits(db));
+    std::map<std::string, std::string> out;
+    for (const auto& [sha, row] : merged)
+        if (!row.parent.empty()) out[sha] = row.parent;
+    return out;
+}
+
+Result<std::vector<std::string>> commitOrder(Database& db) {
+    CAVITY_ASSIGN(auto merged, mergedCommits(db));
     // Kahn's algorithm over the parent edges the database knows; among the
     // commits whose parent is placed, the earliest first run goes first
     // (date, then ingest order), which is also the whole order when no run
     // names a parent.
     std::map<std::string, std::vector<std::string>> children;
     std::map<std::string, int> waiting;
-    // A parent named by a prefix of two commits gets no edge.
-    const auto resolve = [&](const std::string& parent) {
-        return merged.count(parent) ? parent : onlyCommitStartingWith(merged, parent);
-    };
-    for (const auto& [sha, row] : merged) {
-        const std::string parent = row.parent.empty() ? "" : resolve(row.parent);
-        if (!parent.empty() && parent != sha) children[parent].push_back(sha), ++waiting[sha];
-    }
+    for (const auto& [sha, row] : merged)
+        if (!row.parent.empty()) children[row.parent].push_back(sha), ++waiting[sha];
     using Ready = std::tuple<std::string, int64_t, std::string>;
     std::set<Ready> ready;
     for (const auto& [sha, row] : merged)

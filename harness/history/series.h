@@ -7,6 +7,7 @@
 
 #include "history/database.h"
 
+#include <map>
 #include <optional>
 #include <regex>
 
@@ -53,6 +54,9 @@ Result<std::vector<Series>> loadSeries(Database& db, const SeriesFilter& filter)
 // a short id beside the one full id it begins is one commit, under the
 // full id.
 Result<std::vector<std::string>> commitOrder(Database& db);
+// Each commit's parent (--parent), both in their canonical form, where the
+// parent has runs in the database.
+Result<std::map<std::string, std::string>> commitParents(Database& db);
 
 // --since / --until: a date (normalizeDate's forms) or a commit (4..40 hex
 // digits, a prefix of one run's commit), which bounds by its place in the
