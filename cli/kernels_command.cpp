@@ -14,7 +14,7 @@
 #include <filesystem>
 #include <iostream>
 #include <set>
-#include <sstream>
+#include <algorithm>
 
 namespace cavity::cli {
 
@@ -128,7 +128,9 @@ std::string paramLine(const kernels::KernelDecl& k, const kernels::KernelParam& 
 
 int show(const std::string& name) {
     const auto* k = kernels::find(name);
-    if (!k) return fail("cavity kernels show", badInput("'" + name + "': no such kernel (cavity kernels list)"));
+    if (!k)
+        return fail("cavity kernels show", badInput("'" + name + "': no such kernel (cavity kernels list; a package's "
+                                                    "kernel is known once loaded: --kernels DIR or CAVITY_KERNELS)"));
     std::cout << k->name << " (" << roleName(k->role) << ", " << origin(*k) << "): " << k->summary << "\n";
     for (const auto& s : k->sources) std::cout << "source: " << s << "\n";
     std::cout << "file: " << kernels::sourceLabel(k->file) << "\nparameters (default, allowed):\n";
@@ -207,23 +209,26 @@ std::vector<std::string> disagreements(const kernels::KernelDecl& k, const std::
     return out;
 }
 
-// A compiler's log in one line: its errors, without glslang's closing counts.
-std::string oneLine(const std::string& message) {
-    std::string out, line;
-    std::istringstream in(message);
-    while (std::getline(in, line)) {
-        if (line.empty() || line.find("compilation terminated") != std::string::npos ||
-            line.find("compilation errors") != std::string::npos)
-            continue;
-        out += (out.empty() ? "" : " | ") + line;
-    }
-    return out;
-}
-
 // A mip chain written by one dispatch runs on the compute stage only
 // (pipeline::passStage), whatever --stage says.
 bool computeOnly(const kernels::KernelDecl& k) {
     return std::any_of(k.outputs.begin(), k.outputs.end(), [](const auto& o) { return o.oneDispatch && o.mipLevels > 1; });
+}
+
+// A compiler's message (one line, its errors joined by " | "): glslang's
+// first error, with a count of those after it, which follow from it (an
+// undeclared field of P makes each expression that uses it an operand
+// error printing the whole block type).
+std::string firstCompileError(std::string message) {
+    std::replace(message.begin(), message.end(), '\n', ' ');
+    const std::string sep = " | ERROR: ";
+    size_t more = 0;
+    for (size_t at = message.find(sep); at != std::string::npos; at = message.find(sep, at + 1)) ++more;
+    std::string out = message.substr(0, message.find(sep));
+    if (out.find("no such field in structure 'P'") != std::string::npos)
+        out += " (a parameter the shader reads is declared in kernel.toml's [[params]])";
+    if (more) out += " (and " + std::to_string(more) + " more that follow from it)";
+    return out;
 }
 
 std::vector<std::string> checkOne(const kernels::KernelDecl& k) {
@@ -253,7 +258,7 @@ std::vector<std::string> checkOne(const kernels::KernelDecl& k) {
                 // The message names the API; the stage tells its twin apart.
                 // One error of the shared body fails every API and stage
                 // alike: said once, with where else it failed.
-                std::string message = oneLine(active.error().message);
+                std::string message = firstCompileError(active.error().message);
                 const std::string where = std::string(api == gpu::Api::Vulkan ? "vk" : "gl") + " " +
                                           (stage == gpu::Stage::Compute ? "compute" : "fragment");
                 std::string same = message;
@@ -289,10 +294,9 @@ int check(const std::string& dir) {
     (void)kernels::all();   // the built-in packages load with the registry
     namespace fs = std::filesystem;
     std::vector<kernels::PackageInfo> chosen;
-    // A package loaded already (a built-in one, or by --kernels) is checked as loaded.
-    // A built-in one is named by its folder in the repository (kernels/ao/
-    // <name>), which is relative: from any working folder, a path that ends
-    // so is it.
+    // A package loaded already (a built-in one, or by --kernels) is checked as
+    // loaded. A built-in one is named by its folder in the repository
+    // (kernels/ao/<name>): from any working folder, a path that ends so is it.
     std::error_code ec;
     if (dir.empty()) return fail("cavity kernels check", badInput("DIR '': empty; give a package's folder"));
     std::string given = fs::absolute(dir, ec).lexically_normal().string();
@@ -384,8 +388,12 @@ int kernelsCommand(const std::vector<std::string>& argv) {
             return fail(program, badInput("--markdown " + table + ": must be kernels or pipelines"));
         return table.empty() ? list() : markdown(table);
     }
-    if (parsed->positionals.size() != 1)
-        return fail(program, badInput(argv[0] == "show" ? "give one kernel's NAME" : "give one package folder DIR"));
+    if (parsed->positionals.size() != 1) {
+        std::string extra;
+        for (size_t i = 1; i < parsed->positionals.size(); ++i) extra += " '" + parsed->positionals[i] + "'";
+        return fail(program, badInput((argv[0] == "show" ? std::string("give one kernel's NAME") : "give one package folder DIR") +
+                                      (extra.empty() ? "" : ", not also" + extra)));
+    }
     return argv[0] == "show" ? show(parsed->positionals[0]) : check(parsed->positionals[0]);
 }
 

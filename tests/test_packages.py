@@ -380,15 +380,20 @@ def check_builtins_and_outputs(cavity, root, source):
 
 
 def check_disagreement(cavity, root):
-    """A declared parameter the shader never reads: check names it."""
-    pkg = os.path.join(root, "unread")
+    """A declared parameter the shader never reads: check names it, also
+    when its folder of packages is loaded already (CAVITY_KERNELS, as
+    kernels.md suggests), where check once checked nothing and exited 0."""
+    failures = 0
+    pkg = os.path.join(root, "unread", "ring_ao")
     make(pkg, toml=TOML + '\n[[params]]\nname = "bias"\n')
-    r = run([cavity, "kernels", "check", pkg])
-    line = [l for l in r.stderr.splitlines() if "bias" in l]
-    ok = r.returncode == 2 and line and "kernel.toml" in line[0] and "never reads P.bias" in line[0]
-    if not ok:
-        print(f"FAIL check did not catch a declared parameter the shader never reads: {r.returncode} {r.stderr!r}")
-    return 0 if ok else 1
+    for target, env in ((pkg, None), (os.path.dirname(pkg), dict(os.environ, CAVITY_KERNELS=os.path.dirname(pkg)))):
+        r = run([cavity, "kernels", "check", target], env=env)
+        line = [l for l in r.stderr.splitlines() if "bias" in l]
+        if not (r.returncode == 2 and line and "kernel.toml" in line[0] and "never reads P.bias" in line[0]):
+            failures += 1
+            print(f"FAIL check {target} (CAVITY_KERNELS {env and env['CAVITY_KERNELS']}) did not catch a declared "
+                  f"parameter the shader never reads: {r.returncode} {r.stderr!r}")
+    return failures
 
 
 def check_unknown_reference(cavity, root):

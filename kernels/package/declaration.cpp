@@ -207,7 +207,9 @@ Status readParam(const Ctx& c, const toml::table& t, size_t i, KernelDecl& k, Pa
     if (const Status s = checkValue(*decl, kp.def); !s)
         return c.fail(t.get("default") ? t.get("default") : &t, where + "default",
                       t.get("default") ? show(*t.get("default")) : valueText(*decl, kp.def),
-                      "outside the parameter's range: must be " + allowedValues(*decl));
+                      (decl->type == ParamType::Int && kp.def != std::floor(kp.def) ? "not a whole number: must be "
+                                                                                     : "outside the parameter's range: must be ") +
+                          allowedValues(*decl));
     if (fresh) out.added.back().def = kp.def;
     if (const toml::node* ci = t.get("compiled_in")) {
         if (!ci->is_boolean()) return c.fail(ci, where + "compiled_in", show(*ci), "must be true or false");
