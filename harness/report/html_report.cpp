@@ -46,7 +46,7 @@ std::string heatScaleCss() {
 }
 
 // The PNG files the page shows, by the path gate.json names them: a passing
-// configuration's new images (thumbnails), a failing or noted one's
+// configuration's new images (thumbnails), a failing or changed one's
 // baseline, new image and heat-map. Every image of every passing ci
 // configuration embedded in full made 8.4 MB.
 nlohmann::json shownImages(const GateRun& run) {
@@ -58,7 +58,7 @@ nlohmann::json shownImages(const GateRun& run) {
     for (const auto& r : run.results)
         for (const auto& i : r.images) {
             add(i.newPng);
-            if (r.passed()) continue;
+            if (r.passed() && !r.changed()) continue;
             add(i.baselinePng);
             add(i.diffPng);
         }

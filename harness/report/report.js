@@ -164,7 +164,8 @@
     // drawn in the reported colour, not the failures'.
     if (v.note) div.append(el('p', {class: r.fatal ? 'bad' : 'note'}, v.note));
     if (!r.deterministic) div.append(el('p', {class: 'bad'}, 'not bit-identical across two frames on this device'));
-    if (r.passed) div.append(thumbnails(r));
+    // A configuration that changed within tolerance shows what changed, as a failure does.
+    if (r.passed && r.verdict !== 'changed') div.append(thumbnails(r));
     else for (const i of r.images) {
       // A known-bad digest: nothing was compared, the approval says why.
       if (i.route === 'negative') div.append(el('div', {class: 'row'}, el('figure', {}, el('figcaption', {}, i.image + ' · known bad digest'),
@@ -173,7 +174,7 @@
       else if (i.route === 'digest') div.append(el('div', {}, i.image + ': approved digest (' + i.approval + ')'));
       // Within its tolerances in a configuration that failed on another
       // image: its numbers, and the new image where its file travelled.
-      else if (i.passed) div.append(el('div', {class: 'row'},
+      else if (i.passed && !view.images[i.diff_png]) div.append(el('div', {class: 'row'},
                                        el('figure', {}, el('figcaption', {}, i.image + ' · passed' +
                                                            (i.approval.endsWith('judged where it was rendered')
                                                             ? ' where it was rendered' : '')),
@@ -201,7 +202,9 @@
   }
 
   const failed = gate.results.filter((r) => r.fatal).length;
-  document.title = 'Cavity gate ' + gate.matrix + ': ' + (failed ? failed + ' failed' : 'passed');
+  const changed = gate.results.filter((r) => r.verdict === 'changed').length;
+  document.title = 'Cavity gate ' + gate.matrix + ': ' + (failed ? failed + ' failed' : 'passed') +
+                   (changed ? ', ' + changed + ' changed' : '');
   controls(failed);
   const results = document.getElementById('results');
   for (const e of gate.backend_errors) results.append(el('p', {class: 'bad'}, 'backend could not start: ' + e));
