@@ -238,7 +238,8 @@ TEST_F(History, BadInputsAreOneLineAndWriteNothing) {
     refused(ingest + commit + write("emptydate.json", numberDate.dump()), "emptydate.json: context.date \"\": must be");
 
     refused("history ingest --db " + dir_.string() + commit + good, "is a folder");
-    refused("history ingest --db " + (dir_ / "no/such/folder/h.sqlite").string() + commit + good, "does not exist");
+    refused("history ingest --db " + (dir_ / "no/such/folder/h.sqlite").string() + commit + good, "no such folder");
+    refused("history ingest --db " + good + "/h.sqlite" + commit + good, "is a file, not a folder");
     refused("history ingest --db ''" + commit + good, "--db");
     EXPECT_FALSE(fs::exists(db_));
     refused("history show --db " + db_, "no such database");

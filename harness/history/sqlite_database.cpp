@@ -119,7 +119,8 @@ Result<std::unique_ptr<Database>> openSqlite(const std::string& path, bool creat
         if (!create) return badInput(given + ": no such database (cavity history ingest creates it)");
         const fs::path parent = fs::path(path).parent_path();
         if (!parent.empty() && !fs::is_directory(parent, ec))
-            return badInput(given + ": folder " + parent.string() + " does not exist");
+            return badInput(given + ": " + parent.string() +
+                            (fs::exists(parent, ec) ? " is a file, not a folder" : ": no such folder"));
     } else if (!fs::is_regular_file(status)) {
         return badInput(given + ": not a regular file (an SQLite file or a postgresql:// URL is expected)");
     } else if (!create && fs::file_size(path, ec) == 0 && !ec) {
