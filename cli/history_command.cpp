@@ -116,10 +116,10 @@ int historyIngest(const std::vector<std::string>& argv) {
         auto done = history::ingest(**db, f, info);
         if (!done) return fail(program, done.error());
         if (done->alreadyThere)
-            std::cout << f.path << ": already stored for commit " << info.commit << " (run " << done->runId << "); "
+            std::cout << f.path << ": already stored for commit " << done->commit << " (run " << done->runId << "); "
                       << (done->renamed ? "its short id now reads as this full id" : "nothing written") << "\n";
         else
-            std::cout << f.path << ": run " << done->runId << " for commit " << info.commit << " (" << f.format << "): "
+            std::cout << f.path << ": run " << done->runId << " for commit " << done->commit << " (" << f.format << "): "
                       << done->passes << " series, " << done->samples << " samples\n";
     }
     return 0;

@@ -402,6 +402,11 @@ TEST_F(History, ThePreviousCommitIsAnAncestor) {
     EXPECT_EQ(j["alerts"][0]["previous_commit"], commitOf(7));
     const Outcome bisect = cavity("history alerts --db " + db_ + " --pass ao --bisect");
     EXPECT_NE(bisect.output.find("scripts/bisect.sh " + commitOf(7) + " " + commitOf(8)), std::string::npos) << bisect.output;
+    // One parent a commit: another one for a stored commit would reorder
+    // the runs judged under it.
+    refused("history ingest --db " + db_ + " --commit " + commitOf(8) + " --parent " + commitOf(3) + " " +
+                write("again.json", benchDoc(9, 8).dump()),
+            "is stored with parent " + commitOf(7));
 }
 
 // A 12-digit id is the commit whose full id it begins; a prefix of two is refused.

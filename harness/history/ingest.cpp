@@ -1,6 +1,7 @@
 #include "history/ingest.h"
 #include "measure/results.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <map>
 
@@ -114,6 +115,23 @@ bool isCommit(const std::string& s) {
            s.find_first_not_of("0123456789abcdefABCDEF") == std::string::npos;
 }
 
+// A commit has one parent here (a merge is stored with its first): another
+// --parent for a commit stored with one would reorder the history under
+// runs already judged, so it is refused, naming the one stored.
+Status oneParent(Database& db, const RunInfo& info) {
+    if (info.parent.empty()) return {};
+    CAVITY_ASSIGN(const auto rows, db.query("SELECT DISTINCT parent_sha FROM runs WHERE commit_sha = ? AND parent_sha IS NOT NULL",
+                                            {info.commit}));
+    for (const auto& r : rows) {
+        const std::string& stored = *r[0];
+        const size_t n = std::min(stored.size(), info.parent.size());
+        if (stored.compare(0, n, info.parent, 0, n) != 0)
+            return badInput("--parent " + info.parent + ": commit " + info.commit + " is stored with parent " + stored +
+                            " (one parent a commit; for a merge, its first parent)");
+    }
+    return {};
+}
+
 Result<Ingested> ingest(Database& db, const RunFile& file, const RunInfo& info) {
     Ingested out;
     Transaction t(db);
@@ -123,6 +141,8 @@ Result<Ingested> ingest(Database& db, const RunFile& file, const RunInfo& info) 
     CAVITY_ASSIGN(resolved.commit, storedForm(db, "--commit", info.commit, renamed));
     CAVITY_ASSIGN(resolved.parent, storedForm(db, "--parent", info.parent, renamed));
     CAVITY_TRY(checkParent(db, resolved));
+    CAVITY_TRY(oneParent(db, resolved));
+    out.commit = resolved.commit;
     CAVITY_ASSIGN(out.runId, insertRun(db, file, resolved));
     if (out.runId == 0) {
         CAVITY_ASSIGN(const auto seen, db.query("SELECT id FROM runs WHERE file_digest = ? AND commit_sha = ?",

@@ -21,6 +21,7 @@ struct Ingested {
     bool alreadyThere = false;   // the same content was ingested for this commit before: no run written
     bool renamed = false;        // a short id stored before now reads as the full id given
     size_t passes = 0, samples = 0;
+    std::string commit;           // as stored: a short id given for a full one stored reads as that one
 };
 
 Result<Ingested> ingest(Database& db, const RunFile& file, const RunInfo& info);
