@@ -59,7 +59,10 @@ Status addKernelSource(const std::string& value, SourceOverrides& overrides, std
     if (!in && !in.eof()) return badInput(given + ": cannot be read");
     if (const auto nul = text.find('\0'); nul != std::string::npos)
         return badInput(given + ": not a text file (a NUL byte at offset " + std::to_string(nul) + "; a GLSL source is expected)");
-    replaced.push_back({name, file, digestText(fnv1a64(text.data(), text.size()))});
+    // Recorded by its absolute path: baselines update --with-kernel-source
+    // reads it again, perhaps from another working folder.
+    const fs::path where = fs::absolute(file, ec).lexically_normal();
+    replaced.push_back({name, ec ? file : where.string(), digestText(fnv1a64(text.data(), text.size()))});
     overrides[name] = kernels::kReplacedFrom + file + "\n" + text;
     return {};
 }
