@@ -23,8 +23,9 @@ struct DeclarationInput {
     // may declare a pass of the pipeline, not only an AO estimator.
     bool builtIn = false;
     // Whether the cost formulas are tried over the parameters' ranges. The
-    // harness's own packages skip it at every start (under the sanitizers it
-    // was a fifth of a command's start); a test tries them once instead.
+    // harness's own packages skip it at every start (a large part of a start
+    // under the sanitizers, study 2026-12-07_cpu_ci_time); a test tries them
+    // once instead.
     bool checkCounts = true;
 };
 
