@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <iostream>
+#include <stdexcept>
 
 namespace cavity::cli {
 
@@ -132,10 +133,22 @@ int historyCommand(const std::vector<std::string>& argv) {
     }
     const std::vector<std::string> rest(argv.empty() ? argv.end() : argv.begin() + 1, argv.end());
     const std::string sub = argv.empty() ? "" : argv[0];
-    if (sub == "ingest") return historyIngest(rest);
-    if (sub == "show") return historyShow(rest);
-    if (sub == "chart") return historyChart(rest);
-    if (sub == "alerts") return historyAlerts(rest);
+    // The readers parse the numbers the database holds as Cavity wrote them;
+    // a database edited by hand or damaged can hold text there, which
+    // std::stod and std::stoll throw on: one line, not an abort. The
+    // readers write nothing, and ingest's transaction rolls back.
+    try {
+        if (sub == "ingest") return historyIngest(rest);
+        if (sub == "show") return historyShow(rest);
+        if (sub == "chart") return historyChart(rest);
+        if (sub == "alerts") return historyAlerts(rest);
+    } catch (const std::logic_error& e) {
+        const auto db = std::find(rest.begin(), rest.end(), "--db");
+        std::cerr << "cavity history " << sub << ": --db " << (db != rest.end() && db + 1 != rest.end() ? *(db + 1) : "")
+                  << ": holds a value that is not what Cavity stores there (" << e.what()
+                  << " failed on it): the database is damaged or not a Cavity results database\n";
+        return 2;
+    }
     const std::string near = nearest(sub, {"ingest", "show", "chart", "alerts"});
     std::cerr << "cavity history: " << (sub.empty() ? "needs a subcommand" : "unknown subcommand '" + sub + "'")
               << (near.empty() || sub.empty() ? "" : " (did you mean " + near + "?)")

@@ -192,6 +192,24 @@ TEST_F(History, ADamagedSchemaVersionIsRefusedWithOneLine) {
         }
         refused("history alerts --db " + db_, said);
     }
+    // Text where a number is stored aborted in std::stod.
+    for (const std::string sql : {"UPDATE samples SET ms = 'abc'"}) {
+        const std::string copy = (dir_ / "damaged.sqlite").string();
+        fs::copy_file(db_, copy, fs::copy_options::overwrite_existing);
+        {
+            auto db = history::openSqlite(copy, false);
+            ASSERT_TRUE(db.ok());
+            ASSERT_TRUE((*db)->exec("DELETE FROM schema_version").ok());
+            ASSERT_TRUE((*db)->exec("INSERT INTO schema_version (version) VALUES (2)").ok());
+            ASSERT_TRUE((*db)->exec(sql).ok()) << sql;
+        }
+        for (const char* cmd : {"alerts", "show"}) {
+            const Outcome o = cavity(std::string("history ") + cmd + " --db " + copy);
+            EXPECT_EQ(o.code, 2) << sql << "\n" << o.output;
+            EXPECT_NE(o.output.find("the database is damaged"), std::string::npos) << o.output;
+            EXPECT_EQ(std::count(o.output.begin(), o.output.end(), '\n'), 1) << o.output;
+        }
+    }
 }
 
 TEST_F(History, AFailureHalfwayLeavesNothing) {
