@@ -12,7 +12,8 @@ namespace cavity::flags {
 
 Result<std::map<std::pair<std::string, int>, double>> loadCosts(const std::string& path, bool half) {
     CAVITY_ASSIGN(const compare::SampleSets sets, compare::loadSampleSets(path));
-    static const std::regex id(R"(^[^/]+/([a-z_]+)/n(\d+)/b\d+/(full|half)/(\d+)x(\d+)/(gl|vk)/(compute|fragment)$)");
+    // At most 9 digits a number: std::stoi and std::stoll then cannot throw.
+    static const std::regex id(R"(^[^/]+/([a-z_]+)/n(\d{1,9})/b\d+/(full|half)/(\d{1,9})x(\d{1,9})/(gl|vk)/(compute|fragment)$)");
     // id -> its pipeline time
     std::map<std::string, double> pipeline;
     for (const auto& [key, series] : sets.series) {
