@@ -12,6 +12,7 @@
 // through cli/flags.h, as cavity's are; --benchmark_* and --v= go to
 // Google Benchmark untouched.
 #include "core/json_file.h"
+#include "core/regex_guard.h"
 #include "bench_runner.h"
 #include "package/package.h"
 #include "console_reporter.h"
@@ -205,6 +206,8 @@ cavity::Status checkBenchmarkFlags(const std::vector<char*>& args, const std::st
     }
     if (given("benchmark_filter") && filter.empty())
         return cavity::badInput("--benchmark_filter='': empty; give a regular expression (or leave the flag out for every benchmark)");
+    if (filter.size() > cavity::core::kMaxPatternLength)
+        return cavity::badInput(cavity::core::nestedQuantifierError("--benchmark_filter", filter));
     // A minimum time is seconds above 0 (Google Benchmark 1.7 reads a bare
     // number, and ran a negative or unreadable one as its default).
     for (const char* name : {"benchmark_min_time", "benchmark_min_warmup_time"})

@@ -83,6 +83,11 @@ Result<CompareFlags> parse(const std::vector<std::string>& argv) {
     if (f.files.size() != 2)
         return badInput("need two files, OLD.json NEW.json (have " + std::to_string(f.files.size()) +
                         "; see cavity compare --help)");
+    // The verdicts written over a file compared would lose that run.
+    std::error_code ec;
+    for (const auto& file : f.files)
+        if (!f.jsonPath.empty() && std::filesystem::equivalent(f.jsonPath, file, ec))
+            return badInput("--json " + f.jsonPath + ": is " + file + ", a file compared (give the verdicts a file of their own)");
     return f;
 }
 

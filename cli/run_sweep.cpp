@@ -81,6 +81,9 @@ Result<std::vector<std::string>> choiceList(const std::string& flag, const std::
 Result<bool> sweepFlag(Sweep& s, const std::string& flag, const std::string& v) {
     if (flag == "--backend") {
         CAVITY_ASSIGN(s.backends, choiceList(flag, v, {"gl", "vk", "all"}, "gl, vk or all"));
+        // all and a backend it holds would run that backend's configurations twice under one id.
+        if (s.backends.size() > 1 && std::find(s.backends.begin(), s.backends.end(), "all") != s.backends.end())
+            return badInput(flag + " '" + v + "': all is gl and vk; give it alone");
     } else if (flag == "--kernel") {
         CAVITY_ASSIGN(s.kernels, splitList(flag, v));
     } else if (flag == "--scene") {

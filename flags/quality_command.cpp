@@ -212,7 +212,14 @@ Result<std::vector<QualityStep>> planQuality(const QualityRequest& q) {
     std::vector<QualityStep> steps;
     std::vector<RunConfig> measured;
     CAVITY_TRY(plan::forEachConfig(axes, base, [&](RunConfig c) -> Status {
-        c.half = o.half && supportsHalf(c.kernel);
+        // A kernel without a half-resolution pipeline was measured at full
+        // resolution under a quality.json that said half: named, it is an
+        // error (as in cavity run); of all kernels, it is left out.
+        if (o.half && !supportsHalf(c.kernel)) {
+            if (o.kernels.empty()) return {};
+            return badInput("--resolution half: " + c.kernel + " has no half-resolution pipeline (measure it at full)");
+        }
+        c.half = o.half;
         applySwitches(c, o.switches);
         const std::string id = configId(c);
         if (q.filter && !std::regex_search(id, *q.filter)) return {};

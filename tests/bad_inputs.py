@@ -309,6 +309,19 @@ CASES = [
          setup=write("a.json", BENCH_JSON % ("corner/alchemy/n16/b4/full/32x18/vk/compute", -5))),
     Case("compare-same-file", "cavity", ["compare", "a.json", "./a.json"], ["./a.json", "the same file as a.json"],
          setup=write("a.json", BENCH_JSON % ("corner/alchemy/n16/b4/full/32x18/vk/compute", 5))),
+    # The verdicts over a file compared lost that run; a device never ends.
+    Case("compare-json-over-input", "cavity", ["compare", "a.json", "b.json", "--json", "./b.json"],
+         ["--json ./b.json", "a file compared"],
+         setup=lambda tmp: (write("a.json", BENCH_JSON % ("corner/alchemy/n16/b4/full/32x18/vk/compute", 1))(tmp),
+                            write("b.json", BENCH_JSON % ("corner/alchemy/n16/b4/full/32x18/vk/compute", 2))(tmp))),
+    Case("compare-device", "cavity", ["compare", "/dev/zero", "a.json"], ["/dev/zero", "device"],
+         setup=write("a.json", BENCH_JSON % ("corner/alchemy/n16/b4/full/32x18/vk/compute", 1))),
+    # A pattern of 100,000 characters overflowed std::regex's stack (a segfault).
+    Case("filter-too-long", "cavity", RUN + ["--filter", "a" * 100000, "--list"], ["--filter", "100000 characters"]),
+    Case("bench-filter-too-long", "cavity_bench", ["--benchmark_filter=" + "a" * 100000, "--benchmark_list_tests"],
+         ["--benchmark_filter", "100000 characters"]),
+    # all and gl ran the GL configurations twice under one id.
+    Case("backend-all-and-gl", "cavity", ["run", "--backend", "all,gl", "--list"], ["--backend", "all,gl", "give it alone"]),
     # Nothing in common is nothing compared: no verdict, not "0 slower".
     Case("compare-nothing-in-common", "cavity", ["compare", "a.json", "b.json", "--fail-on-slower"],
          ["a.json", "b.json", "no configuration"],

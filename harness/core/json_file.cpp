@@ -79,6 +79,9 @@ Result<nlohmann::json> readJsonFile(const std::string& path) {
     const auto status = fs::status(path, ec);
     if (!fs::exists(status)) return badInput(path + ": cannot be read (no such file)");
     if (fs::is_directory(status)) return badInput(path + ": is a folder, not a JSON file");
+    // A device (/dev/zero) never ends: a file or a pipe (a shell's <(...)) is read.
+    if (fs::is_character_file(status) || fs::is_block_file(status) || fs::is_socket(status))
+        return badInput(path + ": is a device or socket, not a JSON file");
     std::ifstream f(path, std::ios::binary);
     std::ostringstream buffer;
     buffer << f.rdbuf();

@@ -43,8 +43,17 @@ inline std::string nestedQuantifier(const std::string& re) {
     return "";
 }
 
-// The one-line refusal of such a pattern given with `flag`, or "".
+// The longest pattern taken: std::regex compiles and matches by recursion,
+// and a pattern of 100,000 characters overflowed the stack (a segfault);
+// a pattern of ids is far shorter.
+inline constexpr size_t kMaxPatternLength = 1024;
+
+// The one-line refusal of such a pattern given with `flag` (too long, or a
+// nested repeat), or "".
 inline std::string nestedQuantifierError(const std::string& flag, const std::string& re) {
+    if (re.size() > kMaxPatternLength)
+        return flag + " '" + re.substr(0, 40) + "...' (" + std::to_string(re.size()) + " characters): longer than " +
+               std::to_string(kMaxPatternLength) + " characters, the most a pattern may have";
     const std::string nested = nestedQuantifier(re);
     return nested.empty() ? "" : flag + " " + re + ": " + nested + " repeats a group that repeats itself, which std::regex "
                                  "takes exponential time to miss with; drop the outer repeat";

@@ -25,12 +25,15 @@ Status writeImage(const std::string& path, const HostImage& img, Encoding enc, b
     if (!exr && ext != ".png") return badInput(path + ": unsupported image extension (use .exr or .png)");
     int channels = img.channels;
     if (!exr && channels == 2) channels = 3;
+    // A normal's fourth channel is no alpha: as PNG alpha (0.5 where it is
+    // 0) it made the picture half transparent, its colours divided by it.
+    if (!exr && enc == Encoding::SignedUnit && channels == 4) channels = 3;
     ImageSpec spec(img.width, img.height, channels, exr ? TypeDesc::HALF : (sixteenBit ? TypeDesc::UINT16 : TypeDesc::UINT8));
     if (exr) spec.attribute("compression", "zip");
     if (enc == Encoding::Preview) spec.attribute("png:compressionLevel", 1);
     std::vector<float> px(size_t(img.width) * img.height * channels, 0.0f);
     for (size_t p = 0; p < size_t(img.width) * img.height; ++p)
-        for (int c = 0; c < img.channels; ++c) {
+        for (int c = 0; c < std::min(img.channels, channels); ++c) {
             float v = img.pixels[p * img.channels + c];
             if (!exr) {
                 if (enc == Encoding::SignedUnit) v = 0.5f * v + 0.5f;
