@@ -150,6 +150,12 @@ int merge(const std::vector<std::string>& argv) {
     dirs = p.positionals;
     for (const auto& [flag, v] : p.values) (flag == "--out" ? out : reportUrl) = v;
     if (dirs.empty()) return fail("cavity gate merge", badInput("needs one or more shard output folders"));
+    // The merged reports written over a shard's would lose that shard.
+    for (const auto& d : dirs) {
+        std::error_code ec;
+        if (fs::equivalent(d, out, ec))
+            return fail("cavity gate merge", badInput("--out " + out + ": is " + d + ", a shard merged (give the merge a folder of its own)"));
+    }
     gate::GateRun merged;
     std::set<std::pair<std::string, int>> seen;
     std::map<int, std::string> shards;   // index -> its folder

@@ -188,6 +188,11 @@ Result<Matrix> renderedMatrix(const std::vector<Folder>& folders, const std::str
         if (f.m.gitCommit != gitCommit())
             return badInput(f.path + ": rendered by build " + f.m.gitCommit + ", this cavity is build " + gitCommit() +
                             " (judge with the cavity of the build that rendered it, or render again)");
+        // Shards of two selections: the configurations one selects and the
+        // other's shard was to hold are judged by neither.
+        if (f.m.filter != folders.front().m.filter)
+            return badInput(f.path + ": rendered with --filter '" + f.m.filter + "', " + folders.front().path +
+                            " with '" + folders.front().m.filter + "' (shards of one selection are judged together)");
     }
     return matrix;
 }
@@ -324,7 +329,7 @@ Status checkShards(const std::vector<Folder>& folders, const std::string& told) 
             if (item.empty() || item.size() > 6 || item.find_first_not_of("0123456789") != std::string::npos) return badInput(form);
             const int i = std::stoi(item);
             if (i >= count) return badInput(form);
-            want.insert(i);
+            if (!want.insert(i).second) return badInput("--shards " + told + ": shard " + item + " given twice");
         }
     }
     // At most 12 numbers, then how many more: the line stays one line.
