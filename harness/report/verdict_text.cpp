@@ -87,6 +87,14 @@ std::string verdictNote(const ConfigResult& r, const std::string& idPattern, con
     if (v == "unexpected-pass") return "unexpected pass: listed as an expected failure (" + r.expectedWhy + "); remove the entry";
     // A failure that is the intended result of a change is accepted one
     // configuration at a time, by the command the card prints.
+    // Judged against an approved image of its class: a baseline file would
+    // not replace that reference, and update refuses; approve is the way.
+    const bool byClass = std::any_of(r.images.begin(), r.images.end(),
+                                     [](const gate::ImageCheck& i) { return i.baseline.rfind("store:", 0) == 0; });
+    if (v == "fail" && r.error.empty() && byClass)
+        return "to accept this configuration alone: cavity baselines approve " + args + "--filter '^" + id +
+               "$' --why '...' (its digests approved for this device class; it was judged against an approved image "
+               "of that class, which a baseline file does not replace)";
     if (v == "fail" && r.error.empty())
         return "to accept this configuration alone: cavity baselines update " + args + "--filter '^" + id +
                "$' (its images become the baselines), or cavity baselines approve " + args + "--filter '^" + id +
