@@ -49,7 +49,7 @@ const CommandSpec& updateSpec() {
 
 // What to do when configurations failed on time budgets alone: images are
 // not what a baseline update changes.
-std::string budgetOnlyHint(const gate::GateRun& run, bool filtered, const std::string& from) {
+std::string budgetOnlyHint(const gate::GateRun& run, bool filtered, const std::string& from, const std::string& root) {
     int budgetOnly = 0;
     std::string device;
     for (const auto& r : run.results)
@@ -58,9 +58,24 @@ std::string budgetOnlyHint(const gate::GateRun& run, bool filtered, const std::s
             device = r.device;
         }
     if (budgetOnly == 0 || filtered) return "";
+    // The entry the gate read the device's budgets from (the first whose
+    // pattern its name holds), so that the script updates that one, in the
+    // budgets.json of these baselines.
+    const std::string budgets = (fs::path(root) / "budgets.json").string();
+    std::string pattern = device;
+    const auto lower = [](std::string t) {
+        std::transform(t.begin(), t.end(), t.begin(), [](unsigned char ch) { return char(std::tolower(ch)); });
+        return t;
+    };
+    if (const auto loaded = gate::loadBudgets(budgets))
+        for (const auto& d : loaded->devices)
+            if (lower(device).find(lower(d.pattern)) != std::string::npos) {
+                pattern = d.pattern;
+                break;
+            }
     return std::to_string(budgetOnly) + " configurations failed on time budgets only (every image passed): budgets are " +
            "not images; update them with `python3 scripts/update_budgets.py " + (fs::path(from) / "gate.json").string() +
-           " --pattern '" + device + "'` (docs/gate.md, \"Time budgets\")";
+           " --pattern '" + pattern + "' --budgets " + budgets + "` (docs/gate.md, \"Time budgets\")";
 }
 
 }  // namespace
@@ -271,7 +286,7 @@ int updateCommand(const std::vector<std::string>& argv) {
     if (auto st = copyKernelSources(*sources, *run); !st) return fail("cavity baselines update", st.error());
     const size_t changed = writes.size();
     std::cout << changed << " baseline files updated\n";
-    if (const std::string hint = budgetOnlyHint(*run, filter.has_value(), from); !hint.empty()) std::cout << hint << "\n";
+    if (const std::string hint = budgetOnlyHint(*run, filter.has_value(), from, root); !hint.empty()) std::cout << hint << "\n";
     return 0;
 }
 

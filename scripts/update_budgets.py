@@ -24,6 +24,7 @@ hence the generous default factor; on a GPU use 1.2 to 1.5.
 """
 import argparse
 import json
+import math
 import os
 import re
 import statistics
@@ -78,8 +79,12 @@ def main():
     ap.add_argument("--min-abs-ms", type=float, default=0.0005, help="benchmark JSON: smallest margin in ms")
     ap.add_argument("--budgets", default=os.path.join(os.path.dirname(__file__), "..", "baselines", "budgets.json"))
     a = ap.parse_args()
-    if a.factor <= 1:
-        sys.exit(f"update_budgets: --factor {a.factor}: must be > 1")
+    if not math.isfinite(a.factor) or a.factor <= 1:
+        sys.exit(f"update_budgets: --factor {a.factor}: must be a finite number > 1")
+    for flag in ("min_ms", "noise_factor", "min_margin", "min_abs_ms"):
+        v = getattr(a, flag)
+        if not math.isfinite(v) or v < 0:
+            sys.exit(f"update_budgets: --{flag.replace('_', '-')} {v}: must be a finite number >= 0")
     try:
         runs = [cavity_json.load(p) for p in a.gate_json]
         budgets = json.load(open(a.budgets))
@@ -90,14 +95,17 @@ def main():
     elif all(g.get("schema") == "cavity.gate/1" for g in runs):
         medians = {}
         devices = set()
-        for gate in runs:
-            for r in gate["results"]:
-                if r["error"]:
-                    continue
-                devices.add(r["device"])
-                for t in r["timings"]:
-                    key = (r["id"], t["pass"])
-                    medians[key] = max(medians.get(key, 0.0), t["median_ms"])
+        try:
+            for gate in runs:
+                for r in gate["results"]:
+                    if r["error"]:
+                        continue
+                    devices.add(r["device"])
+                    for t in r["timings"]:
+                        key = (r["id"], t["pass"])
+                        medians[key] = max(medians.get(key, 0.0), float(t["median_ms"]))
+        except (KeyError, TypeError, ValueError) as e:
+            sys.exit(f"update_budgets: {' '.join(a.gate_json)}: not a whole cavity gate.json ({type(e).__name__}: {e})")
         table = {}
         for (cid, pass_), m in medians.items():
             table.setdefault(cid, {})[pass_] = round(max(a.factor * m, a.min_ms), 4)
@@ -105,6 +113,9 @@ def main():
                 f"{', '.join(sorted(devices))}")
     else:
         sys.exit(f"update_budgets: {' '.join(a.gate_json)}: one cavity_bench JSON, or cavity gate.json files")
+    # The configurations this run did not measure keep their budgets.
+    kept = next((d.get("budgets_ms", {}) for d in budgets.get("devices", []) if d.get("pattern") == a.pattern), {})
+    table = {**kept, **table}
     entry = {"pattern": a.pattern, "note": note, "budgets_ms": dict(sorted(table.items()))}
     budgets["devices"] = [d for d in budgets.get("devices", []) if d["pattern"] != a.pattern] + [entry]
     fd, tmp = tempfile.mkstemp(dir=os.path.dirname(os.path.abspath(a.budgets)))

@@ -146,6 +146,14 @@ TEST_F(GateInputs, CpuBudgetOverrunIsReportedAndFailsOnlyWhenEnforced) {
         << update.output;
     EXPECT_NE(update.output.find("scripts/update_budgets.py " + (dir / "out" / "gate.json").string()), std::string::npos)
         << update.output;
+    // ... a command that runs as printed, from the source tree: it updates the
+    // entry the gate read, in these baselines, and the enforced gate passes.
+    const size_t from = update.output.find("`python3 ") + 1, to = update.output.find('`', from);
+    ASSERT_NE(to, std::string::npos) << update.output;
+    const std::string command = update.output.substr(from, to - from);
+    EXPECT_NE(command.find("--budgets " + (base / "budgets.json").string()), std::string::npos) << command;
+    ASSERT_EQ(std::system(("cd " + std::string(CAVITY_SOURCE_DIR) + " && " + command + " >/dev/null").c_str()), 0) << command;
+    EXPECT_EQ(gate("--enforce-cpu-budgets").code, 0);
 }
 
 TEST_F(GateInputs, ExpectationsFolderThatIsNotOneIsBadInput) {

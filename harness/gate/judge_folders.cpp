@@ -189,8 +189,9 @@ Result<Matrix> renderedMatrix(const std::vector<Folder>& folders, const std::str
             return badInput(f.path + ": rendered by build " + f.m.gitCommit + ", this cavity is build " + gitCommit() +
                             " (judge with the cavity of the build that rendered it, or render again)");
         // Shards of two selections: the configurations one selects and the
-        // other's shard was to hold are judged by neither.
-        if (f.m.filter != folders.front().m.filter)
+        // other's shard was to hold are judged by neither. (Whole folders of
+        // two filters, one an API each, are judged together.)
+        if ((f.m.shardCount > 1 || folders.front().m.shardCount > 1) && f.m.filter != folders.front().m.filter)
             return badInput(f.path + ": rendered with --filter '" + f.m.filter + "', " + folders.front().path +
                             " with '" + folders.front().m.filter + "' (shards of one selection are judged together)");
     }
