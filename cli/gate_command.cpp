@@ -119,7 +119,8 @@ const CommandSpec& judgeSpec() {
 const CommandSpec& mergeSpec() {
     static const CommandSpec spec{
         "cavity gate merge",
-        "Joins the gate.json of shard outputs into one verdict and report.",
+        "Joins the gate.json of shard outputs into one verdict and report, and copies each shard's images under --out "
+        "(hard links where it can), so that baselines update and approve read the merged folder as a whole gate's.",
         {{"--out", "DIR", "report folder (default out/gate)"}, kReportUrlFlag},
         "SHARD_DIR...",
         "output folders of cavity gate --shard runs",
@@ -217,6 +218,7 @@ int merge(const std::vector<std::string>& argv) {
     merged.shardCount = 1;   // the whole matrix
     if (auto st = checkWritableDir("--out", out); !st) return fail("cavity gate merge", st.error());
     merged.out = out;
+    if (auto st = gatherShardImages(owner, out, merged); !st) return fail("cavity gate merge", st.error());
     if (auto st = report::writeReports(merged, out, reportUrl); !st) return fail("cavity gate merge", st.error());
     std::cout << report::summaryMarkdown(merged, reportUrl.empty() ? "index.html" : reportUrl);
     return merged.exitCode();

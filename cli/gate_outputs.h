@@ -15,6 +15,17 @@ namespace cavity::cli {
 // A gate output folder's gate.json; a missing one says to run the gate first.
 Result<gate::GateRun> loadGateJson(const std::string& dir);
 
+// A path gate.json recorded for an image, as the same file under `dir`'s
+// own images/ (a folder moved or downloaded is read whole).
+std::string inFolder(const std::string& dir, const std::string& recorded);
+
+// gate merge: the images/ of each configuration's shard (`owner`: id ->
+// shard folder) copied under --out, replacing a previous merge's, and the
+// merged results' image paths moved there. The merged folder is then read
+// as an unsharded gate's: baselines update and approve take their images
+// from it, and the shards' folders may go.
+Status gatherShardImages(const std::map<std::string, std::string>& owner, const std::string& out, gate::GateRun& merged);
+
 // The files a gate run rendered in place of kernels/ or a package's own
 // (--kernel-source), each read back and checked against the digest the run
 // recorded: target -> (file given, its text). Without `take`

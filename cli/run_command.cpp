@@ -22,8 +22,6 @@
 #include <regex>
 #include <set>
 
-#include <fcntl.h>   // AT_FDCWD
-#include <stdio.h>   // renameat2, RENAME_EXCHANGE (glibc)
 
 namespace cavity::cli {
 
@@ -126,17 +124,7 @@ Status movedIn(const std::filesystem::path& staging, const std::string& out, con
         const std::string id = configId(r.config);
         const fs::path from = staging / id, to = fs::path(out) / id;
         if (!fs::exists(from, ec)) continue;
-        // An earlier run's folder is exchanged with the new one in one step,
-        // then goes: a kill between leaves each configuration's images
-        // whole, the old or the new, never half of them.
-        if (fs::is_directory(to, ec) &&
-            ::renameat2(AT_FDCWD, from.c_str(), AT_FDCWD, to.c_str(), RENAME_EXCHANGE) == 0) {
-            fs::remove_all(from, ec);
-            continue;
-        }
-        fs::remove_all(to, ec);
-        fs::create_directories(to.parent_path(), ec);
-        fs::rename(from, to, ec);
+        ec = replaceFolder(from, to);
         if (ec) return badInput("--out " + out + ": cannot move " + id + " in: " + ec.message());
     }
     fs::remove_all(staging, ec);

@@ -2,6 +2,8 @@
 
 #include <fstream>
 
+#include <fcntl.h>
+#include <stdio.h>
 #include <unistd.h>
 
 namespace cavity::cli {
@@ -27,6 +29,20 @@ std::filesystem::path stagingDir(const std::string& out) {
         if (name.rfind(".partial-", 0) == 0 && !processRuns(name.substr(9))) fs::remove_all(e.path(), ec);
     }
     return fs::path(out) / (".partial-" + std::to_string(::getpid()));
+}
+
+std::error_code replaceFolder(const std::filesystem::path& from, const std::filesystem::path& to) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    if (fs::is_directory(to, ec) && ::renameat2(AT_FDCWD, from.c_str(), AT_FDCWD, to.c_str(), RENAME_EXCHANGE) == 0) {
+        fs::remove_all(from, ec);
+        return {};
+    }
+    fs::remove_all(to, ec);
+    fs::create_directories(to.parent_path(), ec);
+    ec.clear();
+    fs::rename(from, to, ec);
+    return ec;
 }
 
 }  // namespace cavity::cli

@@ -226,6 +226,41 @@ class ShardProtocols(Base):
         one_line_error(self, p, "cavity_render: conflicting shards")
         self.assertFalse(os.path.exists(os.path.join(self.tmp, "r", "manifest.json")))
 
+    def test_a_merged_gate_is_accepted_as_a_whole_one(self):
+        # Two shards gated (as on two CI machines), merged, and the shards'
+        # folders deleted: `baselines update` reads the merged folder's own
+        # images, and the gate then passes against what it wrote.
+        env = {"CAVITY_TEST_FLAKY": "/vk/compute$"}
+        store = os.path.join(self.tmp, "no_store")
+        shards = [os.path.join(self.tmp, f"s{i}") for i in range(2)]
+        for i, d in enumerate(shards):
+            gate("--filter", TWO, "--retries", "0", "--shard", f"{i}/2", "--out", d, "--store", store, env=env)
+        merged = os.path.join(self.tmp, "merged")
+        p = run([CAVITY, "gate", "merge", *shards, "--out", merged])
+        self.assertEqual(p.returncode, 1, p.stdout + p.stderr)
+        for d in shards:
+            shutil.rmtree(d)
+        for r in load(os.path.join(merged, "gate.json"))["results"]:
+            for i in r["images"]:
+                for key in ("new", "new_png", "diff_png"):
+                    self.assertTrue(not i[key] or i[key].startswith(merged + "/images/"), i[key])
+                    self.assertTrue(not i[key] or os.path.isfile(i[key]), i[key])
+        base = os.path.join(self.tmp, "baselines")
+        shutil.copytree(os.path.join(SOURCE, "baselines"), base)
+        p = run([CAVITY, "baselines", "update", "--from", merged, "--baselines", base])
+        self.assertEqual(p.returncode, 0, p.stderr)
+        self.assertIn("1 baseline files updated", p.stdout)
+        p = gate("--filter", TWO, "--retries", "0", "--baselines", base, "--out", os.path.join(self.tmp, "after"),
+                 "--store", store, env=env)
+        self.assertEqual(p.returncode, 0, p.stdout + p.stderr)
+        # A second merge into the same folder replaces its images whole.
+        for i, d in enumerate(shards):
+            gate("--filter", TWO, "--retries", "0", "--shard", f"{i}/2", "--out", d, "--store", store)
+        p = run([CAVITY, "gate", "merge", *shards, "--out", merged])
+        self.assertEqual(p.returncode, 0, p.stdout + p.stderr)
+        self.assertEqual(sorted(os.listdir(merged)), ["gate.json", "images", "index.html", "junit.xml",
+                                                       "status.json", "summary.md"])
+
     def test_judge_refuses_a_lost_shard_unless_told(self):
         # Shard 1 of 2 alone is half a verdict: refused, nothing written;
         # named with --shards it is judged; a wrong name is refused.
