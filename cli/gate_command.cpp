@@ -144,6 +144,11 @@ const CommandSpec& mergeSpec() {
     const ParsedFlags& var = *var##_;
 
 
+// The reports the gate writes at its end can replace what --out holds.
+Status reportFilesWritable(const std::string& out) {
+    return checkOutputFiles("--out", out, {std::begin(gate::kReportFiles), std::end(gate::kReportFiles)});
+}
+
 int merge(const std::vector<std::string>& argv) {
     std::vector<std::string> dirs;
     std::string out = "out/gate", reportUrl;
@@ -217,6 +222,7 @@ int merge(const std::vector<std::string>& argv) {
     }
     merged.shardCount = 1;   // the whole matrix
     if (auto st = checkWritableDir("--out", out); !st) return fail("cavity gate merge", st.error());
+    if (auto st = reportFilesWritable(out); !st) return fail("cavity gate merge", st.error());
     merged.out = out;
     if (auto st = gatherShardImages(owner, out, merged); !st) return fail("cavity gate merge", st.error());
     if (auto st = report::writeReports(merged, out, reportUrl); !st) return fail("cavity gate merge", st.error());
@@ -247,7 +253,7 @@ Status outsideBaselines(const std::string& out, const std::string& baselines) {
     if (!rel.empty() && *rel.begin() != "..")
         return badInput("--out " + out + ": is " + (rel == "." ? "" : "inside ") + "the baselines folder " + baselines +
                         " (give a folder of its own, e.g. out/gate)");
-    return {};
+    return reportFilesWritable(out);
 }
 
 // Nothing is written unless every folder is whole (judge_folders.h).

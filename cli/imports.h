@@ -37,6 +37,7 @@ using pipeline::validate;
 using images::importGBuffer;
 using images::readImage;
 using measure::checkWritableDir;
+using measure::checkOutputFiles;
 using measure::checkWritableFile;
 using measure::resultsDocument;
 using measure::runConfig;

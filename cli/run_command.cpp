@@ -174,12 +174,16 @@ Status writeResults(const Sweep& s, const RunOutcome& out, const std::vector<std
             doc["kernel_sources"].push_back({{"name", r.name}, {"file", r.file}, {"digest", r.digest}});
     }
     if (!packages.empty()) doc["kernel_packages"] = measure::packagesJson(packages);
+    const std::string table = (dir / "table.txt").string(), page = (dir / "index.html").string();
     if (out.runs.empty()) {
+        // The folder's record is this run's: an earlier run's table and page
+        // left beside a results.json of none would be read as this one's.
+        std::filesystem::remove(table, ec);
+        std::filesystem::remove(page, ec);
         CAVITY_TRY(writeJson(results, doc));
-        std::printf("wrote %s (no configuration ran)\n", results.c_str());
+        std::printf("wrote %s (no configuration ran; its errors are in it)\n", results.c_str());
         return {};
     }
-    const std::string table = (dir / "table.txt").string(), page = (dir / "index.html").string();
     const std::string tableText = runTable(out.runs);
     CAVITY_TRY(writeFileAtomically(table, tableText));
     CAVITY_TRY(report::writeRunPage(s.out, out.runs, command));
@@ -217,6 +221,7 @@ int runCommand(const std::vector<std::string>& argv) {
     }
     if (auto o = gpu::withEnvironment(s.backend); !o) return fail(o.error());
     if (auto st = checkWritableDir("--out", s.out); !st) return fail(st.error());
+    if (auto st = checkOutputFiles("--out", s.out, {"results.json", "table.txt", "index.html"}); !st) return fail(st.error());
     const auto staging = stagingDir(s.out);
     const RunOutcome out = runPlan(s, apis, *plan, staging);
     // --max-time bounds a run whatever --frames asks: say where it cut one short.

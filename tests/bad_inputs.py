@@ -162,6 +162,11 @@ CASES = [
     Case("manifest-is-folder", "cavity", GATE, ["manifest.json", "folder"], setup=replace_with_folder("baselines/manifest.json")),
     Case("gate-json-folder-update", "cavity", ["baselines", "update", "--baselines", "baselines", "--from", "prev"],
          ["gate.json", "folder"], setup=replace_with_folder("prev/gate.json")),
+    # Output files that are folders are found before anything is measured.
+    Case("run-results-json-folder", "cavity", RUN[:-1] + ["prev"], ["--out prev", "prev/results.json", "is a folder"],
+         setup=replace_with_folder("prev/results.json")),
+    Case("gate-summary-folder", "cavity", GATE[:-1] + ["prev"], ["--out prev", "prev/summary.md", "is a folder"],
+         setup=replace_with_folder("prev/summary.md")),
     Case("gate-json-folder-merge", "cavity", ["gate", "merge", "prev", "--out", "out"], ["gate.json", "folder"],
          setup=replace_with_folder("prev/gate.json")),
     Case("compare-folder", "cavity", ["compare", "prev", "x.json"], ["prev", "folder"], setup=replace_with_folder("prev")),

@@ -3,11 +3,14 @@
 (all or nothing): its images are written under a staging folder in --out
 and move in only when every configuration has run. The kill comes once the
 staging folder holds an image (an event, not a time), and a later run
-removes the killed run's staging folder and moves its own images in.
+removes the killed run's staging folder and moves its own images in. A run
+in which nothing ran leaves a results.json of its errors and none of the
+earlier run's table or page.
 
     killed_run.py CAVITY
 """
 import hashlib
+import json
 import os
 import signal
 import subprocess
@@ -70,6 +73,18 @@ def main():
         leftovers = [d for d in os.listdir(out) if d.startswith(".partial-")]
         if leftovers:
             print(f"FAIL staging folders left after a whole run: {leftovers}")
+            failures += 1
+        # A run in which no configuration ran (no such device) records its
+        # error, and leaves no earlier run's table or page to be read as its own.
+        r = subprocess.run([cavity] + base + ["--frames", "2", "--device", "5", "--out", out], capture_output=True,
+                           text=True)
+        with open(os.path.join(out, "results.json")) as f:
+            doc = json.load(f)
+        stale = [n for n in ("table.txt", "index.html") if os.path.exists(os.path.join(out, n))]
+        if r.returncode != 3 or doc["runs"] or not doc["errors"] or "--device 5" not in doc["errors"][0]["message"] \
+                or stale:
+            print(f"FAIL a run where nothing ran: exit {r.returncode}, runs {len(doc['runs'])}, "
+                  f"errors {doc['errors']}, earlier files left {stale}")
             failures += 1
         print("killed run: --out unchanged, and the next run cleaned up" if not failures else f"{failures} failures")
         return 1 if failures else 0

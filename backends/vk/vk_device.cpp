@@ -103,7 +103,7 @@ Result<VkPhysicalDevice> pickPhysicalDevice(VkInstance instance, const BackendOp
         return unavailable("vk: no physical device matches '" + o.deviceName + "' (have: " + have + ")");
     }
     if (o.deviceIndex < 0 || size_t(o.deviceIndex) >= devices.size())
-        return unavailable("vk: no physical device " + std::to_string(o.deviceIndex) + " (have " +
+        return unavailable("vk: --device " + std::to_string(o.deviceIndex) + ": no such physical device (have " +
                            std::to_string(devices.size()) + ": " + have + ")");
     return devices[size_t(o.deviceIndex)];
 }

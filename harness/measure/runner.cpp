@@ -46,6 +46,18 @@ Status checkWritableDir(const std::string& flag, const std::string& dir, size_t 
     return {};
 }
 
+Status checkOutputFiles(const std::string& flag, const std::string& dir, const std::vector<std::string>& names) {
+    for (const auto& name : names) {
+        std::error_code ec;
+        const fs::path p = fs::path(dir) / name;
+        if (fs::exists(p, ec) && !fs::is_regular_file(p, ec))
+            return badInput(flag + " " + dir + ": " + p.string() + " is " +
+                            (fs::is_directory(p, ec) ? "a folder" : "not a regular file") + " (the " + name +
+                            " written there at the end; move it away or give another " + flag + ")");
+    }
+    return {};
+}
+
 Status checkWritableFile(const std::string& flag, const std::string& file) {
     if (file.empty()) return badInput(flag + " '': empty value (name an output file)");
     std::error_code ec;

@@ -42,6 +42,10 @@ Result<RunRecord> runConfig(gpu::Backend& gpu, const RunConfig& c, const RunOpti
 // room for paths of `longestInside` characters under it (a configuration id
 // and an image name); a probe folder is made and removed, nothing else.
 Status checkWritableDir(const std::string& flag, const std::string& dir, size_t longestInside = 160);
+
+// The files a command writes in `dir` at its end: each that exists must be
+// a file (or a link to one) it can replace, found before anything is measured.
+Status checkOutputFiles(const std::string& flag, const std::string& dir, const std::vector<std::string>& names);
 // FILE can be written: not a folder, in a folder that exists and takes a
 // new entry. Checked before a command prints or writes anything.
 Status checkWritableFile(const std::string& flag, const std::string& file);
