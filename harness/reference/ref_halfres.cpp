@@ -1,6 +1,7 @@
 // References of kernels/passes/downsample_depth/downsample_depth.glsl, upsample_bilateral.glsl and
 // upsample_composite.glsl (the two half-resolution tail passes fused).
-// The downsample only compares and copies, so it is exact. The upsample's
+// The downsample compares and copies, and moves the copied depth onto the
+// half texel's ray in the kernel's exact operations. The upsample's
 // weights are continuous (exp), except where every weight vanishes and it
 // falls back to the half texel nearest in depth, a threshold the GPU and
 // the CPU could straddle only within rounding of 1e-5.
@@ -25,6 +26,22 @@ Status requireInput(const Context& ctx, size_t i, int width, int height, int min
 namespace {
 
 float blockDepth(float w) { return isBackground(w) ? 3.0e38f : w; }
+
+// include/downsample.glsl's halfRayDepth in its exact operations: the copied
+// texel's depth moved onto half texel (x, y)'s own centre ray.
+float halfRayDepth(const kernels::FrameUniforms& f, int x, int y, Vec3 p, float w, Vec3 n) {
+    if (isBackground(w)) return w;
+    const float ndcX = (float(x) + 0.5f) * f.invSize[0] * 2.0f - 1.0f;
+    const float ndcY = (float(y) + 0.5f) * f.invSize[1] * 2.0f - 1.0f;
+    const Vec3 ray{ndcX * f.camera[0], -ndcY * f.camera[1], -1.0f};
+    const float facing = dot(n, ray);
+    if (lengthSquared(n) > 0.0f && facing < 0.0f) {
+        const float t = dot(n, p) * portableReciprocal(facing);
+        const float moved = std::fabs(t + p.z);
+        if (t > 0.0f && moved <= 0.05f * -p.z) return t;
+    }
+    return w;
+}
 
 }  // namespace
 
@@ -58,7 +75,8 @@ Result<std::vector<HostImage>> downsampleDepth(const Context& ctx) {
                 out[0].at(x, y, c) = position.at(bx, by, c);
                 out[1].at(x, y, c) = c < normal.channels ? normal.at(bx, by, c) : 0.0f;
             }
-            out[2].at(x, y) = position.at(bx, by, 3);
+            const Vec3 n = normal.channels >= 3 ? screen::texel3(normal, bx, by) : Vec3{0.0f, 0.0f, 0.0f};
+            out[2].at(x, y) = halfRayDepth(f, x, y, screen::texel3(position, bx, by), position.at(bx, by, 3), n);
         }
     return out;
 }

@@ -1,7 +1,7 @@
 // The depth-aware 2x2 downsample's pick (downsample_depth.glsl says which
 // texel and why), shared by downsample_depth.glsl and downsample_pyramid.glsl.
 // frame.size is the half size; the full size is in_position's own.
-#include "include/common.glsl"
+#include "include/screen_space.glsl"
 
 // Background (w = 0) counts as infinitely far, so it wins the max.
 float blockDepth(vec4 p) {
@@ -25,4 +25,28 @@ ivec2 downsamplePick(ivec2 pixel) {
         }
     }
     return best;
+}
+
+// The linear depth at which half texel `pixel`'s own centre ray meets the
+// tangent plane of the full texel it copies (position p, normal n). The
+// fast kernels rebuild every position from the pyramid's depth on the half
+// texel's ray; with the copied depth, which lies on the full texel's ray
+// half a full texel away, the rebuilt floor of an open scene stood in front
+// of and behind itself from texel to texel, and its samples read as
+// occluded: a speckled grey over open floors, the worse the smaller the
+// image (the effect depth_from_position_half.glsl removes for the hardware
+// depth). A move of over a twentieth of the depth (a plane nearly edge-on
+// to the ray) keeps the copied depth.
+float halfRayDepth(ivec2 pixel, vec4 p, vec3 n) {
+    if (isBackground(p.w)) return p.w;
+    EXACT vec2 ndc = (vec2(pixel) + 0.5) * frame.invSize * 2.0 - 1.0;
+    EXACT vec3 ray = vec3(ndc.x * frame.camera.x, -ndc.y * frame.camera.y, -1.0);
+    EXACT float facing = orderedDot(n, ray);
+    if (lengthSquared(n) > 0.0 && facing < 0.0) {
+        // ray.z = -1, so t is the linear depth of the hit.
+        EXACT float t = orderedDot(n, p.xyz) * portableReciprocal(facing);
+        EXACT float moved = abs(t + p.z);
+        if (t > 0.0 && moved <= 0.05 * -p.z) return t;
+    }
+    return p.w;
 }

@@ -19,7 +19,9 @@
 // made this pass slower on the H200, both APIs: the chosen texel's
 // position was then a second trip to memory
 // (study 2026-12-04_h200_linear_depth). Beside the half position and
-// normal it writes the chosen depth, the half-resolution pyramid's level 0,
+// normal it writes the chosen texel's depth moved onto the half texel's own
+// ray (halfRayDepth, include/downsample.glsl), the half-resolution
+// pyramid's level 0,
 // for a pipeline that builds that pyramid in a pass of its own
 // (downsample_pyramid.glsl builds it here).
 //
@@ -29,7 +31,8 @@
 void cavity_main(ivec2 pixel) {
     ivec2 best = downsamplePick(pixel);
     vec4 p = texelFetch(in_position, best, 0);
+    vec4 n = texelFetch(in_normal, best, 0);
     write_position_half(pixel, p);
-    write_normal_half(pixel, texelFetch(in_normal, best, 0));
-    write_linear_depth_half(pixel, vec4(p.w, 0.0, 0.0, 0.0));
+    write_normal_half(pixel, n);
+    write_linear_depth_half(pixel, vec4(halfRayDepth(pixel, p, n.xyz), 0.0, 0.0, 0.0));
 }

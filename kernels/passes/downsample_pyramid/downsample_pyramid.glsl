@@ -13,9 +13,10 @@
 void cavity_main(ivec2 pixel) {
     ivec2 best = downsamplePick(pixel);
     vec4 p = texelFetch(in_position, best, 0);
+    vec4 n = texelFetch(in_normal, best, 0);
     write_position_half(pixel, p);
-    write_normal_half(pixel, texelFetch(in_normal, best, 0));
-    vec4 value = pyramidValue(p.w, pixel);
+    write_normal_half(pixel, n);
+    vec4 value = pyramidValue(halfRayDepth(pixel, p, n.xyz), pixel);
     write_zmip(pixel, value);
     writePyramidChain(pixel, value);
 }
