@@ -275,8 +275,8 @@ TEST_P(ScreenSpaceProperties, HalfResolutionStaysCloseToFullAtSilhouettes) {
 // resolution too: the fast kernels rebuild each position from the pyramid's
 // depth on the half texel's own ray, so that depth must lie on the surface
 // there (include/downsample.glsl, halfRayDepth). With the copied full
-// texel's depth, alchemy_fast's mean AO on the open floor at 160x90 half
-// was 0.97 and hemisphere_fast's 0.96. alchemy_fast's estimator is exact
+// texel's depth both kernels darkened the open floor at 160x90 half
+// (study 2026-12-07_half_ray_depth). alchemy_fast's estimator is exact
 // on a plane, so every pixel is 1; hemisphere_fast keeps the copied depth
 // where the floor is nearly edge-on to the ray, so its mean is bounded.
 TEST_P(ScreenSpaceProperties, FastKernelsAtHalfResolutionLeaveAPlaneOpen) {
