@@ -618,6 +618,18 @@ class ResultsJson(unittest.TestCase):
             self.assertFalse(os.path.exists(out))
 
 
+    def test_title_that_cannot_be_drawn(self):
+        # 5,000 characters overflowed matplotlib's glyph raster: a traceback.
+        with tempfile.TemporaryDirectory() as d:
+            out = os.path.join(d, "out")
+            for title, words in (("x" * 5000, "--title: 5000 characters"), ("a\nb", "with a line break")):
+                r = run_charts(SAMPLE, "--out", out, "--title", title)
+                self.assertEqual(r.returncode, 2, r.stderr)
+                self.assertEqual(len(r.stderr.strip().splitlines()), 1, r.stderr)
+                self.assertIn(words, r.stderr)
+                self.assertFalse(os.path.exists(out))
+
+
 class Passes(unittest.TestCase):
     """The passes chart: each pass's median and spread per kernel and API, from both formats, G-buffer left out."""
 

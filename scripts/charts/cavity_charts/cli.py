@@ -108,6 +108,11 @@ def main(argv=None):
         files = [load_results(p) for p in args.results]
         if args.filter:
             keep_only(files, args.filter)
+        # A title is one line above each chart: a longer one cannot be
+        # drawn (matplotlib overflows its glyph raster) and would hide the chart.
+        if len(args.title) > 200 or "\n" in args.title:
+            raise BadInput(f"charts: --title: {len(args.title)} characters{' with a line break' if chr(10) in args.title else ''}"
+                           f" (at most 200, on one line)")
         if os.path.exists(args.out) and not os.path.isdir(args.out):
             raise BadInput(f"charts: {args.out}: --out exists and is not a folder")
     except BadInput as e:
