@@ -249,6 +249,12 @@ Result<double> parseValue(const ParamDecl& p, const std::string& text) {
     auto r = std::from_chars(b, b + text.size(), v);
     if (text.empty() || r.ec != std::errc() || r.ptr != b + text.size() || !std::isfinite(v))
         return badInput("--" + p.name + " '" + text + "': must be " + allowedValues(p));
+    // An integer is written in digits: 16.0 and 1e1 would otherwise name the
+    // configuration n16 and n10 while the command line said something else.
+    if (isIntegral(p.type) && text.find_first_not_of("-0123456789") != std::string::npos)
+        return badInput("--" + p.name + " '" + text + "': must be " + allowedValues(p) + ", written in digits");
+    // -0 is 0: one configuration, one id.
+    if (v == 0) v = 0;
     CAVITY_TRY(checkValue(p, v));
     return v;
 }

@@ -70,6 +70,10 @@ Result<SampleSets> readResultsJson(const json& doc, const std::string& path, boo
     for (const auto& r : runs) {
         CAVITY_ASSIGN(const std::string id, r.str("id"));
         CAVITY_ASSIGN(const std::string clock, r.str("clock"));
+        // The clock decides whether two runs' times compare (a GPU's
+        // timestamps against a wall clock do not): only the two cavity writes.
+        if (clock != "gpu-timestamp" && clock != "wall")
+            return badInput(path + ": runs '" + id + "': clock '" + clock + "' (gpu-timestamp or wall)");
         if (r.has("device")) {
             CAVITY_ASSIGN(const JsonObject device, r.object("device"));
             if (device.has("software_renderer")) {
