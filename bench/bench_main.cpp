@@ -206,8 +206,22 @@ cavity::Status checkBenchmarkFlags(const std::vector<char*>& args, const std::st
     }
     if (given("benchmark_filter") && filter.empty())
         return cavity::badInput("--benchmark_filter='': empty; give a regular expression (or leave the flag out for every benchmark)");
-    if (filter.size() > cavity::core::kMaxPatternLength)
+    if (cavity::core::longestAlternative(filter) > cavity::core::kMaxPatternLength)
         return cavity::badInput(cavity::core::nestedQuantifierError("--benchmark_filter", filter));
+    // Google Benchmark compiles it with std::regex and, where that fails (an
+    // alternation past std::regex's state limit), prints its own lines and
+    // runs nothing: one line here instead. A leading '-' negates the rest.
+    if (!filter.empty()) {
+        try {
+            const std::regex compiled(filter[0] == '-' ? filter.substr(1) : filter);
+        } catch (const std::regex_error& e) {
+            std::string why = "--benchmark_filter '";
+            why += filter.substr(0, 40);
+            why += "...' (" + std::to_string(filter.size()) + " characters): not a regular expression std::regex takes (";
+            why += e.what();
+            return cavity::badInput(why + ")");
+        }
+    }
     // A minimum time is seconds above 0 (Google Benchmark 1.7 reads a bare
     // number, and ran a negative or unreadable one as its default).
     for (const char* name : {"benchmark_min_time", "benchmark_min_warmup_time"})

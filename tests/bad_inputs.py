@@ -151,6 +151,7 @@ GATE = ["gate", "--matrix", "ci", "--baselines", "baselines", "--filter", "^corn
         "--out", "out"]
 RUN = ["run", "--backend", "vk", "--res", "32x18", "--frames", "2", "--warmup", "0", "--out", "out"]
 LONG = "x" * 4200
+ALTERNATION = "|".join(f"c/n{i:05d}" for i in range(12000))   # 108,000 characters, past 100,000 states
 FOLDER300 = "y" * 300
 
 CASES = [
@@ -162,6 +163,9 @@ CASES = [
     Case("manifest-is-folder", "cavity", GATE, ["manifest.json", "folder"], setup=replace_with_folder("baselines/manifest.json")),
     Case("gate-json-folder-update", "cavity", ["baselines", "update", "--baselines", "baselines", "--from", "prev"],
          ["gate.json", "folder"], setup=replace_with_folder("prev/gate.json")),
+    # A kernel parameter of integer type is written in digits (16.0 named n16).
+    Case("run-int-param-decimal", "cavity", ["run", "--samples", "16.0", "--list"], ["--samples '16.0'", "in digits"]),
+    Case("run-int-param-exponent", "cavity", ["run", "--samples", "1e1", "--list"], ["--samples '1e1'", "in digits"]),
     # Output files that are folders are found before anything is measured.
     Case("run-results-json-folder", "cavity", RUN[:-1] + ["prev"], ["--out prev", "prev/results.json", "is a folder"],
          setup=replace_with_folder("prev/results.json")),
@@ -221,6 +225,9 @@ CASES = [
     Case("compare-empty-samples", "cavity", ["compare", "a.json", "b.json"], ["a.json", "samples_ms"],
          setup=lambda tmp: [write(n, json.dumps({"schema": "cavity.results/1", "runs": [{"id": "x", "clock": "gpu-timestamp", "frame": {"samples_ms": []},
                                                            "passes": []}]}))(tmp) for n in ("a.json", "b.json")]),
+    Case("compare-unknown-clock", "cavity", ["compare", "a.json", "a.json"], ["a.json", "clock 'sundial'", "gpu-timestamp or wall"],
+         setup=write("a.json", json.dumps({"schema": "cavity.results/1", "runs": [
+             {"id": "x", "clock": "sundial", "frame": {"samples_ms": [1.0, 1.1]}, "passes": []}]}))),
     # Late or multi-line.
     Case("out-proc", "cavity", RUN[:-2] + ["--out", "/proc/x"], ["--out", "/proc/x"]),
     Case("out-too-long", "cavity", RUN[:-2] + ["--out", LONG], ["--out", "too long"]),
@@ -327,9 +334,13 @@ CASES = [
     Case("compare-device", "cavity", ["compare", "/dev/zero", "a.json"], ["/dev/zero", "device"],
          setup=write("a.json", BENCH_JSON % ("corner/alchemy/n16/b4/full/32x18/vk/compute", 1))),
     # A pattern of 100,000 characters overflowed std::regex's stack (a segfault).
-    Case("filter-too-long", "cavity", RUN + ["--filter", "a" * 100000, "--list"], ["--filter", "100000 characters"]),
+    Case("filter-too-long", "cavity", RUN + ["--filter", "a" * 100000, "--list"], ["--filter", "100000 characters",
+                                                                                     "an alternative of 100000"]),
     Case("bench-filter-too-long", "cavity_bench", ["--benchmark_filter=" + "a" * 100000, "--benchmark_list_tests"],
          ["--benchmark_filter", "100000 characters"]),
+    # An alternation of many short ids is taken up to std::regex's own limit.
+    Case("bench-filter-past-state-limit", "cavity_bench", ["--benchmark_filter=" + ALTERNATION, "--benchmark_list_tests"],
+         ["--benchmark_filter", "not a regular expression std::regex takes"]),
     # all and gl ran the GL configurations twice under one id.
     Case("backend-all-and-gl", "cavity", ["run", "--backend", "all,gl", "--list"], ["--backend", "all,gl", "give it alone"]),
     # Nothing in common is nothing compared: no verdict, not "0 slower".
