@@ -153,6 +153,11 @@ def bad_packages():
          r"params\[2\]\.name = shared: is reserved"),
         ("parameter named like a matrix shape", lambda d: w(d, "kernel.toml", sub(t, 'name = "ring_px"', 'name = "mat3x2"')),
          r"params\[2\]\.name = mat3x2: is reserved"),
+        # A word of the cost and paths formulas: shadowed in one, read in the other.
+        ("parameter named like a formula word", lambda d: w(d, "kernel.toml", sub(t, 'name = "ring_px"', 'name = "width"')),
+         r"params\[2\]\.name = width: is reserved"),
+        ("interleaved without its parameter and input", lambda d: w(d, "kernel.toml", sub(t, 'role = "ao"', 'role = "ao"\ninterleaved = true')),
+         r"interleaved = true: needs the interleave parameter and a zlayers input"),
         ("array named like a parameter", lambda d: w(d, "kernel.toml", t + '\n[[arrays]]\nname = "ring_px"\nvec4 = 4\nderive = "spiral"\n'),
          r"arrays\[0\]\.name = ring_px: is taken by a parameter"),
         ("int default given as a bool", lambda d: w(d, "kernel.toml", sub(t, "default = 4", "default = true")),

@@ -169,7 +169,8 @@ Status readParam(const Ctx& c, const toml::table& t, size_t i, KernelDecl& k, Pa
         if (p.name() == name) return c.fail(t.get("name"), where + "name", name, "declared twice in this kernel");
     if (!findParam(name) && reservedName(name, true))
         return c.fail(t.get("name"), where + "name", name,
-                      "is reserved: a flag of cavity run, gate, quality, cavity_bench or cavity_render, or a word GLSL "
+                      "is reserved: a flag of cavity run, gate, quality, cavity_bench or cavity_render, a word of the cost and "
+                      "paths formulas (compute, width, height, workgroup_x, workgroup_y) or a word GLSL "
                       "keeps; name the parameter otherwise");
     const ParamDecl* decl = findParam(name);
     const bool fresh = !decl, redeclared = !fresh && t.get("type");
@@ -223,8 +224,20 @@ Status readParam(const Ctx& c, const toml::table& t, size_t i, KernelDecl& k, Pa
     return {};
 }
 
-}  // namespace
+// Interleaved layers are sized by the interleave parameter and read from
+// the zlayers input: without either the switch would do nothing, silently.
+Status checkInterleaved(const std::string& label, const KernelDecl& k) {
+    if (!k.interleaved) return {};
+    const bool param = std::any_of(k.params.begin(), k.params.end(), [](const KernelParam& p) { return p.name() == "interleave"; });
+    const bool input = std::any_of(k.inputs.begin(), k.inputs.end(), [](const InputDecl& i) { return i.name == "zlayers"; });
+    if (param && input) return {};
+    std::string what = !param && !input ? "the interleave parameter and a zlayers input"
+                       : !param         ? "the interleave parameter ([[params]] name = \"interleave\")"
+                                        : "a zlayers input ([[inputs]] name = \"zlayers\")";
+    return badInput(label + ": interleaved = true: needs " + what + " (docs/packages.md), or leave the line out");
+}
 
+}  // namespace
 
 Result<KernelDecl> readDeclaration(const DeclarationInput& in, PackageInfo& info) {
     using namespace toml_read;
@@ -249,6 +262,7 @@ Result<KernelDecl> readDeclaration(const DeclarationInput& in, PackageInfo& info
     CAVITY_TRY(readPipeline(root, c, k));
     CAVITY_TRY(readExpectations(root, c, k));
     CAVITY_TRY(readPaths(root, c, k));
+    CAVITY_TRY(checkInterleaved(in.label, k));
     // Good: the new parameters join the harness's, and the kernel points at them.
     for (auto& p : k.params) {
         for (const auto& a : params.added)

@@ -42,6 +42,11 @@ bool reservedName(const std::string& name, bool asFlag) {
         "2dmsarray)|sampler(1d|2d|2drect|cube|1darray|2darray|cubearray)shadow|samplershadow");
     // GLSL keeps gl_ names and any name with two underscores in a row.
     if (asFlag && (flags.count(name) || name.rfind("benchmark_", 0) == 0)) return true;
+    // The words of the cost and paths formulas beside the parameters (a
+    // pass's stage and workgroup, the image's size): a parameter of one of
+    // these names was shadowed in one formula and read in the other.
+    static const std::set<std::string> formulas = {"compute", "width", "height", "workgroup_x", "workgroup_y"};
+    if (asFlag && formulas.count(name)) return true;
     return glsl.count(name) || std::regex_match(name, families) || name.rfind("gl_", 0) == 0 ||
            name.find("__") != std::string::npos;
 }
