@@ -212,6 +212,43 @@ bool selectedForUpdate(const gate::ConfigResult& r, const std::optional<std::reg
     return filter ? std::regex_search(r.id, *filter) : r.verdict() == "fail" || (takeChanged && r.changed());
 }
 
+// The baseline files configuration r's images replace, and the lines that
+// say so.
+Status addWrites(const gate::ConfigResult& r, bool filtered, bool takeChanged, const std::string& from,
+                 const std::string& root, std::vector<gate::BaselineWrite>& writes, std::vector<std::string>& said) {
+    for (const auto& i : r.images) {
+        // A selected configuration rewrites the images that failed (all of
+        // them when chosen by --filter): passing ones keep their bytes.
+        if (!filtered && i.passed() && !(takeChanged && i.changed())) continue;
+        // Judged against an approved image of the device's class: the gate
+        // compares with that reference before any baseline file, so writing
+        // one would change nothing the next gate sees.
+        if (i.baseline.rfind("store:", 0) == 0)
+            return badInput("--from " + from + ": " + r.id + " " + i.image + " was judged against an approved " +
+                            "image of its device class (" + i.reference + "), which a baseline file does not " +
+                            "replace: accept it with cavity baselines approve --from " + from + " --why ...");
+        CAVITY_TRY(judgedPixels(i.newExact, i.digest, from));
+        const fs::path target = fs::path("images") / r.key / (i.image + fs::path(i.newExact).extension().string());
+        writes.push_back({i.newExact, target});
+        std::ostringstream line;
+        line << "updated " << (fs::path(root) / target).string() << "  (from " << r.id;
+        if (i.metrics)
+            line << ": max abs " << i.metrics->maxAbs << ", RMSE " << i.metrics->rmse << ", SSIM " << i.metrics->ssim;
+        else
+            line << ": new baseline";
+        said.push_back(line.str() + ")");
+    }
+    return {};
+}
+
+// Whether two configurations of one key rendered the same images.
+bool sameImages(const gate::ConfigResult& a, const gate::ConfigResult& b) {
+    if (a.images.size() != b.images.size()) return false;
+    for (size_t i = 0; i < a.images.size(); ++i)
+        if (a.images[i].image != b.images[i].image || a.images[i].digest != b.images[i].digest) return false;
+    return true;
+}
+
 int updateCommand(const std::vector<std::string>& argv) {
     std::string from = "out/gate", filterText, root;
     auto parsed = parseFlags(updateSpec(), std::vector<std::string>(argv.begin() + 1, argv.end()));
@@ -244,36 +281,22 @@ int updateCommand(const std::vector<std::string>& argv) {
     if (!sources) return fail("cavity baselines update", sources.error());
     // One baseline key is shared by every API and stage: take the first
     // selected configuration of each key.
+    std::map<std::string, const gate::ConfigResult*> taken;   // key -> the configuration it took
+    std::vector<std::string> apart;   // configurations whose images differ from the one taken for their key
     std::set<std::string> done;
     std::vector<gate::BaselineWrite> writes;
     std::vector<std::string> said;
     const bool takeChanged = !sources->empty();
     for (const auto& r : run->results) {
-        if (!selectedForUpdate(r, filter, takeChanged) || !r.error.empty() || done.count(r.key)) continue;
-        done.insert(r.key);
-        for (const auto& i : r.images) {
-            // A selected configuration rewrites the images that failed (all of
-            // them when chosen by --filter): passing ones keep their bytes.
-            if (!filter && i.passed() && !(takeChanged && i.changed())) continue;
-            // Judged against an approved image of the device's class: the gate
-            // compares with that reference before any baseline file, so writing
-            // one would change nothing the next gate sees.
-            if (i.baseline.rfind("store:", 0) == 0)
-                return fail("cavity baselines update",
-                            badInput("--from " + from + ": " + r.id + " " + i.image + " was judged against an approved " +
-                                     "image of its device class (" + i.reference + "), which a baseline file does not " +
-                                     "replace: accept it with cavity baselines approve --from " + from + " --why ..."));
-            if (auto st = judgedPixels(i.newExact, i.digest, from); !st) return fail("cavity baselines update", st.error());
-            const fs::path target = fs::path("images") / r.key / (i.image + fs::path(i.newExact).extension().string());
-            writes.push_back({i.newExact, target});
-            std::ostringstream line;
-            line << "updated " << (fs::path(root) / target).string() << "  (from " << r.id;
-            if (i.metrics)
-                line << ": max abs " << i.metrics->maxAbs << ", RMSE " << i.metrics->rmse << ", SSIM " << i.metrics->ssim;
-            else
-                line << ": new baseline";
-            said.push_back(line.str() + ")");
+        if (!selectedForUpdate(r, filter, takeChanged) || !r.error.empty()) continue;
+        if (done.count(r.key)) {
+            if (!sameImages(r, *taken.at(r.key))) apart.push_back(r.id + " (the baseline takes " + taken.at(r.key)->id + "'s)");
+            continue;
         }
+        done.insert(r.key);
+        taken[r.key] = &r;
+        if (auto st = addWrites(r, filter.has_value(), takeChanged, from, root, writes, said); !st)
+            return fail("cavity baselines update", st.error());
     }
     if (filter && std::none_of(run->results.begin(), run->results.end(),
                                [&](const gate::ConfigResult& r) { return std::regex_search(r.id, *filter); }))
@@ -286,6 +309,15 @@ int updateCommand(const std::vector<std::string>& argv) {
     if (auto st = copyKernelSources(*sources, *run); !st) return fail("cavity baselines update", st.error());
     const size_t changed = writes.size();
     std::cout << changed << " baseline files updated\n";
+    // Images of one key that differ between APIs or stages are judged against
+    // the one taken by tolerance; past it, updating again only flips the file
+    // between them. Approvals are per API and stage.
+    if (!apart.empty())
+        std::cout << "note: " << apart.size() << " selected configuration" << (apart.size() == 1 ? "" : "s")
+                  << " rendered other images than the one their shared baseline took, e.g. " << apart[0]
+                  << ": if the next gate fails them, accept each API's and stage's images by digest with `cavity "
+                     "baselines approve --from "
+                  << from << " --why ...` instead\n";
     if (const std::string hint = budgetOnlyHint(*run, filter.has_value(), from, root); !hint.empty()) std::cout << hint << "\n";
     return 0;
 }

@@ -261,6 +261,24 @@ class ShardProtocols(Base):
         self.assertEqual(sorted(os.listdir(merged)), ["gate.json", "images", "index.html", "junit.xml",
                                                        "status.json", "summary.md"])
 
+    def test_update_says_when_one_baseline_cannot_hold_both_apis(self):
+        # GL and Vulkan share a baseline file; where they rendered different
+        # images, updating both took GL's and the next gate failed Vulkan,
+        # whose update then failed GL: update says to approve by digest.
+        g = os.path.join(self.tmp, "g")
+        p = gate("--filter", TWO, "--retries", "0", "--out", g, "--store", os.path.join(self.tmp, "no_store"),
+                 env={"CAVITY_TEST_FLAKY": "/vk/compute$"})
+        self.assertEqual(p.returncode, 1, p.stdout + p.stderr)
+        for args, note in (([], False), (["--filter", TWO], True)):
+            base = os.path.join(self.tmp, "baselines" + str(note))
+            shutil.copytree(os.path.join(SOURCE, "baselines"), base)
+            p = run([CAVITY, "baselines", "update", "--from", g, "--baselines", base, *args])
+            self.assertEqual(p.returncode, 0, p.stderr)
+            self.assertEqual("note: 1 selected configuration rendered other images" in p.stdout, note, p.stdout)
+            if note:
+                self.assertIn(f"e.g. {VK} (the baseline takes {GL}'s)", p.stdout)
+                self.assertIn(f"cavity baselines approve --from {g}", p.stdout)
+
     def test_judge_refuses_a_lost_shard_unless_told(self):
         # Shard 1 of 2 alone is half a verdict: refused, nothing written;
         # named with --shards it is judged; a wrong name is refused.
