@@ -189,18 +189,20 @@ int baselinesCommand(const std::vector<std::string>& argv) {
 
 namespace {
 
-// A filter that chose only configurations that errored accepts nothing:
+// A selection of only configurations that errored (a filter's, or without
+// one every failure: a kernel that does not compile) accepts nothing:
 // "0 baseline files updated" would read as if they were accepted.
 Status onlyErrored(const gate::GateRun& run, const std::optional<std::regex>& filter, const std::string& filterText,
-                   bool nothingWritten) {
-    if (!filter || !nothingWritten) return {};
+                   const std::string& from, bool nothingWritten) {
+    if (!nothingWritten) return {};
     std::vector<std::string> errored;
     for (const auto& r : run.results)
-        if (std::regex_search(r.id, *filter) && !r.error.empty()) errored.push_back(r.id + " (" + r.error.substr(0, 80) + ")");
+        if ((filter ? std::regex_search(r.id, *filter) : r.verdict() != "pass") && !r.error.empty())
+            errored.push_back(r.id + " (" + r.error.substr(0, 80) + ")");
     if (errored.empty()) return {};
-    return badInput("--filter " + filterText + ": " + std::to_string(errored.size()) +
+    return badInput((filter ? "--filter " + filterText : "--from " + from) + ": " + std::to_string(errored.size()) +
                     " selected configurations rendered no image, e.g. " + errored[0] +
-                    "; nothing updated, the baselines left as they were");
+                    "; nothing updated, the baselines left as they were (mend the error and gate again)");
 }
 
 // Without a filter, what failed the gate: an expected failure or a known
@@ -302,7 +304,7 @@ int updateCommand(const std::vector<std::string>& argv) {
                                [&](const gate::ConfigResult& r) { return std::regex_search(r.id, *filter); }))
         return fail("cavity baselines update", badInput("--filter " + filterText + ": matches no configuration of " + from +
                                                         " (nothing updated, the baselines left as they were)"));
-    if (auto st = onlyErrored(*run, filter, filterText, writes.empty()); !st) return fail("cavity baselines update", st.error());
+    if (auto st = onlyErrored(*run, filter, filterText, from, writes.empty()); !st) return fail("cavity baselines update", st.error());
     // All or nothing (harness/gate/baseline_update.h).
     if (auto st = gate::applyBaselineUpdate(root, writes); !st) return fail("cavity baselines update", st.error());
     for (const auto& line : said) std::cout << line << "\n";

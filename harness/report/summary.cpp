@@ -265,8 +265,11 @@ std::string summaryMarkdown(const GateRun& run, const std::string& reportUrl) {
         accept = std::string(byFile ? accept + " (images judged against the stored baselines) and " : "") +
                  "`cavity baselines approve " + acceptArgs(run) + " --why ...` (images judged against a device class's "
                  "approved references)";
-    lines.push_back("[Full report](" + reportUrl + "): every configuration with its images and heat-maps. Accept intended "
-                    "changes with " + accept + ".");
+    // Configurations that rendered no image (a kernel that does not compile)
+    // have nothing to accept: the fix is in the source.
+    std::string after = ". Accept intended changes with " + accept + ".";
+    if (!byFile && !byApproval) after = ".";
+    lines.push_back("[Full report](" + reportUrl + "): every configuration with its images and heat-maps" + after);
     std::ostringstream m;
     for (const auto& l : lines) m << l << "\n";
     return m.str();
