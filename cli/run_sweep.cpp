@@ -153,7 +153,8 @@ Result<std::vector<double>> paramValues(const std::string& flag, const std::stri
     for (const auto& item : items) {
         CAVITY_ASSIGN(double x, kernels::parseValue(decl, item));
         if (std::find(values.begin(), values.end(), x) != values.end())
-            return badInput(flag + " '" + v + "': " + item + " is a value given twice");
+            return badInput(flag + " '" + v + "': " + item + " is a value given twice" +
+                            (kernels::valueText(decl, x) == item ? "" : " (the shader's 32-bit float of it is " + kernels::valueText(decl, x) + ")"));
         values.push_back(x);
     }
     return values;

@@ -253,10 +253,19 @@ Result<double> parseValue(const ParamDecl& p, const std::string& text) {
     // configuration n16 and n10 while the command line said something else.
     if (isIntegral(p.type) && text.find_first_not_of("-0123456789") != std::string::npos)
         return badInput("--" + p.name + " '" + text + "': must be " + allowedValues(p) + ", written in digits");
-    // -0 is 0: one configuration, one id.
-    if (v == 0) v = 0;
     CAVITY_TRY(checkValue(p, v));
-    return v;
+    return canonicalValue(p, v);
+}
+
+double canonicalValue(const ParamDecl& p, double v) {
+    if (v == 0) return 0;
+    if (p.type != ParamType::Float || !std::isfinite(v) || std::fabs(v) > double(std::numeric_limits<float>::max()))
+        return v;
+    char buf[64];
+    const auto r = std::to_chars(buf, buf + sizeof buf, float(v));
+    double canonical = v;
+    std::from_chars(buf, r.ptr, canonical);
+    return canonical;
 }
 
 std::string allowedValues(const ParamDecl& p) {

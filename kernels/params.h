@@ -68,6 +68,12 @@ KernelParam use(const std::string& name, double def, std::string note);
 
 using ParamValues = std::map<std::string, double>;
 
+// The value a checked parameter value stands for: a float's as the shader
+// gets it, a 32-bit float, written back as the shortest decimal that reads
+// as that float (0.50000001 is 0.5, 0.6 stays 0.6); -0 as 0. Values the
+// shader cannot tell apart are then one configuration, with one id.
+double canonicalValue(const ParamDecl& p, double v);
+
 // The one parse of a parameter's text: a number (an integer for Int and Bool),
 // or an Enum choice's name; checked against the range. The message names the
 // flag, the value and what is allowed: "--samples 300: must be an integer in 1..256 (samples)".

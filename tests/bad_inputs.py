@@ -166,6 +166,8 @@ CASES = [
     # A kernel parameter of integer type is written in digits (16.0 named n16).
     Case("run-int-param-decimal", "cavity", ["run", "--samples", "16.0", "--list"], ["--samples '16.0'", "in digits"]),
     Case("run-int-param-exponent", "cavity", ["run", "--samples", "1e1", "--list"], ["--samples '1e1'", "in digits"]),
+    Case("run-float-param-same-32-bit", "cavity", ["run", "--radius", "0.5,0.50000001", "--list"],
+         ["--radius", "0.50000001 is a value given twice", "32-bit float of it is 0.5"]),
     # Output files that are folders are found before anything is measured.
     Case("run-results-json-folder", "cavity", RUN[:-1] + ["prev"], ["--out prev", "prev/results.json", "is a folder"],
          setup=replace_with_folder("prev/results.json")),

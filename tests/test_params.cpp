@@ -9,6 +9,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <string>
+
 #include <map>
 #include <set>
 
@@ -81,6 +84,23 @@ TEST(Params, OneParseMakesAnIntegerAnInteger) {
     const auto& scene = *kernels::findParam("scene");
     EXPECT_EQ(*kernels::parseValue(scene, "slats"), 1.0);
     EXPECT_FALSE(kernels::parseValue(scene, "kitchen").ok());
+}
+
+// Values the shader cannot tell apart (its uniforms are 32-bit floats) are
+// one value, so one configuration and one id; decimals stay as written.
+TEST(Params, ValuesAreTheShadersThirtyTwoBitFloats) {
+    const auto& radius = *kernels::findParam("radius");
+    EXPECT_EQ(*kernels::parseValue(radius, "0.50000001"), 0.5);
+    EXPECT_EQ(*kernels::parseValue(radius, "0.60000001"), 0.6);
+    for (const char* kept : {"0.6", "0.03", "1.5", "0.1", "2"})
+        EXPECT_EQ(*kernels::parseValue(radius, kept), std::stod(kept)) << kept;
+    EXPECT_EQ(kernels::valueText(radius, *kernels::parseValue(radius, "0.30000001")), "0.3");
+    const auto& bias = *kernels::findParam("bias");
+    const double zero = *kernels::parseValue(bias, "-0");
+    EXPECT_FALSE(std::signbit(zero)) << "-0 names the configuration of 0";
+    EXPECT_EQ(kernels::valueText(bias, zero), "0");
+    for (const char* bad : {"16.0", "1e1", "+16"})
+        EXPECT_FALSE(kernels::parseValue(*kernels::findParam("samples"), bad).ok()) << bad << ": an integer in digits";
 }
 
 TEST(Params, SetParamRejectsAnOutOfRangeValueAtParseTime) {

@@ -115,7 +115,7 @@ Result<std::vector<std::pair<std::string, std::vector<double>>>> parseParams(con
             } else if (v.is_boolean() && decl.type == kernels::ParamType::Bool) {   // as kernel.toml takes it
                 list.push_back(v.get<bool>() ? 1 : 0);
             } else if (v.is_number()) {
-                list.push_back(v.get<double>());
+                list.push_back(kernels::canonicalValue(decl, v.get<double>()));
             } else {
                 return badInput(path + ": " + gw + ".params." + name + " has " + core::jsonText(v) + ": must be " +
                                 kernels::allowedValues(decl));
