@@ -37,6 +37,11 @@ Result<std::string> sourceKey(const std::string& name) {
     for (const auto& [key, text] : embeddedSources()) keys.push_back(key);
     for (const auto& p : packages())
         if (!p.builtIn) keys.insert(keys.end(), p.sourceKeys.begin(), p.sourceKeys.end());
+    // Only GLSL is a kernel source: a package's kernel.toml is embedded
+    // beside it, but --kernel-source replaces shader text alone.
+    keys.erase(std::remove_if(keys.begin(), keys.end(),
+                              [](const std::string& k) { return k.size() < 5 || k.compare(k.size() - 5, 5, ".glsl") != 0; }),
+               keys.end());
     std::vector<std::string> found;
     for (const auto& key : keys)
         if (key.size() > name.size() && key.compare(key.size() - name.size(), name.size(), name) == 0 &&

@@ -127,6 +127,18 @@ def truncate_baseline(tmp):
         f.write(data[: len(data) // 2])
 
 
+def matrix_param_infinity(tmp):
+    """baselines/matrices.json with a matrix `inf` whose radius is a bare Infinity (not JSON)."""
+    path = os.path.join(tmp, "baselines", "matrices.json")
+    with open(path) as f:
+        doc = json.load(f)
+    doc["inf"] = {"description": "d", "groups": [{"scenes": ["corner"], "kernels": ["alchemy"], "samples": [8],
+                                                 "blurs": [4], "resolutions": ["full"], "sizes": ["64x36"],
+                                                 "apis": ["vk"], "stages": ["compute"], "params": {"radius": [0.5]}}]}
+    with open(path, "w") as f:
+        f.write(json.dumps(doc).replace('"radius": [0.5]', '"radius": [Infinity]'))
+
+
 def manifest_tolerance_1e999(doc):
     text = json.dumps(doc, indent=1)
     return text.replace('"max_abs": 0.5', '"max_abs": 1e999', 1) if '"max_abs": 0.5' in text else \
@@ -168,6 +180,12 @@ CASES = [
     Case("run-int-param-exponent", "cavity", ["run", "--samples", "1e1", "--list"], ["--samples '1e1'", "in digits"]),
     Case("run-float-param-same-32-bit", "cavity", ["run", "--radius", "0.5,0.50000001", "--list"],
          ["--radius", "0.50000001 is a value given twice", "32-bit float of it is 0.5"]),
+    # Only a .glsl file is a kernel source; the packages' kernel.toml were offered as candidates.
+    Case("kernel-source-toml", "cavity", ["run", "--kernel-source", "kernel.toml=x.glsl", "--list"],
+         ["--kernel-source kernel.toml", "no kernel source of that name", "a .glsl file"],
+         setup=write("x.glsl", "void cavity_main(ivec2 p) {}\n")),
+    Case("matrix-param-infinity", "cavity", ["gate", "--matrix", "inf", "--baselines", "baselines", "--list"],
+         ["matrices.json", "radius has null (or a NaN or Infinity)"], setup=matrix_param_infinity),
     # Output files that are folders are found before anything is measured.
     Case("run-results-json-folder", "cavity", RUN[:-1] + ["prev"], ["--out prev", "prev/results.json", "is a folder"],
          setup=replace_with_folder("prev/results.json")),

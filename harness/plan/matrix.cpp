@@ -76,6 +76,10 @@ std::vector<RunConfig> Matrix::expand() const {
 
 namespace {
 
+// A value as a message names it: a bare NaN or Infinity reads as null
+// (core/json_file.h), so null is named as all three.
+std::string shownValue(const nlohmann::json& v) { return v.is_null() ? "null (or a NaN or Infinity)" : core::jsonText(v); }
+
 // "params": {"radius": [2, 4]}: kernel parameters other than samples and
 // blur (which have keys of their own), each a list of numbers (an enum's
 // also of its choices' names); their ranges
@@ -109,7 +113,7 @@ Result<std::vector<std::pair<std::string, std::vector<double>>>> parseParams(con
             if (v.is_string() && decl.type == kernels::ParamType::Enum) {
                 auto parsed = kernels::parseValue(decl, v.get<std::string>());
                 if (!parsed)
-                    return badInput(path + ": " + gw + ".params." + name + " has " + core::jsonText(v) + ": must be " +
+                    return badInput(path + ": " + gw + ".params." + name + " has " + shownValue(v) + ": must be " +
                                     kernels::allowedValues(decl));
                 list.push_back(*parsed);
             } else if (v.is_boolean() && decl.type == kernels::ParamType::Bool) {   // as kernel.toml takes it
@@ -117,13 +121,13 @@ Result<std::vector<std::pair<std::string, std::vector<double>>>> parseParams(con
             } else if (v.is_number()) {
                 list.push_back(kernels::canonicalValue(decl, v.get<double>()));
             } else {
-                return badInput(path + ": " + gw + ".params." + name + " has " + core::jsonText(v) + ": must be " +
+                return badInput(path + ": " + gw + ".params." + name + " has " + shownValue(v) + ": must be " +
                                 kernels::allowedValues(decl));
             }
             // [0, "none"] or [true, 1]: one value written twice, which
             // would run its configurations twice under one id.
             if (std::count(list.begin(), list.end(), list.back()) > 1)
-                return badInput(path + ": " + gw + ".params." + name + " has " + core::jsonText(v) +
+                return badInput(path + ": " + gw + ".params." + name + " has " + shownValue(v) +
                                 " twice (another entry names the same value)");
         }
         out.emplace_back(name, std::move(list));
@@ -142,7 +146,7 @@ Result<MatrixGroup> parseGroup(const std::string& path, const std::string& gw, c
         if (g[key].empty()) return badInput(path + ": " + gw + "." + key + " is empty (a non-empty list is expected)");
         for (const auto& v : g[key])
             if (std::count(g[key].begin(), g[key].end(), v) > 1)
-                return badInput(path + ": " + gw + "." + key + " has " + core::jsonText(v) + " twice");
+                return badInput(path + ": " + gw + "." + key + " has " + shownValue(v) + " twice");
     }
     MatrixGroup grp;
     CAVITY_ASSIGN(const JsonObject gf, JsonObject::of(path, gw, g));
