@@ -66,7 +66,8 @@ const flags::CommandSpec& renderSpec() {
         "",
         "",
         "\nExit codes: 0 every configuration rendered, 1 a pass wrote NaN or infinity (the folder is written), 2 bad "
-        "input (nothing written), 3 a backend did not start, 4 a configuration failed on the GPU; with --store, 5 "
+        "input (nothing written; where it is a configuration's own, a kernel that does not compile, the folder is "
+        "written and its manifest names it), 3 a backend did not start, 4 a configuration failed on the GPU; with --store, 5 "
         "the image store cannot be reached or refuses, 6 a stored object does not have its digest (docs/store.md).",
         {
             "cavity_render --matrix gpu --out out/render",
