@@ -14,6 +14,7 @@ namespace cavity::reference {
 namespace screen {   // refs_screen_space.cpp
 std::array<float, 4> mulPoint(const float* m, Vec3 v, float w);
 Vec3 texel3(const HostImage& img, int x, int y);
+bool halfTexelRayHit(const kernels::FrameUniforms& f, int x, int y, Vec3 p, Vec3 n, Vec3& hit);
 }  // namespace screen
 
 Result<std::vector<HostImage>> depthFromPositionHalf(const Context& ctx) {
@@ -29,16 +30,8 @@ Result<std::vector<HostImage>> depthFromPositionHalf(const Context& ctx) {
                 continue;
             }
             const Vec3 p = screen::texel3(position, x, y), n = screen::texel3(normal, x, y);
-            Vec3 surface = p;
-            const float ndcX = (float(x) + 0.5f) * f.invSize[0] * 2.0f - 1.0f;
-            const float ndcY = (float(y) + 0.5f) * f.invSize[1] * 2.0f - 1.0f;
-            const Vec3 ray{ndcX * f.camera[0], -ndcY * f.camera[1], -1.0f};
-            const float facing = dot(n, ray);
-            if (lengthSquared(n) > 0.0f && facing < 0.0f) {
-                const float t = dot(n, p) * portableReciprocal(facing);
-                const float moved = std::fabs(t + p.z);
-                if (t > 0.0f && moved <= 0.05f * -p.z) surface = ray * t;
-            }
+            Vec3 surface = p, hit;
+            if (screen::halfTexelRayHit(f, x, y, p, n, hit)) surface = hit;
             const auto clip = screen::mulPoint(f.proj, surface, 1.0f);
             out[0].at(x, y) = clip[2] * portableReciprocal(clip[3]);
         }

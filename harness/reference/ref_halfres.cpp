@@ -20,6 +20,7 @@ namespace cavity::reference {
 
 namespace screen {   // refs_screen_space.cpp
 Vec3 texel3(const HostImage& img, int x, int y);
+bool halfTexelRayHit(const kernels::FrameUniforms& f, int x, int y, Vec3 p, Vec3 n, Vec3& hit);
 Status requireInput(const Context& ctx, size_t i, int width, int height, int minChannels);
 }  // namespace screen
 
@@ -27,20 +28,12 @@ namespace {
 
 float blockDepth(float w) { return isBackground(w) ? 3.0e38f : w; }
 
-// include/downsample.glsl's halfRayDepth in its exact operations: the copied
-// texel's depth moved onto half texel (x, y)'s own centre ray.
+// include/downsample.glsl's halfRayDepth: the copied texel's depth moved
+// onto half texel (x, y)'s own centre ray.
 float halfRayDepth(const kernels::FrameUniforms& f, int x, int y, Vec3 p, float w, Vec3 n) {
     if (isBackground(w)) return w;
-    const float ndcX = (float(x) + 0.5f) * f.invSize[0] * 2.0f - 1.0f;
-    const float ndcY = (float(y) + 0.5f) * f.invSize[1] * 2.0f - 1.0f;
-    const Vec3 ray{ndcX * f.camera[0], -ndcY * f.camera[1], -1.0f};
-    const float facing = dot(n, ray);
-    if (lengthSquared(n) > 0.0f && facing < 0.0f) {
-        const float t = dot(n, p) * portableReciprocal(facing);
-        const float moved = std::fabs(t + p.z);
-        if (t > 0.0f && moved <= 0.05f * -p.z) return t;
-    }
-    return w;
+    Vec3 hit;
+    return screen::halfTexelRayHit(f, x, y, p, n, hit) ? -hit.z : w;
 }
 
 }  // namespace

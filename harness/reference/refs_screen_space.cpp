@@ -130,6 +130,23 @@ float smoothstep01(float x) {
 
 Vec3 texel3(const HostImage& img, int x, int y) { return {img.at(x, y, 0), img.at(x, y, 1), img.at(x, y, 2)}; }
 
+// include/screen_space.glsl's halfTexelRayHit in its exact operations.
+bool halfTexelRayHit(const kernels::FrameUniforms& f, int x, int y, Vec3 p, Vec3 n, Vec3& hit) {
+    const float ndcX = (float(x) + 0.5f) * f.invSize[0] * 2.0f - 1.0f;
+    const float ndcY = (float(y) + 0.5f) * f.invSize[1] * 2.0f - 1.0f;
+    const Vec3 ray{ndcX * f.camera[0], -ndcY * f.camera[1], -1.0f};
+    const float facing = dot(n, ray);
+    if (lengthSquared(n) > 0.0f && facing < 0.0f) {
+        const float t = dot(n, p) * portableReciprocal(facing);
+        const float moved = std::fabs(t + p.z);
+        if (t > 0.0f && moved <= 0.05f * -p.z) {
+            hit = ray * t;
+            return true;
+        }
+    }
+    return false;
+}
+
 Status requireInput(const Context& ctx, size_t i, int width, int height, int minChannels) {
     const HostImage& in = *ctx.inputs.at(i);
     const std::string what = "reference " + ctx.kernel.name + ": input '" + ctx.kernel.inputs[i].name + "' ";

@@ -39,14 +39,7 @@ ivec2 downsamplePick(ivec2 pixel) {
 // to the ray) keeps the copied depth.
 float halfRayDepth(ivec2 pixel, vec4 p, vec3 n) {
     if (isBackground(p.w)) return p.w;
-    EXACT vec2 ndc = (vec2(pixel) + 0.5) * frame.invSize * 2.0 - 1.0;
-    EXACT vec3 ray = vec3(ndc.x * frame.camera.x, -ndc.y * frame.camera.y, -1.0);
-    EXACT float facing = orderedDot(n, ray);
-    if (lengthSquared(n) > 0.0 && facing < 0.0) {
-        // ray.z = -1, so t is the linear depth of the hit.
-        EXACT float t = orderedDot(n, p.xyz) * portableReciprocal(facing);
-        EXACT float moved = abs(t + p.z);
-        if (t > 0.0 && moved <= 0.05 * -p.z) return t;
-    }
-    return p.w;
+    vec3 hit;
+    // -hit.z is t exactly (ray.z = -1).
+    return halfTexelRayHit(pixel, p.xyz, n, hit) ? -hit.z : p.w;
 }

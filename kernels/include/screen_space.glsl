@@ -106,3 +106,27 @@ bool texelInside(ivec2 texel) {
 float sampleHash(ivec2 pixel, int i) {
     return hashToUnit(pcgHash(pcgHash(uint(pixel.x) + uint(pixel.y) * 65521u) + uint(i)));
 }
+
+// Where half texel `pixel`'s own centre ray meets the tangent plane of the
+// full texel (position p, normal n) the half texel copied; false, leaving
+// `hit` unset, where the plane faces away or is so near edge-on that the
+// hit moves the depth by over a twentieth (then the copy's own point
+// stands). frame is the half frame. The two half-resolution depths put the
+// copied point back on the ray the kernels rebuild positions on: the
+// hardware depth (depth_from_position_half.glsl) and the pyramid's linear
+// depth (include/downsample.glsl).
+bool halfTexelRayHit(ivec2 pixel, vec3 p, vec3 n, out vec3 hit) {
+    EXACT vec2 ndc = (vec2(pixel) + 0.5) * frame.invSize * 2.0 - 1.0;
+    EXACT vec3 ray = vec3(ndc.x * frame.camera.x, -ndc.y * frame.camera.y, -1.0);
+    EXACT float facing = orderedDot(n, ray);
+    if (lengthSquared(n) > 0.0 && facing < 0.0) {
+        // ray.z = -1, so t is the linear depth of the hit.
+        EXACT float t = orderedDot(n, p) * portableReciprocal(facing);
+        EXACT float moved = abs(t + p.z);
+        if (t > 0.0 && moved <= 0.05 * -p.z) {
+            hit = ray * t;
+            return true;
+        }
+    }
+    return false;
+}

@@ -27,15 +27,8 @@ void cavity_main(ivec2 pixel) {
     float depth = 1.0;
     if (!isBackground(p.w)) {
         EXACT vec3 surface = p.xyz;
-        EXACT vec2 ndc = (vec2(pixel) + 0.5) * frame.invSize * 2.0 - 1.0;
-        EXACT vec3 ray = vec3(ndc.x * frame.camera.x, -ndc.y * frame.camera.y, -1.0);
-        EXACT float facing = orderedDot(n, ray);
-        if (lengthSquared(n) > 0.0 && facing < 0.0) {
-            // ray.z = -1, so t is the linear depth of the hit.
-            EXACT float t = orderedDot(n, p.xyz) * portableReciprocal(facing);
-            EXACT float moved = abs(t + p.z);
-            if (t > 0.0 && moved <= 0.05 * -p.z) surface = ray * t;
-        }
+        vec3 hit;
+        if (halfTexelRayHit(pixel, p.xyz, n, hit)) surface = hit;
         EXACT vec4 clip = mulPoint(frame.proj, surface, 1.0);
         EXACT float d = clip.z * portableReciprocal(clip.w);
         depth = d;
