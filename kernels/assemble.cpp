@@ -25,35 +25,30 @@ const std::string* sourceFile(const std::string& name) {
     return p ? &p->text : nullptr;
 }
 
+static bool isGlsl(const std::string& f) { return f.size() > 5 && f.compare(f.size() - 5, 5, ".glsl") == 0; }
+
 Result<std::string> sourceKey(const std::string& name) {
     // The names the reports print are taken too: "kernels/<key>" for an
     // embedded source, the path on disk of a package's own file.
     if (name.rfind("kernels/", 0) == 0 && embeddedSources().count(name.substr(8))) return sourceKey(name.substr(8));
     if (const std::string key = packageKeyOfFile(name); !key.empty()) return key;
-    if (sourceFile(name) && name.size() > 5 && name.compare(name.size() - 5, 5, ".glsl") == 0) return name;
+    if (sourceFile(name) && isGlsl(name)) return name;
     // A file name alone: the one source of that name, wherever its package
     // keeps it ("ssao_alchemy.glsl" for "ao/alchemy/ssao_alchemy.glsl").
     std::vector<std::string> keys;
     for (const auto& [key, text] : embeddedSources()) keys.push_back(key);
     for (const auto& p : packages())
         if (!p.builtIn) keys.insert(keys.end(), p.sourceKeys.begin(), p.sourceKeys.end());
-    // Only GLSL is a kernel source: a package's kernel.toml is embedded
-    // beside it, but --kernel-source replaces shader text alone.
-    keys.erase(std::remove_if(keys.begin(), keys.end(),
-                              [](const std::string& k) { return k.size() < 5 || k.compare(k.size() - 5, 5, ".glsl") != 0; }),
-               keys.end());
-    std::vector<std::string> found;
+    std::vector<std::string> found;   // GLSL alone: --kernel-source replaces shader text, not a kernel.toml
     for (const auto& key : keys)
-        if (key.size() > name.size() && key.compare(key.size() - name.size(), name.size(), name) == 0 &&
+        if (isGlsl(key) && key.size() > name.size() && key.compare(key.size() - name.size(), name.size(), name) == 0 &&
             key[key.size() - name.size() - 1] == '/' && name.find('/') == std::string::npos)
             found.push_back(key);
     // A bare name always meant a kernel's own file; the shared includes were
     // named with their folder ("include/composite.glsl").
     if (found.size() > 1)
-        found.erase(std::remove_if(found.begin(), found.end(),
-                                   [](const std::string& k) { return k.rfind("include/", 0) == 0; }),
-                    found.end());
-    if (found.size() == 1 && found[0].size() > 5 && found[0].compare(found[0].size() - 5, 5, ".glsl") == 0) return found[0];
+        std::erase_if(found, [](const std::string& k) { return k.rfind("include/", 0) == 0; });
+    if (found.size() == 1) return found[0];
     if (found.size() > 1) {
         std::string list;
         for (const auto& f : found) list += (list.empty() ? "" : ", ") + f;
