@@ -63,16 +63,8 @@ std::string budgetOnlyHint(const gate::GateRun& run, bool filtered, const std::s
     // budgets.json of these baselines.
     const std::string budgets = (fs::path(root) / "budgets.json").string();
     std::string pattern = device;
-    const auto lower = [](std::string t) {
-        std::transform(t.begin(), t.end(), t.begin(), [](unsigned char ch) { return char(std::tolower(ch)); });
-        return t;
-    };
     if (const auto loaded = gate::loadBudgets(budgets))
-        for (const auto& d : loaded->devices)
-            if (lower(device).find(lower(d.pattern)) != std::string::npos) {
-                pattern = d.pattern;
-                break;
-            }
+        if (const auto* entry = loaded->entryFor(device)) pattern = entry->pattern;
     return std::to_string(budgetOnly) + " configurations failed on time budgets only (every image passed): budgets are " +
            "not images; update them with `python3 scripts/update_budgets.py " + (fs::path(from) / "gate.json").string() +
            " --pattern '" + pattern + "' --budgets " + budgets + "` (docs/gate.md, \"Time budgets\")";
@@ -285,18 +277,15 @@ int updateCommand(const std::vector<std::string>& argv) {
     // selected configuration of each key.
     std::map<std::string, const gate::ConfigResult*> taken;   // key -> the configuration it took
     std::vector<std::string> apart;   // configurations whose images differ from the one taken for their key
-    std::set<std::string> done;
     std::vector<gate::BaselineWrite> writes;
     std::vector<std::string> said;
     const bool takeChanged = !sources->empty();
     for (const auto& r : run->results) {
         if (!selectedForUpdate(r, filter, takeChanged) || !r.error.empty()) continue;
-        if (done.count(r.key)) {
-            if (!sameImages(r, *taken.at(r.key))) apart.push_back(r.id + " (the baseline takes " + taken.at(r.key)->id + "'s)");
+        if (const auto [at, first] = taken.emplace(r.key, &r); !first) {
+            if (!sameImages(r, *at->second)) apart.push_back(r.id + " (the baseline takes " + at->second->id + "'s)");
             continue;
         }
-        done.insert(r.key);
-        taken[r.key] = &r;
         if (auto st = addWrites(r, filter.has_value(), takeChanged, from, root, writes, said); !st)
             return fail("cavity baselines update", st.error());
     }

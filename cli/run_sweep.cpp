@@ -152,9 +152,11 @@ Result<std::vector<double>> paramValues(const std::string& flag, const std::stri
     std::vector<double> values;
     for (const auto& item : items) {
         CAVITY_ASSIGN(double x, kernels::parseValue(decl, item));
-        if (std::find(values.begin(), values.end(), x) != values.end())
+        if (std::find(values.begin(), values.end(), x) != values.end()) {
+            const std::string shader = kernels::valueText(decl, x);
             return badInput(flag + " '" + v + "': " + item + " is a value given twice" +
-                            (kernels::valueText(decl, x) == item ? "" : " (the shader's 32-bit float of it is " + kernels::valueText(decl, x) + ")"));
+                            (shader == item ? "" : " (the shader's 32-bit float of it is " + shader + ")"));
+        }
         values.push_back(x);
     }
     return values;

@@ -144,6 +144,12 @@ std::optional<double> Budgets::find(const std::string& deviceName, const std::st
     return std::nullopt;
 }
 
+const Budgets::Device* Budgets::entryFor(const std::string& deviceName) const {
+    for (const auto& d : devices)
+        if (icontains(deviceName, d.pattern)) return &d;
+    return nullptr;
+}
+
 Result<Budgets> loadBudgets(const std::string& path) {
     CAVITY_ASSIGN(json doc, readJsonFile(path));
     CAVITY_TRY(onlyKeys(path, "the top level", doc, {"version", "devices", "note"}));

@@ -70,6 +70,8 @@ struct Budgets {
     std::vector<Device> devices;
     // The budget of one pass of one configuration on this device, if any.
     std::optional<double> find(const std::string& deviceName, const std::string& id, const std::string& pass) const;
+    // The first entry whose pattern the device's name holds, if any.
+    const Device* entryFor(const std::string& deviceName) const;
 };
 Result<Budgets> loadBudgets(const std::string& path);
 
