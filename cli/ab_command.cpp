@@ -175,7 +175,7 @@ Result<json> mergeRounds(const std::vector<std::string>& files) {
 // this one did not write go (a run of more rounds left more): a kill
 // between the moves leaves every file whole, never the earlier results
 // deleted with nothing in their place.
-Status movedIn(const fs::path& staging, const std::string& out) {
+Status abFilesMovedIn(const fs::path& staging, const std::string& out) {
     std::error_code ec;
     std::vector<fs::path> made;
     for (const auto& e : fs::directory_iterator(staging, ec)) made.push_back(e.path());
@@ -324,7 +324,7 @@ int abCommand(const std::vector<std::string>& argv) {
                                       staging.string()));
     if (auto st = writeJson((staging / "compare.json").string(), compareJson(rows, *sides[0], *sides[1], f->thresholds)); !st)
         return fail(program, st.error());
-    if (auto st = movedIn(staging, f->out); !st) return fail(program, st.error());
+    if (auto st = abFilesMovedIn(staging, f->out); !st) return fail(program, st.error());
     std::cout << compareTable(rows, *sides[0], *sides[1], f->thresholds);
     const bool anySlower = std::any_of(rows.begin(), rows.end(), [](const auto& r) { return r.verdict == "slower"; });
     return f->failOnSlower && anySlower ? 1 : 0;

@@ -117,7 +117,7 @@ void runOnBackend(gpu::Backend& gpu, gpu::Api api, const std::vector<RunConfig>&
 
 // The images are written under a staging folder in --out (staging.h), and
 // move to their places only once every configuration has run.
-Status movedIn(const std::filesystem::path& staging, const std::string& out, const RunOutcome& outcome) {
+Status runFilesMovedIn(const std::filesystem::path& staging, const std::string& out, const RunOutcome& outcome) {
     namespace fs = std::filesystem;
     std::error_code ec;
     for (const auto& r : outcome.runs) {
@@ -234,7 +234,7 @@ int runCommand(const std::vector<std::string>& argv) {
         std::filesystem::remove_all(staging, ec);
         return out.worst;
     }
-    if (auto st = movedIn(staging, s.out, out); !st) return fail(st.error());
+    if (auto st = runFilesMovedIn(staging, s.out, out); !st) return fail(st.error());
     if (auto st = writeResults(s, out, argv); !st) return fail(st.error());
     return out.worst;
 }

@@ -92,7 +92,6 @@ ParamValues withDefaults(const KernelDecl& k, const ParamValues& given) {
 
 namespace {
 
-bool isIntegral(ParamType t) { return t != ParamType::Float; }
 
 }  // namespace
 

@@ -159,7 +159,6 @@ std::string number(double x) {
     return std::string(buf, r.ptr);
 }
 
-bool isIntegral(ParamType t) { return t != ParamType::Float; }
 
 }  // namespace
 

@@ -21,6 +21,9 @@ namespace cavity::kernels {
 
 enum class ParamType { Int, Float, Bool, Enum };
 
+// Int, Bool and Enum are ints in the uniform block; Float is a float.
+inline bool isIntegral(ParamType t) { return t != ParamType::Float; }
+
 struct ParamDecl {
     std::string name;          // the flag (--name), the GLSL field (P.name), the results key
     ParamType type = ParamType::Float;

@@ -4,12 +4,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 namespace cavity::kernels {
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // A latitude-longitude panorama of a clear sky, in view space (level camera,
 // +Y the zenith; include/sky.glsl): u = 0.5 looks along +Z (behind the
@@ -37,12 +36,12 @@ Rgb skyRadiance(double dx, double dy, double dz) {
         c = {(horizon.r + (ground.r - horizon.r) * g) * shade, (horizon.g + (ground.g - horizon.g) * g) * shade,
              (horizon.b + (ground.b - horizon.b) * g) * shade};
     }
-    const double elev = 35.0 * kPi / 180.0, azim = 40.0 * kPi / 180.0;
+    const double elev = 35.0 * std::numbers::pi / 180.0, azim = 40.0 * std::numbers::pi / 180.0;
     const double sx = std::cos(elev) * std::sin(azim), sy = std::sin(elev), sz = std::cos(elev) * std::cos(azim);
     const double cosSun = dx * sx + dy * sy + dz * sz;
     // Disc of 2.5 degrees radius: about 0.006 sr at radiance ~200, a third of
     // what an open upward surface receives, the rest from the sky.
-    if (cosSun > std::cos(2.5 * kPi / 180.0)) c = {c.r + 200.0, c.g + 185.0, c.b + 160.0};
+    if (cosSun > std::cos(2.5 * std::numbers::pi / 180.0)) c = {c.r + 200.0, c.g + 185.0, c.b + 160.0};
     // A soft glow around it.
     const double glow = 0.6 * std::pow(std::max(cosSun, 0.0), 24.0);
     return {c.r + glow, c.g + glow * 0.9, c.b + glow * 0.7};
@@ -53,7 +52,7 @@ Rgb skyRadiance(double dx, double dy, double dz) {
 // The direction at panorama coordinates (u, v); include/sky.glsl's skyUv
 // is its inverse.
 void skyDirection(double u, double v, double& dx, double& dy, double& dz) {
-    const double phi = (u - 0.5) * 2.0 * kPi, theta = v * kPi;
+    const double phi = (u - 0.5) * 2.0 * std::numbers::pi, theta = v * std::numbers::pi;
     dx = std::sin(theta) * std::sin(phi);
     dy = std::cos(theta);
     dz = std::sin(theta) * std::cos(phi);

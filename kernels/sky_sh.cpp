@@ -3,12 +3,9 @@
 #include "screen_space_tables.h"
 
 #include <cmath>
+#include <numbers>
 
 namespace cavity::kernels {
-
-namespace {
-constexpr double kPi = 3.14159265358979323846;
-}  // namespace
 
 // Irradiance / pi of the panorama as 9 spherical-harmonic coefficients
 // (Ramamoorthi & Hanrahan 2001), in the form include/sky.glsl's skyAmbient
@@ -26,7 +23,7 @@ std::vector<float> skySh() {
                 const double u = (x + 0.5) / top.width, v = (y + 0.5) / top.height;
                 double dx, dy, dz;
                 skyDirection(u, v, dx, dy, dz);
-                const double dw = (2 * kPi / top.width) * (kPi / top.height) * std::sin(v * kPi);
+                const double dw = (2 * std::numbers::pi / top.width) * (std::numbers::pi / top.height) * std::sin(v * std::numbers::pi);
                 const double b[9] = {1, dy, dz, dx, dx * dy, dy * dz, 3 * dz * dz - 1, dx * dz, dx * dx - dy * dy};
                 const float* p = &top.pixels[(size_t(y) * top.width + x) * 4];
                 for (int i = 0; i < 9; ++i)

@@ -111,7 +111,7 @@ Result<metrics::Report> readMetrics(const JsonObject& m) {
     return rep;
 }
 
-Result<ImageCheck> readImage(const JsonObject& ij) {
+Result<ImageCheck> readImageCheck(const JsonObject& ij) {
     ImageCheck i;
     CAVITY_ASSIGN(i.image, ij.str("image"));
     CAVITY_ASSIGN(i.digest, ij.str("digest", ""));
@@ -157,7 +157,7 @@ Result<ConfigResult> readResult(const JsonObject& rj) {
     CAVITY_ASSIGN(r.expectedWhy, rj.str("expected_reason", ""));
     CAVITY_ASSIGN(const auto images, rj.objects("images"));
     for (const auto& ij : images) {
-        CAVITY_ASSIGN(auto i, readImage(ij));
+        CAVITY_ASSIGN(auto i, readImageCheck(ij));
         r.images.push_back(std::move(i));
     }
     CAVITY_ASSIGN(const auto timings, rj.objects("timings"));

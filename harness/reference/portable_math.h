@@ -13,6 +13,8 @@
 
 namespace cavity::reference {
 
+constexpr float kPi = 3.14159265f;   // common.glsl's PI
+
 inline float lengthSquared(Vec3 v) { return v.x * v.x + v.y * v.y + v.z * v.z; }
 
 // (cos, sin) of 2 pi turns by quarter-turn reduction and Taylor series;

@@ -12,7 +12,6 @@ namespace cavity::reference {
 
 namespace {
 
-const float kPi = 3.14159265f;
 
 Vec3 xyz(const HostImage& img, int x, int y) { return {img.at(x, y, 0), img.at(x, y, 1), img.at(x, y, 2)}; }
 

@@ -99,7 +99,6 @@ Vec3 octDecode(float px, float py) {
 
 namespace {
 
-const float kPi = 3.14159265f;
 
 using pyramid::findMsb;
 using pyramid::kLogMaxOffset;

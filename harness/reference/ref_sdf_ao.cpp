@@ -70,7 +70,7 @@ Result<std::vector<HostImage>> perPixel(const Context& ctx, Fn ao) {
     return out;
 }
 
-Result<std::vector<HostImage>> classic(const Context& ctx) {
+Result<std::vector<HostImage>> sdfClassic(const Context& ctx) {
     const int n = intParam(ctx, "samples");
     const float R = floatParam(ctx, "radius"), k = floatParam(ctx, "strength");
     return perPixel(ctx, [&](const SdfContext& c, const Surface& s, int, int) {
@@ -85,7 +85,7 @@ Result<std::vector<HostImage>> classic(const Context& ctx) {
     });
 }
 
-Result<std::vector<HostImage>> multiplicative(const Context& ctx) {
+Result<std::vector<HostImage>> sdfMultiplicative(const Context& ctx) {
     const int n = intParam(ctx, "samples");
     const float R = floatParam(ctx, "radius"), k = floatParam(ctx, "strength");
     return perPixel(ctx, [&](const SdfContext& c, const Surface& s, int, int) {
@@ -100,7 +100,7 @@ Result<std::vector<HostImage>> multiplicative(const Context& ctx) {
     });
 }
 
-Result<std::vector<HostImage>> multiscale(const Context& ctx) {
+Result<std::vector<HostImage>> sdfMultiscale(const Context& ctx) {
     const int n = intParam(ctx, "samples");
     const float R = floatParam(ctx, "radius");
     return perPixel(ctx, [&](const SdfContext& c, const Surface& s, int, int) {
@@ -114,7 +114,7 @@ Result<std::vector<HostImage>> multiscale(const Context& ctx) {
     });
 }
 
-Result<std::vector<HostImage>> jittered(const Context& ctx) {
+Result<std::vector<HostImage>> sdfJittered(const Context& ctx) {
     const int n = intParam(ctx, "samples");
     const float R = floatParam(ctx, "radius"), k = floatParam(ctx, "strength");
     return perPixel(ctx, [&](const SdfContext& c, const Surface& s, int x, int y) {
@@ -142,7 +142,7 @@ Vec3 hemisphereDirection(float z, Vec2 cs, Vec3 n, float& cosTheta) {
     return dir;
 }
 
-Result<std::vector<HostImage>> hemisphere(const Context& ctx) {
+Result<std::vector<HostImage>> sdfHemisphere(const Context& ctx) {
     const int n = intParam(ctx, "samples");
     const float R = floatParam(ctx, "radius"), k = floatParam(ctx, "strength");
     return perPixel(ctx, [&](const SdfContext& c, const Surface& s, int x, int y) {
@@ -163,7 +163,7 @@ Result<std::vector<HostImage>> hemisphere(const Context& ctx) {
     });
 }
 
-Result<std::vector<HostImage>> fibonacci(const Context& ctx) {
+Result<std::vector<HostImage>> sdfFibonacci(const Context& ctx) {
     const int n = intParam(ctx, "samples");
     const float R = floatParam(ctx, "radius"), k = floatParam(ctx, "strength");
     return perPixel(ctx, [&](const SdfContext& c, const Surface& s, int x, int y) {
@@ -206,7 +206,7 @@ bool blocked(const SdfContext& c, Vec3 o, Vec3 dir, float reach) {
     return true;
 }
 
-Result<std::vector<HostImage>> groundTruth(const Context& ctx) {
+Result<std::vector<HostImage>> sdfGroundTruth(const Context& ctx) {
     const int n = intParam(ctx, "rays");
     const float R = floatParam(ctx, "radius");
     return perPixel(ctx, [&](const SdfContext& c, const Surface& s, int x, int y) {
@@ -230,9 +230,9 @@ Result<std::vector<HostImage>> groundTruth(const Context& ctx) {
 
 std::vector<RefEntry> sdfAoRefs() {
     return {
-        {"sdf_classic", classic},       {"sdf_multiplicative", multiplicative}, {"sdf_multiscale", multiscale},
-        {"sdf_jittered", jittered},     {"sdf_hemisphere", hemisphere},         {"sdf_fibonacci", fibonacci},
-        {"ground_truth", groundTruth},
+        {"sdf_classic", sdfClassic},       {"sdf_multiplicative", sdfMultiplicative}, {"sdf_multiscale", sdfMultiscale},
+        {"sdf_jittered", sdfJittered},     {"sdf_hemisphere", sdfHemisphere},         {"sdf_fibonacci", sdfFibonacci},
+        {"ground_truth", sdfGroundTruth},
     };
 }
 

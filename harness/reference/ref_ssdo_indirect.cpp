@@ -22,7 +22,6 @@ using ssdo::Basis;
 using ssdo::FastMarch;
 using ssdo::Sample;
 using ssdo::bounceFrom;
-using ssdo::kPi;
 using ssdo::put;
 using ssdo::ssdoBasis;
 using ssdo::ssdoSample;

@@ -15,8 +15,6 @@
 
 namespace cavity::reference::ssdo {
 
-constexpr float kPi = 3.14159265f;   // common.glsl's PI
-
 // --- the sky (include/sky.glsl) ---------------------------------------------
 
 using Levels = std::vector<kernels::ConstantImageDecl::Level>;

@@ -28,16 +28,16 @@ namespace {
 
 constexpr size_t kMaxObjectBytes = size_t(1) << 30;
 
-std::string env(const char* name) {
+std::string envText(const char* name) {
     const char* v = std::getenv(name);
     return v ? v : "";
 }
 
 std::string cacheFolder(const std::string& given) {
     if (!given.empty()) return given;
-    if (const std::string c = env("CAVITY_STORE_CACHE"); !c.empty()) return c;
-    if (const std::string x = env("XDG_CACHE_HOME"); !x.empty()) return (fs::path(x) / "cavity" / "store").string();
-    const std::string home = env("HOME");
+    if (const std::string c = envText("CAVITY_STORE_CACHE"); !c.empty()) return c;
+    if (const std::string x = envText("XDG_CACHE_HOME"); !x.empty()) return (fs::path(x) / "cavity" / "store").string();
+    const std::string home = envText("HOME");
     return (fs::path(home.empty() ? "." : home) / ".cache" / "cavity" / "store").string();
 }
 
@@ -139,7 +139,7 @@ struct Limits {
 Result<Limits> limits() {
     Limits out;
     const auto read = [](const char* name, long lo, long hi, long& into) -> Status {
-        const std::string v = env(name);
+        const std::string v = envText(name);
         if (v.empty()) return {};
         char* end = nullptr;
         errno = 0;
@@ -154,13 +154,13 @@ Result<Limits> limits() {
     // Credentials go into a request header: a line break in one would start
     // a header of its own. Their values are never shown.
     for (const char* name : {"CAVITY_STORE_TOKEN", "CAVITY_STORE_USER", "CAVITY_STORE_PASSWORD"}) {
-        if (hasControlChar(env(name)))
+        if (hasControlChar(envText(name)))
             return badInput(std::string(name) + ": holds a control character (a line break?); its value is not shown");
     }
-    if (!env("CAVITY_STORE_USER").empty() && env("CAVITY_STORE_TOKEN").empty() && env("CAVITY_STORE_PASSWORD").empty())
+    if (!envText("CAVITY_STORE_USER").empty() && envText("CAVITY_STORE_TOKEN").empty() && envText("CAVITY_STORE_PASSWORD").empty())
         return badInput("CAVITY_STORE_USER is set without CAVITY_STORE_PASSWORD (basic authentication takes both)");
     for (const char* name : {"CAVITY_STORE_NETRC", "CAVITY_STORE_CA"}) {
-        const std::string v = env(name);
+        const std::string v = envText(name);
         std::error_code ec;
         if (!v.empty() && (!std::filesystem::is_regular_file(v, ec) || !std::ifstream(v)))
             return badInput(std::string(name) + "=" + v + ": not a readable file");
@@ -171,19 +171,19 @@ Result<Limits> limits() {
 // Credentials, CA and time limits from the environment; nothing of them is
 // ever put into a message.
 void configure(CURL* h, curl_slist*& headers) {
-    if (const std::string token = env("CAVITY_STORE_TOKEN"); !token.empty()) {
+    if (const std::string token = envText("CAVITY_STORE_TOKEN"); !token.empty()) {
         headers = curl_slist_append(headers, ("Authorization: Bearer " + token).c_str());
         curl_easy_setopt(h, CURLOPT_HTTPHEADER, headers);
-    } else if (const std::string user = env("CAVITY_STORE_USER"); !user.empty()) {
+    } else if (const std::string user = envText("CAVITY_STORE_USER"); !user.empty()) {
         curl_easy_setopt(h, CURLOPT_HTTPAUTH, long(CURLAUTH_BASIC));
         curl_easy_setopt(h, CURLOPT_USERNAME, user.c_str());
-        curl_easy_setopt(h, CURLOPT_PASSWORD, env("CAVITY_STORE_PASSWORD").c_str());
+        curl_easy_setopt(h, CURLOPT_PASSWORD, envText("CAVITY_STORE_PASSWORD").c_str());
     } else {
         curl_easy_setopt(h, CURLOPT_NETRC, long(CURL_NETRC_OPTIONAL));
-        if (const std::string netrc = env("CAVITY_STORE_NETRC"); !netrc.empty())
+        if (const std::string netrc = envText("CAVITY_STORE_NETRC"); !netrc.empty())
             curl_easy_setopt(h, CURLOPT_NETRC_FILE, netrc.c_str());
     }
-    if (const std::string ca = env("CAVITY_STORE_CA"); !ca.empty()) curl_easy_setopt(h, CURLOPT_CAINFO, ca.c_str());
+    if (const std::string ca = envText("CAVITY_STORE_CA"); !ca.empty()) curl_easy_setopt(h, CURLOPT_CAINFO, ca.c_str());
     // Checked when the store was opened (limits()).
     const Limits l = limits().value();
     curl_easy_setopt(h, CURLOPT_TIMEOUT, l.total);
@@ -258,7 +258,7 @@ Result<std::unique_ptr<ImageStore>> httpStore(const std::string& url, const std:
     if (const auto l = limits(); !l) return l.error();
     // A cache named by the user that cannot hold a folder is their mistake
     // (the default one is a convenience, used where it can be).
-    const std::string named = !cacheDir.empty() ? "--store-cache" : !env("CAVITY_STORE_CACHE").empty() ? "CAVITY_STORE_CACHE" : "";
+    const std::string named = !cacheDir.empty() ? "--store-cache" : !envText("CAVITY_STORE_CACHE").empty() ? "CAVITY_STORE_CACHE" : "";
     std::error_code ec;
     if (const std::string cache = cacheFolder(cacheDir);
         !named.empty() && (cache.find_first_not_of(" \t") == std::string::npos || hasControlChar(cache)))
