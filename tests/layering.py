@@ -53,7 +53,7 @@ def read_codemodel(build):
     index = json.load(open(indexes[-1]))
     model = next(o for o in index["objects"] if o["kind"] == "codemodel")
     code = json.load(open(os.path.join(reply, model["jsonFile"])))
-    source = code["paths"]["source"]
+    source, build_root = code["paths"]["source"], code["paths"]["build"]
     config = code["configurations"][0]
     by_id, targets = {}, {}
     for t in config["targets"]:
@@ -62,7 +62,11 @@ def read_codemodel(build):
         # kernels' generator) orders the build; it is no layer.
         if tj["type"] == "UTILITY":
             continue
-        srcs = [s["path"] for s in tj.get("sources", []) if not s.get("isGenerated") and not os.path.isabs(s["path"])]
+        # A unity build's batch files are in the build folder, and CMake does
+        # not mark them generated: they name no folder of the product.
+        srcs = [s["path"] for s in tj.get("sources", [])
+                if not s.get("isGenerated") and not os.path.isabs(s["path"])
+                and not os.path.join(source, s["path"]).startswith(build_root + "/")]
         includes = set()
         for g in tj.get("compileGroups", []):
             for inc in g.get("includes", []):
