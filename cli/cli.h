@@ -55,5 +55,6 @@ int abCommand(const std::vector<std::string>& args);        // cavity ab
 int historyCommand(const std::vector<std::string>& args);   // cavity history ingest|show|chart|alerts
 int kernelsCommand(const std::vector<std::string>& args);   // cavity kernels list|show|check|coverage
 int coverageCommand(const std::vector<std::string>& args);  // cavity kernels coverage
+int kernelsCheck(const std::string& dir);                   // cavity kernels check DIR (kernels_check.cpp)
 
 }  // namespace cavity::cli

@@ -370,18 +370,29 @@ def check_flag_names(cavity, bench, render, root):
 
 def check_builtins_and_outputs(cavity, root, source):
     """Every built-in package passes check as a user would run it on the
-    example (compiled-in values, switches the harness reads, tables derived
-    on the CPU, compute-only mip chains); an output no write reaches fails."""
+    checkout's folders of them (compiled-in values, switches the harness
+    reads, tables derived on the CPU, compute-only mip chains), each package
+    named in the output; a copy of kernels/ with a package the build never
+    embedded fails naming it; an output no write reaches fails."""
     failures = 0
     for group in ("ao", "passes"):
-        for name in sorted(os.listdir(os.path.join(source, "kernels", group))):
-            folder = os.path.join(source, "kernels", group, name)
-            if not os.path.isfile(os.path.join(folder, "kernel.toml")):
-                continue
-            r = run([cavity, "kernels", "check", folder])
-            if r.returncode != 0:
-                failures += 1
-                print(f"FAIL check of the built-in package kernels/{group}/{name}: {r.stderr.strip()[:400]!r}")
+        folder = os.path.join(source, "kernels", group)
+        names = sorted(n for n in os.listdir(folder) if os.path.isfile(os.path.join(folder, n, "kernel.toml")))
+        r = run([cavity, "kernels", "check", folder])
+        passed = set(re.findall(r"^(\w+) \(kernels/" + group + r"/\w+/kernel\.toml\): compiles on vk and gl", r.stdout, re.M))
+        if r.returncode != 0 or passed != set(names):
+            failures += 1
+            print(f"FAIL check of the built-in packages in kernels/{group}: exit {r.returncode}, "
+                  f"not passed: {sorted(set(names) - passed)}; {r.stderr.strip()[:400]!r}")
+    copy = os.path.join(root, "checkout", "kernels")
+    shutil.copytree(os.path.join(source, "kernels"), copy)
+    make(os.path.join(copy, "ao", "ring_ao"))
+    r = run([cavity, "kernels", "check", os.path.join(copy, "ao")])
+    line = [l for l in r.stderr.splitlines() if "ring_ao" in l]
+    if r.returncode != 2 or not line or "has not embedded" not in line[0] or "alchemy (" not in r.stdout:
+        failures += 1
+        print(f"FAIL check of a folder of built-in packages with one the build never embedded: {r.returncode} "
+              f"{r.stderr.strip()[:400]!r}")
     pkg = os.path.join(root, "unwritten")
     make(pkg, glsl=GLSL.replace("write_ao(pixel, ", "keep_ao(").replace("void cavity_main", "void keep_ao(vec4 v) {}\nvoid cavity_main", 1))
     r = run([cavity, "kernels", "check", pkg])
