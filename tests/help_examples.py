@@ -21,6 +21,10 @@ suffix or one substitution, printed beside the example:
     scratch folder (the HTTP transport is store_http's test);
   * a history database at postgresql://...db.example is an SQLite file
     (the PostgreSQL server is history_postgres's test).
+And `cavity history chart` finds a stand-in `chromium` first on PATH that
+fails, so it writes its page and no PNG (a headless browser per example
+would add seconds each; History.ChartPageIsSelfContained takes the real
+screenshot).
 A test that cannot find an example in some help fails too: every program
 must keep showing how it is used.
 
@@ -275,7 +279,13 @@ def main():
         sha = fixtures(work)
         for name in ("matrices.json", "manifest.json", "budgets.json", "approvals.json"):
             PRISTINE[name] = open(os.path.join(work, "baselines", name)).read()
-        env = dict(os.environ, SHA=sha, CI_JOB_URL="https://ci.example/jobs/1")
+        shim = os.path.join(work, "no-browser")
+        os.makedirs(shim)
+        with open(os.path.join(shim, "chromium"), "w") as f:
+            f.write("#!/bin/sh\nexit 3\n")
+        os.chmod(os.path.join(shim, "chromium"), 0o755)
+        env = dict(os.environ, SHA=sha, CI_JOB_URL="https://ci.example/jobs/1",
+                   PATH=shim + os.pathsep + os.environ.get("PATH", ""))
         # Ingest first: the history examples that read a database need one.
         todo = [(" ".join(h) + " --help", e) for h in HELPS for e in examples(h)]
         docs = doc_examples()

@@ -87,39 +87,3 @@ foreach(entry
   list(GET pair 1 name)
   set_tests_properties("${name}" PROPERTIES COST ${cost})
 endforeach()
-
-# test_render is SERIAL (tests/CMakeLists.txt), but these of its tests judge
-# no time: a damaged or mismatched render folder, or a bad flag, is refused
-# with exit 2 before anything is judged; the render binary's libraries; an
-# image file's bytes. Each process works in its own folder (named by its
-# pid), so they run beside other tests, as test_render's budgets of 1e6 ms
-# would let its other tests too (they were a large part of the serial
-# tests' time).
-foreach(name
-    "TwoStep.OverlappingShardsAreRefused"
-    "TwoStep.FoldersOfTwoBuildsAreRefused"
-    "TwoStep.BadRenderFlagsExitTwoWithOneLineAndWriteNothing"
-    "RenderBinary.LinksNoOpenImageIO"
-    "ImageFile.RoundTripsEveryBitInTheNarrowestForm"
-    # test_gate is SERIAL for the budgets an unchanged build must pass; the
-    # report test asserts that the failing configurations come first and
-    # that there are some, which a budget overrun under load cannot break;
-    # the other two run no gate. The unchanged build's two runs, the
-    # longest test (a large part of a CI run, with the other core idle
-    # throughout), judge images and determinism: on a software
-    # renderer a budget overrun is reported, not failed
-    # (GateOptions::enforceCpuBudgets), so load cannot fail them either.
-    "Gate.UnchangedBuildPassesTwiceOnBothApis"
-    "Gate.HtmlReportOpensInHeadlessChromiumWithFailuresFirst"
-    "Gate.HtmlReportInlinesGateJsonThatNoMessageBreaksOutOf"
-    "Gate.ShardsPartitionTheMatrix")
-  set_tests_properties("${name}" PROPERTIES RUN_SERIAL FALSE)
-endforeach()
-# Named as gtest_discover_tests names them, with the parameter's index.
-set(index 0)
-foreach(damage MissingImage WrongSize TruncatedFile CorruptFile DigestMismatch ManifestOfAnotherMatrix
-        ManifestOfAnEditedMatrix ManifestOfAnotherBuild ManifestOfAnotherSchema NoManifest FileOutsideTheFolder)
-  set_tests_properties("Damages/BadRenderFolder.IsRefusedWithOneLineNamingTheFileAndWritesNothing/${damage}  # GetParam() = ${index}"
-                       PROPERTIES RUN_SERIAL FALSE)
-  math(EXPR index "${index} + 1")
-endforeach()
