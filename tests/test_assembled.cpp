@@ -7,7 +7,7 @@
 // leave every byte the GPU runs as it was, so every approved digest holds;
 // this says which kernel and stage moved if one did. A kernel edit that is
 // meant to change what runs re-records the list:
-//   CAVITY_RECORD_ASSEMBLED=1 build/tests/test_assembled
+//   CAVITY_RECORD_ASSEMBLED=1 build/tests/test_gpu --gtest_filter='Assembled.*'
 #include "compiler.h"
 #include "core/digest.h"
 #include "kernel.h"

@@ -137,7 +137,7 @@ TEST(PyramidCoverage, GpuCpuMatrixReadsEveryLevelOfEveryFastKernel) { expectEver
 // The levels each fast kernel reads at 1920x1080 on corner, at the defaults:
 // what the CPU matrix above must reach. Slow on a CPU (the G-buffer march
 // of 2 megapixels), so run by hand:
-//   build/tests/test_pyramid_coverage --gtest_also_run_disabled_tests --gtest_filter='*1080*'
+//   build/tests/test_gpu --gtest_also_run_disabled_tests --gtest_filter='*1080*'
 TEST(PyramidCoverage, DISABLED_LevelsReadAt1080p) {
     for (const auto& k : kernels::all()) {
         if (k.role != kernels::Role::Ao || !isFast(k.name)) continue;
