@@ -150,6 +150,13 @@ std::vector<std::string> checkOne(const kernels::KernelDecl& k) {
     return problems;
 }
 
+// Whether `path` ends with the components of the relative path `tail`:
+// "/src/cavity/kernels/ao" ends with "kernels/ao", not with "ls/ao".
+bool endsWithPath(const std::string& path, const std::string& tail) {
+    const std::string t = "/" + tail;
+    return path.size() >= t.size() && path.compare(path.size() - t.size(), std::string::npos, t) == 0;
+}
+
 // The checkout's kernels/ folder holds the built-in packages on disk: a
 // folder of them (kernels/, kernels/ao) names the built-in package
 // kernels/ao/<name> when its package folder is there, below `given`.
@@ -163,8 +170,7 @@ bool holdsBuiltIn(const std::string& given, const std::string& folder) {
         fs::path below = given;
         for (size_t i = n; i < parts.size(); ++i) below /= parts[i];
         std::error_code ec;
-        if (given.size() > head.size() && given.compare(given.size() - head.size(), std::string::npos, head) == 0 &&
-            fs::is_regular_file(below / "kernel.toml", ec))
+        if (endsWithPath(given, head.substr(1)) && fs::is_regular_file(below / "kernel.toml", ec))
             return true;
     }
     return false;
@@ -181,10 +187,8 @@ int unembedded(const std::string& given, const std::vector<kernels::PackageInfo>
     for (auto it = fs::recursive_directory_iterator(given, ec); !ec && it != fs::recursive_directory_iterator(); it.increment(ec)) {
         if (it->path().filename() != "kernel.toml") continue;
         const std::string folder = it->path().parent_path().string();
-        const bool known = std::any_of(chosen.begin(), chosen.end(), [&](const auto& p) {
-            const std::string tail = "/" + p.folder;
-            return folder.size() > tail.size() && folder.compare(folder.size() - tail.size(), std::string::npos, tail) == 0;
-        });
+        const bool known =
+            std::any_of(chosen.begin(), chosen.end(), [&](const auto& p) { return endsWithPath(folder, p.folder); });
         if (known) continue;
         std::cerr << "cavity kernels check: " << folder
                   << ": a package among the built-in ones that this build has not embedded (rebuild, or keep it in a "
@@ -208,9 +212,6 @@ int kernelsCheck(const std::string& dir) {
     std::string given = fs::absolute(dir, ec).lexically_normal().string();
     if (ec) return fail("cavity kernels check", badInput(dir + ": " + ec.message()));
     while (given.size() > 1 && given.back() == '/') given.pop_back();
-    const auto endsWith = [&](const std::string& tail) {
-        return given.size() > tail.size() && given.compare(given.size() - tail.size() - 1, std::string::npos, "/" + tail) == 0;
-    };
     // The package of that folder, or each package inside a folder of them,
     // loaded already (CAVITY_KERNELS, --kernels) or loaded now.
     const auto choose = [&] {
@@ -221,7 +222,7 @@ int kernelsCheck(const std::string& dir) {
             const auto rel = folder.lexically_relative(root);
             const bool inside = !e2 && !rel.empty() && *rel.begin() != "..";
             if ((!p.builtIn && inside) ||
-                (p.builtIn && (endsWith(p.folder) || fs::equivalent(p.folder, dir, e2) || holdsBuiltIn(given, p.folder))))
+                (p.builtIn && (endsWithPath(given, p.folder) || fs::equivalent(p.folder, dir, e2) || holdsBuiltIn(given, p.folder))))
                 chosen.push_back(p);
         }
     };
