@@ -6,6 +6,7 @@
 #include "core/digest.h"
 #include "core/json_file.h"
 #include "report/gate_report.h"
+#include "staging.h"
 #include "images/image_io.h"
 #include "gate/judge_folders.h"
 #include "measure/results.h"
@@ -284,16 +285,19 @@ int judge(const std::vector<std::string>& argv) {
     auto expectations =
         gate::loadExpectations(expectationsDir.empty() ? (fs::path(baselines) / "expectations").string() : expectationsDir);
     if (!expectations) return fail("cavity gate judge", expectations.error());
+    const std::string out = o.out;
+    const fs::path staging = stagingDir(out);   // the new images, until the reports are written
+    o.out = staging.string();
     auto run = gate::judgeFolders(dirs, o);
-    if (!run) return fail("cavity gate judge", run.error());
+    std::error_code ec;
+    if (!run) return fs::remove_all(staging, ec), fail("cavity gate judge", run.error());
     run->strict = strict;
     run->applyStrict();
     gate::applyExpectations(*run, *expectations);
-    run->out = o.out;
     run->baselines = givenBaselines;
-    if (auto st = report::writeReports(*run, o.out, reportUrl); !st) return fail("cavity gate judge", st.error());
+    if (auto st = writeGateOutput(*run, staging, out, reportUrl); !st) return fail("cavity gate judge", st.error());
     std::cout << report::summaryMarkdown(*run, reportUrl.empty() ? "index.html" : reportUrl);
-    std::cout << "\nreport: " << (fs::path(o.out) / "index.html").string() << "\n";
+    std::cout << "\nreport: " << (fs::path(out) / "index.html").string() << "\n";
     return finished("cavity gate judge", *run);
 }
 
@@ -378,13 +382,16 @@ int gateCommand(const std::vector<std::string>& argv) {
     }
     if (auto st = outsideBaselines(o.out, o.baselines); !st) return fail("cavity gate", st.error());
     if (auto st = gate::recoverBaselineUpdate(o.baselines); !st) return fail("cavity gate", st.error());
+    const std::string out = o.out;
+    const fs::path staging = stagingDir(out);   // the new images, until the reports are written
+    o.out = staging.string();
     auto run = gate::runGate(o);
-    if (!run) return fail("cavity gate", run.error());
-    run->out = o.out;
+    std::error_code ec;
+    if (!run) return fs::remove_all(staging, ec), fail("cavity gate", run.error());
     run->baselines = givenBaselines;
-    if (auto st = report::writeReports(*run, o.out, parsed->reportUrl); !st) return fail("cavity gate", st.error());
+    if (auto st = writeGateOutput(*run, staging, out, parsed->reportUrl); !st) return fail("cavity gate", st.error());
     std::cout << report::summaryMarkdown(*run, parsed->reportUrl.empty() ? "index.html" : parsed->reportUrl);
-    std::cout << "\nreport: " << (fs::path(o.out) / "index.html").string() << "\n";
+    std::cout << "\nreport: " << (fs::path(out) / "index.html").string() << "\n";
     return finished("cavity gate", *run);
 }
 

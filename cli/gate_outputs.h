@@ -26,6 +26,16 @@ std::string inFolder(const std::string& dir, const std::string& recorded);
 // from it, and the shards' folders may go.
 Status gatherShardImages(const std::map<std::string, std::string>& owner, const std::string& out, gate::GateRun& merged);
 
+// A gate's or judge's output, made under `staging` (stagingDir(out): the
+// run wrote its images there) and moved into `out` at the end, so that a
+// gate killed or failing midway leaves the earlier run's output whole. The
+// earlier reports go first, then images/ is replaced by this run's (or
+// removed, when it wrote none) and the reports are written, gate.json last:
+// a kill in that short step leaves images and no verdict, never an older
+// verdict over newer images.
+Status writeGateOutput(gate::GateRun& run, const std::filesystem::path& staging, const std::string& out,
+                       const std::string& reportUrl);
+
 // The files a gate run rendered in place of kernels/ or a package's own
 // (--kernel-source), each read back and checked against the digest the run
 // recorded: target -> (file given, its text). Without `take`

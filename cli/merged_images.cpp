@@ -1,5 +1,6 @@
-// gate merge's images (gate_outputs.h).
+// gate merge's images, and a gate's output moved in at its end (gate_outputs.h).
 #include "gate_outputs.h"
+#include "report/gate_report.h"
 #include "staging.h"
 
 #include <system_error>
@@ -60,6 +61,23 @@ Status gatherShardImages(const std::map<std::string, std::string>& owner, const 
         for (auto& i : r.images)
             for (std::string* p : {&i.newExact, &i.newPng, &i.diffPng}) *p = inFolder(out, *p);
     return {};
+}
+
+Status writeGateOutput(gate::GateRun& run, const fs::path& staging, const std::string& out, const std::string& reportUrl) {
+    std::error_code ec;
+    gate::dropStaleReports(out);
+    const fs::path images = fs::path(out) / "images";
+    if (fs::is_directory(staging / "images", ec))
+        ec = replaceFolder(staging / "images", images);
+    else
+        fs::remove_all(images, ec);
+    std::error_code gone;
+    fs::remove_all(staging, gone);
+    if (ec) return badInput("--out " + out + ": cannot move the images in: " + ec.message());
+    for (auto& r : run.results)
+        for (auto& i : r.images)
+            for (std::string* p : {&i.newExact, &i.newPng, &i.diffPng}) *p = inFolder(out, *p);
+    return report::writeReports(run, out, reportUrl);
 }
 
 }  // namespace cavity::cli

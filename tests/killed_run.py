@@ -1,11 +1,12 @@
 #!/usr/bin/env python3
-"""`cavity run` killed with SIGKILL while it renders leaves --out as it was
-(all or nothing): its images are written under a staging folder in --out
-and move in only when every configuration has run. The kill comes once the
-staging folder holds an image (an event, not a time), and a later run
-removes the killed run's staging folder and moves its own images in. A run
-in which nothing ran leaves a results.json of its errors and none of the
-earlier run's table or page.
+"""`cavity run` and `cavity gate` killed with SIGKILL while they render
+leave --out as it was (all or nothing): their images are written under a
+staging folder in --out and move in only when every configuration has run.
+The kill comes once the staging folder holds an image (an event, not a
+time), and a later run removes the killed run's staging folder and moves
+its own images in. A run in which nothing ran leaves a results.json of its
+errors and none of the earlier run's table or page. A gate's reports name
+only images that are there.
 
     killed_run.py CAVITY
 """
@@ -86,8 +87,70 @@ def main():
             print(f"FAIL a run where nothing ran: exit {r.returncode}, runs {len(doc['runs'])}, "
                   f"errors {doc['errors']}, earlier files left {stale}")
             failures += 1
-        print("killed run: --out unchanged, and the next run cleaned up" if not failures else f"{failures} failures")
+        failures += killed_gate(cavity, tmp)
+        print("killed run and gate: --out unchanged, and the next one cleaned up" if not failures
+              else f"{failures} failures")
         return 1 if failures else 0
+
+
+def killed_when_staged(cmd, cwd, out):
+    """Starts cmd in cwd, kills it once its staging folder in out holds a
+    file; whether it got that far."""
+    p = subprocess.Popen(cmd, cwd=cwd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    staging = os.path.join(out, f".partial-{p.pid}")
+    deadline = time.time() + 300
+    while time.time() < deadline and p.poll() is None:
+        if any(files for _, _, files in os.walk(staging)):
+            break
+        time.sleep(0.05)
+    if p.poll() is not None:
+        print(f"FAIL {cmd[1]} ended (exit {p.returncode}) before it had written an image to kill it at")
+        return False
+    p.send_signal(signal.SIGKILL)
+    p.wait()
+    return True
+
+
+def named_images(out):
+    """The images the gate.json in out names, and those of them missing."""
+    with open(os.path.join(out, "gate.json")) as f:
+        doc = json.load(f)
+    named = [v for r in doc["results"] for i in r["images"] for k, v in i.items()
+             if k in ("new_exact", "new_png", "diff_png") and v]
+    return named, [n for n in named if not os.path.isfile(os.path.join(os.path.dirname(out), n))]
+
+
+def killed_gate(cavity, tmp):
+    """A failing gate's output, a longer gate killed into the same folder,
+    then a passing gate: each leaves one whole output."""
+    failures = 0
+    out = os.path.join(tmp, "gate")
+    one = "^corner/alchemy_fast/n16/b4/full/160x90/vk/compute$"
+    gate = [cavity, "gate", "--matrix", "ci", "--quiet", "--retries", "0", "--out", "gate"]
+    env = dict(os.environ, CAVITY_TEST_FLAKY="alchemy_fast")   # the test hook: its first render fails
+    r = subprocess.run(gate + ["--filter", one], cwd=tmp, env=env, capture_output=True, text=True)
+    named, missing = named_images(out)
+    if r.returncode != 1 or not named or missing:
+        print(f"FAIL the failing gate: exit {r.returncode}, {len(named)} images named, missing {missing[:3]}")
+        return 1
+    before = contents(out)
+    if not killed_when_staged(gate + ["--filter", "^(corner|slats)/"], tmp, out):
+        return 1
+    after = contents(out)
+    if after != before:
+        changed = sorted(set(after) ^ set(before) | {k for k in after if before.get(k) != after[k]})
+        print(f"FAIL a killed gate changed --out: {changed[:5]}")
+        failures += 1
+    r = subprocess.run(gate + ["--filter", one], cwd=tmp, capture_output=True, text=True)
+    named, missing = named_images(out)
+    leftovers = [d for d in os.listdir(out) if d.startswith(".partial-")]
+    stray = sorted(set(contents(out)) - {os.path.relpath(n, "gate") for n in named}
+                   - {"gate.json", "index.html", "junit.xml", "status.json", "summary.md"})
+    if r.returncode != 0 or missing or leftovers or any(not s.endswith(".f32z") and ".new." not in s for s in stray):
+        print(f"FAIL the next gate: exit {r.returncode}, missing {missing[:3]}, staging left {leftovers}, "
+              f"files of no report {stray[:3]}")
+        failures += 1
+    return failures
 
 
 if __name__ == "__main__":
